@@ -1,0 +1,146 @@
+//! Homogeneous clipping (Sutherland & Hodgman, *Reentrant Polygon
+//! Clipping*, CACM 1974).
+//!
+//! A triangle that crosses the near or far plane, comes too close to `w = 0`,
+//! or reaches beyond the guard band is clipped in clip space, before the
+//! perspective divide, against only the planes its vertices' outcodes name.
+//! Each plane keeps the polygon's inside vertices unchanged and inserts the
+//! intersection where an edge crosses it. Clipping a triangle against up to
+//! seven planes gives at most ten vertices, so the polygon lives in a
+//! fixed-capacity `heapless::Vec`.
+//!
+//! The intersection of an edge is always computed from its inside end
+//! towards its outside end, with exact `i128` products and one rounding, so
+//! two triangles sharing an edge produce the very same new vertex and stay
+//! watertight after clipping.
+
+use crate::vertex::{ClipVertex, GUARD_K, OUT_FAR, OUT_GUARD, OUT_NEAR, OUT_W, W_MIN};
+
+/// Capacity of a clipped polygon. A convex triangle clipped by seven planes
+/// has at most ten vertices; the margin absorbs a vertex that fixed-point
+/// round-off could add on a nearly degenerate polygon.
+pub const MAX_CLIPPED_VERTICES: usize = 16;
+
+/// A convex polygon in clip space.
+pub type Polygon = heapless::Vec<ClipVertex, MAX_CLIPPED_VERTICES>;
+
+#[derive(Clone, Copy)]
+enum Plane {
+    Near,
+    Far,
+    WMin,
+    Left,
+    Right,
+    Bottom,
+    Top,
+}
+
+impl Plane {
+    /// Signed distance; the inside is `>= 0`.
+    #[inline]
+    fn distance(self, p: &[i32; 4]) -> i64 {
+        let (x, y, z, w) = (p[0] as i64, p[1] as i64, p[2] as i64, p[3] as i64);
+        match self {
+            Plane::Near => z + w,
+            Plane::Far => w - z,
+            Plane::WMin => w - W_MIN,
+            Plane::Left => GUARD_K * w + x,
+            Plane::Right => GUARD_K * w - x,
+            Plane::Bottom => GUARD_K * w + y,
+            Plane::Top => GUARD_K * w - y,
+        }
+    }
+}
+
+/// The point where the edge from `inside` (distance `d_in >= 0`) to
+/// `outside` (distance `d_out < 0`) meets the plane.
+fn intersect(inside: &ClipVertex, d_in: i64, outside: &ClipVertex, d_out: i64) -> ClipVertex {
+    let den = (d_in - d_out) as i128;
+    let lerp = |a: i32, b: i32| -> i32 {
+        let num = (b as i128 - a as i128) * d_in as i128;
+        // Round to nearest; |num / den| <= |b - a|, so the result stays
+        // between a and b and fits i32.
+        let q = if num >= 0 {
+            (num + den / 2) / den
+        } else {
+            -((-num + den / 2) / den)
+        };
+        (a as i128 + q) as i32
+    };
+    let mut v = ClipVertex::default();
+    for k in 0..4 {
+        v.pos[k] = lerp(inside.pos[k], outside.pos[k]);
+    }
+    for k in 0..3 {
+        v.color[k] = lerp(inside.color[k], outside.color[k]);
+    }
+    v
+}
+
+fn clip_against(input: &Polygon, plane: Plane, out: &mut Polygon) {
+    out.clear();
+    let n = input.len();
+    for i in 0..n {
+        let cur = &input[i];
+        let next = &input[(i + 1) % n];
+        let dc = plane.distance(&cur.pos);
+        let dn = plane.distance(&next.pos);
+        if dc >= 0 {
+            // Capacity: each plane adds at most one vertex to a convex
+            // polygon; MAX_CLIPPED_VERTICES has room for every plane.
+            let _ = out.push(*cur);
+            if dn < 0 {
+                let _ = out.push(intersect(cur, dc, next, dn));
+            }
+        } else if dn >= 0 {
+            let _ = out.push(intersect(next, dn, cur, dc));
+        }
+    }
+}
+
+/// Clips triangle `tri` against the planes selected by `outcodes` (the OR
+/// of its vertices' outcodes). The result may be empty.
+///
+/// ```
+/// use microraster::clip::clip_triangle;
+/// use microraster::vertex::{outcode, ClipVertex};
+/// let one = 1 << 16;
+/// let v = |x: i32, z: i32| ClipVertex { pos: [x, 0, z, one], color: [0; 3] };
+/// // One vertex in front of the near plane (z < -w), two inside.
+/// let tri = [v(0, -2 * one), v(one / 2, 0), v(-one / 2, 0)];
+/// let codes = tri.iter().fold(0, |c, v| c | outcode(&v.pos));
+/// let poly = clip_triangle(&tri, codes);
+/// assert_eq!(poly.len(), 4);
+/// assert!(poly.iter().all(|v| v.pos[2] >= -v.pos[3]));
+/// ```
+pub fn clip_triangle(tri: &[ClipVertex; 3], outcodes: u8) -> Polygon {
+    let mut a = Polygon::new();
+    let mut b = Polygon::new();
+    for v in tri {
+        let _ = a.push(*v);
+    }
+    let mut planes: heapless::Vec<Plane, 7> = heapless::Vec::new();
+    if outcodes & OUT_W != 0 {
+        let _ = planes.push(Plane::WMin);
+    }
+    if outcodes & OUT_NEAR != 0 {
+        let _ = planes.push(Plane::Near);
+    }
+    if outcodes & OUT_FAR != 0 {
+        let _ = planes.push(Plane::Far);
+    }
+    if outcodes & OUT_GUARD != 0 {
+        for p in [Plane::Left, Plane::Right, Plane::Bottom, Plane::Top] {
+            let _ = planes.push(p);
+        }
+    }
+    for &p in &planes {
+        clip_against(&a, p, &mut b);
+        core::mem::swap(&mut a, &mut b);
+        if a.len() < 3 {
+            a.clear();
+            break;
+        }
+    }
+    a
+}

@@ -1,0 +1,420 @@
+//! Per-frame set-up math in `f32`, and its hand-over to 16.16 fixed point.
+//!
+//! Matrices are built once per frame (or per draw) in `f32`, with
+//! [`micromath`] for the trigonometry, so they cost nothing per vertex. The
+//! vertex stage never sees a float: [`Mat4::to_fixed`] converts a matrix to
+//! [`FixedMat4`], whose elements are [`I16F16`], and every per-vertex product
+//! goes through `i64`.
+//!
+//! Conventions follow OpenGL: column vectors, right-handed eye space looking
+//! down -z, clip-space x, y, z in `[-w, w]`. Only the basic IEEE operations
+//! and micromath's pure-`f32` routines are used, so the same inputs give the
+//! same bits on every target; all trigonometry is called through
+//! [`micromath::F32Ext`] explicitly so a host build never silently picks up
+//! `std`'s different implementation.
+
+use fixed::types::I16F16;
+use micromath::F32Ext;
+
+/// Square root to full `f32` precision: micromath's bit-trick estimate
+/// (about 5 % off) refined by three Newton steps. Only basic IEEE
+/// operations, so it gives the same bits on every target.
+pub fn sqrt(x: f32) -> f32 {
+    if x.is_nan() || x < 0.0 {
+        return f32::NAN;
+    }
+    if x == 0.0 || x == f32::INFINITY {
+        return x;
+    }
+    let mut y = F32Ext::sqrt(x);
+    for _ in 0..3 {
+        y = 0.5 * (y + x / y);
+    }
+    y
+}
+
+/// A 3-component `f32` vector, used for per-frame set-up (camera, lights).
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+pub struct Vec3 {
+    /// x component.
+    pub x: f32,
+    /// y component.
+    pub y: f32,
+    /// z component.
+    pub z: f32,
+}
+
+impl Vec3 {
+    /// Creates a vector.
+    pub const fn new(x: f32, y: f32, z: f32) -> Self {
+        Self { x, y, z }
+    }
+
+    /// Dot product.
+    pub fn dot(self, o: Self) -> f32 {
+        self.x * o.x + self.y * o.y + self.z * o.z
+    }
+
+    /// Cross product.
+    pub fn cross(self, o: Self) -> Self {
+        Self::new(
+            self.y * o.z - self.z * o.y,
+            self.z * o.x - self.x * o.z,
+            self.x * o.y - self.y * o.x,
+        )
+    }
+
+    /// Euclidean length.
+    pub fn length(self) -> f32 {
+        sqrt(self.dot(self))
+    }
+
+    /// The unit vector in the same direction, or `None` for a zero-length or
+    /// non-finite vector.
+    pub fn normalize(self) -> Option<Self> {
+        let sq = self.dot(self);
+        if !(sq.is_finite() && sq > 0.0) {
+            return None;
+        }
+        let len = sqrt(sq);
+        Some(Self::new(self.x / len, self.y / len, self.z / len))
+    }
+
+    /// Whether every component is finite.
+    pub fn is_finite(self) -> bool {
+        self.x.is_finite() && self.y.is_finite() && self.z.is_finite()
+    }
+}
+
+impl core::ops::Sub for Vec3 {
+    type Output = Vec3;
+    fn sub(self, o: Self) -> Self {
+        Self::new(self.x - o.x, self.y - o.y, self.z - o.z)
+    }
+}
+
+/// A 4x4 `f32` matrix, column-major (`m[column][row]`), acting on column
+/// vectors as in OpenGL.
+///
+/// ```
+/// use microraster::math::{Mat4, Vec3};
+/// let view = Mat4::look_at(Vec3::new(0.0, 0.0, 3.0), Vec3::default(), Vec3::new(0.0, 1.0, 0.0)).unwrap();
+/// let proj = Mat4::perspective(1.0, 4.0 / 3.0, 0.5, 10.0).unwrap();
+/// let view_proj = proj * view;
+/// assert!(view_proj.is_finite());
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Mat4 {
+    /// Columns; `m[c][r]` is row `r` of column `c`.
+    pub m: [[f32; 4]; 4],
+}
+
+impl Default for Mat4 {
+    fn default() -> Self {
+        Self::IDENTITY
+    }
+}
+
+impl Mat4 {
+    /// The identity matrix.
+    pub const IDENTITY: Self = Self {
+        m: [
+            [1.0, 0.0, 0.0, 0.0],
+            [0.0, 1.0, 0.0, 0.0],
+            [0.0, 0.0, 1.0, 0.0],
+            [0.0, 0.0, 0.0, 1.0],
+        ],
+    };
+
+    /// A translation.
+    pub fn translation(t: Vec3) -> Self {
+        let mut r = Self::IDENTITY;
+        r.m[3] = [t.x, t.y, t.z, 1.0];
+        r
+    }
+
+    /// A uniform or non-uniform scale.
+    pub fn scale(s: Vec3) -> Self {
+        let mut r = Self::IDENTITY;
+        r.m[0][0] = s.x;
+        r.m[1][1] = s.y;
+        r.m[2][2] = s.z;
+        r
+    }
+
+    /// A rotation of `angle` radians about the x axis.
+    pub fn rotation_x(angle: f32) -> Self {
+        let (s, c) = (F32Ext::sin(angle), F32Ext::cos(angle));
+        let mut r = Self::IDENTITY;
+        r.m[1] = [0.0, c, s, 0.0];
+        r.m[2] = [0.0, -s, c, 0.0];
+        r
+    }
+
+    /// A rotation of `angle` radians about the y axis.
+    pub fn rotation_y(angle: f32) -> Self {
+        let (s, c) = (F32Ext::sin(angle), F32Ext::cos(angle));
+        let mut r = Self::IDENTITY;
+        r.m[0] = [c, 0.0, -s, 0.0];
+        r.m[2] = [s, 0.0, c, 0.0];
+        r
+    }
+
+    /// A rotation of `angle` radians about the z axis.
+    pub fn rotation_z(angle: f32) -> Self {
+        let (s, c) = (F32Ext::sin(angle), F32Ext::cos(angle));
+        let mut r = Self::IDENTITY;
+        r.m[0] = [c, s, 0.0, 0.0];
+        r.m[1] = [-s, c, 0.0, 0.0];
+        r
+    }
+
+    /// An OpenGL perspective projection: vertical field of view `fovy`
+    /// (radians), `aspect` = width / height, and positive `near` < `far`.
+    ///
+    /// Returns `None` for parameters that give no usable matrix (non-finite,
+    /// `near <= 0`, `far <= near`, `fovy` outside `(0, π)`, `aspect <= 0`).
+    pub fn perspective(fovy: f32, aspect: f32, near: f32, far: f32) -> Option<Self> {
+        let ok = [fovy, aspect, near, far].iter().all(|v| v.is_finite())
+            && fovy > 0.0
+            && fovy < core::f32::consts::PI
+            && aspect > 0.0
+            && near > 0.0
+            && far > near;
+        if !ok {
+            return None;
+        }
+        let f = 1.0 / F32Ext::tan(fovy * 0.5);
+        let nf = 1.0 / (near - far);
+        let r = Self {
+            m: [
+                [f / aspect, 0.0, 0.0, 0.0],
+                [0.0, f, 0.0, 0.0],
+                [0.0, 0.0, (far + near) * nf, -1.0],
+                [0.0, 0.0, 2.0 * far * near * nf, 0.0],
+            ],
+        };
+        r.is_finite().then_some(r)
+    }
+
+    /// An OpenGL orthographic projection of the box `[left, right] x
+    /// [bottom, top] x [-near, -far]` in eye space.
+    ///
+    /// Returns `None` when a pair of bounds is equal or a value is not finite.
+    pub fn orthographic(
+        left: f32,
+        right: f32,
+        bottom: f32,
+        top: f32,
+        near: f32,
+        far: f32,
+    ) -> Option<Self> {
+        if ![left, right, bottom, top, near, far]
+            .iter()
+            .all(|v| v.is_finite())
+            || left == right
+            || bottom == top
+            || near == far
+        {
+            return None;
+        }
+        let (rl, tb, fneg) = (right - left, top - bottom, far - near);
+        let r = Self {
+            m: [
+                [2.0 / rl, 0.0, 0.0, 0.0],
+                [0.0, 2.0 / tb, 0.0, 0.0],
+                [0.0, 0.0, -2.0 / fneg, 0.0],
+                [
+                    -(right + left) / rl,
+                    -(top + bottom) / tb,
+                    -(far + near) / fneg,
+                    1.0,
+                ],
+            ],
+        };
+        r.is_finite().then_some(r)
+    }
+
+    /// A right-handed view matrix looking from `eye` at `target`.
+    ///
+    /// Returns `None` when `eye == target`, `up` is parallel to the view
+    /// direction, or a value is not finite.
+    pub fn look_at(eye: Vec3, target: Vec3, up: Vec3) -> Option<Self> {
+        let f = (target - eye).normalize()?;
+        let s = f.cross(up).normalize()?;
+        let u = s.cross(f);
+        let r = Self {
+            m: [
+                [s.x, u.x, -f.x, 0.0],
+                [s.y, u.y, -f.y, 0.0],
+                [s.z, u.z, -f.z, 0.0],
+                [-s.dot(eye), -u.dot(eye), f.dot(eye), 1.0],
+            ],
+        };
+        r.is_finite().then_some(r)
+    }
+
+    /// Whether every element is finite.
+    pub fn is_finite(&self) -> bool {
+        self.m.iter().flatten().all(|v| v.is_finite())
+    }
+
+    /// Applies the upper 3x3 part to a direction (no translation).
+    pub fn transform_vector(&self, v: Vec3) -> Vec3 {
+        let m = &self.m;
+        Vec3::new(
+            m[0][0] * v.x + m[1][0] * v.y + m[2][0] * v.z,
+            m[0][1] * v.x + m[1][1] * v.y + m[2][1] * v.z,
+            m[0][2] * v.x + m[1][2] * v.y + m[2][2] * v.z,
+        )
+    }
+
+    /// The transpose of the inverse of the upper 3x3 part applied to `v`,
+    /// i.e. `M⁻¹ v` computed through the adjugate; `None` when singular.
+    ///
+    /// Lighting uses it to move a world-space light direction into model
+    /// space once per draw, so no per-vertex normal matrix is needed.
+    pub fn inverse_transform_vector(&self, v: Vec3) -> Option<Vec3> {
+        let m = &self.m;
+        // Rows of the 3x3 part.
+        let r0 = Vec3::new(m[0][0], m[1][0], m[2][0]);
+        let r1 = Vec3::new(m[0][1], m[1][1], m[2][1]);
+        let r2 = Vec3::new(m[0][2], m[1][2], m[2][2]);
+        // Columns of the inverse are cross products of rows / det.
+        let c0 = r1.cross(r2);
+        let c1 = r2.cross(r0);
+        let c2 = r0.cross(r1);
+        let det = r0.dot(c0);
+        if !(det.is_finite() && det != 0.0) {
+            return None;
+        }
+        let inv = 1.0 / det;
+        let out = Vec3::new(
+            (c0.x * v.x + c1.x * v.y + c2.x * v.z) * inv,
+            (c0.y * v.x + c1.y * v.y + c2.y * v.z) * inv,
+            (c0.z * v.x + c1.z * v.y + c2.z * v.z) * inv,
+        );
+        out.is_finite().then_some(out)
+    }
+
+    /// Converts to 16.16 fixed point, rounding to nearest.
+    ///
+    /// Returns `None` when an element is not finite or lies outside the
+    /// `I16F16` range (±32768).
+    pub fn to_fixed(&self) -> Option<FixedMat4> {
+        let mut out = [[0i32; 4]; 4];
+        for (c, col) in self.m.iter().enumerate() {
+            for (r, &v) in col.iter().enumerate() {
+                out[c][r] = I16F16::checked_from_num(v)?.to_bits();
+            }
+        }
+        Some(FixedMat4 { m: out })
+    }
+}
+
+impl core::ops::Mul for Mat4 {
+    type Output = Mat4;
+    fn mul(self, rhs: Mat4) -> Mat4 {
+        let mut out = [[0.0f32; 4]; 4];
+        for (c, out_col) in out.iter_mut().enumerate() {
+            for (r, o) in out_col.iter_mut().enumerate() {
+                *o = self.m[0][r] * rhs.m[c][0]
+                    + self.m[1][r] * rhs.m[c][1]
+                    + self.m[2][r] * rhs.m[c][2]
+                    + self.m[3][r] * rhs.m[c][3];
+            }
+        }
+        Mat4 { m: out }
+    }
+}
+
+/// A 4x4 matrix in 16.16 fixed point (raw `I16F16` bits), column-major.
+///
+/// Produced by [`Mat4::to_fixed`]; applied per vertex with `i64`
+/// accumulation, so a core without an FPU does no soft-float per vertex.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct FixedMat4 {
+    /// Columns of raw 16.16 values; `m[c][r]`.
+    pub m: [[i32; 4]; 4],
+}
+
+impl FixedMat4 {
+    /// Transforms the point `(p, 1)` (raw 16.16 components) to homogeneous
+    /// coordinates, each the exact `i64` sum of products rounded once to
+    /// 16.16. Returns `None` if a result leaves the `I16F16` range.
+    #[inline]
+    pub fn transform_point(&self, p: [i32; 3]) -> Option<[i32; 4]> {
+        let m = &self.m;
+        let mut out = [0i32; 4];
+        for (r, o) in out.iter_mut().enumerate() {
+            let acc = m[0][r] as i64 * p[0] as i64
+                + m[1][r] as i64 * p[1] as i64
+                + m[2][r] as i64 * p[2] as i64
+                + ((m[3][r] as i64) << 16);
+            *o = i32::try_from((acc + (1 << 15)) >> 16).ok()?;
+        }
+        Some(out)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn perspective_maps_near_and_far_to_clip_bounds() {
+        let p = Mat4::perspective(1.0, 1.0, 1.0, 10.0).unwrap();
+        // A point on the near plane: z_eye = -1 -> z_clip = -w.
+        let zc = -p.m[2][2] + p.m[3][2];
+        let wc = -p.m[2][3];
+        assert!((zc + wc).abs() < 1e-6);
+        let zc = p.m[2][2] * -10.0 + p.m[3][2];
+        let wc = p.m[2][3] * -10.0;
+        assert!((zc - wc).abs() < 1e-4);
+    }
+
+    #[test]
+    fn bad_projection_parameters_are_rejected() {
+        assert!(Mat4::perspective(f32::NAN, 1.0, 1.0, 2.0).is_none());
+        assert!(Mat4::perspective(1.0, 1.0, 0.0, 2.0).is_none());
+        assert!(Mat4::perspective(1.0, 1.0, 2.0, 2.0).is_none());
+        assert!(Mat4::perspective(4.0, 1.0, 1.0, 2.0).is_none());
+        assert!(Mat4::orthographic(0.0, 0.0, 0.0, 1.0, 0.0, 1.0).is_none());
+        assert!(
+            Mat4::look_at(Vec3::default(), Vec3::default(), Vec3::new(0.0, 1.0, 0.0)).is_none()
+        );
+    }
+
+    #[test]
+    fn sqrt_is_accurate() {
+        for &x in &[1e-6f32, 0.01, 0.5, 1.0, 2.0, 3.0, 10.0, 12345.0, 1e9] {
+            let r = sqrt(x);
+            assert!((r * r - x).abs() <= x * 1e-6, "{x}: {r}");
+        }
+        assert_eq!(sqrt(0.0), 0.0);
+        assert!(sqrt(-1.0).is_nan());
+    }
+
+    #[test]
+    fn inverse_transform_undoes_transform() {
+        let m =
+            Mat4::rotation_y(0.7) * Mat4::rotation_x(-0.3) * Mat4::scale(Vec3::new(2.0, 2.0, 2.0));
+        let v = Vec3::new(0.3, -0.5, 0.8);
+        let back = m.inverse_transform_vector(m.transform_vector(v)).unwrap();
+        assert!(
+            (back.x - v.x).abs() < 1e-5
+                && (back.y - v.y).abs() < 1e-5
+                && (back.z - v.z).abs() < 1e-5
+        );
+    }
+
+    #[test]
+    fn fixed_transform_overflow_is_reported() {
+        let m = Mat4::scale(Vec3::new(1000.0, 1.0, 1.0)).to_fixed().unwrap();
+        let big = I16F16::from_num(1000).to_bits();
+        assert!(m.transform_point([big, 0, 0]).is_none());
+        assert!(Mat4::scale(Vec3::new(f32::INFINITY, 1.0, 1.0))
+            .to_fixed()
+            .is_none());
+    }
+}

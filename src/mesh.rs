@@ -1,0 +1,177 @@
+//! Indexed triangle meshes borrowed from flash (or any `'a` memory).
+//!
+//! A [`Mesh`] only borrows slices, so `static` arrays stay in flash and cost
+//! no RAM. Every layout rule is checked once, when the mesh is built: an
+//! index out of range or a per-vertex array of the wrong length is an error
+//! then, never a panic or a wrong picture later.
+
+use embedded_graphics::pixelcolor::Rgb888;
+use fixed::types::I16F16;
+
+/// A vertex position or normal in model space, 16.16 fixed point.
+pub type Vec3Fx = [I16F16; 3];
+
+/// An indexed triangle mesh.
+///
+/// Triangles list vertex indices counter-clockwise as seen from the front
+/// (after projection, in normalised device coordinates with y up).
+///
+/// ```
+/// use fixed::types::I16F16;
+/// use microraster::mesh::{Mesh, MeshError};
+/// const fn fx(v: i32) -> I16F16 { I16F16::from_bits(v << 16) }
+/// static POSITIONS: [[I16F16; 3]; 3] = [
+///     [fx(0), fx(0), fx(0)], [fx(1), fx(0), fx(0)], [fx(0), fx(1), fx(0)],
+/// ];
+/// static TRIANGLES: [[u16; 3]; 1] = [[0, 1, 2]];
+/// let mesh = Mesh::new(&POSITIONS, &TRIANGLES).unwrap();
+/// assert_eq!(mesh.triangle_count(), 1);
+///
+/// static BAD: [[u16; 3]; 1] = [[0, 1, 3]];
+/// assert_eq!(
+///     Mesh::new(&POSITIONS, &BAD).unwrap_err(),
+///     MeshError::IndexOutOfRange { triangle: 0, index: 3, vertex_count: 3 }
+/// );
+/// ```
+#[derive(Clone, Copy, Debug)]
+pub struct Mesh<'a> {
+    positions: &'a [Vec3Fx],
+    normals: Option<&'a [Vec3Fx]>,
+    colors: Option<&'a [Rgb888]>,
+    triangles: &'a [[u16; 3]],
+}
+
+/// Why a mesh could not be built.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MeshError {
+    /// A triangle refers to a vertex that does not exist.
+    IndexOutOfRange {
+        /// Index of the offending triangle.
+        triangle: usize,
+        /// The out-of-range vertex index.
+        index: u16,
+        /// Number of vertices in the mesh.
+        vertex_count: usize,
+    },
+    /// A per-vertex array has a different length from `positions`.
+    LengthMismatch {
+        /// Which array: `"normals"` or `"colors"`.
+        what: &'static str,
+        /// Its length.
+        len: usize,
+        /// The number of positions.
+        expected: usize,
+    },
+    /// More vertices than a `u16` index can reach (65,536).
+    TooManyVertices {
+        /// The number of positions given.
+        count: usize,
+    },
+}
+
+impl core::fmt::Display for MeshError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            Self::IndexOutOfRange {
+                triangle,
+                index,
+                vertex_count,
+            } => write!(
+                f,
+                "triangle {triangle} uses vertex index {index}, but the mesh has {vertex_count} vertices"
+            ),
+            Self::LengthMismatch {
+                what,
+                len,
+                expected,
+            } => write!(f, "{what} has {len} entries but there are {expected} positions"),
+            Self::TooManyVertices { count } => {
+                write!(f, "{count} vertices exceed the u16 index range")
+            }
+        }
+    }
+}
+
+impl<'a> Mesh<'a> {
+    /// Builds a mesh from positions and triangles, checking every index.
+    pub fn new(positions: &'a [Vec3Fx], triangles: &'a [[u16; 3]]) -> Result<Self, MeshError> {
+        if positions.len() > u16::MAX as usize + 1 {
+            return Err(MeshError::TooManyVertices {
+                count: positions.len(),
+            });
+        }
+        for (t, tri) in triangles.iter().enumerate() {
+            for &i in tri {
+                if i as usize >= positions.len() {
+                    return Err(MeshError::IndexOutOfRange {
+                        triangle: t,
+                        index: i,
+                        vertex_count: positions.len(),
+                    });
+                }
+            }
+        }
+        Ok(Self {
+            positions,
+            normals: None,
+            colors: None,
+            triangles,
+        })
+    }
+
+    /// Adds per-vertex unit normals (model space), used for lighting.
+    pub fn with_normals(mut self, normals: &'a [Vec3Fx]) -> Result<Self, MeshError> {
+        check_len("normals", normals.len(), self.positions.len())?;
+        self.normals = Some(normals);
+        Ok(self)
+    }
+
+    /// Adds per-vertex colours, which replace the material colour.
+    pub fn with_colors(mut self, colors: &'a [Rgb888]) -> Result<Self, MeshError> {
+        check_len("colors", colors.len(), self.positions.len())?;
+        self.colors = Some(colors);
+        Ok(self)
+    }
+
+    /// The vertex positions.
+    pub fn positions(&self) -> &'a [Vec3Fx] {
+        self.positions
+    }
+
+    /// The vertex normals, if any.
+    pub fn normals(&self) -> Option<&'a [Vec3Fx]> {
+        self.normals
+    }
+
+    /// The vertex colours, if any.
+    pub fn colors(&self) -> Option<&'a [Rgb888]> {
+        self.colors
+    }
+
+    /// The triangles, as vertex indices.
+    pub fn triangles(&self) -> &'a [[u16; 3]] {
+        self.triangles
+    }
+
+    /// Number of vertices.
+    pub fn vertex_count(&self) -> usize {
+        self.positions.len()
+    }
+
+    /// Number of triangles.
+    pub fn triangle_count(&self) -> usize {
+        self.triangles.len()
+    }
+}
+
+fn check_len(what: &'static str, len: usize, expected: usize) -> Result<(), MeshError> {
+    if len == expected {
+        Ok(())
+    } else {
+        Err(MeshError::LengthMismatch {
+            what,
+            len,
+            expected,
+        })
+    }
+}

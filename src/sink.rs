@@ -1,0 +1,59 @@
+//! Where finished tiles go.
+//!
+//! A [`TileSink`] receives each tile once, as its screen rectangle and its
+//! pixels. Every embedded-graphics [`DrawTarget`] is a sink: it gets one
+//! `fill_contiguous` call per tile, so any e-g display driver (mipidsi,
+//! ssd1306, the simulator, …) works unchanged. A driver that wants the raw
+//! bytes, for example to start a DMA transfer per tile, implements
+//! [`TileSink`] directly and reads [`TileView::rows`].
+
+use crate::tile::TileView;
+use embedded_graphics::draw_target::DrawTarget;
+use embedded_graphics::pixelcolor::PixelColor;
+use embedded_graphics::prelude::{Point, Size};
+use embedded_graphics::primitives::Rectangle;
+
+/// A consumer of finished tiles.
+pub trait TileSink<C: PixelColor> {
+    /// The sink's error, returned by [`crate::Renderer::render`] unchanged.
+    type Error;
+
+    /// Writes one finished tile covering `area` of the frame.
+    fn write_tile(&mut self, area: &Rectangle, tile: &TileView<'_, C>) -> Result<(), Self::Error>;
+}
+
+impl<D: DrawTarget> TileSink<D::Color> for D {
+    type Error = D::Error;
+
+    #[inline]
+    fn write_tile(
+        &mut self,
+        area: &Rectangle,
+        tile: &TileView<'_, D::Color>,
+    ) -> Result<(), D::Error> {
+        self.fill_contiguous(area, tile.pixels())
+    }
+}
+
+/// A sink that discards every tile; for benchmarks and instruction counts.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct NullSink;
+
+impl<C: PixelColor> TileSink<C> for NullSink {
+    type Error = core::convert::Infallible;
+
+    #[inline]
+    fn write_tile(&mut self, _: &Rectangle, tile: &TileView<'_, C>) -> Result<(), Self::Error> {
+        // Touch the data so the optimiser cannot drop the rendering.
+        core::hint::black_box(tile.rows().next());
+        Ok(())
+    }
+}
+
+/// The e-g rectangle of a tile's pixel rectangle.
+pub(crate) fn rectangle(r: &crate::raster::PixelRect) -> Rectangle {
+    Rectangle::new(
+        Point::new(r.x0, r.y0),
+        Size::new((r.x1 - r.x0) as u32, (r.y1 - r.y0) as u32),
+    )
+}

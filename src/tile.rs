@@ -1,0 +1,163 @@
+//! The tile buffer: colour in the sink's pixel format plus 16-bit depth.
+//!
+//! A frame is rendered one `W x H` tile at a time into this buffer, which is
+//! the only per-pixel memory the renderer owns: `W * H * (size_of::<C>() +
+//! 2)` bytes, e.g. 4 KiB for 32 x 32 `Rgb565`. Tiles at the right and bottom
+//! of a frame whose size is not a multiple of the tile size use only their
+//! top-left part.
+
+use crate::raster::PixelRect;
+
+/// Colour and depth for one tile, sized at compile time.
+#[derive(Clone, Debug)]
+pub struct TileBuffer<C, const W: usize, const H: usize> {
+    pub(crate) color: [[C; W]; H],
+    pub(crate) depth: [[u16; W]; H],
+}
+
+impl<C: Copy, const W: usize, const H: usize> TileBuffer<C, W, H> {
+    const VALID: () = assert!(
+        W > 0 && H > 0 && W <= 1024 && H <= 1024,
+        "tile sides must be 1..=1024 pixels"
+    );
+
+    /// A tile buffer filled with `color` and the farthest depth.
+    pub const fn new(color: C) -> Self {
+        #[allow(clippy::let_unit_value)]
+        let () = Self::VALID;
+        Self {
+            color: [[color; W]; H],
+            depth: [[u16::MAX; W]; H],
+        }
+    }
+
+    /// Clears the top-left `w x h` pixels.
+    pub(crate) fn clear(&mut self, w: usize, h: usize, color: C, depth: u16) {
+        for row in &mut self.color[..h] {
+            row[..w].fill(color);
+        }
+        for row in &mut self.depth[..h] {
+            row[..w].fill(depth);
+        }
+    }
+
+    /// The colour of tile-local pixel `(x, y)`.
+    pub fn color(&self, x: usize, y: usize) -> Option<C> {
+        self.color.get(y).and_then(|r| r.get(x)).copied()
+    }
+
+    /// The depth of tile-local pixel `(x, y)`.
+    pub fn depth(&self, x: usize, y: usize) -> Option<u16> {
+        self.depth.get(y).and_then(|r| r.get(x)).copied()
+    }
+
+    /// A view of the top-left `w x h` pixels for a sink.
+    pub(crate) fn view(&self, w: usize, h: usize) -> TileView<'_, C> {
+        TileView {
+            pixels: self.color.as_flattened(),
+            stride: W,
+            width: w,
+            height: h,
+        }
+    }
+}
+
+/// The finished pixels of one tile, row-major, as handed to a sink.
+#[derive(Clone, Copy, Debug)]
+pub struct TileView<'a, C> {
+    pixels: &'a [C],
+    stride: usize,
+    width: usize,
+    height: usize,
+}
+
+impl<'a, C: Copy> TileView<'a, C> {
+    /// Width in pixels.
+    pub fn width(&self) -> usize {
+        self.width
+    }
+
+    /// Height in pixels.
+    pub fn height(&self) -> usize {
+        self.height
+    }
+
+    /// The rows, each `width` pixels long, top to bottom.
+    pub fn rows(&self) -> impl Iterator<Item = &'a [C]> + 'a {
+        let (stride, width) = (self.stride, self.width);
+        self.pixels
+            .chunks(stride)
+            .take(self.height)
+            .map(move |r| &r[..width])
+    }
+
+    /// Every pixel, row by row.
+    pub fn pixels(&self) -> impl Iterator<Item = C> + 'a {
+        self.rows().flat_map(|r| r.iter().copied())
+    }
+}
+
+/// The layout of a frame in tiles.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct TileGrid {
+    /// Frame width in pixels.
+    pub width: u32,
+    /// Frame height in pixels.
+    pub height: u32,
+    /// Tile width.
+    pub tile_w: u32,
+    /// Tile height.
+    pub tile_h: u32,
+    /// Tiles per row.
+    pub cols: u32,
+    /// Tile rows.
+    pub rows: u32,
+}
+
+impl TileGrid {
+    /// The grid of `tile_w x tile_h` tiles covering a `width x height` frame.
+    pub fn new(width: u32, height: u32, tile_w: u32, tile_h: u32) -> Self {
+        Self {
+            width,
+            height,
+            tile_w,
+            tile_h,
+            cols: width.div_ceil(tile_w),
+            rows: height.div_ceil(tile_h),
+        }
+    }
+
+    /// Number of tiles.
+    pub fn count(&self) -> u32 {
+        self.cols * self.rows
+    }
+
+    /// The pixels of tile `t` (row-major index), clipped to the frame.
+    pub fn rect(&self, t: u32) -> PixelRect {
+        let (tx, ty) = (t % self.cols, t / self.cols);
+        let x0 = tx * self.tile_w;
+        let y0 = ty * self.tile_h;
+        PixelRect::new(
+            x0 as i32,
+            y0 as i32,
+            (x0 + self.tile_w).min(self.width) as i32,
+            (y0 + self.tile_h).min(self.height) as i32,
+        )
+    }
+
+    /// The range of tile columns and rows (`[c0, c1) x [r0, r1)`) that a
+    /// pixel rectangle inside the frame touches; `None` when it is empty.
+    pub fn span(&self, r: &PixelRect) -> Option<(u32, u32, u32, u32)> {
+        let frame = PixelRect::new(0, 0, self.width as i32, self.height as i32);
+        let r = r.intersect(&frame);
+        if r.is_empty() {
+            return None;
+        }
+        Some((
+            r.x0 as u32 / self.tile_w,
+            (r.x1 as u32 - 1) / self.tile_w + 1,
+            r.y0 as u32 / self.tile_h,
+            (r.y1 as u32 - 1) / self.tile_h + 1,
+        ))
+    }
+}

@@ -1,0 +1,333 @@
+//! The vertex stage: model-view-projection, lighting, outcodes and the
+//! viewport transform, all in fixed point.
+//!
+//! Per frame (and per draw) the `f32` matrices of the [`Scene`] are combined
+//! and converted once to 16.16 ([`FixedMat4`]); the world-space light
+//! direction is moved into the draw's model space (`M⁻¹ L`, normalised), so
+//! per vertex the stage needs only integer multiply-adds: 12 products for the
+//! position, 3 for the Lambert term, and 3 divisions for the perspective
+//! divide. A Cortex-M0+ therefore does no soft-float per vertex.
+//!
+//! # Outcodes and the guard band
+//!
+//! Each clip-space vertex gets an outcode: one bit per frustum half-space it
+//! lies outside (`x < -w`, `x > w`, `y < -w`, `y > w`, `z < -w`, `z > w`),
+//! one for `w` below [`W_MIN`], and one for leaving the *guard band*
+//! `|x| <= K w, |y| <= K w` with `K =` [`GUARD_K`]. A triangle whose three
+//! outcodes share a half-space bit is rejected; a triangle with any vertex
+//! outside near, far, `W_MIN` or the guard band is clipped by
+//! [`crate::clip`]; every other triangle is projected directly.
+//!
+//! The guard band is what bounds the fixed-point ranges downstream: after
+//! clipping, `|x / w| <= K + 1/16`, so with the viewport limited to
+//! [`MAX_VIEWPORT`] pixels a side, screen coordinates stay within
+//! `(K + 1.07) * 4096 * 16 < 2^18` sub-pixels. The rasterizer's set-up then
+//! needs at most 2^39 in `i64` and its per-row stepping fits `i32`
+//! (denominators below 2^24, columns below 2^15).
+//!
+//! # Viewport
+//!
+//! NDC x in `[-1, 1]` maps to `[0, width]` pixels left to right, NDC y in
+//! `[-1, 1]` to `[height, 0]` (screen y grows downwards), both rounded to the
+//! nearest 1/16 pixel. NDC z in `[-1, 1]` maps to depth `0..=65535`.
+
+use crate::math::{FixedMat4, Mat4};
+use crate::mesh::Mesh;
+use crate::raster::{SubPoint, SUBPIXEL};
+use crate::scene::{Draw, Light};
+
+/// Outside `x >= -w`.
+pub const OUT_LEFT: u8 = 1;
+/// Outside `x <= w`.
+pub const OUT_RIGHT: u8 = 2;
+/// Outside `y >= -w`.
+pub const OUT_BOTTOM: u8 = 4;
+/// Outside `y <= w`.
+pub const OUT_TOP: u8 = 8;
+/// Outside the near plane `z >= -w`.
+pub const OUT_NEAR: u8 = 16;
+/// Outside the far plane `z <= w`.
+pub const OUT_FAR: u8 = 32;
+/// `w` below [`W_MIN`] (behind or too close to the eye to divide by).
+pub const OUT_W: u8 = 64;
+/// Outside the guard band `|x| <= K w, |y| <= K w`.
+pub const OUT_GUARD: u8 = 128;
+/// Bits that force a triangle through the clipper.
+pub const MUST_CLIP: u8 = OUT_NEAR | OUT_FAR | OUT_W | OUT_GUARD;
+/// Bits that are single half-spaces, usable for trivial reject.
+pub const REJECT_MASK: u8 = !OUT_GUARD;
+
+/// Guard-band size in multiples of the viewport half-extent.
+pub const GUARD_K: i64 = 4;
+/// Smallest `w` (raw 16.16, i.e. 2^-12) that is divided by.
+pub const W_MIN: i64 = 16;
+/// Largest viewport side in pixels.
+pub const MAX_VIEWPORT: u32 = 4096;
+
+/// A vertex after the vertex stage, as stored in the frame's vertex buffer
+/// (16 bytes).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct ScreenVertex {
+    /// Screen x in sub-pixels (valid when `outcode & MUST_CLIP == 0`).
+    pub x: i32,
+    /// Screen y in sub-pixels.
+    pub y: i32,
+    /// Depth, 0 (near) to 65535 (far).
+    pub z: u16,
+    /// Outcode bits (`OUT_*`).
+    pub outcode: u8,
+    /// Lit colour, 8 bits per channel.
+    pub color: [u8; 3],
+}
+
+/// A vertex in homogeneous clip space, for the clipper.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct ClipVertex {
+    /// `x, y, z, w` as raw 16.16.
+    pub pos: [i32; 4],
+    /// Lit colour, 8 bits per channel (kept as `i32` for interpolation).
+    pub color: [i32; 3],
+}
+
+/// Why the vertex stage refused a draw.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum VertexError {
+    /// A matrix (model, view or projection, or their product) has a
+    /// non-finite element or one outside the 16.16 range.
+    BadMatrix,
+    /// A transformed vertex left the 16.16 range of clip space.
+    OutOfRange {
+        /// Index of the vertex within its mesh.
+        vertex: usize,
+    },
+}
+
+/// A fixed-point light, already in a draw's model space.
+#[derive(Clone, Copy, Debug)]
+struct FixedLight {
+    /// Unit direction towards the light, raw 16.16.
+    dir: [i32; 3],
+    color: [u32; 3],
+    ambient: [u32; 3],
+}
+
+/// Everything the vertex stage needs for one draw, in fixed point.
+#[derive(Clone, Copy, Debug)]
+pub struct DrawSetup {
+    mvp: FixedMat4,
+    light: Option<FixedLight>,
+    color: [u8; 3],
+}
+
+impl DrawSetup {
+    /// Converts a draw's `f32` set-up to fixed point. Deterministic: the
+    /// same inputs always give the same bits, which the tile loop relies on
+    /// when it redoes this for clipped triangles.
+    pub fn new(
+        draw: &Draw<'_>,
+        view_proj: &Mat4,
+        light: Option<&Light>,
+    ) -> Result<Self, VertexError> {
+        let m = &draw.transform;
+        if !m.is_finite() {
+            return Err(VertexError::BadMatrix);
+        }
+        let mvp = (*view_proj * *m).to_fixed().ok_or(VertexError::BadMatrix)?;
+        let light = match light {
+            Some(l) => {
+                let local = m
+                    .inverse_transform_vector(l.direction)
+                    .and_then(|v| v.normalize())
+                    .ok_or(VertexError::BadMatrix)?;
+                let fx = |v: f32| (v * 65536.0) as i32;
+                let c = |c: embedded_graphics::pixelcolor::Rgb888| {
+                    use embedded_graphics::prelude::RgbColor;
+                    [c.r() as u32, c.g() as u32, c.b() as u32]
+                };
+                Some(FixedLight {
+                    dir: [fx(local.x), fx(local.y), fx(local.z)],
+                    color: c(l.color),
+                    ambient: c(l.ambient),
+                })
+            }
+            None => None,
+        };
+        use embedded_graphics::prelude::RgbColor;
+        Ok(Self {
+            mvp,
+            light,
+            color: [draw.color.r(), draw.color.g(), draw.color.b()],
+        })
+    }
+
+    /// The clip-space position and lit colour of vertex `i` of `mesh`.
+    #[inline]
+    pub fn clip_vertex(&self, mesh: &Mesh<'_>, i: usize) -> Result<ClipVertex, VertexError> {
+        let p = mesh.positions()[i];
+        let pos = self
+            .mvp
+            .transform_point([p[0].to_bits(), p[1].to_bits(), p[2].to_bits()])
+            .ok_or(VertexError::OutOfRange { vertex: i })?;
+        let base = match mesh.colors() {
+            Some(c) => {
+                use embedded_graphics::prelude::RgbColor;
+                [c[i].r(), c[i].g(), c[i].b()]
+            }
+            None => self.color,
+        };
+        let color = match (&self.light, mesh.normals()) {
+            (Some(l), Some(n)) => light_vertex(l, n[i], base),
+            _ => base,
+        };
+        Ok(ClipVertex {
+            pos,
+            color: [color[0] as i32, color[1] as i32, color[2] as i32],
+        })
+    }
+}
+
+/// Lambert diffuse plus ambient, per channel:
+/// `base * (ambient + light * max(0, n·l)) / 255`, rounded, saturated.
+#[inline]
+fn light_vertex(l: &FixedLight, n: crate::mesh::Vec3Fx, base: [u8; 3]) -> [u8; 3] {
+    let d = n[0].to_bits() as i64 * l.dir[0] as i64
+        + n[1].to_bits() as i64 * l.dir[1] as i64
+        + n[2].to_bits() as i64 * l.dir[2] as i64;
+    // n·l in 1/256 steps, clamped to [0, 1].
+    let ndotl = (d >> 24).clamp(0, 256) as u32;
+    let mut out = [0u8; 3];
+    for c in 0..3 {
+        let intensity = l.ambient[c] * 256 + l.color[c] * ndotl; // <= 2^17
+        let v = (base[c] as u32 * intensity + 32_640) / 65_280;
+        out[c] = v.min(255) as u8;
+    }
+    out
+}
+
+/// The outcode of a clip-space position.
+#[inline]
+pub fn outcode(p: &[i32; 4]) -> u8 {
+    let (x, y, z, w) = (p[0] as i64, p[1] as i64, p[2] as i64, p[3] as i64);
+    let mut c = 0;
+    if x < -w {
+        c |= OUT_LEFT;
+    }
+    if x > w {
+        c |= OUT_RIGHT;
+    }
+    if y < -w {
+        c |= OUT_BOTTOM;
+    }
+    if y > w {
+        c |= OUT_TOP;
+    }
+    if z < -w {
+        c |= OUT_NEAR;
+    }
+    if z > w {
+        c |= OUT_FAR;
+    }
+    if w < W_MIN {
+        c |= OUT_W;
+    }
+    let g = GUARD_K * w;
+    if x.abs() > g || y.abs() > g {
+        c |= OUT_GUARD;
+    }
+    c
+}
+
+/// The viewport transform of a validated viewport size.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Viewport {
+    /// Half the width, in sub-pixels.
+    half_w: i64,
+    /// Half the height, in sub-pixels.
+    half_h: i64,
+}
+
+impl Viewport {
+    /// A viewport of `width` x `height` pixels, both in `1..=MAX_VIEWPORT`
+    /// (checked by the renderer).
+    pub fn new(width: u32, height: u32) -> Self {
+        debug_assert!((1..=MAX_VIEWPORT).contains(&width) && (1..=MAX_VIEWPORT).contains(&height));
+        Self {
+            half_w: width as i64 * SUBPIXEL as i64 / 2,
+            half_h: height as i64 * SUBPIXEL as i64 / 2,
+        }
+    }
+
+    /// Screen position and depth of a clip-space point with `w >= W_MIN - 1`
+    /// inside the guard band (up to clipping round-off).
+    #[inline]
+    pub fn project(&self, p: &[i32; 4]) -> (SubPoint, u16) {
+        let w = (p[3] as i64).max(1);
+        let x = self.half_w + div_round(p[0] as i64 * self.half_w, w);
+        let y = self.half_h - div_round(p[1] as i64 * self.half_h, w);
+        let z = div_round((p[2] as i64 + w) * 65_535, 2 * w).clamp(0, 65_535);
+        (SubPoint::new(x as i32, y as i32), z as u16)
+    }
+
+    /// Runs the vertex stage on one vertex.
+    #[inline]
+    pub fn screen_vertex(&self, v: &ClipVertex) -> ScreenVertex {
+        let outcode = outcode(&v.pos);
+        let (p, z) = if outcode & MUST_CLIP == 0 {
+            self.project(&v.pos)
+        } else {
+            (SubPoint::default(), 0)
+        };
+        ScreenVertex {
+            x: p.x,
+            y: p.y,
+            z,
+            outcode,
+            color: [v.color[0] as u8, v.color[1] as u8, v.color[2] as u8],
+        }
+    }
+}
+
+/// `n / d` rounded to nearest (ties away from zero), for `d > 0`.
+#[inline]
+pub(crate) fn div_round(n: i64, d: i64) -> i64 {
+    if n >= 0 {
+        (n + d / 2) / d
+    } else {
+        -((-n + d / 2) / d)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn viewport_maps_ndc_corners_to_pixel_corners() {
+        let vp = Viewport::new(320, 240);
+        let one = 1 << 16;
+        let (p, z) = vp.project(&[-one, one, -one, one]);
+        assert_eq!((p.x, p.y, z), (0, 0, 0));
+        let (p, z) = vp.project(&[one, -one, one, one]);
+        assert_eq!((p.x, p.y, z), (320 * 16, 240 * 16, 65_535));
+        let (p, _) = vp.project(&[0, 0, 0, 2 * one]);
+        assert_eq!((p.x, p.y), (160 * 16, 120 * 16));
+    }
+
+    #[test]
+    fn outcodes_flag_each_half_space() {
+        let w = 1 << 16;
+        assert_eq!(outcode(&[0, 0, 0, w]), 0);
+        assert_eq!(outcode(&[-2 * w, 0, 0, w]), OUT_LEFT);
+        assert_eq!(outcode(&[0, 5 * w, 0, w]), OUT_TOP | OUT_GUARD);
+        assert_eq!(outcode(&[0, 0, -2 * w, w]), OUT_NEAR);
+        assert_eq!(outcode(&[0, 0, 0, -w]) & OUT_W, OUT_W);
+    }
+
+    #[test]
+    fn div_round_rounds_half_away_from_zero() {
+        assert_eq!(div_round(5, 2), 3);
+        assert_eq!(div_round(-5, 2), -3);
+        assert_eq!(div_round(4, 3), 1);
+        assert_eq!(div_round(-4, 3), -1);
+    }
+}
