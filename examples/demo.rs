@@ -65,8 +65,7 @@ fn main() {
     let assets = DemoAssets::new();
     let knot = assets.knot();
     let cube = cube();
-    let mut renderer =
-        DemoRenderer::new(Config::new(Size::new(WIDTH, HEIGHT), Rgb565::new(3, 6, 8)));
+    let mut renderer = DemoRenderer::new(Config::new(Size::new(WIDTH, HEIGHT), DEMO_CLEAR));
     let mut workspace = Box::new(DemoWorkspace::new());
     let mut display = SimulatorDisplay::<Rgb565>::new(Size::new(WIDTH, HEIGHT));
     println!(

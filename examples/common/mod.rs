@@ -10,6 +10,10 @@ use microraster::shapes::{
     torus_knot, torus_knot_size, CUBE_NORMALS, CUBE_POSITIONS, CUBE_TRIANGLES,
 };
 
+/// The demo's background.
+pub const DEMO_CLEAR: embedded_graphics::pixelcolor::Rgb565 =
+    embedded_graphics::pixelcolor::Rgb565::new(3, 6, 8);
+
 /// Knot resolution: 200 x 10 = 2,000 vertices, 4,000 triangles.
 pub const KNOT_SEGMENTS: usize = 200;
 pub const KNOT_SIDES: usize = 10;
