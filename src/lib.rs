@@ -84,3 +84,8 @@ pub mod prelude {
     pub use crate::sink::{NullSink, TileSink};
     pub use embedded_graphics::prelude::{Point, Size};
 }
+
+/// The README's code examples, compiled and run as doc tests.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+pub struct ReadmeDoctests;
