@@ -12,8 +12,7 @@
 mod common;
 
 use common::*;
-use embedded_graphics::draw_target::DrawTarget;
-use embedded_graphics::pixelcolor::{Rgb565, RgbColor};
+use embedded_graphics::pixelcolor::Rgb565;
 use embedded_graphics_simulator::{OutputSettingsBuilder, SimulatorDisplay};
 use microraster::prelude::*;
 
@@ -99,6 +98,8 @@ fn main() {
 
     #[cfg(not(feature = "window"))]
     {
+        use embedded_graphics::draw_target::DrawTarget;
+        use embedded_graphics::pixelcolor::RgbColor;
         if let Err(e) = std::fs::create_dir_all(&args.out) {
             eprintln!("demo: cannot create {}: {e}", args.out.display());
             std::process::exit(1);

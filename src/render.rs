@@ -212,6 +212,8 @@ pub enum RenderError<E> {
     },
     /// The camera's matrices are not finite or not representable.
     BadCamera,
+    /// The light's direction is zero or not finite.
+    BadLight,
     /// A draw's matrices or vertices could not be transformed.
     Draw {
         /// Index of the draw in the scene.
@@ -245,6 +247,7 @@ impl<E: core::fmt::Debug> core::fmt::Display for RenderError<E> {
                 size.width, size.height
             ),
             Self::BadCamera => write!(f, "the camera matrices are not finite or exceed 16.16"),
+            Self::BadLight => write!(f, "the light direction is zero or not finite"),
             Self::Draw { draw, error } => match error {
                 VertexError::BadMatrix => write!(
                     f,
@@ -532,6 +535,11 @@ where
         let view_proj = scene.camera.projection * scene.camera.view;
         if !view_proj.is_finite() || view_proj.to_fixed().is_none() {
             return Err(RenderError::BadCamera);
+        }
+        if let Some(light) = &scene.light {
+            if light.direction.normalize().is_none() {
+                return Err(RenderError::BadLight);
+            }
         }
 
         // Capacities first, so nothing is half done.

@@ -33,6 +33,7 @@ where
         cap.writes.iter().all(|&w| w == 1),
         "every pixel is sent exactly once"
     );
+    assert_eq!(cap.fills, stats.tiles, "one fill_contiguous per tile");
     cap
 }
 
