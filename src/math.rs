@@ -73,11 +73,25 @@ impl Vec3 {
     /// non-finite vector.
     pub fn normalize(self) -> Option<Self> {
         let sq = self.dot(self);
-        if !(sq.is_finite() && sq > 0.0) {
+        if sq.is_finite() && sq >= f32::MIN_POSITIVE {
+            let len = sqrt(sq);
+            return Some(Self::new(self.x / len, self.y / len, self.z / len));
+        }
+        // The squared length overflowed (a component above ~1.8e19) or
+        // underflowed (all below ~1e-19), although the vector may well be
+        // finite and non-zero: scale by the largest component first, which
+        // is exact in direction, and normalise the result (length in
+        // [1, sqrt(3)]). Vectors that took the path above are unchanged.
+        if !self.is_finite() {
             return None;
         }
-        let len = sqrt(sq);
-        Some(Self::new(self.x / len, self.y / len, self.z / len))
+        let m = self.x.abs().max(self.y.abs()).max(self.z.abs());
+        if m == 0.0 {
+            return None;
+        }
+        let s = Self::new(self.x / m, self.y / m, self.z / m);
+        let len = sqrt(s.dot(s));
+        Some(Self::new(s.x / len, s.y / len, s.z / len))
     }
 
     /// Whether every component is finite.
@@ -347,11 +361,17 @@ impl FixedMat4 {
         let m = &self.m;
         let mut out = [0i32; 4];
         for (r, o) in out.iter_mut().enumerate() {
-            let acc = m[0][r] as i64 * p[0] as i64
-                + m[1][r] as i64 * p[1] as i64
-                + m[2][r] as i64 * p[2] as i64
-                + ((m[3][r] as i64) << 16);
-            *o = i32::try_from((acc + (1 << 15)) >> 16).ok()?;
+            // Each product is below 2^62 in magnitude, but three of them
+            // can leave i64 (all elements and coordinates near +-32768),
+            // which panicked in debug builds and wrapped to a wrong vertex
+            // in release. A partial sum that overflows is more than 2^61
+            // away from zero whatever the remaining terms (each below 2^62,
+            // the translation below 2^47), far outside 16.16: `None`.
+            let acc = (m[0][r] as i64 * p[0] as i64)
+                .checked_add(m[1][r] as i64 * p[1] as i64)?
+                .checked_add(m[2][r] as i64 * p[2] as i64)?
+                .checked_add((m[3][r] as i64) << 16)?;
+            *o = i32::try_from(acc.checked_add(1 << 15)? >> 16).ok()?;
         }
         Some(out)
     }
@@ -406,6 +426,44 @@ mod tests {
                 && (back.y - v.y).abs() < 1e-5
                 && (back.z - v.z).abs() < 1e-5
         );
+    }
+
+    #[test]
+    fn normalize_handles_huge_and_tiny_vectors() {
+        let unit = Vec3::new(0.5, -0.25, 1.0).normalize().unwrap();
+        for k in [1e30f32, 3e38, 1e-30, 1e-37] {
+            let v = Vec3::new(0.5 * k, -0.25 * k, k).normalize();
+            assert_eq!(v, Some(unit), "{k}");
+        }
+        assert_eq!(
+            Vec3::new(f32::MAX, 0.0, 0.0).normalize(),
+            Some(Vec3::new(1.0, 0.0, 0.0))
+        );
+        let tiny = f32::from_bits(1); // the smallest subnormal
+        assert_eq!(
+            Vec3::new(0.0, -tiny, 0.0).normalize(),
+            Some(Vec3::new(0.0, -1.0, 0.0))
+        );
+        assert_eq!(Vec3::new(0.0, 0.0, 0.0).normalize(), None);
+        assert_eq!(Vec3::new(f32::NAN, 0.0, 1.0).normalize(), None);
+        assert_eq!(Vec3::new(0.0, f32::INFINITY, 0.0).normalize(), None);
+    }
+
+    #[test]
+    fn fixed_transform_sum_overflow_is_reported() {
+        // Three products of about 2^62 each: the exact sum leaves i64.
+        let m = FixedMat4 {
+            m: [
+                [-0x7fff_0000; 4],
+                [-0x7fff_0000; 4],
+                [-0x7fff_0000; 4],
+                [0, 0, 0, 1 << 16],
+            ],
+        };
+        let p = -0x7fff_0000;
+        assert_eq!(m.transform_point([p, p, p]), None);
+        assert_eq!(m.transform_point([-p, -p, -p]), None);
+        assert_eq!(m.transform_point([0, 0, 0]), Some([0, 0, 0, 1 << 16]));
     }
 
     #[test]
