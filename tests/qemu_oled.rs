@@ -233,6 +233,15 @@ fn oled_firmware_in_qemu_matches_host_render() {
         Size::new(WIDTH, HEIGHT),
         &to_rgb(&panel),
     );
+    // The README shows this picture; it must be the current one.
+    let docs = Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/oled_panel.png");
+    let readme = support::read_png(&docs).expect("docs/oled_panel.png exists");
+    if diff == 0 {
+        assert!(
+            readme.1 == to_rgb(&panel),
+            "docs/oled_panel.png is stale: copy target/qemu-e2e/oled_panel.png over it"
+        );
+    }
     if diff != 0 {
         let out = Path::new(env!("CARGO_MANIFEST_DIR")).join("target/golden-diff");
         support::write_png(
