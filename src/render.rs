@@ -742,7 +742,7 @@ fn for_tiles(grid: &TileGrid, r: &PixelRect, t0: usize, t1: usize, mut f: impl F
     }
 }
 
-/// Sets up one piece and rasterizes it into the tile.
+/// Rasterizes one piece into the tile with the configured depth test.
 #[inline]
 fn raster_piece<C, const TW: usize, const TH: usize>(
     tile: &mut TileBuffer<C, TW, TH>,
@@ -755,14 +755,13 @@ where
     C: PixelColor + From<Rgb888>,
 {
     let gouraud = shading == Shading::Gouraud;
-    let setup = TriangleSetup::new(&p.v, p.area2, p.z, &p.colors, p.flat, gouraud);
     macro_rules! go {
         ($d:ty) => {
             match (cfg.depth_write, gouraud) {
-                (true, true) => fill::<C, $d, true, true, TW, TH>(tile, rect, p, &setup),
-                (true, false) => fill::<C, $d, true, false, TW, TH>(tile, rect, p, &setup),
-                (false, true) => fill::<C, $d, false, true, TW, TH>(tile, rect, p, &setup),
-                (false, false) => fill::<C, $d, false, false, TW, TH>(tile, rect, p, &setup),
+                (true, true) => fill::<C, $d, true, true, TW, TH>(tile, rect, p),
+                (true, false) => fill::<C, $d, true, false, TW, TH>(tile, rect, p),
+                (false, true) => fill::<C, $d, false, true, TW, TH>(tile, rect, p),
+                (false, false) => fill::<C, $d, false, false, TW, TH>(tile, rect, p),
             }
         };
     }
@@ -778,20 +777,24 @@ where
 }
 
 /// The monomorphized triangle loop: spans from the scanline rasterizer,
-/// shaded with depth test `D`.
+/// shaded with depth test `D`. The attribute planes are set up at the
+/// first span, so a triangle that only grazes the tile's bounds costs no
+/// set-up.
 #[inline(never)]
 fn fill<C, D: DepthFn, const WRITE: bool, const GOURAUD: bool, const TW: usize, const TH: usize>(
     tile: &mut TileBuffer<C, TW, TH>,
     rect: &PixelRect,
     p: &Piece,
-    setup: &TriangleSetup,
 ) -> u32
 where
     C: PixelColor + From<Rgb888>,
 {
-    let flat: C = setup.flat_color();
+    let flat = C::from(Rgb888::new(p.flat[0], p.flat[1], p.flat[2]));
+    let mut setup: Option<TriangleSetup> = None;
     let mut n = 0;
     spans(&p.v, *rect, |j, x0, x1| {
+        let setup =
+            setup.get_or_insert_with(|| TriangleSetup::new(&p.v, p.area2, p.z, &p.colors, GOURAUD));
         let row = (j - rect.y0) as usize;
         let (color, depth) = (&mut tile.color[row][..], &mut tile.depth[row][..]);
         let sp = SpanPos {

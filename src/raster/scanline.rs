@@ -81,8 +81,49 @@ impl EdgeStepper {
 /// `(q, r)` with `q = ceil(n / d)` and `r = q * d - n` in `0..d`, for `d > 0`.
 #[inline]
 fn ceil_div_rem(n: i64, d: i64) -> (i64, i64) {
-    let q = -((-n).div_euclid(d));
-    (q, q * d - n)
+    // One truncating division gives both: truncation is the ceiling when
+    // the remainder is not positive.
+    let (q, r) = (n / d, n % d);
+    if r > 0 {
+        (q + 1, d - r)
+    } else {
+        (q, -r)
+    }
+}
+
+/// Row count above which [`spans`] first tests whether the triangle misses
+/// the clip rectangle altogether.
+const CHECK_ROWS: i32 = 16;
+
+/// Whether the triangle `v`, of twice signed area `area2 != 0`, may cover a
+/// pixel centre of `clip`: false only when every centre of `clip` lies
+/// strictly outside one of its edges, which no fill-rule tie can change.
+/// A cheap test (one corner per edge) that lets a tile skip the row walk of
+/// a triangle whose bounding box merely overlaps it.
+#[inline]
+fn may_cover(v: &[SubPoint; 3], area2: i64, clip: PixelRect) -> bool {
+    if clip.is_empty() {
+        return false;
+    }
+    let (s, h) = (SUBPIXEL as i64, HALF_PIXEL as i64);
+    let (xl, xh) = (clip.x0 as i64 * s + h, (clip.x1 as i64 - 1) * s + h);
+    let (yl, yh) = (clip.y0 as i64 * s + h, (clip.y1 as i64 - 1) * s + h);
+    for k in 0..3 {
+        let (p, q) = (v[k], v[(k + 1) % 3]);
+        let (mut ex, mut ey) = (q.x as i64 - p.x as i64, q.y as i64 - p.y as i64);
+        // E(c) = ex (c.y - p.y) - ey (c.x - p.x) has the sign of `area2` on
+        // the inner side; flip it so the inner side is positive.
+        if area2 < 0 {
+            (ex, ey) = (-ex, -ey);
+        }
+        // The corner centre where E is largest.
+        let cx = if ey < 0 { xh } else { xl };
+        let cy = if ex > 0 { yh } else { yl };
+        if ex * (cy - p.y as i64) - ey * (cx - p.x as i64) < 0 {
+            return false;
+        }
+    }
+    true
 }
 
 /// Calls `span(row, x_start, x_end)` for every non-empty run of covered
@@ -129,10 +170,30 @@ pub fn spans<F: FnMut(i32, i32, i32)>(v: &[SubPoint; 3], clip: PixelRect, mut sp
     if row_top >= row_end {
         return;
     }
+    // Before walking many rows, check that no edge puts every pixel centre
+    // of the clipped block strictly outside (a tile that the triangle's
+    // bounding box overlaps but the triangle misses).
+    if row_end - row_top > CHECK_ROWS
+        && !may_cover(
+            &[a, b, c],
+            cross,
+            PixelRect::new(clip.x0, row_top, clip.x1, row_end),
+        )
+    {
+        return;
+    }
     let mut long = EdgeStepper::new(a, c, row_top);
-
-    let mut walk = |long: &mut EdgeStepper, short: &mut EdgeStepper, from: i32, to: i32| {
-        for row in from..to {
+    // The short edge is a -> b for rows whose centre lies above the middle
+    // vertex, then b -> c. Both halves run through the same inner loop, so
+    // the span callback is inlined once and no row tests for the switch.
+    let (mut short, mut stop) = if row_top < row_mid {
+        (EdgeStepper::new(a, b, row_top), row_mid.min(row_end))
+    } else {
+        (EdgeStepper::new(b, c, row_top), row_end)
+    };
+    let mut row = row_top;
+    loop {
+        while row < stop {
             let (l, r) = if long_on_left {
                 (long.col, short.col)
             } else {
@@ -144,26 +205,23 @@ pub fn spans<F: FnMut(i32, i32, i32)>(v: &[SubPoint; 3], clip: PixelRect, mut sp
             }
             long.step();
             short.step();
+            row += 1;
         }
-    };
-
-    // Upper half: rows whose centre lies above the middle vertex.
-    let upper_end = row_mid.min(row_end);
-    if row_top < upper_end {
-        let mut short = EdgeStepper::new(a, b, row_top);
-        walk(&mut long, &mut short, row_top, upper_end);
-    }
-    // Lower half.
-    let lower_start = row_mid.max(row_top);
-    if lower_start < row_end {
-        let mut short = EdgeStepper::new(b, c, lower_start);
-        walk(&mut long, &mut short, lower_start, row_end);
+        if row >= row_end {
+            return;
+        }
+        // Only reached after the upper half, with `row == row_mid`.
+        short = EdgeStepper::new(b, c, row);
+        stop = row_end;
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    // No `std` in the library, not even in its tests (CI checks): spans of
+    // at most 40 rows fit a fixed vector.
+    type Spans = heapless::Vec<(i32, i32, i32), 64>;
 
     fn count(v: [SubPoint; 3]) -> i32 {
         let mut n = 0;
@@ -191,6 +249,60 @@ mod tests {
         let a = count([p(0, 0), p(4, 0), p(4, 4)]);
         let b = count([p(0, 0), p(4, 4), p(0, 4)]);
         assert_eq!(a + b, 16);
+    }
+
+    #[test]
+    fn ceil_div_rem_matches_definition_for_large_values() {
+        let mut x = 0x2545_f491_4f6c_dd1du64;
+        for _ in 0..10_000 {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            let n = (x >> 20) as i64 - (1 << 43);
+            let d = (x & 0xff_ffff) as i64 + 1;
+            let (q, r) = ceil_div_rem(n, d);
+            assert_eq!(q, -((-n).div_euclid(d)));
+            assert_eq!(r, q * d - n);
+        }
+    }
+
+    /// Rows of `spans` over `clip`, one row at a time (never long enough
+    /// for the early rejection), against one call over all of `clip`.
+    #[test]
+    fn early_rejection_changes_no_span() {
+        let mut x = 0x9e37_79b9_7f4a_7c15u64;
+        let mut next = move |m: u64| {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            (x % m) as i32
+        };
+        let mut rejected = 0;
+        for _ in 0..3_000 {
+            let p = |a: i32, b: i32| SubPoint::new(a - 200, b - 200);
+            let v = [
+                p(next(1200), next(1200)),
+                p(next(1200), next(1200)),
+                p(next(1200), next(1200)),
+            ];
+            let (x0, y0) = (next(60) - 10, next(60) - 10);
+            let clip = PixelRect::new(x0, y0, x0 + 1 + next(40), y0 + 1 + next(40));
+            let mut all = Spans::new();
+            spans(&v, clip, |j, a, b| all.push((j, a, b)).unwrap());
+            let mut by_row = Spans::new();
+            for j in clip.y0..clip.y1 {
+                spans(&v, PixelRect::new(clip.x0, j, clip.x1, j + 1), |j, a, b| {
+                    by_row.push((j, a, b)).unwrap()
+                });
+            }
+            assert_eq!(all, by_row, "{v:?} {clip:?}");
+            let area2 = crate::raster::signed_area2(&v);
+            if area2 != 0 && !may_cover(&v, area2, clip) {
+                assert!(by_row.is_empty(), "{v:?} {clip:?}");
+                rejected += 1;
+            }
+        }
+        assert!(rejected > 100, "the test should exercise rejection");
     }
 
     #[test]
