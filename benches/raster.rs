@@ -1,1 +1,106 @@
-fn main() {}
+//! Criterion benchmarks of the whole renderer, all through the public API
+//! (`Renderer::render` into a sink). See BENCHMARKS.md for the figures.
+//!
+//! ```text
+//! cargo bench --bench raster                 # everything, a couple of minutes
+//! cargo bench --bench raster -- demo_320x240 # one group
+//! ```
+//!
+//! * `triangles/{4px,100px,10000px}`: a frame of many copies of one
+//!   Gouraud-shaded triangle of about that many pixels, scattered over a
+//!   320x240 frame, into `NullSink`; the throughput is in triangles.
+//! * `fill/flat_depth_8_layers`: 8 flat-shaded, depth-tested 320x240 quads
+//!   drawn back to front (every fragment passes and is written), into
+//!   `NullSink`; the throughput is in shaded pixels.
+//! * `demo_320x240/*`: frame 0 of the demo (4,000-triangle lit torus knot
+//!   plus a cube), Gouraud, depth-tested, `Renderer<Rgb565, 32, 32>` and
+//!   `Workspace<2048, 4096, 80>`, into `NullSink` or into a full frame
+//!   buffer; and the same frame rendered by the euc crate.
+
+#[path = "../examples/common/mod.rs"]
+mod common;
+#[path = "../examples/scenes/mod.rs"]
+mod scenes;
+
+use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
+use microraster::prelude::*;
+use scenes::*;
+use std::hint::black_box;
+use std::time::Duration;
+
+/// Layers of the fill-rate scene.
+const FILL_LAYERS: usize = 8;
+
+fn triangles(c: &mut Criterion) {
+    let mut g = c.benchmark_group("triangles");
+    let mut r = renderer();
+    let mut ws: Box<CopiesWorkspace> = Box::default();
+    for (name, area, count) in TRIANGLE_SIZES {
+        let scene = Copies::new(area, count);
+        let stats = scene.render(&mut r, &mut ws, &mut NullSink);
+        assert_eq!(stats.drawn as usize, count);
+        println!(
+            "triangles/{name}: {count} triangles, {:.1} pixels each, {} tile visits",
+            stats.pixels_shaded as f64 / count as f64,
+            stats.tiles
+        );
+        g.throughput(Throughput::Elements(count as u64));
+        g.bench_function(BenchmarkId::from_parameter(name), |b| {
+            b.iter(|| black_box(scene.render(&mut r, &mut ws, &mut NullSink)))
+        });
+    }
+    g.finish();
+}
+
+fn fill(c: &mut Criterion) {
+    let mut g = c.benchmark_group("fill");
+    let mut r = renderer();
+    let mut ws: Box<DemoWorkspace> = Box::default();
+    let scene = FillScene::new(FILL_LAYERS);
+    let stats = scene.render(&mut r, &mut ws, &mut NullSink);
+    assert_eq!(stats.pixels_shaded, FILL_LAYERS as u32 * WIDTH * HEIGHT);
+    g.throughput(Throughput::Elements(stats.pixels_shaded as u64));
+    g.bench_function("flat_depth_8_layers", |b| {
+        b.iter(|| black_box(scene.render(&mut r, &mut ws, &mut NullSink)))
+    });
+    g.finish();
+}
+
+fn demo(c: &mut Criterion) {
+    let mut g = c.benchmark_group("demo_320x240");
+    let scene = DemoScene::new();
+    let mut r = renderer();
+    let mut ws: Box<DemoWorkspace> = Box::default();
+    g.bench_function("microraster_gouraud_nullsink", |b| {
+        b.iter(|| black_box(scene.render(&mut r, &mut ws, Shading::Gouraud, &mut NullSink)))
+    });
+    let mut fb = FrameBuffer::new();
+    g.bench_function("microraster_gouraud_framebuffer", |b| {
+        b.iter(|| black_box(scene.render(&mut r, &mut ws, Shading::Gouraud, &mut fb)))
+    });
+    g.bench_function("microraster_flat_nullsink", |b| {
+        b.iter(|| black_box(scene.render(&mut r, &mut ws, Shading::Flat, &mut NullSink)))
+    });
+    let mut euc: Box<EucDemo> = Box::default();
+    g.bench_function("euc_gouraud_framebuffer", |b| {
+        b.iter(|| {
+            euc.render();
+            black_box(&euc.color);
+        })
+    });
+    g.finish();
+}
+
+fn config() -> Criterion {
+    Criterion::default()
+        .sample_size(20)
+        .warm_up_time(Duration::from_secs(1))
+        .measurement_time(Duration::from_secs(3))
+}
+
+criterion_group! {
+    name = benches;
+    config = config();
+    targets = triangles, fill, demo
+}
+criterion_main!(benches);

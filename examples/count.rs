@@ -1,0 +1,134 @@
+//! Renders one benchmark scene N times into a `NullSink`, for instruction
+//! counts under valgrind (see `scripts/count-instructions.sh`).
+//!
+//! ```text
+//! cargo run --release --example count -- SCENE [N]
+//! ```
+//!
+//! `SCENE` is one of `demo` (the demo frame 0, Gouraud, depth-tested),
+//! `demo-flat`, `fill` (8 flat, depth-tested 320x240 quads drawn back to
+//! front), `tri4`, `tri100`, `tri10000` (copies of one triangle of about
+//! that many pixels) or `euc` (the demo frame rendered by the euc crate).
+//! Every frame of a run is identical; each is rendered by the function
+//! `count::frame`, so `valgrind --tool=callgrind
+//! --toggle-collect='*count::frame*'` counts exactly N frames, all-in (scene
+//! set-up, vertex stage, binning, rasterization, shading, tile clears).
+//! The program prints the statistics of one frame.
+
+mod common;
+mod scenes;
+
+use microraster::prelude::*;
+use scenes::*;
+
+/// Fill-rate layers.
+const FILL_LAYERS: usize = 8;
+
+enum Job {
+    Demo {
+        scene: DemoScene,
+        shading: Shading,
+        ws: Box<DemoWorkspace>,
+    },
+    Fill {
+        scene: FillScene,
+        ws: Box<DemoWorkspace>,
+    },
+    Copies {
+        scene: Copies,
+        ws: Box<CopiesWorkspace>,
+    },
+    Euc(Box<EucDemo>),
+}
+
+/// One frame, all-in. Not inlined, so callgrind can collect exactly it.
+#[inline(never)]
+fn frame(job: &mut Job, r: &mut BenchRenderer) -> Option<FrameStats> {
+    let sink = &mut NullSink;
+    match job {
+        Job::Demo { scene, shading, ws } => Some(scene.render(r, ws, *shading, sink)),
+        Job::Fill { scene, ws } => Some(scene.render(r, ws, sink)),
+        Job::Copies { scene, ws } => Some(scene.render(r, ws, sink)),
+        Job::Euc(e) => {
+            e.render();
+            None
+        }
+    }
+}
+
+fn main() {
+    let mut args = std::env::args().skip(1);
+    let name = args.next().unwrap_or_else(|| "demo".into());
+    let n: usize = match args.next().map(|a| a.parse()) {
+        None => 1,
+        Some(Ok(n)) if n > 0 => n,
+        _ => {
+            eprintln!("count: N must be a positive number");
+            std::process::exit(2);
+        }
+    };
+    let copies = |size: &str| {
+        let (_, area, count) = TRIANGLE_SIZES
+            .iter()
+            .find(|t| t.0 == size)
+            .copied()
+            .expect("known size");
+        Job::Copies {
+            scene: Copies::new(area, count),
+            ws: Box::default(),
+        }
+    };
+    let mut job = match name.as_str() {
+        "demo" | "demo-flat" => Job::Demo {
+            scene: DemoScene::new(),
+            shading: if name == "demo" {
+                Shading::Gouraud
+            } else {
+                Shading::Flat
+            },
+            ws: Box::default(),
+        },
+        "fill" => Job::Fill {
+            scene: FillScene::new(FILL_LAYERS),
+            ws: Box::default(),
+        },
+        "tri4" => copies("4px"),
+        "tri100" => copies("100px"),
+        "tri10000" => copies("10000px"),
+        "euc" => Job::Euc(Box::default()),
+        other => {
+            eprintln!(
+                "count: unknown scene {other:?} (demo, demo-flat, fill, tri4, tri100, tri10000, euc)"
+            );
+            std::process::exit(2);
+        }
+    };
+    let mut r = renderer();
+    let mut first = None;
+    for _ in 0..n {
+        let s = frame(&mut job, &mut r);
+        match first {
+            None => first = Some(s),
+            Some(f) => assert_eq!(f, s, "every frame must be identical"),
+        }
+    }
+    match first.flatten() {
+        Some(s) => println!(
+            "scene={name} frames={n} triangles_in={} culled={} rejected={} clipped={} drawn={} \
+             pixels_shaded={} tiles={} bin_passes={} rescanned_tiles={}",
+            s.triangles_in,
+            s.culled,
+            s.rejected,
+            s.clipped,
+            s.drawn,
+            s.pixels_shaded,
+            s.tiles,
+            s.bin_passes,
+            s.rescanned_tiles
+        ),
+        None => {
+            let Job::Euc(e) = &job else { unreachable!() };
+            println!("scene={name} frames={n} pixels_covered={}", e.covered());
+        }
+    }
+}

@@ -1,0 +1,424 @@
+//! Benchmark scenes, shared by `benches/raster.rs` and `examples/count.rs`
+//! (include it with `#[path]` next to `examples/common/mod.rs`, which it
+//! uses for the demo scene).
+//!
+//! * [`DemoScene`]: the demo frame (torus knot + cube, frame 0 of the demo)
+//!   at 320x240, as the demo renders it.
+//! * [`FillScene`]: `layers` flat-shaded 320x240 quads, drawn back to front
+//!   with the depth test on, so every fragment passes and is written.
+//! * [`Copies`]: many copies of one triangle of a given pixel area,
+//!   scattered over the frame, for per-triangle costs.
+//! * [`EucDemo`]: the demo frame rendered by the `euc` crate, for comparison.
+#![allow(dead_code)]
+
+use super::common;
+use embedded_graphics::pixelcolor::{Rgb565, Rgb888, RgbColor};
+use embedded_graphics::prelude::IntoStorage;
+use fixed::types::I16F16;
+use microraster::mesh::Vec3Fx;
+use microraster::prelude::*;
+
+/// Frame width of every scene.
+pub const WIDTH: u32 = 320;
+/// Frame height of every scene.
+pub const HEIGHT: u32 = 240;
+
+/// The renderer every benchmark uses: 32x32 tiles of `Rgb565`.
+pub type BenchRenderer = Renderer<Rgb565, 32, 32>;
+/// The demo's workspace: the whole demo scene, all 80 tiles in one pass.
+pub type DemoWorkspace = Workspace<2048, 4096, 80>;
+/// A workspace for the triangle-copies scenes (up to 24,000 vertices).
+pub type CopiesWorkspace = Workspace<24_000, 32_768, 80>;
+
+/// A renderer with the demo's settings (back-face culling, `LessEqual`,
+/// depth writes).
+pub fn renderer() -> BenchRenderer {
+    BenchRenderer::new(Config::new(Size::new(WIDTH, HEIGHT), common::DEMO_CLEAR))
+}
+
+/// A camera whose clip space is the model space: x, y, z in `[-1, 1]` are
+/// the frame, z = -1 nearest.
+pub fn ndc_camera() -> Camera {
+    Camera::new(Mat4::IDENTITY, Mat4::IDENTITY)
+}
+
+fn fx(v: f32) -> I16F16 {
+    I16F16::from_num(v)
+}
+
+/// Pixel position (x right, y down) to a normalised-device-coordinate
+/// vertex at depth `z`.
+fn ndc(px: f32, py: f32, z: f32) -> Vec3Fx {
+    [
+        fx(px * 2.0 / WIDTH as f32 - 1.0),
+        fx(1.0 - py * 2.0 / HEIGHT as f32),
+        fx(z),
+    ]
+}
+
+/// Leaks `v` so a mesh can borrow it for the rest of the program (scenes
+/// are built once per process, and building a [`Mesh`] validates every
+/// index, which is not per-frame work).
+fn leak<T>(v: Vec<T>) -> &'static [T] {
+    Vec::leak(v)
+}
+
+/// The demo scene: the knot and the cube, generated and validated once.
+pub struct DemoScene {
+    knot: Mesh<'static>,
+    cube: Mesh<'static>,
+}
+
+impl Default for DemoScene {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl DemoScene {
+    /// Generates the knot.
+    pub fn new() -> Self {
+        let assets: &'static common::DemoAssets = Box::leak(Box::new(common::DemoAssets::new()));
+        Self {
+            knot: assets.knot(),
+            cube: common::cube(),
+        }
+    }
+
+    /// Renders demo frame 0 (animation time 0) with `shading`, exactly as
+    /// `examples/demo.rs` builds it.
+    pub fn render<S: TileSink<Rgb565>>(
+        &self,
+        r: &mut BenchRenderer,
+        ws: &mut DemoWorkspace,
+        shading: Shading,
+        sink: &mut S,
+    ) -> FrameStats
+    where
+        S::Error: core::fmt::Debug,
+    {
+        let draws = common::draws(&self.knot, &self.cube, 0.0, shading);
+        let scene = Scene::new(common::camera(WIDTH, HEIGHT), &draws).light(common::light());
+        r.render(ws, &scene, sink).expect("demo frame renders")
+    }
+
+    /// The knot.
+    pub fn knot(&self) -> &Mesh<'static> {
+        &self.knot
+    }
+
+    /// The cube.
+    pub fn cube(&self) -> &Mesh<'static> {
+        &self.cube
+    }
+}
+
+/// `layers` full-frame quads (two triangles each), flat shaded, from the
+/// back (z = 0.8) to the front (z = -0.8).
+pub struct FillScene {
+    mesh: Mesh<'static>,
+}
+
+impl FillScene {
+    /// Builds the quads.
+    pub fn new(layers: usize) -> Self {
+        let mut positions = Vec::new();
+        let mut colors = Vec::new();
+        let mut triangles = Vec::new();
+        for l in 0..layers {
+            let z = 0.8 - 1.6 * l as f32 / (layers.max(2) - 1) as f32;
+            let b = positions.len() as u16;
+            let (w, h) = (WIDTH as f32, HEIGHT as f32);
+            // Counter-clockwise in NDC (y up): the front face.
+            positions.extend([
+                ndc(0.0, h, z),
+                ndc(w, h, z),
+                ndc(w, 0.0, z),
+                ndc(0.0, 0.0, z),
+            ]);
+            let c = Rgb888::new(
+                (40 + (25 * l) % 200) as u8,
+                (200 - (20 * l) % 160) as u8,
+                90,
+            );
+            colors.extend([c; 4]);
+            triangles.extend([[b, b + 1, b + 2], [b, b + 2, b + 3]]);
+        }
+        let mesh = Mesh::new(leak(positions), leak(triangles))
+            .and_then(|m| m.with_colors(leak(colors)))
+            .expect("fill quads are valid");
+        Self { mesh }
+    }
+
+    /// Renders the quads with flat shading and the depth test.
+    pub fn render<S: TileSink<Rgb565>>(
+        &self,
+        r: &mut BenchRenderer,
+        ws: &mut DemoWorkspace,
+        sink: &mut S,
+    ) -> FrameStats
+    where
+        S::Error: core::fmt::Debug,
+    {
+        let draws = [Draw::new(&self.mesh).shading(Shading::Flat)];
+        let scene = Scene::new(ndc_camera(), &draws);
+        r.render(ws, &scene, sink).expect("fill frame renders")
+    }
+}
+
+/// `count` copies of one triangle of about `area` pixels, scattered over
+/// the frame (an R2 low-discrepancy sequence of sub-pixel offsets), all at
+/// the same depth, Gouraud shaded with three vertex colours.
+pub struct Copies {
+    mesh: Mesh<'static>,
+}
+
+impl Copies {
+    /// Builds the copies; `3 * count` must fit the vertex buffer of
+    /// [`CopiesWorkspace`].
+    pub fn new(area: f32, count: usize) -> Self {
+        // The shape (0, 0), (0.4 s, s), (s, 0.25 s) has area 0.45 s^2 and
+        // is counter-clockwise in NDC (clockwise on the y-down screen).
+        let s = (area / 0.45).sqrt();
+        let (room_x, room_y) = (WIDTH as f32 - s - 1.0, HEIGHT as f32 - s - 1.0);
+        let (mut positions, mut colors, mut triangles) = (Vec::new(), Vec::new(), Vec::new());
+        for k in 0..count {
+            let fx = (0.5 + k as f32 * 0.754_877_7).fract();
+            let fy = (0.5 + k as f32 * 0.569_840_3).fract();
+            let (x, y) = (0.5 + fx * room_x.max(0.0), 0.5 + fy * room_y.max(0.0));
+            let b = positions.len() as u16;
+            positions.extend([
+                ndc(x, y, 0.0),
+                ndc(x + 0.4 * s, y + s, 0.0),
+                ndc(x + s, y + 0.25 * s, 0.0),
+            ]);
+            colors.extend([
+                Rgb888::new(250, 40, 40),
+                Rgb888::new(40, 250, 40),
+                Rgb888::new(40, 40, 250),
+            ]);
+            triangles.push([b, b + 1, b + 2]);
+        }
+        let mesh = Mesh::new(leak(positions), leak(triangles))
+            .and_then(|m| m.with_colors(leak(colors)))
+            .expect("triangle copies are valid");
+        Self { mesh }
+    }
+
+    /// Number of triangles.
+    pub fn count(&self) -> usize {
+        self.mesh.triangle_count()
+    }
+
+    /// Renders every copy (Gouraud, `LessEqual`: overlapping copies at the
+    /// same depth are all drawn).
+    pub fn render<S: TileSink<Rgb565>>(
+        &self,
+        r: &mut BenchRenderer,
+        ws: &mut CopiesWorkspace,
+        sink: &mut S,
+    ) -> FrameStats
+    where
+        S::Error: core::fmt::Debug,
+    {
+        let draws = [Draw::new(&self.mesh)];
+        let scene = Scene::new(ndc_camera(), &draws);
+        r.render(ws, &scene, sink).expect("triangle copies render")
+    }
+}
+
+/// The three triangle sizes of the throughput benchmarks: (name, target
+/// pixel area, copies per frame).
+pub const TRIANGLE_SIZES: [(&str, f32, usize); 3] = [
+    ("4px", 4.0, 8_000),
+    ("100px", 100.0, 2_000),
+    ("10000px", 10_000.0, 100),
+];
+
+/// A sink that keeps the whole frame, like a display's frame buffer: every
+/// tile is copied into a 320x240 `Rgb565` array.
+pub struct FrameBuffer {
+    /// The pixels, row-major.
+    pub pixels: Vec<Rgb565>,
+}
+
+impl Default for FrameBuffer {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl FrameBuffer {
+    /// A black frame.
+    pub fn new() -> Self {
+        Self {
+            pixels: vec![Rgb565::BLACK; (WIDTH * HEIGHT) as usize],
+        }
+    }
+}
+
+impl TileSink<Rgb565> for FrameBuffer {
+    type Error = core::convert::Infallible;
+
+    fn write_tile(
+        &mut self,
+        area: &embedded_graphics::primitives::Rectangle,
+        tile: &microraster::TileView<'_, Rgb565>,
+    ) -> Result<(), Self::Error> {
+        let (x0, y0) = (area.top_left.x as usize, area.top_left.y as usize);
+        for (dy, row) in tile.rows().enumerate() {
+            let start = (y0 + dy) * WIDTH as usize + x0;
+            self.pixels[start..start + row.len()].copy_from_slice(row);
+        }
+        Ok(())
+    }
+}
+
+/// The demo frame rendered by [`euc`] 0.5: the same meshes, transforms,
+/// camera, light and size; per-vertex (Lambert) colour interpolated over
+/// the triangle, an `f32` depth buffer with a less-or-equal test, back
+/// faces culled, `Rgb565` output into a full frame buffer.
+///
+/// euc has no index buffer with a vertex cache: its vertex shader runs for
+/// each corner of each triangle. So that both renderers light and transform
+/// each vertex once, a per-frame pass (part of the measured frame) computes
+/// every vertex's clip position and colour in `f32`, and euc's vertex
+/// shader only looks them up.
+pub struct EucDemo {
+    /// Model-space positions and normals of the knot then the cube.
+    positions: Vec<[f32; 3]>,
+    normals: Vec<[f32; 3]>,
+    /// Vertex count of the knot (the cube's vertices follow).
+    knot_vertices: usize,
+    /// Triangle corners, the cube's indices offset past the knot's.
+    indices: Vec<u32>,
+    /// Per frame: clip-space positions and colours (0..=255).
+    clip: Vec<[f32; 4]>,
+    rgb: Vec<(f32, f32, f32)>,
+    /// The frame.
+    pub color: euc::buffer::Buffer2d<u16>,
+    /// The demo's clear colour as raw `Rgb565` bits.
+    clear: u16,
+    depth: euc::buffer::Buffer2d<f32>,
+    demo: DemoScene,
+}
+
+struct EucPipe<'a> {
+    clip: &'a [[f32; 4]],
+    rgb: &'a [(f32, f32, f32)],
+}
+
+impl euc::Pipeline for EucPipe<'_> {
+    type Vertex = u32;
+    type VsOut = (f32, f32, f32);
+    type Pixel = u16;
+
+    #[inline(always)]
+    fn vert(&self, i: &u32) -> ([f32; 4], Self::VsOut) {
+        (self.clip[*i as usize], self.rgb[*i as usize])
+    }
+
+    #[inline(always)]
+    fn frag(&self, c: &Self::VsOut) -> u16 {
+        let (r, g, b) = (c.0 as u16, c.1 as u16, c.2 as u16);
+        ((r >> 3) << 11) | ((g >> 2) << 5) | (b >> 3)
+    }
+}
+
+impl Default for EucDemo {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl EucDemo {
+    /// Converts the demo meshes to `f32` and allocates the frame.
+    pub fn new() -> Self {
+        let demo = DemoScene::new();
+        let f = |v: &Vec3Fx| [v[0].to_num(), v[1].to_num(), v[2].to_num()];
+        let (knot, cube) = (demo.knot(), demo.cube());
+        let mut positions: Vec<[f32; 3]> = knot.positions().iter().map(f).collect();
+        let mut normals: Vec<[f32; 3]> = knot.normals().unwrap().iter().map(f).collect();
+        let knot_vertices = positions.len();
+        positions.extend(cube.positions().iter().map(f));
+        normals.extend(cube.normals().unwrap().iter().map(f));
+        let mut indices = Vec::new();
+        for t in knot.triangles() {
+            indices.extend(t.iter().map(|&i| i as u32));
+        }
+        for t in cube.triangles() {
+            indices.extend(t.iter().map(|&i| i as u32 + knot_vertices as u32));
+        }
+        let n = positions.len();
+        let clear = common::DEMO_CLEAR.into_storage();
+        Self {
+            positions,
+            normals,
+            knot_vertices,
+            indices,
+            clip: vec![[0.0; 4]; n],
+            rgb: vec![(0.0, 0.0, 0.0); n],
+            color: euc::buffer::Buffer2d::new([WIDTH as usize, HEIGHT as usize], clear),
+            clear,
+            depth: euc::buffer::Buffer2d::new([WIDTH as usize, HEIGHT as usize], 1.0),
+            demo,
+        }
+    }
+
+    /// Renders demo frame 0: vertex pass, clear, draw.
+    pub fn render(&mut self) {
+        use euc::{Pipeline, Target};
+        let draws = common::draws(self.demo.knot(), self.demo.cube(), 0.0, Shading::Gouraud);
+        let camera = common::camera(WIDTH, HEIGHT);
+        let light = common::light();
+        let view_proj = camera.projection * camera.view;
+        let ldir = light.direction.normalize().expect("demo light is valid");
+        let ranges = [
+            (0, self.knot_vertices),
+            (self.knot_vertices, self.positions.len()),
+        ];
+        for (draw, (from, to)) in draws.iter().zip(ranges) {
+            let m = (view_proj * draw.transform).m;
+            let base = [draw.color.r(), draw.color.g(), draw.color.b()].map(|c| c as f32);
+            for i in from..to {
+                let p = self.positions[i];
+                let mut c = [0.0f32; 4];
+                for (r, out) in c.iter_mut().enumerate() {
+                    *out = m[0][r] * p[0] + m[1][r] * p[1] + m[2][r] * p[2] + m[3][r];
+                }
+                self.clip[i] = c;
+                let n = self.normals[i];
+                let wn = draw.transform.transform_vector(Vec3::new(n[0], n[1], n[2]));
+                let ndotl = (wn.dot(ldir) / wn.length()).max(0.0);
+                let lit = |k: usize, amb: u8, lc: u8| {
+                    (base[k] * (amb as f32 + lc as f32 * ndotl) / 255.0).min(255.0)
+                };
+                self.rgb[i] = (
+                    lit(0, light.ambient.r(), light.color.r()),
+                    lit(1, light.ambient.g(), light.color.g()),
+                    lit(2, light.ambient.b(), light.color.b()),
+                );
+            }
+        }
+        self.color.clear(self.clear);
+        self.depth.clear(1.0);
+        EucPipe {
+            clip: &self.clip,
+            rgb: &self.rgb,
+        }
+        .draw::<euc::rasterizer::Triangles<'_, _, euc::rasterizer::BackfaceCullingEnabled>, _>(
+            &self.indices,
+            &mut self.color,
+            Some(&mut self.depth),
+        );
+    }
+
+    /// Pixels of the frame that are not the clear colour.
+    pub fn covered(&self) -> usize {
+        self.color
+            .as_ref()
+            .iter()
+            .filter(|&&p| p != self.clear)
+            .count()
+    }
+}
