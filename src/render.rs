@@ -30,7 +30,7 @@
 //! hundred instructions per such triangle and tile, saves a variable-size
 //! store, and gives bit-identical vertices every time.
 
-use crate::clip::clip_triangle;
+use crate::clip::{clip_triangle, MAX_CLIPPED_VERTICES};
 use crate::raster::{scanline::spans, signed_area2, PixelRect, SubPoint};
 use crate::scene::{CullMode, Scene, Shading};
 use crate::shade::{
@@ -419,48 +419,82 @@ impl Frame<'_, '_> {
                 ],
             )
         };
-        let first = project(0);
-        let mut prev = project(1);
-        let mut fate = Fate::Culled;
-        for k in 2..poly.len() {
-            let next = project(k);
+        // Project once. Snapping to the sub-pixel grid can make the
+        // polygon very slightly concave, so facing is decided once, from the
+        // whole polygon's area, and fan pieces of the other sign (slivers
+        // of round-off) are dropped rather than culled one by one: a
+        // back-facing polygon never leaks a piece, and no pixel is shaded
+        // twice.
+        let mut proj: heapless::Vec<(SubPoint, u16, [u8; 3]), MAX_CLIPPED_VERTICES> =
+            heapless::Vec::new();
+        for k in 0..poly.len() {
+            // Cannot fail: `poly` has the same capacity.
+            let _ = proj.push(project(k));
+        }
+        let mut total = 0i64;
+        for k in 2..proj.len() {
+            total += signed_area2(&[proj[0].0, proj[k - 1].0, proj[k].0]);
+        }
+        if self.culled(total) {
+            return (Fate::Culled, true);
+        }
+        let mut fate = Fate::Rejected;
+        for k in 2..proj.len() {
+            let (first, prev, next) = (proj[0], proj[k - 1], proj[k]);
             let v = [first.0, prev.0, next.0];
+            let area2 = signed_area2(&v);
+            if area2 == 0 || (area2 > 0) != (total > 0) {
+                continue;
+            }
             let piece = Piece {
                 v,
                 z: [first.1, prev.1, next.1],
                 colors: [first.2, prev.2, next.2],
                 // Flat shading keeps the original provoking vertex's colour.
                 flat: colors[0],
-                area2: signed_area2(&v),
+                area2,
             };
-            let pf = self.keep(&piece, &mut f);
-            if pf == Fate::Visible || (pf == Fate::Rejected && fate == Fate::Culled) {
-                fate = pf;
+            if self.visible(&piece, &mut f) {
+                fate = Fate::Visible;
             }
-            prev = next;
         }
         (fate, true)
+    }
+
+    /// Whether a triangle or polygon of twice signed screen area `area2`
+    /// is culled: zero area always, otherwise by the cull mode.
+    #[inline]
+    fn culled(&self, area2: i64) -> bool {
+        match self.cull {
+            _ if area2 == 0 => true,
+            CullMode::None => false,
+            // Negative area is counter-clockwise in NDC: the front face.
+            CullMode::Back => area2 > 0,
+            CullMode::Front => area2 < 0,
+        }
+    }
+
+    /// Passes `p` on when it may touch the frame.
+    #[inline]
+    fn visible(&self, p: &Piece, f: &mut impl FnMut(&Piece)) -> bool {
+        if PixelRect::covering(&p.v).intersect(&self.frame).is_empty() {
+            return false;
+        }
+        f(p);
+        true
     }
 
     /// Culls `p` and passes it on when it faces the right way and may touch
     /// the frame.
     #[inline]
     fn keep(&self, p: &Piece, f: &mut impl FnMut(&Piece)) -> Fate {
-        let culled = match self.cull {
-            _ if p.area2 == 0 => true,
-            CullMode::None => false,
-            // Negative area is counter-clockwise in NDC: the front face.
-            CullMode::Back => p.area2 > 0,
-            CullMode::Front => p.area2 < 0,
-        };
-        if culled {
-            return Fate::Culled;
+        if self.culled(p.area2) {
+            Fate::Culled
+        } else if self.visible(p, f) {
+            Fate::Visible
+        } else {
+            Fate::Rejected
         }
-        if PixelRect::covering(&p.v).intersect(&self.frame).is_empty() {
-            return Fate::Rejected;
-        }
-        f(p);
-        Fate::Visible
     }
 
     /// The pixel bounds of every visible piece of triangle `t`.
@@ -614,7 +648,10 @@ where
             }
 
             // The longest run of tiles whose bins fit the pool.
-            if counts[0] as usize > B {
+            // Counts saturate at u16::MAX, which therefore means "too many"
+            // even when BIN_ENTRIES is 65,535.
+            let overflows = |c: u16| c == u16::MAX || c as usize > B;
+            if overflows(counts[0]) {
                 stats.rescanned_tiles += 1;
                 self.draw_tile(
                     &frame,
@@ -639,7 +676,7 @@ where
             let mut total = 0usize;
             let mut t1 = t0;
             for (k, c) in counts.iter_mut().enumerate() {
-                if total + *c as usize > B {
+                if overflows(*c) || total + *c as usize > B {
                     break;
                 }
                 let start = total;

@@ -772,3 +772,30 @@ fn tiny_bin_pool_renders_clipped_triangles_identically() {
     );
     assert_same("clipped scene, Workspace<2100, 8, 2>", &tiny, &big);
 }
+
+/// One tile holding 65,536 triangles with a pool of 65,535 entries: the
+/// per-tile count saturates at u16::MAX, which must read as "does not fit"
+/// (the tile is drawn by re-scanning), never as a count that fits.
+#[test]
+fn saturated_bin_count_is_an_overflow_not_a_fit() {
+    let fx = |v: f32| I16F16::from_num(v);
+    let positions: [Vec3Fx; 3] = [
+        [fx(-1.0), fx(-1.0), fx(0.0)],
+        [fx(1.0), fx(-1.0), fx(0.0)],
+        [fx(-1.0), fx(1.0), fx(0.0)],
+    ];
+    let triangles = vec![[0u16, 1, 2]; MAX_TRIANGLES];
+    let mesh = Mesh::new(&positions, &triangles).unwrap();
+    let draws = [Draw::new(&mesh).color(Rgb888::WHITE)];
+    let scene = Scene::new(Camera::new(Mat4::IDENTITY, Mat4::IDENTITY), &draws);
+    let size = Size::new(16, 16);
+    let mut renderer: Renderer<Gray8, 16, 16> = Renderer::new(Config::new(size, Gray8::BLACK));
+    let mut ws: Box<Workspace<3, 65_535, 1>> = Box::new(Workspace::new());
+    let mut cap = Capture::new(size, Gray8::new(9));
+    let stats = renderer.render(&mut ws, &scene, &mut cap).unwrap();
+    assert_eq!(stats.rescanned_tiles, 1, "{stats:?}");
+    assert_eq!(stats.drawn, MAX_TRIANGLES as u32);
+    // The lower-left half (NDC y up) of the frame is white.
+    assert_eq!(cap.get(1, 14), Gray8::WHITE);
+    assert_eq!(cap.get(14, 1), Gray8::BLACK);
+}
