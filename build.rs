@@ -1,15 +1,42 @@
-//! Puts the board's `memory.x` where cortex-m-rt's `link.x` finds it, for
-//! the firmware examples. Host and library-only builds ignore it.
+//! Puts the right board's memory map where cortex-m-rt's `link.x` finds it,
+//! for the firmware examples. `link.x` says `INCLUDE memory.x`; the board's
+//! map is copied to `$OUT_DIR/memory.x`, which is put on the linker's search
+//! path, according to the target:
+//!
+//! | target                  | board                        | map                   |
+//! |-------------------------|------------------------------|-----------------------|
+//! | `thumbv7m-none-eabi`    | TI LM3S6965EVB (reference)   | `memory.x` (root)     |
+//! | `thumbv6m-none-eabi`    | Raspberry Pi Pico (RP2040)   | `memory/rp2040.x`     |
+//! | `thumbv7em-none-eabihf` | Arm MPS2-AN386 (Cortex-M4F)  | `memory/mps2-an386.x` |
+//!
+//! lld looks for an `INCLUDE`d file in its working directory (the package
+//! root) before its search path, so the root `memory.x` would win for every
+//! target. `.cargo/config.toml` therefore links the other two boards through
+//! `scripts/lld-in-out-dir.sh`, which runs lld from `memory/`. Host, RISC-V
+//! and library-only builds ignore all of this.
 
 use std::{env, fs, path::PathBuf};
 
+/// The memory map for a target triple, if it is one of the boards.
+fn board_map(target: &str) -> Option<&'static str> {
+    let arch = target.split('-').next().unwrap_or_default();
+    match arch {
+        "thumbv7m" => Some("memory.x"),
+        "thumbv6m" => Some("memory/rp2040.x"),
+        "thumbv7em" => Some("memory/mps2-an386.x"),
+        _ => None,
+    }
+}
+
 fn main() {
-    println!("cargo:rerun-if-changed=memory.x");
     println!("cargo:rerun-if-changed=build.rs");
+    println!("cargo:rerun-if-changed=memory");
+    println!("cargo:rerun-if-changed=memory.x");
     let target = env::var("TARGET").unwrap_or_default();
-    if target.starts_with("thumbv7m-") {
+    if let Some(map) = board_map(&target) {
         let out = PathBuf::from(env::var_os("OUT_DIR").expect("cargo sets OUT_DIR"));
-        fs::copy("memory.x", out.join("memory.x")).expect("memory.x is in the crate root");
+        fs::copy(map, out.join("memory.x"))
+            .unwrap_or_else(|e| panic!("copying {map} to OUT_DIR/memory.x: {e}"));
         println!("cargo:rustc-link-search={}", out.display());
     }
 }
