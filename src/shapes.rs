@@ -1,21 +1,32 @@
-//! Procedural meshes written into caller-supplied slices.
+//! Procedural meshes, computed in integer fixed point by `const fn`s.
 //!
-//! Generation is set-up work done once (in `f32`, with micromath), not per
-//! frame; the results are ordinary fixed-point mesh arrays. The same
-//! parameters give the same bits on every target, so a host test and a
-//! firmware render the very same mesh.
+//! Everything here is integer arithmetic (angles in fractions of a turn,
+//! 2.30 fixed point inside, 16.16 out), so the same parameters give the same
+//! bits on every target, and a firmware can build a mesh *at compile time*
+//! into flash:
+//!
+//! ```
+//! use microraster::shapes::{torus_knot_data, MeshData};
+//! use microraster::mesh::Mesh;
+//!
+//! // 64 x 6 vertices and 768 triangles, evaluated by the compiler.
+//! static KNOT: MeshData<384, 768> = match torus_knot_data(2, 3, 1.0, 0.25, 64, 6) {
+//!     Ok(m) => m,
+//!     Err(_) => panic!("invalid knot parameters"),
+//! };
+//! let mesh: Mesh<'static> = KNOT.mesh().unwrap();
+//! assert_eq!(mesh.triangle_count(), 768);
+//! ```
 
-use crate::math::{sqrt, Vec3};
-use crate::mesh::Vec3Fx;
+use crate::mesh::{Mesh, MeshError, Vec3Fx};
 use fixed::types::I16F16;
-use micromath::F32Ext;
 
 /// Why a shape could not be generated.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ShapeError {
-    /// An output slice is shorter than the shape needs.
+    /// An output slice or array does not have the size the shape needs.
     BufferTooSmall {
-        /// Which slice.
+        /// Which output.
         what: &'static str,
         /// Entries needed.
         needed: usize,
@@ -25,53 +36,106 @@ pub enum ShapeError {
     /// Fewer than 3 segments or sides, or more vertices than `u16` indices
     /// reach.
     BadResolution,
-    /// A size parameter is not finite, or the shape leaves the 16.16 range.
+    /// A size is not positive, or the shape would leave the 16.16 range.
     BadSize,
 }
 
-fn fx(v: f32) -> Result<I16F16, ShapeError> {
-    I16F16::checked_from_num(v).ok_or(ShapeError::BadSize)
-}
+/// One in 2.30 fixed point, the internal format.
+const ONE: i64 = 1 << 30;
 
-fn fx3(v: Vec3) -> Result<Vec3Fx, ShapeError> {
-    Ok([fx(v.x)?, fx(v.y)?, fx(v.z)?])
-}
-
-fn need(what: &'static str, needed: usize, given: usize) -> Result<(), ShapeError> {
-    if given < needed {
-        Err(ShapeError::BufferTooSmall {
-            what,
-            needed,
-            given,
-        })
-    } else {
-        Ok(())
+/// `sin` and `cos` of `turns` (a full turn is 2^32), in 2.30, from odd and
+/// even Taylor polynomials on the first quadrant (error below 2^-23).
+pub const fn sin_cos_turns(turns: u32) -> (i64, i64) {
+    let quadrant = turns >> 30;
+    // The angle inside the quadrant, in radians, 2.30: f * (π/2) / 2^30.
+    let f = (turns & ((1 << 30) - 1)) as i64;
+    // π/2 in 2.30.
+    const HALF_PI: i64 = 1_686_629_713;
+    let x = (f * HALF_PI) >> 30;
+    let x2 = (x * x) >> 30;
+    // Horner: sin x = x (1 - x²/6 (1 - x²/20 (1 - x²/42 (1 - x²/72 (1 - x²/110))))).
+    let mut s = ONE - x2 / 110;
+    s = ONE - ((x2 * s) >> 30) / 72;
+    s = ONE - ((x2 * s) >> 30) / 42;
+    s = ONE - ((x2 * s) >> 30) / 20;
+    s = ONE - ((x2 * s) >> 30) / 6;
+    let sin = (x * s) >> 30;
+    // cos x = 1 - x²/2 (1 - x²/12 (1 - x²/30 (1 - x²/56 (1 - x²/90 (1 - x²/132))))).
+    let mut c = ONE - x2 / 132;
+    c = ONE - ((x2 * c) >> 30) / 90;
+    c = ONE - ((x2 * c) >> 30) / 56;
+    c = ONE - ((x2 * c) >> 30) / 30;
+    c = ONE - ((x2 * c) >> 30) / 12;
+    c = ONE - ((x2 * c) >> 30) / 2;
+    match quadrant {
+        0 => (sin, c),
+        1 => (c, -sin),
+        2 => (-sin, -c),
+        _ => (-c, sin),
     }
 }
 
-/// Vertex and triangle counts of [`torus_knot`] with this resolution.
+type V3 = [i64; 3];
+
+const fn sub(a: V3, b: V3) -> V3 {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+/// Cross product of two 2.30 vectors with components below 8, in 2.30.
+const fn cross(a: V3, b: V3) -> V3 {
+    [
+        (a[1] * b[2] - a[2] * b[1]) >> 30,
+        (a[2] * b[0] - a[0] * b[2]) >> 30,
+        (a[0] * b[1] - a[1] * b[0]) >> 30,
+    ]
+}
+
+/// The unit vector along `v` (2.30), or `None` when `v` is zero.
+const fn normalize(v: V3) -> Option<V3> {
+    let sq = (v[0] as i128 * v[0] as i128
+        + v[1] as i128 * v[1] as i128
+        + v[2] as i128 * v[2] as i128) as u128;
+    let len = sq.isqrt() as i64; // 2.30, since sq is 4.60
+    if len == 0 {
+        return None;
+    }
+    Some([
+        ((v[0] as i128) << 30) as i64 / len,
+        ((v[1] as i128) << 30) as i64 / len,
+        ((v[2] as i128) << 30) as i64 / len,
+    ])
+}
+
+/// A point of the unit `(p, q)` torus knot at `t` turns (as 2^32 fractions).
+const fn knot_curve(p: u32, q: u32, t: u32) -> V3 {
+    let (sq, cq) = sin_cos_turns(t.wrapping_mul(q));
+    let (sp, cp) = sin_cos_turns(t.wrapping_mul(p));
+    let r = (2 * ONE + cq) / 3;
+    [(r * cp) >> 30, (r * sp) >> 30, -sq / 3]
+}
+
+/// 2.30 times 16.16 to 16.16, rounded; `None` outside the 16.16 range.
+const fn scale(v: i64, s: I16F16) -> Option<I16F16> {
+    let x = (v as i128 * s.to_bits() as i128 + (1 << 29)) >> 30;
+    if x > i32::MAX as i128 || x < i32::MIN as i128 {
+        None
+    } else {
+        Some(I16F16::from_bits(x as i32))
+    }
+}
+
+/// Vertex and triangle counts of a torus knot with this resolution.
 pub const fn torus_knot_size(segments: usize, sides: usize) -> (usize, usize) {
     (segments * sides, 2 * segments * sides)
 }
 
-/// A `(p, q)` torus knot: a tube of radius `tube` around the curve that
-/// winds `p` times around the z axis and `q` times through the torus hole,
-/// on a torus of radius `radius`. `segments` rings of `sides` vertices
-/// each, with unit normals; triangles face outwards (counter-clockwise).
-///
-/// Returns the vertex and triangle counts written.
-///
-/// ```
-/// use microraster::shapes::{torus_knot, torus_knot_size};
-/// use fixed::types::I16F16;
-/// let (nv, nt) = torus_knot_size(64, 6);
-/// let mut pos = [[I16F16::ZERO; 3]; 384];
-/// let mut nrm = [[I16F16::ZERO; 3]; 384];
-/// let mut tri = [[0u16; 3]; 768];
-/// assert_eq!(torus_knot(2, 3, 1.0, 0.3, 64, 6, &mut pos, &mut nrm, &mut tri), Ok((nv, nt)));
-/// ```
+/// Writes a `(p, q)` torus knot into caller buffers: a tube of radius
+/// `tube` around the curve that winds `p` times around the z axis and `q`
+/// times through the hole of a torus of radius `radius`; `segments` rings of
+/// `sides` vertices, unit normals, triangles counter-clockwise seen from
+/// outside. Returns the vertex and triangle counts written.
 #[allow(clippy::too_many_arguments)]
-pub fn torus_knot(
+pub const fn torus_knot(
     p: u32,
     q: u32,
     radius: f32,
@@ -83,55 +147,105 @@ pub fn torus_knot(
     triangles: &mut [[u16; 3]],
 ) -> Result<(usize, usize), ShapeError> {
     let (nv, nt) = torus_knot_size(segments, sides);
-    if segments < 3 || sides < 3 || nv > u16::MAX as usize + 1 {
+    if segments < 3
+        || sides < 3
+        || nv > u16::MAX as usize + 1
+        || segments > (1 << 24)
+        || sides > (1 << 24)
+    {
         return Err(ShapeError::BadResolution);
     }
-    if !(radius.is_finite() && tube.is_finite() && radius > 0.0 && tube > 0.0) {
+    if !(radius.is_finite() && tube.is_finite() && radius > 0.0 && tube > 0.0 && radius < 32_768.0)
+    {
         return Err(ShapeError::BadSize);
     }
-    need("positions", nv, positions.len())?;
-    need("normals", nv, normals.len())?;
-    need("triangles", nt, triangles.len())?;
-
-    let tau = core::f32::consts::TAU;
-    let curve = |t: f32| {
-        let r = radius * (2.0 + F32Ext::cos(q as f32 * t)) / 3.0;
-        Vec3::new(
-            r * F32Ext::cos(p as f32 * t),
-            r * F32Ext::sin(p as f32 * t),
-            -radius * F32Ext::sin(q as f32 * t) / 3.0,
-        )
-    };
-    let dt = tau / segments as f32;
-    for i in 0..segments {
-        let t = i as f32 * dt;
-        let c = curve(t);
-        let tangent = curve(t + dt * 0.5) - curve(t - dt * 0.5);
-        let n = tangent.cross(c).normalize().ok_or(ShapeError::BadSize)?;
-        let b = tangent.cross(n).normalize().ok_or(ShapeError::BadSize)?;
-        for j in 0..sides {
-            let a = j as f32 * tau / sides as f32;
-            let (ca, sa) = (F32Ext::cos(a), F32Ext::sin(a));
-            let dir = Vec3::new(
-                ca * n.x + sa * b.x,
-                ca * n.y + sa * b.y,
-                ca * n.z + sa * b.z,
-            );
-            let len = sqrt(dir.dot(dir));
-            let dir = Vec3::new(dir.x / len, dir.y / len, dir.z / len);
+    // The only floats: the two sizes, converted once (exactly, for sizes
+    // that are multiples of 2^-16).
+    let radius = I16F16::from_bits((radius * 65_536.0) as i32);
+    let tube_bits = (tube as f64 * 65_536.0) as i64;
+    if radius.to_bits() == 0 || tube_bits == 0 {
+        return Err(ShapeError::BadSize);
+    }
+    if positions.len() < nv {
+        return Err(ShapeError::BufferTooSmall {
+            what: "positions",
+            needed: nv,
+            given: positions.len(),
+        });
+    }
+    if normals.len() < nv {
+        return Err(ShapeError::BufferTooSmall {
+            what: "normals",
+            needed: nv,
+            given: normals.len(),
+        });
+    }
+    if triangles.len() < nt {
+        return Err(ShapeError::BufferTooSmall {
+            what: "triangles",
+            needed: nt,
+            given: triangles.len(),
+        });
+    }
+    // The tube radius relative to the knot's radius, 2.30.
+    let rel = ((tube_bits as i128) << 30) / radius.to_bits() as i128;
+    if rel > 4 * ONE as i128 {
+        return Err(ShapeError::BadSize);
+    }
+    let rel = rel as i64;
+    let step = (1u64 << 32) / segments as u64;
+    let mut i = 0;
+    while i < segments {
+        // Parameters as fractions of a turn: t and t ± half a step.
+        let t = (i as u64 * (1u64 << 32) / segments as u64) as u32;
+        let half = (step / 2) as u32;
+        let c = knot_curve(p, q, t);
+        let tangent = sub(
+            knot_curve(p, q, t.wrapping_add(half)),
+            knot_curve(p, q, t.wrapping_sub(half)),
+        );
+        let n = match normalize(cross(tangent, c)) {
+            Some(n) => n,
+            None => return Err(ShapeError::BadSize),
+        };
+        let b = match normalize(cross(tangent, n)) {
+            Some(b) => b,
+            None => return Err(ShapeError::BadSize),
+        };
+        let mut j = 0;
+        while j < sides {
+            let a = (j as u64 * (1u64 << 32) / sides as u64) as u32;
+            let (sa, ca) = sin_cos_turns(a);
+            let dir = [
+                (ca * n[0] + sa * b[0]) >> 30,
+                (ca * n[1] + sa * b[1]) >> 30,
+                (ca * n[2] + sa * b[2]) >> 30,
+            ];
+            let dir = match normalize(dir) {
+                Some(d) => d,
+                None => return Err(ShapeError::BadSize),
+            };
             let k = i * sides + j;
-            positions[k] = fx3(Vec3::new(
-                c.x + tube * dir.x,
-                c.y + tube * dir.y,
-                c.z + tube * dir.z,
-            ))?;
-            normals[k] = fx3(dir)?;
+            let mut axis = 0;
+            while axis < 3 {
+                let unit = c[axis] + ((rel * dir[axis]) >> 30);
+                positions[k][axis] = match scale(unit, radius) {
+                    Some(v) => v,
+                    None => return Err(ShapeError::BadSize),
+                };
+                normals[k][axis] = I16F16::from_bits(((dir[axis] + (1 << 13)) >> 14) as i32);
+                axis += 1;
+            }
+            j += 1;
         }
+        i += 1;
     }
     let mut k = 0;
-    for i in 0..segments {
+    let mut i = 0;
+    while i < segments {
         let i1 = (i + 1) % segments;
-        for j in 0..sides {
+        let mut j = 0;
+        while j < sides {
             let j1 = (j + 1) % sides;
             let a = (i * sides + j) as u16;
             let b = (i1 * sides + j) as u16;
@@ -140,9 +254,81 @@ pub fn torus_knot(
             triangles[k] = [a, c, b];
             triangles[k + 1] = [a, d, c];
             k += 2;
+            j += 1;
         }
+        i += 1;
     }
     Ok((nv, nt))
+}
+
+/// Mesh arrays owned by value, sized at compile time: what a `static` mesh
+/// built by a `const fn` holds.
+#[derive(Clone, Debug)]
+pub struct MeshData<const V: usize, const T: usize> {
+    /// Positions.
+    pub positions: [Vec3Fx; V],
+    /// Unit normals.
+    pub normals: [Vec3Fx; V],
+    /// Triangles.
+    pub triangles: [[u16; 3]; T],
+}
+
+impl<const V: usize, const T: usize> MeshData<V, T> {
+    /// All zero.
+    pub const fn zeroed() -> Self {
+        Self {
+            positions: [[I16F16::ZERO; 3]; V],
+            normals: [[I16F16::ZERO; 3]; V],
+            triangles: [[0; 3]; T],
+        }
+    }
+
+    /// The mesh over these arrays.
+    pub fn mesh(&self) -> Result<Mesh<'_>, MeshError> {
+        Mesh::new(&self.positions, &self.triangles)?.with_normals(&self.normals)
+    }
+}
+
+/// [`torus_knot`] into a [`MeshData`] whose sizes must equal
+/// [`torus_knot_size`]; usable in a `static` initialiser.
+pub const fn torus_knot_data<const V: usize, const T: usize>(
+    p: u32,
+    q: u32,
+    radius: f32,
+    tube: f32,
+    segments: usize,
+    sides: usize,
+) -> Result<MeshData<V, T>, ShapeError> {
+    let (nv, nt) = torus_knot_size(segments, sides);
+    if nv != V {
+        return Err(ShapeError::BufferTooSmall {
+            what: "positions",
+            needed: nv,
+            given: V,
+        });
+    }
+    if nt != T {
+        return Err(ShapeError::BufferTooSmall {
+            what: "triangles",
+            needed: nt,
+            given: T,
+        });
+    }
+    let mut m = MeshData::zeroed();
+    match torus_knot(
+        p,
+        q,
+        radius,
+        tube,
+        segments,
+        sides,
+        &mut m.positions,
+        &mut m.normals,
+        &mut m.triangles,
+    ) {
+        Ok(_) => Ok(m),
+        Err(e) => Err(e),
+    }
 }
 
 const fn f(v: i32) -> I16F16 {
@@ -214,6 +400,7 @@ const fn cube_triangles() -> [[u16; 3]; 12] {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::math::Vec3;
 
     /// Every cube triangle's winding agrees with its face normal.
     #[test]
