@@ -69,7 +69,7 @@ pub mod sink;
 pub mod tile;
 pub mod vertex;
 
-pub use render::{Config, FrameStats, RenderError, Renderer, Workspace};
+pub use render::{Config, FrameStats, Profiler, RenderError, Renderer, Stage, Workspace};
 pub use shade::DepthTest;
 pub use sink::{NullSink, TileSink};
 pub use tile::{TileBuffer, TileView};

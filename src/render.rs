@@ -199,6 +199,59 @@ pub struct FrameStats {
     pub rescanned_tiles: u32,
 }
 
+/// A stage of a frame, as reported to a [`Profiler`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Stage {
+    /// Transforming, lighting and projecting every vertex.
+    Vertex,
+    /// Classifying, culling and clipping triangles and binning them to
+    /// tiles (a count and a fill pass per binning pass).
+    Binning,
+    /// Clearing a tile, setting up its triangles, rasterizing and shading.
+    Raster,
+    /// Handing a finished tile to the sink.
+    Sink,
+    /// The frame is finished.
+    Done,
+}
+
+/// Observes where a frame spends its time: [`Renderer::render_profiled`]
+/// calls [`enter`](Profiler::enter) at the start of every stage, so a
+/// profiler that reads a timer there can charge the time since its last
+/// call to the previous stage. `()` is the profiler that does nothing, and
+/// compiles to nothing.
+///
+/// ```
+/// use embedded_graphics::pixelcolor::BinaryColor;
+/// use microraster::prelude::*;
+/// use microraster::{Profiler, Stage};
+///
+/// struct Counts([u32; 5]);
+/// impl Profiler for Counts {
+///     fn enter(&mut self, stage: Stage) {
+///         self.0[stage as usize] += 1;
+///     }
+/// }
+/// let mut renderer: Renderer<BinaryColor, 16, 16> =
+///     Renderer::new(Config::new(Size::new(32, 32), BinaryColor::Off));
+/// let mut ws: Workspace<4, 16, 4> = Workspace::new();
+/// let scene = Scene::new(Camera::new(Mat4::IDENTITY, Mat4::IDENTITY), &[]);
+/// let mut counts = Counts([0; 5]);
+/// renderer.render_profiled(&mut ws, &scene, &mut NullSink, &mut counts).unwrap();
+/// // Vertex once, a count and a fill pass, then four tiles each rasterized
+/// // and sent, then done.
+/// assert_eq!(counts.0, [1, 2, 4, 4, 1]);
+/// ```
+pub trait Profiler {
+    /// The frame enters `stage`.
+    fn enter(&mut self, stage: Stage);
+}
+
+impl Profiler for () {
+    #[inline(always)]
+    fn enter(&mut self, _: Stage) {}
+}
+
 /// Why a frame could not be rendered. Every error except `Sink` is found
 /// before the first tile is sent.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -559,6 +612,22 @@ where
     where
         S: TileSink<C>,
     {
+        self.render_profiled(ws, scene, sink, &mut ())
+    }
+
+    /// [`render`](Self::render), telling `profiler` when each [`Stage`]
+    /// starts.
+    pub fn render_profiled<S, P, const V: usize, const B: usize, const T: usize>(
+        &mut self,
+        ws: &mut Workspace<V, B, T>,
+        scene: &Scene<'_>,
+        sink: &mut S,
+        profiler: &mut P,
+    ) -> Result<FrameStats, RenderError<S::Error>>
+    where
+        S: TileSink<C>,
+        P: Profiler,
+    {
         let size = self.config.size;
         if size.width == 0 || size.height == 0 {
             return Err(RenderError::ZeroViewport);
@@ -590,6 +659,7 @@ where
         }
 
         // Vertex stage, once per frame.
+        profiler.enter(Stage::Vertex);
         let viewport = Viewport::new(size.width, size.height);
         let mut base = 0;
         for (di, draw) in scene.draws.iter().enumerate() {
@@ -627,6 +697,7 @@ where
             counts.fill(0);
 
             // Count pass (and the frame's triangle statistics, once).
+            profiler.enter(Stage::Binning);
             let first_pass = stats.bin_passes == 0;
             stats.bin_passes += 1;
             let mut cur = Cursor::default();
@@ -658,7 +729,7 @@ where
                     &grid,
                     t0,
                     &mut cache,
-                    sink,
+                    (sink, &mut *profiler),
                     &mut stats,
                     |f, cur, cache, out| {
                         let rect = grid.rect(t0 as u32);
@@ -686,6 +757,7 @@ where
             }
 
             // Fill pass: counts become bin ends.
+            profiler.enter(Stage::Binning);
             let mut cur = Cursor::default();
             for t in 0..n_tris {
                 let (fate, _, r) = frame.bounds(t, &mut cur, &mut cache);
@@ -705,7 +777,7 @@ where
                     &grid,
                     t0 + k,
                     &mut cache,
-                    sink,
+                    (sink, &mut *profiler),
                     &mut stats,
                     |_, cur, cache, out| {
                         for &t in bin {
@@ -716,19 +788,20 @@ where
             }
             t0 = t1;
         }
+        profiler.enter(Stage::Done);
         Ok(stats)
     }
 
     /// Clears tile `t`, rasterizes the triangles `list` yields into it and
     /// streams it.
     #[allow(clippy::too_many_arguments)]
-    fn draw_tile<S: TileSink<C>>(
+    fn draw_tile<S: TileSink<C>, P: Profiler>(
         &mut self,
         frame: &Frame<'_, '_>,
         grid: &TileGrid,
         t: usize,
         cache: &mut SetupCache,
-        sink: &mut S,
+        (sink, profiler): (&mut S, &mut P),
         stats: &mut FrameStats,
         list: impl FnOnce(
             &Frame<'_, '_>,
@@ -740,6 +813,7 @@ where
         let rect = grid.rect(t as u32);
         let (w, h) = ((rect.x1 - rect.x0) as usize, (rect.y1 - rect.y0) as usize);
         let cfg = self.config;
+        profiler.enter(Stage::Raster);
         self.tile.clear(w, h, cfg.clear_color, cfg.clear_depth);
         let tile = &mut self.tile;
         let mut shaded = 0u32;
@@ -756,6 +830,7 @@ where
         });
         stats.pixels_shaded += shaded;
         stats.tiles += 1;
+        profiler.enter(Stage::Sink);
         sink.write_tile(&rectangle(&rect), &self.tile.view(w, h))
             .map_err(RenderError::Sink)
     }
