@@ -1,7 +1,7 @@
 //! The vertex stage: model-view-projection, lighting, outcodes and the
 //! viewport transform, all in fixed point.
 //!
-//! Per frame (and per draw) the `f32` matrices of the [`Scene`] are combined
+//! Per frame (and per draw) the `f32` matrices of the [`Scene`](crate::scene::Scene) are combined
 //! and converted once to 16.16 ([`FixedMat4`]); the world-space light
 //! direction is moved into the draw's model space (`M⁻¹ L`, normalised), so
 //! per vertex the stage needs only integer multiply-adds: 12 products for the

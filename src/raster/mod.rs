@@ -12,6 +12,7 @@
 //! must produce exactly this coverage; the tests check it against an
 //! independent edge-function reference.
 
+pub mod hilbert;
 pub mod scanline;
 
 /// Sub-pixel precision of screen coordinates, in bits.
