@@ -354,6 +354,44 @@ pub fn walk<F: FnMut(i32, i32, i32)>(
     blocks
 }
 
+/// The cell `(x, y)` of the `index`-th step along the Hilbert curve of a
+/// `2^order` square, from the state machine's tables (the same order the
+/// traversal visits pixels in). Used to visit tiles in Hilbert order.
+pub const fn index_to_cell(order: u32, index: u32) -> (u32, u32) {
+    let (mut x, mut y) = (0u32, 0u32);
+    let mut state = I;
+    let mut level = order;
+    while level > 0 {
+        level -= 1;
+        let k = (index >> (2 * level)) & 3;
+        let q = entry(QUAD, state, k);
+        x |= (q as u32 & 1) << level;
+        y |= ((q as u32 >> 1) & 1) << level;
+        state = entry(NEXT, state, k);
+    }
+    (x, y)
+}
+
+/// The position along the Hilbert curve of a `2^order` square of the cell
+/// `(x, y)`: the inverse of [`index_to_cell`].
+pub const fn cell_to_index(order: u32, x: u32, y: u32) -> u32 {
+    let mut index = 0u32;
+    let mut state = I;
+    let mut level = order;
+    while level > 0 {
+        level -= 1;
+        let q = (((x >> level) & 1) | (((y >> level) & 1) << 1)) as u8;
+        // The step k whose quadrant is q, in this state.
+        let mut k = 0;
+        while k < 3 && entry(QUAD, state, k) != q {
+            k += 1;
+        }
+        index = (index << 2) | k;
+        state = entry(NEXT, state, k);
+    }
+    index
+}
+
 /// The order (`log2` of the side) of the smallest power-of-two square that
 /// holds a `w x h` rectangle.
 pub const fn order_for(w: u32, h: u32) -> u32 {
@@ -455,6 +493,21 @@ mod tests {
             });
             assert_eq!(d, 1 << (2 * order), "order {order}: every cell once");
             assert_eq!(end, edges.at(x0, y0), "order {order}: back to the start");
+        }
+    }
+
+    #[test]
+    fn cell_index_conversions_match_d2xy_and_invert() {
+        for order in 0..=8u32 {
+            for d in 0..(1u32 << (2 * order)) {
+                let (x, y) = index_to_cell(order, d);
+                assert_eq!(
+                    (x as i32, y as i32),
+                    d2xy(order, d),
+                    "order {order} index {d}"
+                );
+                assert_eq!(cell_to_index(order, x, y), d);
+            }
         }
     }
 
