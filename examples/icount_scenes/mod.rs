@@ -1,0 +1,369 @@
+//! The scenes of the Cortex-M instruction-count firmware
+//! (`examples/icount.rs`): `no_std`, no allocation, and every mesh built by
+//! `const fn`s into `static`s, so that the meshes live in flash and the
+//! LM3S6965's 64 KiB of RAM holds only the renderer and its workspace.
+//!
+//! The first three are the host benchmark scenes of `examples/scenes/mod.rs`,
+//! at the same size and with the same renderer settings (320x240, `Rgb565`, 32x32
+//! tiles, back-face culling, `LessEqual` with depth writes):
+//!
+//! * `demo`, `demo-flat`: frame 0 of the demo (the 4,000-triangle torus
+//!   knot and the 12-triangle cube, with the camera, light and transforms of
+//!   `examples/common/mod.rs` at t = 0), Gouraud or flat shaded;
+//! * `fill`: 8 flat-shaded 320x240 quads drawn back to front, so that every
+//!   one of their 614,400 fragments passes the depth test and is written;
+//! * `grid4`: a grid of 800 Gouraud triangles of 4 pixels each, for the
+//!   cost per small triangle (the host's `tri4` scene scatters 8,000
+//!   separate triangles, whose 24,000 vertices fit neither the LM3S6965's
+//!   RAM nor its flash).
+#![allow(dead_code)]
+
+use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
+use fixed::types::I16F16;
+use microraster::mesh::{Mesh, MeshError, Vec3Fx};
+use microraster::prelude::*;
+use microraster::shapes::{
+    torus_knot_data, torus_knot_size, MeshData, CUBE_NORMALS, CUBE_POSITIONS, CUBE_TRIANGLES,
+};
+use microraster::Profiler;
+
+/// Frame width.
+pub const WIDTH: u32 = 320;
+/// Frame height.
+pub const HEIGHT: u32 = 240;
+
+/// The renderer of every scene: 32x32 tiles of `Rgb565` (4,112 bytes).
+pub type BenchRenderer = Renderer<Rgb565, 32, 32>;
+/// The workspace of every scene: 2,048 vertices, 4,096 bin entries, all 80
+/// tiles in one pass (41,120 bytes).
+pub type BenchWorkspace = Workspace<2048, 4096, 80>;
+
+/// The demo's background (`examples/common/mod.rs`).
+pub const CLEAR: Rgb565 = Rgb565::new(3, 6, 8);
+
+/// Knot resolution of the demo: 200 x 10 = 2,000 vertices.
+const KNOT_SEGMENTS: usize = 200;
+const KNOT_SIDES: usize = 10;
+const KNOT_VERTICES: usize = torus_knot_size(KNOT_SEGMENTS, KNOT_SIDES).0;
+const KNOT_TRIANGLES: usize = torus_knot_size(KNOT_SEGMENTS, KNOT_SIDES).1;
+
+/// The demo's torus knot, `torus_knot(2, 3, 1.0, 0.28, 200, 10)` as in
+/// `examples/common/mod.rs`, evaluated by the compiler into flash (72,000
+/// bytes).
+pub static KNOT: MeshData<KNOT_VERTICES, KNOT_TRIANGLES> =
+    match torus_knot_data(2, 3, 1.0, 0.28, KNOT_SEGMENTS, KNOT_SIDES) {
+        Ok(m) => m,
+        Err(_) => panic!("the demo knot's parameters are valid"),
+    };
+
+/// `v` in 16.16, rounded to the nearest with ties to even, as
+/// `I16F16::from_num` rounds (`v` well inside the 16.16 range).
+const fn fx(v: f32) -> I16F16 {
+    // Scaling by a power of two is exact, so one rounding happens, here.
+    let x = v * 65536.0;
+    let t = x as i64; // towards zero
+    let frac = x - t as f32;
+    let r = if frac > 0.5 || (frac == 0.5 && t % 2 != 0) {
+        t + 1
+    } else if frac < -0.5 || (frac == -0.5 && t % 2 != 0) {
+        t - 1
+    } else {
+        t
+    };
+    I16F16::from_bits(r as i32)
+}
+
+/// Pixel position (x right, y down) to a normalised-device-coordinate
+/// vertex at depth `z`, as `examples/scenes/mod.rs` computes it.
+const fn ndc(px: f32, py: f32, z: f32) -> Vec3Fx {
+    [
+        fx(px * 2.0 / WIDTH as f32 - 1.0),
+        fx(1.0 - py * 2.0 / HEIGHT as f32),
+        fx(z),
+    ]
+}
+
+/// Quads of the fill-rate scene.
+pub const FILL_LAYERS: usize = 8;
+
+/// The fill scene's mesh: `FILL_LAYERS` full-frame quads (counter-clockwise
+/// in NDC), from z = 0.8 at the back to z = -0.8 at the front.
+struct FillData {
+    positions: [Vec3Fx; 4 * FILL_LAYERS],
+    colors: [Rgb888; 4 * FILL_LAYERS],
+    triangles: [[u16; 3]; 2 * FILL_LAYERS],
+}
+
+const fn fill_data() -> FillData {
+    let mut d = FillData {
+        positions: [[I16F16::ZERO; 3]; 4 * FILL_LAYERS],
+        colors: [Rgb888::new(0, 0, 0); 4 * FILL_LAYERS],
+        triangles: [[0; 3]; 2 * FILL_LAYERS],
+    };
+    let (w, h) = (WIDTH as f32, HEIGHT as f32);
+    let mut l = 0;
+    while l < FILL_LAYERS {
+        let z = 0.8 - 1.6 * l as f32 / (FILL_LAYERS - 1) as f32;
+        let b = 4 * l;
+        d.positions[b] = ndc(0.0, h, z);
+        d.positions[b + 1] = ndc(w, h, z);
+        d.positions[b + 2] = ndc(w, 0.0, z);
+        d.positions[b + 3] = ndc(0.0, 0.0, z);
+        let c = Rgb888::new(
+            (40 + (25 * l) % 200) as u8,
+            (200 - (20 * l) % 160) as u8,
+            90,
+        );
+        let mut i = 0;
+        while i < 4 {
+            d.colors[b + i] = c;
+            i += 1;
+        }
+        let b = b as u16;
+        d.triangles[2 * l] = [b, b + 1, b + 2];
+        d.triangles[2 * l + 1] = [b, b + 2, b + 3];
+        l += 1;
+    }
+    d
+}
+
+static FILL: FillData = fill_data();
+
+/// Vertices per side of the small-triangle grid.
+pub const GRID_SIDE: usize = 21;
+/// Triangles of the small-triangle grid: 20 x 20 cells of two.
+pub const GRID_TRIANGLES: usize = 2 * (GRID_SIDE - 1) * (GRID_SIDE - 1);
+/// The grid's cell, in pixels: 2 sqrt(2), so that each triangle covers 4
+/// pixels.
+const GRID_CELL: f32 = 2.828_427;
+
+/// The small-triangle scene's mesh: a 21 x 21-vertex grid of 800
+/// triangles of 4 pixels each (a 57x57-pixel patch near the centre of the
+/// frame, at a sub-pixel offset), all at depth 0, Gouraud shaded with a
+/// colour gradient. A grid shares its vertices as real meshes do (2
+/// triangles per vertex), which also keeps the mesh small enough for the
+/// LM3S6965's flash.
+struct GridData {
+    positions: [Vec3Fx; GRID_SIDE * GRID_SIDE],
+    colors: [Rgb888; GRID_SIDE * GRID_SIDE],
+    triangles: [[u16; 3]; GRID_TRIANGLES],
+}
+
+const fn grid_data() -> GridData {
+    let mut d = GridData {
+        positions: [[I16F16::ZERO; 3]; GRID_SIDE * GRID_SIDE],
+        colors: [Rgb888::new(0, 0, 0); GRID_SIDE * GRID_SIDE],
+        triangles: [[0; 3]; GRID_TRIANGLES],
+    };
+    let side = (GRID_SIDE - 1) as f32 * GRID_CELL;
+    let (x0, y0) = (
+        (WIDTH as f32 - side) / 2.0 + 0.3,
+        (HEIGHT as f32 - side) / 2.0 + 0.45,
+    );
+    let mut j = 0;
+    while j < GRID_SIDE {
+        let mut i = 0;
+        while i < GRID_SIDE {
+            let v = j * GRID_SIDE + i;
+            d.positions[v] = ndc(x0 + i as f32 * GRID_CELL, y0 + j as f32 * GRID_CELL, 0.0);
+            d.colors[v] = Rgb888::new(
+                (40 + 200 * i / (GRID_SIDE - 1)) as u8,
+                (40 + 200 * j / (GRID_SIDE - 1)) as u8,
+                120,
+            );
+            i += 1;
+        }
+        j += 1;
+    }
+    let mut k = 0;
+    let mut j = 0;
+    while j + 1 < GRID_SIDE {
+        let mut i = 0;
+        while i + 1 < GRID_SIDE {
+            // a b (y down on the screen, so counter-clockwise in NDC is
+            // c d  a, c, d and a, d, b)
+            let a = (j * GRID_SIDE + i) as u16;
+            let (b, c) = (a + 1, a + GRID_SIDE as u16);
+            let d_ = c + 1;
+            d.triangles[k] = [a, c, d_];
+            d.triangles[k + 1] = [a, d_, b];
+            k += 2;
+            i += 1;
+        }
+        j += 1;
+    }
+    d
+}
+
+static GRID: GridData = grid_data();
+
+/// A benchmark scene.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SceneId {
+    /// The demo frame, Gouraud.
+    Demo,
+    /// The demo frame, flat.
+    DemoFlat,
+    /// The fill-rate quads.
+    Fill,
+    /// The small triangles.
+    Grid4,
+}
+
+impl SceneId {
+    /// Every scene, in the order of the tables.
+    pub const ALL: [SceneId; 4] = [Self::Demo, Self::DemoFlat, Self::Fill, Self::Grid4];
+
+    /// The scene's name, as in the host benchmarks.
+    pub const fn name(self) -> &'static str {
+        match self {
+            Self::Demo => "demo",
+            Self::DemoFlat => "demo-flat",
+            Self::Fill => "fill",
+            Self::Grid4 => "grid4",
+        }
+    }
+
+    /// The scene called `name`.
+    pub fn from_name(name: &str) -> Option<Self> {
+        Self::ALL.into_iter().find(|s| s.name() == name)
+    }
+}
+
+/// The validated meshes of every scene (building a [`Mesh`] checks every
+/// index, which is set-up work, not per-frame work).
+pub struct Meshes {
+    knot: Mesh<'static>,
+    cube: Mesh<'static>,
+    fill: Mesh<'static>,
+    grid: Mesh<'static>,
+}
+
+impl Meshes {
+    /// Validates the meshes.
+    pub fn new() -> Result<Self, MeshError> {
+        Ok(Self {
+            knot: KNOT.mesh()?,
+            cube: Mesh::new(&CUBE_POSITIONS, &CUBE_TRIANGLES)?.with_normals(&CUBE_NORMALS)?,
+            fill: Mesh::new(&FILL.positions, &FILL.triangles)?.with_colors(&FILL.colors)?,
+            grid: Mesh::new(&GRID.positions, &GRID.triangles)?.with_colors(&GRID.colors)?,
+        })
+    }
+}
+
+/// Why a frame could not be rendered.
+#[derive(Debug)]
+pub enum FrameError {
+    /// The demo camera's matrices could not be built.
+    Camera,
+    /// The renderer refused the scene.
+    Render(RenderError<core::convert::Infallible>),
+}
+
+impl core::fmt::Display for FrameError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        match self {
+            Self::Camera => write!(f, "the demo camera's matrices are degenerate"),
+            Self::Render(e) => write!(f, "render error: {e}"),
+        }
+    }
+}
+
+/// The demo camera for a `width` x `height` frame (`examples/common/mod.rs`).
+fn demo_camera(width: u32, height: u32) -> Option<Camera> {
+    let view = Mat4::look_at(
+        Vec3::new(0.0, 0.6, 4.2),
+        Vec3::new(0.35, 0.0, 0.0),
+        Vec3::new(0.0, 1.0, 0.0),
+    )?;
+    let proj = Mat4::perspective(0.9, width as f32 / height as f32, 0.5, 20.0)?;
+    Some(Camera::new(view, proj))
+}
+
+/// The demo light (`examples/common/mod.rs`).
+fn demo_light() -> Light {
+    Light::new(Vec3::new(-0.6, 0.8, 0.9)).ambient(Rgb888::new(40, 40, 56))
+}
+
+/// The knot and the cube at animation time `t` (`common::draws`).
+fn demo_draws<'a>(
+    knot: &'a Mesh<'a>,
+    cube: &'a Mesh<'a>,
+    t: f32,
+    shading: Shading,
+) -> [Draw<'a>; 2] {
+    [
+        Draw::new(knot)
+            .transform(
+                Mat4::translation(Vec3::new(-0.3, 0.0, 0.0))
+                    * Mat4::rotation_y(t)
+                    * Mat4::rotation_x(0.4),
+            )
+            .color(Rgb888::new(230, 120, 40))
+            .shading(shading),
+        Draw::new(cube)
+            .transform(
+                Mat4::translation(Vec3::new(1.75, 0.1, -0.3))
+                    * Mat4::rotation_y(-1.3 * t + 0.5)
+                    * Mat4::rotation_x(0.6)
+                    * Mat4::scale(Vec3::new(0.42, 0.42, 0.42)),
+            )
+            .color(Rgb888::new(70, 150, 230))
+            .shading(shading),
+    ]
+}
+
+/// A camera whose clip space is the model space.
+fn ndc_camera() -> Camera {
+    Camera::new(Mat4::IDENTITY, Mat4::IDENTITY)
+}
+
+/// A renderer with the benchmark settings.
+pub fn renderer() -> BenchRenderer {
+    BenchRenderer::new(Config::new(Size::new(WIDTH, HEIGHT), CLEAR))
+}
+
+/// One whole frame of `scene` into a [`NullSink`]: the scene's set-up
+/// (camera, transforms) and the render, reporting stages to `profiler`.
+///
+/// The animation time (0, demo frame 0) and the frame size reach the
+/// set-up through [`black_box`](core::hint::black_box), as a real
+/// program's time and viewport would: the matrices are computed in every
+/// frame, not folded by the compiler or hoisted out of the benchmark loop.
+/// So does the scene, and the function is never inlined, so that its code,
+/// and the renderer's, do not depend on which scenes a build runs.
+#[inline(never)]
+pub fn frame<P: Profiler>(
+    scene: SceneId,
+    meshes: &Meshes,
+    renderer: &mut BenchRenderer,
+    ws: &mut BenchWorkspace,
+    profiler: &mut P,
+) -> Result<FrameStats, FrameError> {
+    let sink = &mut NullSink;
+    let (scene, t, width, height) = core::hint::black_box((scene, 0.0f32, WIDTH, HEIGHT));
+    let r = match scene {
+        SceneId::Demo | SceneId::DemoFlat => {
+            let shading = if scene == SceneId::Demo {
+                Shading::Gouraud
+            } else {
+                Shading::Flat
+            };
+            let draws = demo_draws(&meshes.knot, &meshes.cube, t, shading);
+            let camera = demo_camera(width, height).ok_or(FrameError::Camera)?;
+            let s = Scene::new(camera, &draws).light(demo_light());
+            renderer.render_profiled(ws, &s, sink, profiler)
+        }
+        SceneId::Fill => {
+            let draws = [Draw::new(&meshes.fill).shading(Shading::Flat)];
+            let s = Scene::new(ndc_camera(), &draws);
+            renderer.render_profiled(ws, &s, sink, profiler)
+        }
+        SceneId::Grid4 => {
+            let draws = [Draw::new(&meshes.grid)];
+            let s = Scene::new(ndc_camera(), &draws);
+            renderer.render_profiled(ws, &s, sink, profiler)
+        }
+    };
+    r.map_err(FrameError::Render)
+}

@@ -1,0 +1,97 @@
+#!/usr/bin/env bash
+# Instruction counts per frame on Cortex-M, under QEMU with -icount shift=0
+# (the virtual clock then advances 1 ns per executed instruction; QEMU is not
+# cycle-accurate, so these are instructions, never cycles).
+#
+#   scripts/icount.sh                    # both boards, every scene
+#   SCENES="fill grid4" scripts/icount.sh
+#   BOARDS=lm3s6965evb scripts/icount.sh
+#
+# For each board, builds examples/icount.rs in release for its target, runs
+# it twice in QEMU and checks that both runs print the same thing, then
+# prints its tables and the firmware's flash and static RAM (llvm-size -A
+# of the linked ELF). SCENES (names separated by spaces) is passed to the
+# build as MICRORASTER_ICOUNT_SCENES; the scenes are demo, demo-flat, fill
+# and grid4 (examples/icount_scenes/mod.rs).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+BOARDS=${BOARDS:-lm3s6965evb mps2-an386}
+SCENES=${SCENES:-}
+TARGET_DIR=${CARGO_TARGET_DIR:-target}
+OUT=$TARGET_DIR/icount
+mkdir -p "$OUT"
+
+command -v qemu-system-arm >/dev/null || {
+    echo "qemu-system-arm is not installed (Debian: apt-get install qemu-system-arm)" >&2
+    exit 1
+}
+host=$(rustc -vV | sed -n 's/^host: //p')
+size="$(rustc --print sysroot)/lib/rustlib/$host/bin/llvm-size"
+[ -x "$size" ] || { echo "llvm-size not found: rustup component add llvm-tools" >&2; exit 1; }
+
+echo "$(rustc --version); $(qemu-system-arm --version | head -n 1)"
+
+footprint=()
+for board in $BOARDS; do
+    case $board in
+        lm3s6965evb) target=thumbv7m-none-eabi; flash_kib=256; ram_kib=64 ;;
+        mps2-an386) target=thumbv7em-none-eabihf; flash_kib=4096; ram_kib=4096 ;;
+        *) echo "unknown board $board (lm3s6965evb or mps2-an386)" >&2; exit 1 ;;
+    esac
+    if [ -n "$SCENES" ]; then
+        MICRORASTER_ICOUNT_SCENES="$SCENES" \
+            cargo build --release --example icount --target "$target" >&2
+    else
+        env -u MICRORASTER_ICOUNT_SCENES \
+            cargo build --release --example icount --target "$target" >&2
+    fi
+    elf=$TARGET_DIR/$target/release/examples/icount
+    for run in 1 2; do
+        # QEMU's stellaris model says "Timer with period zero, disabling"
+        # at every boot; anything else on stderr is shown.
+        if ! timeout 600 qemu-system-arm -M "$board" -display none -serial none \
+            -monitor none -icount shift=0 -semihosting-config enable=on,target=native \
+            -kernel "$elf" >"$OUT/$board.$run.txt" 2>"$OUT/$board.$run.err"; then
+            cat "$OUT/$board.$run.txt" "$OUT/$board.$run.err" >&2
+            echo "icount: the $board firmware failed (run $run)" >&2
+            exit 1
+        fi
+        grep -v '^Timer with period zero, disabling$' "$OUT/$board.$run.err" >&2 || true
+    done
+    if ! cmp -s "$OUT/$board.1.txt" "$OUT/$board.2.txt"; then
+        diff "$OUT/$board.1.txt" "$OUT/$board.2.txt" >&2 || true
+        echo "icount: two runs on $board differ" >&2
+        exit 1
+    fi
+    echo
+    echo "## $board ($target), two runs, identical"
+    echo
+    cat "$OUT/$board.1.txt"
+
+    # Flash: what is loaded (vector table, code, read-only data, the
+    # initial values of .data); static RAM: .data, .bss, .uninit.
+    read -r flash ram < <("$size" -A "$elf" | awk '
+        $1 == ".vector_table" || $1 == ".text" || $1 == ".rodata" || $1 == ".gnu.sgstubs" { f += $2 }
+        $1 == ".data" { f += $2; r += $2 }
+        $1 == ".bss" || $1 == ".uninit" { r += $2 }
+        END { print f, r }')
+    footprint+=("$(awk -v b="$board" -v t="$target" -v f="$flash" -v r="$ram" \
+        -v fk="$flash_kib" -v rk="$ram_kib" '
+        function sep(n,   s) {
+            s = sprintf("%d", n)
+            while (s ~ /[0-9][0-9][0-9][0-9]/) sub(/[0-9][0-9][0-9](,|$)/, ",&", s)
+            return s
+        }
+        BEGIN {
+            printf "| `icount` on %s | `%s` | %s B (%.1f of %d KiB) | %s B (%.1f of %d KiB) | %s B |",
+                b, t, sep(f), f / 1024, fk, sep(r), r / 1024, rk, sep(rk * 1024 - r)
+        }')")
+done
+
+echo
+echo "## Footprint (release, llvm-size -A)"
+echo
+echo "| firmware | target | flash | static RAM | RAM left for the stack |"
+echo "|---|---|---|---|---|"
+printf '%s\n' "${footprint[@]}"
