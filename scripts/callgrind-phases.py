@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""Splits the instructions of `Renderer::render` into the stages of a frame.
+"""Splits the instructions of `Renderer::render_profiled` (or, in older
+trees, `Renderer::render`) into the stages of a frame.
 
     scripts/callgrind-phases.py CALLGRIND_OUT BINARY FRAMES [RENDER_RS]
 
@@ -11,10 +12,11 @@ belongs to, through the inline chain that `addr2line -i` reports; lines map
 to stages through markers in src/render.rs:
 
     "// Vertex stage"         vertex stage
-    "// Count pass"           binning: count and fill passes, bin layout
-    "for k in 0..t1 - t0"     per tile: clear, triangle re-fetch, raster, sink
+    "// Binning: one pass"    binning: classification, bins
+    "for k in 0..bins.tiles()" per tile: clear, raster, sink
 
-Rasterization and shading (`raster_piece`) are reported on their own.
+Rasterization and shading (`raster_tile`: fetching each binned triangle,
+set-up, spans, pixels) are reported on their own.
 Needs python3 and binutils (nm, addr2line).
 """
 
@@ -101,14 +103,14 @@ def main():
 
     bounds = [
         (marker("// Vertex stage"), "vertex stage"),
-        (marker("// Count pass"), "binning (count + fill passes)"),
-        (marker("for k in 0..t1 - t0"), "tiles (clear, triangle re-fetch, sink)"),
+        (marker("// Binning: one pass"), "binning (classification, bins)"),
+        (marker("for k in 0..bins.tiles()"), "tiles (clear, sink)"),
     ]
     suffix = binary.rsplit("/", 1)[-1]
     self_cost, call_cost = parse(path, "/" + suffix)
     syms = symbols(binary)
-    render = [(s, n) for s, n, name in syms if name.endswith("Renderer<C,_,_>::render")]
-    raster = [(s, n) for s, n, name in syms if name.endswith("render::raster_piece")]
+    render = [(s, n) for s, n, name in syms if name.endswith(("Renderer<C,_,_>::render", "Renderer<C,_,_>::render_profiled"))]
+    raster = [(s, n) for s, n, name in syms if name.endswith(("render::raster_piece", "render::raster_tile"))]
 
     def inside(a, ranges):
         return any(s <= a < s + n for s, n in ranges)
@@ -132,7 +134,7 @@ def main():
     def stage(a):
         for fn, loc in reversed(chains.get(a, [])):
             m = re.search(r"render\.rs:(\d+)", loc)
-            if m and fn.endswith("Renderer<C,_,_>::render"):
+            if m and fn.endswith(("Renderer<C,_,_>::render", "Renderer<C,_,_>::render_profiled")):
                 line, name = int(m.group(1)), "frame set-up and checks"
                 for start, n in bounds:
                     if line >= start:
@@ -140,34 +142,47 @@ def main():
                 return name
         return "frame set-up and checks"
 
-    # Calls into raster_piece are reported apart.
+    # Calls into the rasterizer are reported apart, wherever they are made
+    # from (the tile loop calls it through a function of its own).
     raster_entries = {s for s, _ in raster}
-    agg = collections.Counter()
-    for a in addrs:
-        agg[stage(a)] += self_cost[a]
-    # Attribute call sites: a call to raster_piece is rasterization.
-    for a in addrs:
-        if not call_cost[a]:
-            continue
-        target = subprocess.run(
+
+    def call_target(a):
+        out = subprocess.run(
             ["objdump", "-d", "--no-show-raw-insn", binary,
              "--start-address=%#x" % a, "--stop-address=%#x" % (a + 16)],
             capture_output=True, text=True,
         ).stdout
-        m = re.search(r"call\s+([0-9a-f]+)\s", target)
-        if m and int(m.group(1), 16) in raster_entries:
-            agg["rasterization + shading (raster_piece)"] += call_cost[a]
+        m = re.search(r"call\s+([0-9a-f]+)\s", out)
+        return int(m.group(1), 16) if m else None
+
+    agg = collections.Counter()
+    for a in addrs:
+        agg[stage(a)] += self_cost[a]
+    raster_total = 0
+    for a in call_cost:
+        if call_cost[a] and call_target(a) in raster_entries:
+            raster_total += call_cost[a]
+    raster_stage = "rasterization + shading (raster_tile)"
+    for a in addrs:
+        if not call_cost[a]:
+            continue
+        if call_target(a) in raster_entries:
+            agg[raster_stage] += call_cost[a]
+            raster_total -= call_cost[a]
         else:
             agg[stage(a)] += call_cost[a]
+    # What is left was called from the tile loop's callees.
+    agg["tiles (clear, sink)"] -= raster_total
+    agg[raster_stage] += raster_total
     total = sum(self_cost.values())
     render_total = sum(agg.values())
     print("%12s  %6s  %s" % ("instr/frame", "share", "stage"))
     for name in [
         "frame set-up and checks",
         "vertex stage",
-        "binning (count + fill passes)",
-        "tiles (clear, triangle re-fetch, sink)",
-        "rasterization + shading (raster_piece)",
+        "binning (classification, bins)",
+        "tiles (clear, sink)",
+        "rasterization + shading (raster_tile)",
     ]:
         print("%12d  %5.1f%%  %s" % (agg[name] // frames, 100.0 * agg[name] / total, name))
     rest = total - render_total

@@ -13,6 +13,7 @@
 //! [`micromath::F32Ext`] explicitly so a host build never silently picks up
 //! `std`'s different implementation.
 
+use core::num::NonZeroU64;
 use fixed::types::I16F16;
 use micromath::F32Ext;
 
@@ -375,7 +376,115 @@ impl FixedMat4 {
         }
         Some(out)
     }
+
+    /// Whether [`transform_point_bounded`](Self::transform_point_bounded)
+    /// is exact for every point whose coordinates are at most `extent` in
+    /// magnitude: when every row's sum of products, its translation and the
+    /// rounding stay below 2^47, no partial sum can leave `i64` and the
+    /// rounded result always fits `i32`, so neither needs checking.
+    pub fn bounded(&self, extent: u32) -> bool {
+        (0..4).all(|r| {
+            let sum: u64 = (0..3)
+                .map(|c| self.m[c][r].unsigned_abs() as u64 * extent as u64)
+                .sum::<u64>()
+                + ((self.m[3][r].unsigned_abs() as u64) << 16)
+                + (1 << 15);
+            sum < 1 << 47
+        })
+    }
+
+    /// [`transform_point`](Self::transform_point) without its overflow
+    /// checks, for a matrix that is [`bounded`](Self::bounded) for the
+    /// point's extent; then it gives the same result (the sums are exact,
+    /// the result in range).
+    #[inline(always)]
+    pub fn transform_point_bounded(&self, p: [i32; 3]) -> [i32; 4] {
+        let m = &self.m;
+        let mut out = [0i32; 4];
+        for (r, o) in out.iter_mut().enumerate() {
+            // Within the bound nothing wraps; wrapping arithmetic only
+            // spares the checks.
+            let acc = (m[0][r] as i64 * p[0] as i64)
+                .wrapping_add(m[1][r] as i64 * p[1] as i64)
+                .wrapping_add(m[2][r] as i64 * p[2] as i64)
+                .wrapping_add((m[3][r] as i64) << 16);
+            *o = (acc.wrapping_add(1 << 15) >> 16) as i32;
+        }
+        out
+    }
 }
+
+/// Exact integer division of many dividends by one divisor, through the
+/// divisor's reciprocal: one 64-bit division up front, then per quotient a
+/// multiply-high and one correction.
+///
+/// A 64-bit division is a slow library call on a 32-bit core (and the
+/// Cortex-M0+ has no divider at all), while the 64 x 64 -> 128-bit
+/// multiply-high is a handful of `umull`s. The quotients are exactly those
+/// of the division: `r = floor((2^64 - 1) / d)` undershoots `2^64 / d` by
+/// less than 2, so for `m < 2^63` the estimate `floor(m r / 2^64)`
+/// undershoots `m / d` by less than 1 and is `floor(m / d)` or one less,
+/// which the remainder test corrects.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(target_pointer_width = "64", allow(dead_code))]
+pub(crate) struct Reciprocal {
+    d: u64,
+    r: u64,
+}
+
+#[cfg_attr(target_pointer_width = "64", allow(dead_code))]
+impl Reciprocal {
+    /// The reciprocal of `d`.
+    #[inline(always)]
+    pub(crate) fn new(d: NonZeroU64) -> Self {
+        Self {
+            d: d.get(),
+            r: u64::MAX / d,
+        }
+    }
+
+    /// `floor(m / d)`, for `m < 2^63`.
+    #[inline(always)]
+    pub(crate) fn div(&self, m: u64) -> u64 {
+        debug_assert!(m < 1 << 63);
+        let q = ((m as u128 * self.r as u128) >> 64) as u64;
+        // q <= floor(m / d), so q d <= m and the remainder cannot wrap.
+        let rem = m - q * self.d;
+        q + (rem >= self.d) as u64
+    }
+}
+
+/// A divisor used for many dividends, divided by as a 64-bit CPU does best:
+/// with its division instruction.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(not(target_pointer_width = "64"), allow(dead_code))]
+pub(crate) struct Hardware(NonZeroU64);
+
+#[cfg_attr(not(target_pointer_width = "64"), allow(dead_code))]
+impl Hardware {
+    /// The divisor `d`.
+    #[inline(always)]
+    pub(crate) fn new(d: NonZeroU64) -> Self {
+        Self(d)
+    }
+
+    /// `floor(m / d)`.
+    #[inline(always)]
+    pub(crate) fn div(&self, m: u64) -> u64 {
+        m / self.0
+    }
+}
+
+/// The divisor the attribute set-up uses: [`Reciprocal`] where a 64-bit
+/// division is a library call (32-bit targets: every Cortex-M, RISC-V
+/// `rv32`), the division instruction on 64-bit targets, where one
+/// instruction beats a multiply-high and a correction. Both give the same
+/// quotients, so images do not depend on the choice.
+#[cfg(not(target_pointer_width = "64"))]
+pub(crate) type Divisor = Reciprocal;
+/// See the 32-bit definition.
+#[cfg(target_pointer_width = "64")]
+pub(crate) type Divisor = Hardware;
 
 #[cfg(test)]
 mod tests {
@@ -474,5 +583,85 @@ mod tests {
         assert!(Mat4::scale(Vec3::new(f32::INFINITY, 1.0, 1.0))
             .to_fixed()
             .is_none());
+    }
+
+    #[test]
+    fn reciprocal_division_is_exact() {
+        let mut x = 0x9e37_79b9_7f4a_7c15u64;
+        let mut next = move || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            x
+        };
+        let divisors = [
+            1u64,
+            2,
+            3,
+            7,
+            255,
+            65_535,
+            1 << 20,
+            (1 << 39) - 1,
+            1 << 39,
+            (1 << 62) + 12_345,
+        ];
+        for &d in &divisors {
+            let r = Reciprocal::new(NonZeroU64::new(d).unwrap());
+            for m in [0u64, 1, d - 1, d, d + 1, (1 << 63) - 1, (1 << 63) - d] {
+                assert_eq!(r.div(m), m / d, "{m} / {d}");
+            }
+        }
+        for _ in 0..200_000 {
+            let d = next() >> (next() % 64);
+            let Some(nz) = NonZeroU64::new(d) else {
+                continue;
+            };
+            let (r, h) = (Reciprocal::new(nz), Hardware::new(nz));
+            for _ in 0..4 {
+                let m = next() >> (1 + next() % 63);
+                assert_eq!(r.div(m), m / d, "{m} / {d}");
+                assert_eq!(h.div(m), m / d, "{m} / {d}");
+            }
+        }
+    }
+
+    #[test]
+    fn bounded_transform_matches_the_checked_one() {
+        let mut x = 0x9e37_79b9_7f4a_7c15u64;
+        let mut next = move || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            x
+        };
+        let mut bounded = 0;
+        for _ in 0..20_000 {
+            let mut e =
+                || (next() >> (32 + next() % 32)) as i32 * if next() % 2 == 0 { 1 } else { -1 };
+            let m = FixedMat4 {
+                m: [
+                    [e(), e(), e(), e()],
+                    [e(), e(), e(), e()],
+                    [e(), e(), e(), e()],
+                    [e(), e(), e(), e()],
+                ],
+            };
+            let extent = (next() >> (33 + next() % 31)) as u32;
+            if !m.bounded(extent) {
+                continue;
+            }
+            bounded += 1;
+            for _ in 0..8 {
+                let mut c = || (next() % (2 * extent as u64 + 1)) as i64 - extent as i64;
+                let p = [c() as i32, c() as i32, c() as i32];
+                assert_eq!(
+                    Some(m.transform_point_bounded(p)),
+                    m.transform_point(p),
+                    "{m:?} {p:?}"
+                );
+            }
+        }
+        assert!(bounded > 1_000, "{bounded}");
     }
 }

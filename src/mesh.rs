@@ -3,7 +3,9 @@
 //! A [`Mesh`] only borrows slices, so `static` arrays stay in flash and cost
 //! no RAM. Every layout rule is checked once, when the mesh is built: an
 //! index out of range or a per-vertex array of the wrong length is an error
-//! then, never a panic or a wrong picture later.
+//! then, never a panic or a wrong picture later. Building it also finds the
+//! largest coordinate, so that the vertex stage knows once per draw whether
+//! its fixed-point transform can overflow at all.
 
 use embedded_graphics::pixelcolor::Rgb888;
 use fixed::types::I16F16;
@@ -39,6 +41,9 @@ pub struct Mesh<'a> {
     normals: Option<&'a [Vec3Fx]>,
     colors: Option<&'a [Rgb888]>,
     triangles: &'a [[u16; 3]],
+    /// The largest magnitude of any position coordinate (raw 16.16), which
+    /// bounds the vertex transform's sums once per draw.
+    extent: u32,
 }
 
 /// Why a mesh could not be built.
@@ -111,11 +116,18 @@ impl<'a> Mesh<'a> {
                 }
             }
         }
+        let extent = positions
+            .iter()
+            .flatten()
+            .map(|c| c.to_bits().unsigned_abs())
+            .max()
+            .unwrap_or(0);
         Ok(Self {
             positions,
             normals: None,
             colors: None,
             triangles,
+            extent,
         })
     }
 
@@ -151,6 +163,12 @@ impl<'a> Mesh<'a> {
     /// The triangles, as vertex indices.
     pub fn triangles(&self) -> &'a [[u16; 3]] {
         self.triangles
+    }
+
+    /// The largest magnitude of any position coordinate, as raw 16.16 bits
+    /// (found when the mesh was built).
+    pub fn extent(&self) -> u32 {
+        self.extent
     }
 
     /// Number of vertices.

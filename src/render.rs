@@ -8,21 +8,44 @@
 //! never stored set up: a set-up triangle (edges plus attribute planes) is
 //! about 150 bytes, which for 4,000 triangles would be several times the RAM
 //! of a small MCU. Instead the renderer *bins* triangle indices (`u16`) per
-//! tile, with a counting sort over a fixed pool:
+//! tile, in one pass over the triangles:
 //!
-//! 1. a count pass walks every triangle (outcodes, culling, screen bounds)
-//!    and counts, per tile, the triangles whose bounds touch it;
-//! 2. the longest run of tiles whose counts fit the pool is chosen;
-//! 3. a fill pass writes the triangle indices of those tiles, in draw order;
-//! 4. each of those tiles is cleared, its triangles are set up and
-//!    rasterized, and the tile is streamed to the sink.
+//! 1. each triangle is classified from its three screen vertices: rejected
+//!    by its outcodes, culled by the sign of its area, or visible, with the
+//!    pixel rectangle it may cover. A rejected or culled triangle costs a few
+//!    dozen instructions;
+//! 2. a visible triangle's index is appended to the bin of every tile its
+//!    rectangle touches. Bins are chains of small fixed-size chunks drawn
+//!    from one pool ([`CHUNK`] slots, the last one linking to the tile's next
+//!    chunk), so no count pass is needed to lay them out, and each tile's
+//!    triangles stay in submission order;
+//! 3. each tile of the pass is cleared, its triangles are fetched again from
+//!    the vertex buffer, set up and rasterized, and the tile is streamed to
+//!    the sink.
 //!
-//! When the pool or the per-pass tile table is too small for the whole frame,
-//! the frame is simply done in several such passes, each re-scanning the
-//! triangle list (a few dozen instructions per triangle). A single tile that
+//! When the pool runs dry, the pass gives up its last tiles (their chunks
+//! go back to the pool) until the triangle fits: the pass then covers the
+//! longest run of tiles its bins hold, and the next pass starts where it
+//! stopped, re-scanning the triangle list. The same happens when the
+//! frame has more tiles than the per-pass tile table. A single tile that
 //! alone overflows the pool is drawn by scanning every triangle against it.
 //! The image is identical in every case; only the time changes, and
 //! [`FrameStats`] reports the passes.
+//!
+//! The pool is used in chunks rather than laid out by a count pass because
+//! the count pass cost as much as the fill pass it prepared: both had to
+//! classify every triangle, back faces included. A chunk's link and a
+//! tile's last, partly filled chunk cost some slots (an eighth, and half a
+//! chunk per tile), which the budget configuration's pool easily spares.
+//!
+//! # A triangle in a tile
+//!
+//! The demo's triangles are small (about 11 pixels, spans of 2 or 3), so a
+//! frame's time goes to what is done per triangle and tile, per row and
+//! per span rather than per pixel. The tile loop therefore works in two phases,
+//! each in a function of its own: the scanline walk records the triangle's
+//! spans in the tile in a stack buffer (one per tile row), and only if
+//! there is one are the attribute planes set up and the spans shaded.
 //!
 //! A triangle that must be clipped (near, far, `w` or guard band) keeps no
 //! clipped vertices: each time it is needed its three vertices are
@@ -31,11 +54,12 @@
 //! store, and gives bit-identical vertices every time.
 
 use crate::clip::{clip_triangle, MAX_CLIPPED_VERTICES};
-use crate::raster::{scanline::spans, signed_area2, PixelRect, SubPoint};
+use crate::raster::scanline::{Span, Walker};
+use crate::raster::{first_centre_at_or_after, signed_area2, PixelRect, SubPoint};
 use crate::scene::{CullMode, Scene, Shading};
 use crate::shade::{
-    span_flat, span_gouraud, DAlways, DEqual, DGreater, DGreaterEqual, DLess, DLessEqual, DepthFn,
-    DepthTest, SpanPos, TriangleSetup,
+    span_flat, span_gouraud, Corners, DAlways, DEqual, DGreater, DGreaterEqual, DLess, DLessEqual,
+    DepthFn, DepthTest, SpanPos, TriangleSetup,
 };
 use crate::sink::{rectangle, TileSink};
 use crate::tile::{TileBuffer, TileGrid};
@@ -48,14 +72,20 @@ use embedded_graphics::prelude::Size;
 /// Most triangles one frame can hold: bins store `u16` indices.
 pub const MAX_TRIANGLES: usize = 1 << 16;
 
+/// Slots per chunk of the bin pool: `CHUNK - 1` triangle indices and the
+/// index of the tile's next chunk. Small, because a tile wastes half a
+/// chunk on average and a chunk an eighth of its slots on the link.
+pub const CHUNK: usize = 8;
+
 /// The per-frame memory of the renderer, sized at compile time.
 ///
 /// * `VERTICES`: capacity of the vertex buffer, 16 bytes each; at least the
 ///   total vertex count of all draws of a frame.
-/// * `BIN_ENTRIES`: the bin pool, 2 bytes each (at most 65,535). A frame
-///   needs about (visible triangles) x (1 + average extra tiles touched);
-///   less still renders correctly, in more passes.
-/// * `TILES`: tiles binned per pass, 2 bytes each; the number of tiles of
+/// * `BIN_ENTRIES`: the bin pool, 2 bytes each (at most 65,535), used in
+///   chunks of [`CHUNK`]. A frame needs about (visible triangles) x (1 +
+///   average extra tiles touched) x 8/7, plus half a chunk per tile; less
+///   still renders correctly, in more passes.
+/// * `TILES`: tiles binned per pass, 4 bytes each; the number of tiles of
 ///   the frame for a single pass.
 ///
 /// It is large: put it in a `static` (for example with
@@ -65,8 +95,11 @@ pub const MAX_TRIANGLES: usize = 1 << 16;
 pub struct Workspace<const VERTICES: usize, const BIN_ENTRIES: usize, const TILES: usize> {
     vertices: [ScreenVertex; VERTICES],
     bins: [u16; BIN_ENTRIES],
-    /// Per tile of the current pass: bin count, then start, then end.
-    bin_end: [u16; TILES],
+    /// Per tile of the current pass: its first chunk.
+    heads: [u16; TILES],
+    /// Per tile of the current pass: the slot its next entry goes to, or
+    /// [`EMPTY`].
+    tails: [u16; TILES],
 }
 
 impl<const V: usize, const B: usize, const T: usize> Default for Workspace<V, B, T> {
@@ -94,7 +127,10 @@ impl<const V: usize, const B: usize, const T: usize> Workspace<V, B, T> {
                 color: [0; 3],
             }; V],
             bins: [0; B],
-            bin_end: [0; T],
+            // All zeros, so that a `static` workspace lives in `.bss` and
+            // costs no flash (each pass sets the tails up anyway).
+            heads: [0; T],
+            tails: [0; T],
         }
     }
 
@@ -205,7 +241,7 @@ pub enum Stage {
     /// Transforming, lighting and projecting every vertex.
     Vertex,
     /// Classifying, culling and clipping triangles and binning them to
-    /// tiles (a count and a fill pass per binning pass).
+    /// tiles (once per binning pass).
     Binning,
     /// Clearing a tile, setting up its triangles, rasterizing and shading.
     Raster,
@@ -238,9 +274,9 @@ pub enum Stage {
 /// let scene = Scene::new(Camera::new(Mat4::IDENTITY, Mat4::IDENTITY), &[]);
 /// let mut counts = Counts([0; 5]);
 /// renderer.render_profiled(&mut ws, &scene, &mut NullSink, &mut counts).unwrap();
-/// // Vertex once, a count and a fill pass, then four tiles each rasterized
-/// // and sent, then done.
-/// assert_eq!(counts.0, [1, 2, 4, 4, 1]);
+/// // Vertex once, one binning pass, then four tiles each rasterized and
+/// // sent, then done.
+/// assert_eq!(counts.0, [1, 1, 4, 4, 1]);
 /// ```
 pub trait Profiler {
     /// The frame enters `stage`.
@@ -344,15 +380,175 @@ pub struct Renderer<C, const TW: usize, const TH: usize> {
     config: Config<C>,
 }
 
-/// One screen-space triangle ready for set-up.
-#[derive(Clone, Copy, Debug)]
-struct Piece {
-    v: [SubPoint; 3],
-    z: [u16; 3],
-    colors: [[u8; 3]; 3],
-    /// The provoking vertex's colour, for flat shading.
-    flat: [u8; 3],
-    area2: i64,
+/// The tail of a tile that has no chunk yet. `EMPTY % CHUNK == CHUNK - 1`,
+/// so it reads as a full chunk and the tile's first entry allocates one.
+const EMPTY: u16 = u16::MAX;
+/// The end of the free-chunk list.
+const NO_CHUNK: u16 = u16::MAX;
+const _: () = assert!(CHUNK.is_power_of_two() && CHUNK >= 2 && EMPTY as usize % CHUNK == CHUNK - 1);
+
+/// The slot of chunk `c` that links to the next chunk.
+#[inline(always)]
+fn link(c: u16) -> usize {
+    c as usize * CHUNK + CHUNK - 1
+}
+
+/// The bins of one pass: per tile, a chain of chunks of the pool holding
+/// triangle indices in submission order.
+struct Bins<'w> {
+    pool: &'w mut [u16],
+    heads: &'w mut [u16],
+    /// Per tile the pass still holds (a prefix of the pass's tiles: the
+    /// pass gives up tiles from its end when the pool runs dry), the slot
+    /// its next entry goes to.
+    tails: &'w mut [u16],
+    /// Chunks `fresh..chunks` have never been used.
+    fresh: u16,
+    chunks: u16,
+    /// Chunks given back, linked through their last slot.
+    free: u16,
+}
+
+impl<'w> Bins<'w> {
+    fn new(pool: &'w mut [u16], heads: &'w mut [u16], tails: &'w mut [u16]) -> Self {
+        tails.fill(EMPTY);
+        Self {
+            // At most 65,535 / CHUNK chunks: every slot index fits `u16`
+            // below `EMPTY`.
+            chunks: (pool.len() / CHUNK) as u16,
+            pool,
+            heads,
+            tails,
+            fresh: 0,
+            free: NO_CHUNK,
+        }
+    }
+
+    /// The number of tiles the pass holds.
+    fn tiles(&self) -> usize {
+        self.tails.len()
+    }
+
+    /// Appends triangle `t` to the bin of tile `k` of the pass, unless the
+    /// pass does not hold that tile.
+    #[inline(always)]
+    fn push(&mut self, k: usize, t: u16) {
+        let Some(&tail) = self.tails.get(k) else {
+            return;
+        };
+        let mut slot = tail as usize;
+        if slot % CHUNK == CHUNK - 1 {
+            match self.grow(k) {
+                Some(s) => slot = s,
+                None => return,
+            }
+        }
+        self.pool[slot] = t;
+        self.tails[k] = slot as u16 + 1;
+    }
+
+    /// Links a new chunk to tile `k`, whose chunk is full (or which has
+    /// none), and returns the chunk's first slot. When the pool is
+    /// exhausted, the pass gives up its last tile, whose chunks go back to
+    /// the pool, until a chunk is found; `None` when tile `k` itself had to
+    /// go.
+    #[cold]
+    #[inline(never)]
+    fn grow(&mut self, k: usize) -> Option<usize> {
+        loop {
+            if let Some(c) = self.alloc() {
+                let tail = self.tails[k];
+                if tail == EMPTY {
+                    self.heads[k] = c;
+                } else {
+                    self.pool[tail as usize] = c;
+                }
+                return Some(c as usize * CHUNK);
+            }
+            // `k` is held, so there is a last tile.
+            let last = self.tails.len() - 1;
+            self.release(last);
+            let tails = core::mem::take(&mut self.tails);
+            self.tails = &mut tails[..last];
+            if last == k {
+                return None;
+            }
+        }
+    }
+
+    fn alloc(&mut self) -> Option<u16> {
+        if self.fresh < self.chunks {
+            self.fresh += 1;
+            Some(self.fresh - 1)
+        } else if self.free != NO_CHUNK {
+            let c = self.free;
+            self.free = self.pool[link(c)];
+            Some(c)
+        } else {
+            None
+        }
+    }
+
+    /// Gives the chunks of tile `k` back to the pool.
+    fn release(&mut self, k: usize) {
+        let tail = self.tails[k];
+        if tail == EMPTY {
+            return;
+        }
+        let mut c = self.heads[k];
+        loop {
+            // The chunk holding the tail is the last; its link slot holds
+            // no link.
+            let last = tail as usize / CHUNK == c as usize;
+            let next = self.pool[link(c)];
+            self.pool[link(c)] = self.free;
+            self.free = c;
+            if last {
+                break;
+            }
+            c = next;
+        }
+        self.tails[k] = EMPTY;
+    }
+
+    /// The triangles of tile `k`, in submission order.
+    fn iter(&self, k: usize) -> BinIter<'_> {
+        let tail = self.tails[k];
+        let (pos, end) = if tail == EMPTY {
+            (0, 0)
+        } else {
+            (self.heads[k] as usize * CHUNK, tail as usize)
+        };
+        BinIter {
+            pool: self.pool,
+            pos,
+            end,
+        }
+    }
+}
+
+/// The triangle indices of one bin.
+struct BinIter<'a> {
+    pool: &'a [u16],
+    pos: usize,
+    end: usize,
+}
+
+impl Iterator for BinIter<'_> {
+    type Item = usize;
+
+    #[inline(always)]
+    fn next(&mut self) -> Option<usize> {
+        if self.pos == self.end {
+            return None;
+        }
+        if self.pos % CHUNK == CHUNK - 1 {
+            self.pos = self.pool[self.pos] as usize * CHUNK;
+        }
+        let t = self.pool[self.pos];
+        self.pos += 1;
+        Some(t as usize)
+    }
 }
 
 /// How one submitted triangle turned out.
@@ -361,6 +557,13 @@ enum Fate {
     Rejected,
     Culled,
     Visible,
+}
+
+/// How many triangles of a pass met each fate.
+#[derive(Clone, Copy, Debug, Default)]
+struct Tally {
+    fates: [u32; 3],
+    clipped: u32,
 }
 
 /// Read-only state of the frame being rendered.
@@ -373,194 +576,120 @@ struct Frame<'s, 'v> {
     frame: PixelRect,
 }
 
-/// Walks draws alongside increasing global triangle indices.
-#[derive(Clone, Copy, Debug, Default)]
-struct Cursor {
-    draw: usize,
-    tri_base: usize,
-    vert_base: usize,
-}
-
-impl Cursor {
-    #[inline]
-    fn seek(&mut self, draws: &[crate::scene::Draw<'_>], t: usize) {
-        while t >= self.tri_base + draws[self.draw].mesh.triangle_count() {
-            self.tri_base += draws[self.draw].mesh.triangle_count();
-            self.vert_base += draws[self.draw].mesh.vertex_count();
-            self.draw += 1;
-        }
-    }
-}
-
 /// The fixed-point set-up of the last draw a clipped triangle needed.
 type SetupCache = Option<(usize, DrawSetup)>;
 
+/// The pixels whose centres may be covered by a triangle with these
+/// vertices: [`PixelRect::covering`], inlined into the binning loop.
+#[inline(always)]
+fn covering(v: &[SubPoint; 3]) -> PixelRect {
+    let (xmin, xmax) = (
+        v[0].x.min(v[1].x).min(v[2].x),
+        v[0].x.max(v[1].x).max(v[2].x),
+    );
+    let (ymin, ymax) = (
+        v[0].y.min(v[1].y).min(v[2].y),
+        v[0].y.max(v[1].y).max(v[2].y),
+    );
+    PixelRect::new(
+        first_centre_at_or_after(xmin),
+        first_centre_at_or_after(ymin),
+        first_centre_at_or_after(xmax) + 1,
+        first_centre_at_or_after(ymax) + 1,
+    )
+}
+
+/// [`PixelRect::intersect`], inlined.
+#[inline(always)]
+fn meet(a: &PixelRect, b: &PixelRect) -> PixelRect {
+    PixelRect::new(
+        a.x0.max(b.x0),
+        a.y0.max(b.y0),
+        a.x1.min(b.x1),
+        a.y1.min(b.y1),
+    )
+}
+
 impl Frame<'_, '_> {
-    /// Calls `f` with every visible screen triangle of global triangle `t`
-    /// (one, or a fan after clipping). `cur` must not be past `t`.
-    #[inline]
-    fn pieces(
-        &self,
-        t: usize,
-        cur: &mut Cursor,
-        cache: &mut SetupCache,
-        mut f: impl FnMut(&Piece),
-    ) -> (Fate, bool) {
-        let draws = self.scene.draws;
-        cur.seek(draws, t);
-        let draw = &draws[cur.draw];
-        let idx = draw.mesh.triangles()[t - cur.tri_base];
-        let sv = [
-            &self.vertices[cur.vert_base + idx[0] as usize],
-            &self.vertices[cur.vert_base + idx[1] as usize],
-            &self.vertices[cur.vert_base + idx[2] as usize],
-        ];
-        if sv[0].outcode & sv[1].outcode & sv[2].outcode & REJECT_MASK != 0 {
-            return (Fate::Rejected, false);
+    /// Whether a triangle or polygon of twice signed screen area `area2`
+    /// survives culling: never with zero area, otherwise by the cull mode.
+    #[inline(always)]
+    fn keeps(&self, area2: i64) -> bool {
+        match self.cull {
+            CullMode::None => area2 != 0,
+            // Negative area is counter-clockwise in NDC: the front face.
+            CullMode::Back => area2 < 0,
+            CullMode::Front => area2 > 0,
         }
-        let colors = [sv[0].color, sv[1].color, sv[2].color];
+    }
+
+    /// Classifies triangle `idx` of draw `d`, whose vertices are `verts`:
+    /// counts its fate in `tally` and, if it is visible, returns the pixels
+    /// it may cover. The common case (no clipping) reads only the three
+    /// screen vertices; a rejected or culled triangle costs a few dozen
+    /// instructions.
+    #[inline(always)]
+    fn classify(
+        &self,
+        d: usize,
+        verts: &[ScreenVertex],
+        idx: [u16; 3],
+        cache: &mut SetupCache,
+        tally: &mut Tally,
+    ) -> Option<PixelRect> {
+        let sv = [
+            &verts[idx[0] as usize],
+            &verts[idx[1] as usize],
+            &verts[idx[2] as usize],
+        ];
+        let and = sv[0].outcode & sv[1].outcode & sv[2].outcode;
         let any = sv[0].outcode | sv[1].outcode | sv[2].outcode;
-        if any & MUST_CLIP == 0 {
+        let fate = if and & REJECT_MASK != 0 {
+            Fate::Rejected
+        } else if any & MUST_CLIP != 0 {
+            return self.classify_clipped(d, idx, any, sv[0].color, cache, tally);
+        } else {
             let v = [
                 SubPoint::new(sv[0].x, sv[0].y),
                 SubPoint::new(sv[1].x, sv[1].y),
                 SubPoint::new(sv[2].x, sv[2].y),
             ];
-            let piece = Piece {
-                v,
-                z: [sv[0].z, sv[1].z, sv[2].z],
-                colors,
-                flat: colors[0],
-                area2: signed_area2(&v),
-            };
-            return (self.keep(&piece, &mut f), false);
-        }
-
-        // Clip path: transform the three vertices again and clip.
-        let setup = match cache {
-            Some((d, s)) if *d == cur.draw => *s,
-            _ => match DrawSetup::new(draw, &self.view_proj, self.scene.light.as_ref()) {
-                Ok(s) => {
-                    *cache = Some((cur.draw, s));
-                    s
-                }
-                // Cannot happen: the vertex stage accepted this draw.
-                Err(_) => return (Fate::Rejected, true),
-            },
-        };
-        let mut tri = [crate::vertex::ClipVertex::default(); 3];
-        for (k, cv) in tri.iter_mut().enumerate() {
-            match setup.clip_vertex(draw.mesh, idx[k] as usize) {
-                Ok(v) => *cv = v,
-                Err(_) => return (Fate::Rejected, true),
-            }
-        }
-        let poly = clip_triangle(&tri, any);
-        if poly.len() < 3 {
-            return (Fate::Rejected, true);
-        }
-        let project = |k: usize| -> (SubPoint, u16, [u8; 3]) {
-            let (p, z) = self.viewport.project(&poly[k].pos);
-            let c = poly[k].color;
-            (
-                p,
-                z,
-                [
-                    c[0].clamp(0, 255) as u8,
-                    c[1].clamp(0, 255) as u8,
-                    c[2].clamp(0, 255) as u8,
-                ],
-            )
-        };
-        // Project once. Snapping to the sub-pixel grid can make the
-        // polygon very slightly concave, so facing is decided once, from the
-        // whole polygon's area, and fan pieces of the other sign (slivers
-        // of round-off) are dropped rather than culled one by one: a
-        // back-facing polygon never leaks a piece, and no pixel is shaded
-        // twice.
-        let mut proj: heapless::Vec<(SubPoint, u16, [u8; 3]), MAX_CLIPPED_VERTICES> =
-            heapless::Vec::new();
-        for k in 0..poly.len() {
-            // Cannot fail: `poly` has the same capacity.
-            let _ = proj.push(project(k));
-        }
-        let mut total = 0i64;
-        for k in 2..proj.len() {
-            total += signed_area2(&[proj[0].0, proj[k - 1].0, proj[k].0]);
-        }
-        if self.culled(total) {
-            return (Fate::Culled, true);
-        }
-        let mut fate = Fate::Rejected;
-        for k in 2..proj.len() {
-            let (first, prev, next) = (proj[0], proj[k - 1], proj[k]);
-            let v = [first.0, prev.0, next.0];
             let area2 = signed_area2(&v);
-            if area2 == 0 || (area2 > 0) != (total > 0) {
-                continue;
+            if !self.keeps(area2) {
+                Fate::Culled
+            } else {
+                let rect = meet(&covering(&v), &self.frame);
+                if !rect.is_empty() {
+                    tally.fates[Fate::Visible as usize] += 1;
+                    return Some(rect);
+                }
+                Fate::Rejected
             }
-            let piece = Piece {
-                v,
-                z: [first.1, prev.1, next.1],
-                colors: [first.2, prev.2, next.2],
-                // Flat shading keeps the original provoking vertex's colour.
-                flat: colors[0],
-                area2,
-            };
-            if self.visible(&piece, &mut f) {
-                fate = Fate::Visible;
-            }
-        }
-        (fate, true)
+        };
+        tally.fates[fate as usize] += 1;
+        None
     }
 
-    /// Whether a triangle or polygon of twice signed screen area `area2`
-    /// is culled: zero area always, otherwise by the cull mode.
-    #[inline]
-    fn culled(&self, area2: i64) -> bool {
-        match self.cull {
-            _ if area2 == 0 => true,
-            CullMode::None => false,
-            // Negative area is counter-clockwise in NDC: the front face.
-            CullMode::Back => area2 > 0,
-            CullMode::Front => area2 < 0,
-        }
-    }
-
-    /// Passes `p` on when it may touch the frame.
-    #[inline]
-    fn visible(&self, p: &Piece, f: &mut impl FnMut(&Piece)) -> bool {
-        if PixelRect::covering(&p.v).intersect(&self.frame).is_empty() {
-            return false;
-        }
-        f(p);
-        true
-    }
-
-    /// Culls `p` and passes it on when it faces the right way and may touch
-    /// the frame.
-    #[inline]
-    fn keep(&self, p: &Piece, f: &mut impl FnMut(&Piece)) -> Fate {
-        if self.culled(p.area2) {
-            Fate::Culled
-        } else if self.visible(p, f) {
-            Fate::Visible
-        } else {
-            Fate::Rejected
-        }
-    }
-
-    /// The pixel bounds of every visible piece of triangle `t`.
-    #[inline]
-    fn bounds(
+    /// [`classify`](Self::classify) for a triangle that must be clipped:
+    /// the bounds of all its visible pieces.
+    #[cold]
+    #[inline(never)]
+    fn classify_clipped(
         &self,
-        t: usize,
-        cur: &mut Cursor,
+        d: usize,
+        idx: [u16; 3],
+        any: u8,
+        flat: [u8; 3],
         cache: &mut SetupCache,
-    ) -> (Fate, bool, PixelRect) {
+        tally: &mut Tally,
+    ) -> Option<PixelRect> {
         let mut r = PixelRect::new(i32::MAX, i32::MAX, i32::MIN, i32::MIN);
-        let (fate, clipped) = self.pieces(t, cur, cache, |p| {
-            let b = PixelRect::covering(&p.v);
+        let fate = self.clipped_pieces(d, idx, any, flat, cache, &mut |sv, _| {
+            let b = covering(&[
+                SubPoint::new(sv[0].x, sv[0].y),
+                SubPoint::new(sv[1].x, sv[1].y),
+                SubPoint::new(sv[2].x, sv[2].y),
+            ]);
             r = PixelRect::new(
                 r.x0.min(b.x0),
                 r.y0.min(b.y0),
@@ -568,7 +697,211 @@ impl Frame<'_, '_> {
                 r.y1.max(b.y1),
             );
         });
-        (fate, clipped, r.intersect(&self.frame))
+        tally.clipped += 1;
+        tally.fates[fate as usize] += 1;
+        (fate == Fate::Visible).then(|| meet(&r, &self.frame))
+    }
+
+    /// Clips triangle `idx` of draw `d` (outcodes or-ed to `any`) and
+    /// calls `f` with every piece of the fan that faces the right way and
+    /// may touch the frame, and the flat colour `flat` of the triangle's
+    /// provoking vertex.
+    #[inline(never)]
+    fn clipped_pieces(
+        &self,
+        d: usize,
+        idx: [u16; 3],
+        any: u8,
+        flat: [u8; 3],
+        cache: &mut SetupCache,
+        // Dynamic: the clipper is rare, and one copy of it serves every
+        // monomorphized span loop.
+        f: &mut dyn FnMut(&[ScreenVertex; 3], [u8; 3]),
+    ) -> Fate {
+        let draw = &self.scene.draws[d];
+        // Transform the three vertices again and clip.
+        let setup = match cache {
+            Some((c, s)) if *c == d => *s,
+            _ => match DrawSetup::new(draw, &self.view_proj, self.scene.light.as_ref()) {
+                Ok(s) => {
+                    *cache = Some((d, s));
+                    s
+                }
+                // Cannot happen: the vertex stage accepted this draw.
+                Err(_) => return Fate::Rejected,
+            },
+        };
+        let mut tri = [crate::vertex::ClipVertex::default(); 3];
+        for (k, cv) in tri.iter_mut().enumerate() {
+            match setup.clip_vertex(draw.mesh, idx[k] as usize) {
+                Ok(v) => *cv = v,
+                Err(_) => return Fate::Rejected,
+            }
+        }
+        let poly = clip_triangle(&tri, any);
+        if poly.len() < 3 {
+            return Fate::Rejected;
+        }
+        let project = |k: usize| -> ScreenVertex {
+            let (p, z) = self.viewport.project(&poly[k].pos);
+            let c = poly[k].color;
+            ScreenVertex {
+                x: p.x,
+                y: p.y,
+                z,
+                outcode: 0,
+                color: [
+                    c[0].clamp(0, 255) as u8,
+                    c[1].clamp(0, 255) as u8,
+                    c[2].clamp(0, 255) as u8,
+                ],
+            }
+        };
+        // Project once. Snapping to the sub-pixel grid can make the
+        // polygon very slightly concave, so facing is decided once, from the
+        // whole polygon's area, and fan pieces of the other sign (slivers
+        // of round-off) are dropped rather than culled one by one: a
+        // back-facing polygon never leaks a piece, and no pixel is shaded
+        // twice.
+        let mut proj: heapless::Vec<ScreenVertex, MAX_CLIPPED_VERTICES> = heapless::Vec::new();
+        for k in 0..poly.len() {
+            // Cannot fail: `poly` has the same capacity.
+            let _ = proj.push(project(k));
+        }
+        let xy = |v: &ScreenVertex| SubPoint::new(v.x, v.y);
+        let mut total = 0i64;
+        for k in 2..proj.len() {
+            total += signed_area2(&[xy(&proj[0]), xy(&proj[k - 1]), xy(&proj[k])]);
+        }
+        if !self.keeps(total) {
+            return Fate::Culled;
+        }
+        let mut fate = Fate::Rejected;
+        for k in 2..proj.len() {
+            let piece = [proj[0], proj[k - 1], proj[k]];
+            let v = [xy(&piece[0]), xy(&piece[1]), xy(&piece[2])];
+            let area2 = signed_area2(&v);
+            if area2 == 0 || (area2 > 0) != (total > 0) {
+                continue;
+            }
+            // Flat shading keeps the original provoking vertex's colour.
+            if !meet(&covering(&v), &self.frame).is_empty() {
+                f(&piece, flat);
+                fate = Fate::Visible;
+            }
+        }
+        fate
+    }
+}
+
+/// Walks the draws alongside increasing global triangle indices, with the
+/// slices of the current draw at hand.
+struct DrawCursor<'f> {
+    draws: &'f [crate::scene::Draw<'f>],
+    vertices: &'f [ScreenVertex],
+    draw: usize,
+    /// Global index of the draw's first triangle, and one past its last.
+    first: usize,
+    end: usize,
+    /// Index of the draw's first vertex in the vertex buffer.
+    vbase: usize,
+    triangles: &'f [[u16; 3]],
+    verts: &'f [ScreenVertex],
+    gouraud: bool,
+}
+
+impl<'f> DrawCursor<'f> {
+    fn new(frame: &'f Frame<'f, 'f>) -> Self {
+        let draws = frame.scene.draws;
+        let mut c = Self {
+            draws,
+            vertices: frame.vertices,
+            draw: 0,
+            first: 0,
+            end: 0,
+            vbase: 0,
+            triangles: &[],
+            verts: &[],
+            gouraud: false,
+        };
+        if !draws.is_empty() {
+            c.enter(0);
+        }
+        c
+    }
+
+    fn enter(&mut self, d: usize) {
+        let draw = &self.draws[d];
+        self.draw = d;
+        self.triangles = draw.mesh.triangles();
+        self.verts = &self.vertices[self.vbase..self.vbase + draw.mesh.vertex_count()];
+        self.end = self.first + self.triangles.len();
+        self.gouraud = draw.shading == Shading::Gouraud;
+    }
+
+    /// Moves to the draw holding global triangle `t`, which must not lie
+    /// before the current draw.
+    #[inline(always)]
+    fn seek(&mut self, t: usize) {
+        while t >= self.end {
+            self.advance();
+        }
+    }
+
+    #[inline(never)]
+    fn advance(&mut self) {
+        self.first = self.end;
+        self.vbase += self.verts.len();
+        self.enter(self.draw + 1);
+    }
+}
+
+/// The triangles of one tile: its bin, or, for a tile whose bin overflowed
+/// the pool, every visible triangle whose bounds touch it.
+// One per tile, on the stack: the size of the rare variant does not matter.
+#[allow(clippy::large_enum_variant)]
+enum TileList<'a, 'f> {
+    Bin(BinIter<'a>),
+    Scan {
+        cur: DrawCursor<'f>,
+        frame: &'f Frame<'f, 'f>,
+        rect: PixelRect,
+        next: usize,
+        cache: SetupCache,
+    },
+}
+
+impl Iterator for TileList<'_, '_> {
+    type Item = usize;
+
+    #[inline(always)]
+    fn next(&mut self) -> Option<usize> {
+        match self {
+            TileList::Bin(b) => b.next(),
+            TileList::Scan {
+                cur,
+                frame,
+                rect,
+                next,
+                cache,
+            } => loop {
+                let t = *next;
+                if t >= cur.end {
+                    if cur.draw + 1 >= cur.draws.len() {
+                        return None;
+                    }
+                    cur.advance();
+                    continue;
+                }
+                *next += 1;
+                let idx = cur.triangles[t - cur.first];
+                let mut tally = Tally::default();
+                let vis = frame.classify(cur.draw, cur.verts, idx, cache, &mut tally);
+                if vis.is_some_and(|r| !meet(&r, rect).is_empty()) {
+                    return Some(t);
+                }
+            },
+        }
     }
 }
 
@@ -675,10 +1008,16 @@ where
             base += draw.mesh.vertex_count();
         }
 
+        let Workspace {
+            vertices,
+            bins: pool,
+            heads,
+            tails,
+        } = ws;
         let grid = TileGrid::new(size.width, size.height, TW as u32, TH as u32);
         let frame = Frame {
             scene,
-            vertices: &ws.vertices[..needed],
+            vertices: &vertices[..needed],
             view_proj,
             viewport,
             cull: self.config.cull,
@@ -690,40 +1029,64 @@ where
         };
         let mut cache: SetupCache = None;
         let n_tiles = grid.count() as usize;
+        let cols = grid.cols as usize;
         let mut t0 = 0usize;
         while t0 < n_tiles {
             let t_end = (t0 + T).min(n_tiles);
-            let counts = &mut ws.bin_end[..t_end - t0];
-            counts.fill(0);
+            let mut bins = Bins::new(
+                &mut pool[..],
+                &mut heads[..t_end - t0],
+                &mut tails[..t_end - t0],
+            );
 
-            // Count pass (and the frame's triangle statistics, once).
+            // Binning: one pass over the triangles (and the frame's triangle
+            // statistics, once).
             profiler.enter(Stage::Binning);
             let first_pass = stats.bin_passes == 0;
             stats.bin_passes += 1;
-            let mut cur = Cursor::default();
-            for t in 0..n_tris {
-                let (fate, clipped, r) = frame.bounds(t, &mut cur, &mut cache);
-                if first_pass {
-                    stats.clipped += clipped as u32;
-                    match fate {
-                        Fate::Rejected => stats.rejected += 1,
-                        Fate::Culled => stats.culled += 1,
-                        Fate::Visible => stats.drawn += 1,
+            let mut tally = Tally::default();
+            let mut t = 0usize;
+            let mut vbase = 0usize;
+            for (d, draw) in scene.draws.iter().enumerate() {
+                let verts = &frame.vertices[vbase..vbase + draw.mesh.vertex_count()];
+                vbase += verts.len();
+                for &idx in draw.mesh.triangles() {
+                    if let Some(r) = frame.classify(d, verts, idx, &mut cache, &mut tally) {
+                        // A visible rectangle lies inside the frame, so its
+                        // coordinates are not negative.
+                        let (c0, c1) = (r.x0 as usize / TW, (r.x1 as usize - 1) / TW + 1);
+                        let (r0, r1) = (r.y0 as usize / TH, (r.y1 as usize - 1) / TH + 1);
+                        for row in r0..r1 {
+                            // Tiles before the pass wrap around to indices
+                            // the pass does not hold.
+                            let first = (row * cols).wrapping_sub(t0);
+                            for col in c0..c1 {
+                                bins.push(first.wrapping_add(col), t as u16);
+                            }
+                        }
                     }
-                }
-                if fate == Fate::Visible {
-                    for_tiles(&grid, &r, t0, t_end, |k| {
-                        counts[k] = counts[k].saturating_add(1)
-                    });
+                    t += 1;
                 }
             }
+            if first_pass {
+                stats.rejected = tally.fates[Fate::Rejected as usize];
+                stats.culled = tally.fates[Fate::Culled as usize];
+                stats.drawn = tally.fates[Fate::Visible as usize];
+                stats.clipped = tally.clipped;
+            }
 
-            // The longest run of tiles whose bins fit the pool.
-            // Counts saturate at u16::MAX, which therefore means "too many"
-            // even when BIN_ENTRIES is 65,535.
-            let overflows = |c: u16| c == u16::MAX || c as usize > B;
-            if overflows(counts[0]) {
+            if bins.tiles() == 0 {
+                // Tile t0 alone overflows the pool: scan every triangle
+                // against it.
                 stats.rescanned_tiles += 1;
+                let rect = grid.rect(t0 as u32);
+                let list = TileList::Scan {
+                    cur: DrawCursor::new(&frame),
+                    frame: &frame,
+                    rect,
+                    next: 0,
+                    cache: None,
+                };
                 self.draw_tile(
                     &frame,
                     &grid,
@@ -731,47 +1094,12 @@ where
                     &mut cache,
                     (sink, &mut *profiler),
                     &mut stats,
-                    |f, cur, cache, out| {
-                        let rect = grid.rect(t0 as u32);
-                        for t in 0..n_tris {
-                            let (fate, _, r) = f.bounds(t, cur, cache);
-                            if fate == Fate::Visible && !r.intersect(&rect).is_empty() {
-                                out(t, cur, cache);
-                            }
-                        }
-                    },
+                    list,
                 )?;
                 t0 += 1;
                 continue;
             }
-            let mut total = 0usize;
-            let mut t1 = t0;
-            for (k, c) in counts.iter_mut().enumerate() {
-                if overflows(*c) || total + *c as usize > B {
-                    break;
-                }
-                let start = total;
-                total += *c as usize;
-                *c = start as u16;
-                t1 = t0 + k + 1;
-            }
-
-            // Fill pass: counts become bin ends.
-            profiler.enter(Stage::Binning);
-            let mut cur = Cursor::default();
-            for t in 0..n_tris {
-                let (fate, _, r) = frame.bounds(t, &mut cur, &mut cache);
-                if fate == Fate::Visible {
-                    for_tiles(&grid, &r, t0, t1, |k| {
-                        ws.bins[counts[k] as usize] = t as u16;
-                        counts[k] += 1;
-                    });
-                }
-            }
-
-            for k in 0..t1 - t0 {
-                let start = if k == 0 { 0 } else { counts[k - 1] as usize };
-                let bin = &ws.bins[start..counts[k] as usize];
+            for k in 0..bins.tiles() {
                 self.draw_tile(
                     &frame,
                     &grid,
@@ -779,36 +1107,27 @@ where
                     &mut cache,
                     (sink, &mut *profiler),
                     &mut stats,
-                    |_, cur, cache, out| {
-                        for &t in bin {
-                            out(t as usize, cur, cache);
-                        }
-                    },
+                    TileList::Bin(bins.iter(k)),
                 )?;
             }
-            t0 = t1;
+            t0 += bins.tiles();
         }
         profiler.enter(Stage::Done);
         Ok(stats)
     }
 
-    /// Clears tile `t`, rasterizes the triangles `list` yields into it and
+    /// Clears tile `t`, rasterizes the triangles of `list` into it and
     /// streams it.
     #[allow(clippy::too_many_arguments)]
-    fn draw_tile<S: TileSink<C>, P: Profiler>(
+    fn draw_tile<'f, S: TileSink<C>, P: Profiler>(
         &mut self,
-        frame: &Frame<'_, '_>,
+        frame: &'f Frame<'f, 'f>,
         grid: &TileGrid,
         t: usize,
         cache: &mut SetupCache,
         (sink, profiler): (&mut S, &mut P),
         stats: &mut FrameStats,
-        list: impl FnOnce(
-            &Frame<'_, '_>,
-            &mut Cursor,
-            &mut SetupCache,
-            &mut dyn FnMut(usize, &mut Cursor, &mut SetupCache),
-        ),
+        list: TileList<'_, 'f>,
     ) -> Result<(), RenderError<S::Error>> {
         let rect = grid.rect(t as u32);
         let (w, h) = ((rect.x1 - rect.x0) as usize, (rect.y1 - rect.y0) as usize);
@@ -816,18 +1135,28 @@ where
         profiler.enter(Stage::Raster);
         self.tile.clear(w, h, cfg.clear_color, cfg.clear_depth);
         let tile = &mut self.tile;
-        let mut shaded = 0u32;
-        let mut cur = Cursor::default();
-        list(frame, &mut cur, cache, &mut |t, cur, cache| {
-            let shading = frame.scene.draws[{
-                cur.seek(frame.scene.draws, t);
-                cur.draw
-            }]
-            .shading;
-            frame.pieces(t, cur, cache, |p| {
-                shaded += raster_piece(tile, &rect, p, shading, &cfg);
-            });
-        });
+        macro_rules! go {
+            ($d:ty) => {
+                if cfg.depth_write {
+                    Shaders::new::<$d, true>()
+                } else {
+                    Shaders::new::<$d, false>()
+                }
+            };
+        }
+        let shaders = match cfg.depth_test {
+            DepthTest::Never => None,
+            DepthTest::Always => Some(go!(DAlways)),
+            DepthTest::Less => Some(go!(DLess)),
+            DepthTest::LessEqual => Some(go!(DLessEqual)),
+            DepthTest::Equal => Some(go!(DEqual)),
+            DepthTest::GreaterEqual => Some(go!(DGreaterEqual)),
+            DepthTest::Greater => Some(go!(DGreater)),
+        };
+        let shaded = match shaders {
+            Some(shaders) => raster_tile(tile, &rect, frame, cache, list, shaders),
+            None => 0,
+        };
         stats.pixels_shaded += shaded;
         stats.tiles += 1;
         profiler.enter(Stage::Sink);
@@ -836,77 +1165,184 @@ where
     }
 }
 
-/// Calls `f(k)` for every tile `t0 + k < t1` (row-major) that the pixel
-/// rectangle `r` touches.
-#[inline]
-fn for_tiles(grid: &TileGrid, r: &PixelRect, t0: usize, t1: usize, mut f: impl FnMut(usize)) {
-    if let Some((c0, c1, r0, r1)) = grid.span(r) {
-        let cols = grid.cols as usize;
-        let (row_lo, row_hi) = (t0 / cols, (t1 - 1) / cols + 1);
-        for row in (r0 as usize).max(row_lo)..(r1 as usize).min(row_hi) {
-            for col in c0 as usize..c1 as usize {
-                let t = row * cols + col;
-                if t >= t0 && t < t1 {
-                    f(t - t0);
-                }
-            }
+/// Rasterizes the triangles of `list` into the tile: fetches each one's
+/// vertices from the vertex buffer (or clips it again) and draws it with
+/// [`fill`], shading with `shaders`.
+#[inline(never)]
+fn raster_tile<'f, C, const TW: usize, const TH: usize>(
+    tile: &mut TileBuffer<C, TW, TH>,
+    rect: &PixelRect,
+    frame: &'f Frame<'f, 'f>,
+    cache: &mut SetupCache,
+    list: TileList<'_, 'f>,
+    shaders: Shaders<C, TW, TH>,
+) -> u32
+where
+    C: PixelColor + From<Rgb888>,
+{
+    let mut cur = DrawCursor::new(frame);
+    // The spans of one triangle, reused by all of the tile's triangles:
+    // `TH` of 12 bytes on the stack.
+    let mut found = [Span::default(); TH];
+    let mut n = 0;
+    for t in list {
+        cur.seek(t);
+        let idx = cur.triangles[t - cur.first];
+        let sv = [
+            &cur.verts[idx[0] as usize],
+            &cur.verts[idx[1] as usize],
+            &cur.verts[idx[2] as usize],
+        ];
+        let any = sv[0].outcode | sv[1].outcode | sv[2].outcode;
+        n += if any & MUST_CLIP != 0 {
+            raster_clipped(
+                tile,
+                rect,
+                frame,
+                cache,
+                &cur,
+                idx,
+                any,
+                sv[0].color,
+                &mut found,
+                &shaders,
+            )
+        } else {
+            fill(
+                tile,
+                rect,
+                sv,
+                sv[0].color,
+                cur.gouraud,
+                &mut found,
+                &shaders,
+            )
+        };
+    }
+    n
+}
+
+/// Clips triangle `idx` of the cursor's draw again and rasterizes its
+/// pieces.
+#[cold]
+#[inline(never)]
+#[allow(clippy::too_many_arguments)]
+fn raster_clipped<C, const TW: usize, const TH: usize>(
+    tile: &mut TileBuffer<C, TW, TH>,
+    rect: &PixelRect,
+    frame: &Frame<'_, '_>,
+    cache: &mut SetupCache,
+    cur: &DrawCursor<'_>,
+    idx: [u16; 3],
+    any: u8,
+    flat: [u8; 3],
+    found: &mut [Span; TH],
+    shaders: &Shaders<C, TW, TH>,
+) -> u32
+where
+    C: PixelColor + From<Rgb888>,
+{
+    let mut n = 0;
+    frame.clipped_pieces(cur.draw, idx, any, flat, cache, &mut |sv, flat| {
+        let sv = [&sv[0], &sv[1], &sv[2]];
+        n += fill(tile, rect, sv, flat, cur.gouraud, found, shaders);
+    });
+    n
+}
+
+/// Draws one triangle into the tile, Gouraud or flat shaded (`flat` is the
+/// colour of flat shading) by `shaders`.
+///
+/// Two phases: the scanline rasterizer first walks the edges and records
+/// the triangle's spans in the tile in `found` (at most one per row), then,
+/// if there is any, the attribute planes are set up and the spans shaded,
+/// both out of line. Each loop then keeps only its own state in
+/// registers (the edge walk its two edges, the shading its planes), and a
+/// triangle that merely grazes the tile's bounds costs no set-up.
+#[inline(always)]
+fn fill<C, const TW: usize, const TH: usize>(
+    tile: &mut TileBuffer<C, TW, TH>,
+    rect: &PixelRect,
+    sv: [&ScreenVertex; 3],
+    flat: [u8; 3],
+    gouraud: bool,
+    found: &mut [Span; TH],
+    shaders: &Shaders<C, TW, TH>,
+) -> u32
+where
+    C: PixelColor + From<Rgb888>,
+{
+    let count = find_spans(&sv, rect, found);
+    if count == 0 {
+        return 0;
+    }
+    let found = &found[..count];
+    let shade = if gouraud {
+        shaders.gouraud
+    } else {
+        shaders.flat
+    };
+    shade(tile, rect, sv, flat, found)
+}
+
+/// The second phase of a triangle's drawing, as monomorphized for the
+/// frame's depth test and writes: the only code that depends on them, so
+/// the tile loop exists once per colour and tile size.
+type ShadeFn<C, const TW: usize, const TH: usize> =
+    fn(&mut TileBuffer<C, TW, TH>, &PixelRect, [&ScreenVertex; 3], [u8; 3], &[Span]) -> u32;
+
+/// The shading functions of a frame, Gouraud and flat.
+struct Shaders<C, const TW: usize, const TH: usize> {
+    gouraud: ShadeFn<C, TW, TH>,
+    flat: ShadeFn<C, TW, TH>,
+}
+
+impl<C, const TW: usize, const TH: usize> Shaders<C, TW, TH>
+where
+    C: PixelColor + From<Rgb888>,
+{
+    fn new<D: DepthFn, const WRITE: bool>() -> Self {
+        Self {
+            gouraud: shade::<C, D, WRITE, true, TW, TH>,
+            flat: shade::<C, D, WRITE, false, TW, TH>,
         }
     }
 }
 
-/// Rasterizes one piece into the tile with the configured depth test.
-#[inline]
-fn raster_piece<C, const TW: usize, const TH: usize>(
-    tile: &mut TileBuffer<C, TW, TH>,
-    rect: &PixelRect,
-    p: &Piece,
-    shading: Shading,
-    cfg: &Config<C>,
-) -> u32
-where
-    C: PixelColor + From<Rgb888>,
-{
-    let gouraud = shading == Shading::Gouraud;
-    macro_rules! go {
-        ($d:ty) => {
-            match (cfg.depth_write, gouraud) {
-                (true, true) => fill::<C, $d, true, true, TW, TH>(tile, rect, p),
-                (true, false) => fill::<C, $d, true, false, TW, TH>(tile, rect, p),
-                (false, true) => fill::<C, $d, false, true, TW, TH>(tile, rect, p),
-                (false, false) => fill::<C, $d, false, false, TW, TH>(tile, rect, p),
-            }
-        };
-    }
-    match cfg.depth_test {
-        DepthTest::Never => 0,
-        DepthTest::Always => go!(DAlways),
-        DepthTest::Less => go!(DLess),
-        DepthTest::LessEqual => go!(DLessEqual),
-        DepthTest::Equal => go!(DEqual),
-        DepthTest::GreaterEqual => go!(DGreaterEqual),
-        DepthTest::Greater => go!(DGreater),
+/// The first phase of [`fill`]: records the spans of triangle `sv` in the
+/// tile `rect` in `found`, and returns how many. Out of line, so that the
+/// edge walk has the registers to itself.
+#[inline(never)]
+fn find_spans(sv: &[&ScreenVertex; 3], rect: &PixelRect, found: &mut [Span]) -> usize {
+    let v = sv.map(|v| SubPoint::new(v.x, v.y));
+    // The walk stays inside `rect`, at most as many rows as `found` holds
+    // (TH), so one call records every span.
+    match Walker::new(&v, *rect) {
+        Some(mut walker) => walker.walk(found),
+        None => 0,
     }
 }
 
-/// The monomorphized triangle loop: spans from the scanline rasterizer,
-/// shaded with depth test `D`. The attribute planes are set up at the
-/// first span, so a triangle that only grazes the tile's bounds costs no
-/// set-up.
+/// The second phase of [`fill`]: sets up the attribute planes of the
+/// triangle `sv` and shades its spans `found`. In a function of its own so
+/// that its loops get the registers to themselves, and with the set-up
+/// inlined so that the planes are computed where the span loop reads them.
 #[inline(never)]
-fn fill<C, D: DepthFn, const WRITE: bool, const GOURAUD: bool, const TW: usize, const TH: usize>(
+fn shade<C, D: DepthFn, const WRITE: bool, const GOURAUD: bool, const TW: usize, const TH: usize>(
     tile: &mut TileBuffer<C, TW, TH>,
     rect: &PixelRect,
-    p: &Piece,
+    sv: [&ScreenVertex; 3],
+    flat: [u8; 3],
+    found: &[Span],
 ) -> u32
 where
     C: PixelColor + From<Rgb888>,
 {
-    let flat = C::from(Rgb888::new(p.flat[0], p.flat[1], p.flat[2]));
-    let mut setup: Option<TriangleSetup> = None;
+    let corners = &Corners(sv);
+    let setup = &TriangleSetup::new(corners, GOURAUD);
+    let flat = C::from(Rgb888::new(flat[0], flat[1], flat[2]));
     let mut n = 0;
-    spans(&p.v, *rect, |j, x0, x1| {
-        let setup =
-            setup.get_or_insert_with(|| TriangleSetup::new(&p.v, p.area2, p.z, &p.colors, GOURAUD));
+    for &Span { j, x0, x1 } in found {
         let row = (j - rect.y0) as usize;
         let (color, depth) = (&mut tile.color[row][..], &mut tile.depth[row][..]);
         let sp = SpanPos {
@@ -916,10 +1352,62 @@ where
             x1,
         };
         n += if GOURAUD {
-            span_gouraud::<C, D, WRITE>(setup, color, depth, sp)
+            span_gouraud::<C, D, WRITE>(setup, corners, color, depth, sp)
         } else {
-            span_flat::<C, D, WRITE>(setup, flat, color, depth, sp)
+            span_flat::<C, D, WRITE>(setup, corners, flat, color, depth, sp)
         };
-    });
+    }
     n
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Bins against a plain list per tile: random appends into pools of
+    /// every small size. A tile the pass still holds at the end must hold
+    /// exactly its triangles, in order; the tiles given up are the last.
+    #[test]
+    fn bins_keep_every_held_tile_complete_and_in_order() {
+        let mut x = 0x9e37_79b9_7f4a_7c15u64;
+        let mut next = move |m: usize| {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            (x % m as u64) as usize
+        };
+        let mut gave_up = 0;
+        for round in 0..3_000 {
+            let tiles = 1 + next(12);
+            let pool_len = 1 + next(if round % 2 == 0 { 40 } else { 400 });
+            let mut pool = [0u16; 400];
+            let (mut heads, mut tails) = ([0u16; 12], [0u16; 12]);
+            let mut bins = Bins::new(
+                &mut pool[..pool_len],
+                &mut heads[..tiles],
+                &mut tails[..tiles],
+            );
+            let mut expected: [heapless::Vec<u16, 256>; 12] = Default::default();
+            for t in 0..next(200) as u16 {
+                // A triangle touches one to four consecutive tiles, some
+                // beyond the pass.
+                let first = next(tiles + 2);
+                for k in first..first + 1 + next(4) {
+                    bins.push(k, t);
+                    if let Some(e) = expected.get_mut(k).filter(|_| k < tiles) {
+                        e.push(t).unwrap();
+                    }
+                }
+            }
+            let held = bins.tiles();
+            gave_up += (held < tiles) as u32;
+            for (k, e) in expected.iter().enumerate().take(held) {
+                assert!(
+                    bins.iter(k).map(|t| t as u16).eq(e.iter().copied()),
+                    "round {round} tile {k}"
+                );
+            }
+        }
+        assert!(gave_up > 100, "the test should exhaust pools: {gave_up}");
+    }
 }

@@ -3,20 +3,28 @@
 //! Following Hecker, each attribute `a` (depth and the three colour
 //! channels) is a plane over the screen, `a(x, y) = a0 + A (x - x0) +
 //! B (y - y0)`, whose gradients `A = ∂a/∂x` and `B = ∂a/∂y` are computed
-//! once per triangle from the three vertices (Cramer's rule over twice the
-//! signed area). At the first pixel of every span the plane is evaluated
-//! directly from the vertex with one `i64` multiply-add per gradient, so
-//! error never accumulates from row to row; along the span the value steps
-//! by the `i32` x gradient. Depth uses 14 fraction bits and colour 16, each
-//! biased by one half so truncation rounds; the bias plus a clamp at the
-//! span start keeps every value inside its range although each x step
+//! once per triangle (and tile) from the three vertices, by Cramer's rule
+//! over twice the signed area: eight divisions by the same denominator,
+//! which a 32-bit target does through one reciprocal (`math::Divisor`). At the
+//! first pixel of every span the plane is evaluated directly, so error
+//! never accumulates from row to row; along the span the value steps by the
+//! x gradient. Depth uses 14 fraction bits and colour 16, each biased by one
+//! half so truncation rounds.
+//!
+//! The evaluation is `gx i + gy j + k` in wrapping `i32`: two 32-bit
+//! multiplies and adds per attribute, cheap on every core, and exact, as
+//! `Plane` shows: at a covered pixel the value is within a few thousand
+//! units of its range, so the `i32` sum equals the exact one. The bias plus
+//! a clamp at the span start keeps every value inside its range although
+//! the rounded gradients can carry it a little beyond, and each x step
 //! carries up to half a unit in the last place of rounding error (at most
 //! `TILE_W / 2` such units over a span, far below the half-unit margin for
 //! tiles up to 1,024 pixels wide).
 //!
-//! Gradients are clamped to ±2^40 so the span-start products fit `i64`.
-//! Only a sliver narrower than about 1/1,000 pixel can reach that clamp;
-//! its at most one pixel per row keeps a depth within its triangle's range.
+//! Gradients beyond ±2^40 are clamped, and such a triangle's spans start
+//! from the planes evaluated in `i64` (`wide_start`). Only a sliver
+//! narrower than about 1/1,000 pixel can reach that clamp; its at most one
+//! pixel per row keeps a depth within its triangle's range.
 //!
 //! The span loops have no branch where that pays (flat spans, and Gouraud
 //! spans of 8 pixels or more): the depth stored is the min or max of the
@@ -25,7 +33,10 @@
 //! `z << 2` in a `u32`, whose upper half is then the 16-bit depth. The
 //! results are exactly those of the plain per-pixel test.
 
+use crate::math::Divisor;
 use crate::raster::{SubPoint, HALF_PIXEL, SUBPIXEL_BITS};
+use crate::vertex::ScreenVertex;
+use core::num::NonZeroU64;
 use embedded_graphics::pixelcolor::Rgb888;
 
 /// Fraction bits of interpolated depth.
@@ -88,133 +99,294 @@ depth_fn!(DGreaterEqual, |n, o| n >= o, |n, o| n.max(o));
 depth_fn!(DGreater, |n, o| n > o, |n, o| n.max(o));
 
 /// One interpolated attribute, with `frac` fraction bits: its value at the
-/// centre of pixel `(i, j)` is `(gx16 i + gy16 j + k) >> SUBPIXEL_BITS`,
-/// clamped to `lo..=hi`.
+/// centre of pixel `(i, j)` is `gx i + gy j + k`.
 ///
-/// That is the plane `base + ((gx dx + gy dy) >> SUBPIXEL_BITS)` through
-/// vertex `o`, with `dx = SUBPIXEL i + HALF_PIXEL - o.x` (likewise `dy`) and
-/// `base` the biased value at `o`, regrouped exactly: the terms that do not
-/// depend on the pixel are summed once into `k` (`base` times `SUBPIXEL`
-/// passes through the shift unchanged). Every term stays below 2^59 for
-/// screen coordinates inside the guard band and pixels inside the frame.
+/// That is the plane `base + floor((gx dx + gy dy) / SUBPIXEL)` through
+/// vertex `o`, with `dx = SUBPIXEL i + HALF_PIXEL - o.x` (likewise `dy`)
+/// and `base` the biased value at `o`, regrouped exactly: `gx SUBPIXEL i`
+/// is a multiple of `SUBPIXEL`, so it passes through the floor unchanged,
+/// and the terms that do not depend on the pixel are summed once into `k`.
+///
+/// # Why `i32` arithmetic is exact
+///
+/// The gradients are rounded to the nearest integer, so at a pixel centre
+/// `(dx, dy)` sub-pixels from `o` the value is within
+/// `(|dx| + |dy|) / 32 + 1` of the exact plane. Span starts are covered
+/// centres, which lie in the triangle, where the exact plane is between
+/// the smallest and largest vertex value; vertices lie within 2^18
+/// sub-pixels of the origin and pixels within 2^16, so the value is within
+/// 20,481 of `lo..=hi`, far inside `i32` (`hi < 2^30`). The sum
+/// `gx i + gy j + k` may wrap on the way there, but wrapping arithmetic is
+/// exact modulo 2^32, so its result is that value exactly, as the `i64`
+/// sum would give. This holds unless a gradient had to be clamped to
+/// ±2^40 (only for a sliver narrower than about 1/1,000 pixel, see the
+/// module docs); then [`TriangleSetup::wide`] is set and the span starts
+/// come from [`wide_start`], in `i64`, which never wraps.
+///
+/// The value is then clamped to `lo..=hi`, as a span starts there and
+/// steps from there.
+///
+/// Along a span the value steps by `gx`. A span of two or more pixels has
+/// two covered centres one pixel apart, where the exact values differ by
+/// at most the attribute's range, so `|gx| < 2^30` there and the step is
+/// exact too.
 #[derive(Clone, Copy, Debug, Default)]
 pub(crate) struct Plane {
-    gx16: i64,
-    gy16: i64,
-    k: i64,
-    lo: i64,
-    hi: i64,
-    /// The x gradient saturated to `i32`: the step along a span.
-    step: i32,
+    gx: i32,
+    gy: i32,
+    k: i32,
 }
 
-/// The geometry every plane of a triangle shares: vertex 0 and the edge
-/// vectors from it, with signs chosen so that the Cramer denominator `area`
-/// (twice the absolute area) is positive.
+/// The geometry every plane of a triangle shares: the edge vectors from
+/// vertex 0, with signs chosen so that the Cramer denominator (twice the
+/// absolute area) is positive, that denominator, and the offset of the
+/// first pixel centre from vertex 0.
 #[derive(Clone, Copy, Debug)]
 struct Basis {
-    o: SubPoint,
     x1: i64,
     y1: i64,
     x2: i64,
     y2: i64,
-    area: i64,
+    /// Twice the absolute area, by which all eight gradients are divided
+    /// (through its reciprocal on 32-bit targets, see [`Divisor`]).
+    area: Divisor,
+    /// Half of twice the absolute area, for rounding.
+    half: u64,
+    /// `HALF_PIXEL - o.x` and `HALF_PIXEL - o.y` of vertex 0.
+    ox: i64,
+    oy: i64,
 }
 
 impl Basis {
     #[inline(always)]
-    fn new(v: &[SubPoint; 3], area2: i64) -> Self {
+    fn new(v: &[SubPoint; 3]) -> Self {
         let (x1, y1) = (v[1].x as i64 - v[0].x as i64, v[1].y as i64 - v[0].y as i64);
         let (x2, y2) = (v[2].x as i64 - v[0].x as i64, v[2].y as i64 - v[0].y as i64);
+        // Twice the signed area, as `crate::raster::signed_area2`.
+        let area2 = x1 * y2 - x2 * y1;
+        // Callers never set up a zero-area triangle (it has no spans); the
+        // fallback only keeps this total.
+        let area = NonZeroU64::new(area2.unsigned_abs()).unwrap_or(NonZeroU64::MIN);
         // n / d with d < 0 is (-n) / (-d); negating the edge vectors negates
-        // both numerators exactly, so every division below has a positive
+        // every numerator exactly, so every division has a positive
         // denominator and the same rounded result.
         let s = if area2 < 0 { -1 } else { 1 };
         Self {
-            o: v[0],
             x1: s * x1,
             y1: s * y1,
             x2: s * x2,
             y2: s * y2,
-            area: s * area2,
+            area: Divisor::new(area),
+            half: area.get() / 2,
+            ox: HALF_PIXEL as i64 - v[0].x as i64,
+            oy: HALF_PIXEL as i64 - v[0].y as i64,
         }
+    }
+
+    /// `n / area` rounded to nearest, ties away from zero, as
+    /// the vertex stage rounds too.
+    #[inline(always)]
+    fn div_round(&self, n: i64) -> i64 {
+        // |n| < 2^57 and half < 2^39: within `Reciprocal::div`'s range.
+        if n >= 0 {
+            self.area.div(n as u64 + self.half) as i64
+        } else {
+            -(self.area.div(n.unsigned_abs() + self.half) as i64)
+        }
+    }
+}
+
+impl Basis {
+    /// The gradients `(gx, gy)` of an attribute with `values` at the three
+    /// vertices and `frac` fraction bits, per pixel, rounded to nearest
+    /// (Cramer's rule), not yet clamped.
+    #[inline(always)]
+    fn gradients(&self, values: [i64; 3], frac: u32) -> (i64, i64) {
+        let d1 = values[1] - values[0];
+        let d2 = values[2] - values[0];
+        let shift = frac + SUBPIXEL_BITS;
+        (
+            self.div_round((d1 * self.y2 - d2 * self.y1) << shift),
+            self.div_round((d2 * self.x1 - d1 * self.x2) << shift),
+        )
+    }
+
+    /// The plane constant `k` of an attribute whose value at vertex 0 is
+    /// `value`, for gradients within ±[`GRADIENT_LIMIT`].
+    #[inline(always)]
+    fn constant(&self, value: i64, frac: u32, (gx, gy): (i64, i64)) -> i64 {
+        let base = (value << frac) + (1i64 << (frac - 1));
+        base + ((gx * self.ox + gy * self.oy) >> SUBPIXEL_BITS)
+    }
+
+    /// [`constant`](Self::constant) in wrapping arithmetic: the same value
+    /// for gradients within ±[`GRADIENT_LIMIT`], no overflow check beyond.
+    #[inline(always)]
+    fn constant_wrapping(&self, value: i64, frac: u32, (gx, gy): (i64, i64)) -> i64 {
+        let base = (value << frac) + (1i64 << (frac - 1));
+        let t = gx
+            .wrapping_mul(self.ox)
+            .wrapping_add(gy.wrapping_mul(self.oy));
+        base.wrapping_add(t >> SUBPIXEL_BITS)
     }
 }
 
 impl Plane {
-    /// `frac` fraction bits; `values` at the three vertices, `max` the
-    /// largest value the attribute may take.
-    #[inline(always)]
-    fn new(f: &Basis, values: [i64; 3], frac: u32, max: i64) -> Self {
-        let d1 = values[1] - values[0];
-        let d2 = values[2] - values[0];
-        let scale = 1i64 << (frac + SUBPIXEL_BITS);
-        let gx = crate::vertex::div_round((d1 * f.y2 - d2 * f.y1) * scale, f.area);
-        let gy = crate::vertex::div_round((d2 * f.x1 - d1 * f.x2) * scale, f.area);
-        let gx = gx.clamp(-GRADIENT_LIMIT, GRADIENT_LIMIT);
-        let gy = gy.clamp(-GRADIENT_LIMIT, GRADIENT_LIMIT);
-        let bias = 1i64 << (frac - 1);
-        let base = (values[0] << frac) + bias;
-        Self {
-            gx16: gx << SUBPIXEL_BITS,
-            gy16: gy << SUBPIXEL_BITS,
-            k: (base << SUBPIXEL_BITS)
-                + gx * (HALF_PIXEL as i64 - f.o.x as i64)
-                + gy * (HALF_PIXEL as i64 - f.o.y as i64),
-            lo: bias,
-            hi: (max << frac) + bias,
-            step: gx.clamp(i32::MIN as i64, i32::MAX as i64) as i32,
-        }
-    }
-
-    /// The value at the centre of pixel `(i, j)`.
+    /// The value at the centre of pixel `(i, j)`, exact (see the type's
+    /// docs), not clamped to the attribute's range.
     #[inline(always)]
     fn at(&self, i: i32, j: i32) -> i32 {
-        let v = (self.gx16 * i as i64 + self.gy16 * j as i64 + self.k) >> SUBPIXEL_BITS;
-        // `lo < hi`, so this is `clamp` without its panic check.
-        v.max(self.lo).min(self.hi) as i32
+        self.gx
+            .wrapping_mul(i)
+            .wrapping_add(self.gy.wrapping_mul(j))
+            .wrapping_add(self.k)
     }
 
+    /// The step along a span (exact for every span of two pixels or more,
+    /// see the type's docs).
     #[inline(always)]
     fn step(&self) -> i32 {
-        self.step
+        self.gx
     }
 }
 
-/// A triangle ready to shade: its attribute planes.
+/// Depth interpolated with [`Z_FRAC`] bits and its half-unit bias: the
+/// range of values that round to `0..=65535`.
+const Z_LO: i32 = 1 << (Z_FRAC - 1);
+const Z_HI: i32 = (65_535 << Z_FRAC) + Z_LO;
+/// Likewise for colour channels, `0..=255` with [`C_FRAC`] bits.
+const C_LO: i32 = 1 << (C_FRAC - 1);
+const C_HI: i32 = (255 << C_FRAC) + C_LO;
+
+/// The triangle the attribute set-up reads: its three screen vertices (in
+/// submission order: vertex 0 anchors the planes).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Corners<'a>(pub [&'a ScreenVertex; 3]);
+
+impl Corners<'_> {
+    /// The screen positions.
+    #[inline(always)]
+    fn points(&self) -> [SubPoint; 3] {
+        self.0.map(|v| SubPoint::new(v.x, v.y))
+    }
+
+    /// The values of attribute `a` (0 depth, 1 to 3 red, green, blue) at
+    /// the three vertices, and its fraction bits.
+    #[inline(always)]
+    fn values(&self, a: usize) -> ([i64; 3], u32) {
+        if a == 0 {
+            (self.0.map(|v| v.z as i64), Z_FRAC)
+        } else {
+            (self.0.map(|v| v.color[a - 1] as i64), C_FRAC)
+        }
+    }
+}
+
+/// A triangle ready to shade: its attribute planes (depth, then red,
+/// green and blue for Gouraud shading).
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct TriangleSetup {
-    z: Plane,
-    rgb: [Plane; 3],
+    planes: [Plane; 4],
+    /// A gradient was beyond ±[`GRADIENT_LIMIT`]: span starts come from
+    /// [`wide_start`] instead of `planes` (only the steps are used).
+    wide: bool,
 }
 
 impl TriangleSetup {
-    /// Sets up the planes of a non-degenerate triangle (`area2 != 0`).
-    /// Colour planes are only computed for `gouraud` (flat shading needs
-    /// only depth).
-    #[inline]
-    pub(crate) fn new(
-        v: &[SubPoint; 3],
-        area2: i64,
-        z: [u16; 3],
-        colors: &[[u8; 3]; 3],
-        gouraud: bool,
-    ) -> Self {
-        let f = Basis::new(v, area2);
-        let zp = Plane::new(&f, [z[0] as i64, z[1] as i64, z[2] as i64], Z_FRAC, 65_535);
-        let mut rgb = [Plane::default(); 3];
-        if gouraud {
-            for (c, p) in rgb.iter_mut().enumerate() {
-                let vals = [
-                    colors[0][c] as i64,
-                    colors[1][c] as i64,
-                    colors[2][c] as i64,
-                ];
-                *p = Plane::new(&f, vals, C_FRAC, 255);
-            }
+    /// Sets up the planes of a non-degenerate triangle. Colour planes are
+    /// only computed for `gouraud` (flat shading needs only depth).
+    #[inline(always)]
+    pub(crate) fn new(t: &Corners<'_>, gouraud: bool) -> Self {
+        let f = Basis::new(&t.points());
+        let n = if gouraud { 4 } else { 1 };
+        let mut planes = [Plane::default(); 4];
+        // Or-ing `gradient + LIMIT` over all gradients: below 2^41 only if
+        // every one is within ±LIMIT (2^40 itself is sent to the wide path
+        // too, which gives the same values).
+        let mut range = 0u64;
+        for (a, p) in planes.iter_mut().enumerate().take(n) {
+            let (values, frac) = t.values(a);
+            let g = f.gradients(values, frac);
+            range |= (g.0 + GRADIENT_LIMIT) as u64 | (g.1 + GRADIENT_LIMIT) as u64;
+            // Wrapping to i32 keeps everything `Plane::at` needs. Within
+            // ±LIMIT `constant` cannot overflow; beyond, its wrapped value
+            // is not used (a wide triangle's starts come from `wide_start`).
+            let k = f.constant_wrapping(values[0], frac, g);
+            *p = Plane {
+                gx: g.0 as i32,
+                gy: g.1 as i32,
+                k: k as i32,
+            };
         }
-        Self { z: zp, rgb }
+        Self {
+            planes,
+            wide: range >= 2 * GRADIENT_LIMIT as u64,
+        }
     }
+
+    /// Depth at the centre of pixel `(i, j)`, in `Z_LO..=Z_HI`.
+    #[inline(always)]
+    fn z_at(&self, i: i32, j: i32) -> i32 {
+        // Constant bounds: `clamp`'s check of them is done at compile time.
+        self.planes[0].at(i, j).clamp(Z_LO, Z_HI)
+    }
+
+    /// Red, green and blue at the centre of pixel `(i, j)`, in
+    /// `C_LO..=C_HI`.
+    #[inline(always)]
+    fn rgb_at(&self, i: i32, j: i32) -> [i32; 3] {
+        [
+            self.planes[1].at(i, j).clamp(C_LO, C_HI),
+            self.planes[2].at(i, j).clamp(C_LO, C_HI),
+            self.planes[3].at(i, j).clamp(C_LO, C_HI),
+        ]
+    }
+
+    /// The steps along a span of depth, red, green and blue.
+    #[inline(always)]
+    fn steps(&self) -> [i32; 4] {
+        [
+            self.planes[0].step(),
+            self.planes[1].step(),
+            self.planes[2].step(),
+            self.planes[3].step(),
+        ]
+    }
+
+    /// Depth, red, green and blue at the centre of pixel `(i, j)`, for
+    /// [`TriangleSetup::wide`] triangles from [`wide_start`].
+    #[inline(always)]
+    fn start(&self, t: &Corners<'_>, i: i32, j: i32) -> [i32; 4] {
+        if self.wide {
+            return wide_start(t, i, j);
+        }
+        let [r, g, b] = self.rgb_at(i, j);
+        [self.z_at(i, j), r, g, b]
+    }
+}
+
+/// The values at the centre of pixel `(i, j)` of a sliver whose gradients
+/// had to be clamped to ±[`GRADIENT_LIMIT`]: the planes set up again with
+/// the clamped gradients and evaluated in `i64`, which cannot overflow
+/// (`|gx i| < 2^52`, `|k| < 2^59`), then clamped to each attribute's range.
+/// Rare enough to redo the set-up for every span.
+#[cold]
+#[inline(never)]
+fn wide_start(t: &Corners<'_>, i: i32, j: i32) -> [i32; 4] {
+    let f = Basis::new(&t.points());
+    let mut out = [0; 4];
+    for (a, o) in out.iter_mut().enumerate() {
+        let (values, frac) = t.values(a);
+        let (gx, gy) = f.gradients(values, frac);
+        let g = (
+            gx.clamp(-GRADIENT_LIMIT, GRADIENT_LIMIT),
+            gy.clamp(-GRADIENT_LIMIT, GRADIENT_LIMIT),
+        );
+        let k = f.constant(values[0], frac, g);
+        let (lo, hi) = if a == 0 { (Z_LO, Z_HI) } else { (C_LO, C_HI) };
+        *o = (g.0 * i as i64 + g.1 * j as i64 + k).clamp(lo as i64, hi as i64) as i32;
+    }
+    out
 }
 
 /// Where a span lies: screen row `j`, columns `x0..x1`, in a tile row whose
@@ -238,11 +410,18 @@ fn depth16(z: u32) -> u16 {
     ((z as i32) >> 16) as u16
 }
 
+/// Spans shorter than this are shaded by a plain loop that converts the
+/// colour only for fragments that pass; longer ones by a branch-free loop
+/// the compiler can vectorize (out of line, so its vector set-up is paid
+/// per long span, not hoisted into every triangle).
+const SHORT_SPAN: usize = 8;
+
 /// Shades one span: `color` and `depth` are the tile row. Returns the
 /// number of fragments written.
 #[inline(always)]
 pub(crate) fn span_flat<C: Copy, D: DepthFn, const WRITE: bool>(
     s: &TriangleSetup,
+    t: &Corners<'_>,
     flat: C,
     color: &mut [C],
     depth: &mut [u16],
@@ -251,14 +430,42 @@ pub(crate) fn span_flat<C: Copy, D: DepthFn, const WRITE: bool>(
     let SpanPos { ox, j, x0, x1 } = sp;
     // Depth with its 16 integer bits in the upper half of a u32 (see
     // `depth16`).
-    let mut z = (s.z.at(x0, j) as u32) << (16 - Z_FRAC);
-    let gz = (s.z.step() as u32) << (16 - Z_FRAC);
+    let mut z = (s.start(t, x0, j)[0] as u32) << (16 - Z_FRAC);
+    let gz = (s.steps()[0] as u32) << (16 - Z_FRAC);
     let (a, b) = ((x0 - ox) as usize, (x1 - ox) as usize);
+    let (color, depth) = (&mut color[a..b], &mut depth[a..b]);
+    if color.len() >= SHORT_SPAN {
+        return flat_run::<C, D, WRITE>(flat, color, depth, z, gz);
+    }
+    let mut n = 0;
+    for (c, d) in color.iter_mut().zip(depth.iter_mut()) {
+        let zz = depth16(z);
+        if D::pass(zz, *d) {
+            if WRITE {
+                *d = zz;
+            }
+            *c = flat;
+            n += 1;
+        }
+        z = z.wrapping_add(gz);
+    }
+    n
+}
+
+/// The branch-free loop of [`span_flat`].
+#[inline(never)]
+fn flat_run<C: Copy, D: DepthFn, const WRITE: bool>(
+    flat: C,
+    color: &mut [C],
+    depth: &mut [u16],
+    mut z: u32,
+    gz: u32,
+) -> u32 {
     // A span is at most a tile row, at most 1,024 pixels: a u16 count
     // cannot overflow, and vectorizes in 16-bit lanes.
     let mut n = 0u16;
     // Branch-free, so the compiler can vectorize it.
-    for (c, d) in color[a..b].iter_mut().zip(depth[a..b].iter_mut()) {
+    for (c, d) in color.iter_mut().zip(depth.iter_mut()) {
         let zz = depth16(z);
         let old = *d;
         let pass = D::pass(zz, old);
@@ -276,49 +483,61 @@ pub(crate) fn span_flat<C: Copy, D: DepthFn, const WRITE: bool>(
 #[inline(always)]
 pub(crate) fn span_gouraud<C: Copy + From<Rgb888>, D: DepthFn, const WRITE: bool>(
     s: &TriangleSetup,
+    t: &Corners<'_>,
     color: &mut [C],
     depth: &mut [u16],
     sp: SpanPos,
 ) -> u32 {
     let SpanPos { ox, j, x0, x1 } = sp;
-    let mut z = (s.z.at(x0, j) as u32) << (16 - Z_FRAC);
-    let mut r = s.rgb[0].at(x0, j);
-    let mut g = s.rgb[1].at(x0, j);
-    let mut b = s.rgb[2].at(x0, j);
-    let (gz, gr, gg, gb) = (
-        (s.z.step() as u32) << (16 - Z_FRAC),
-        s.rgb[0].step(),
-        s.rgb[1].step(),
-        s.rgb[2].step(),
-    );
+    let [z, r, g, b] = s.start(t, x0, j);
+    let z = (z as u32) << (16 - Z_FRAC);
+    let [gz, gr, gg, gb] = s.steps();
+    let gz = (gz as u32) << (16 - Z_FRAC);
     let (a0, a1) = ((x0 - ox) as usize, (x1 - ox) as usize);
     let (color, depth) = (&mut color[a0..a1], &mut depth[a0..a1]);
-    // Short spans (most of them, in a detailed mesh): the colour is only
-    // computed for fragments that pass.
-    if color.len() < 8 {
-        let mut n = 0;
-        for (c, d) in color.iter_mut().zip(depth.iter_mut()) {
-            let zz = depth16(z);
-            if D::pass(zz, *d) {
-                if WRITE {
-                    *d = zz;
-                }
-                *c = C::from(Rgb888::new(
-                    (r >> C_FRAC) as u8,
-                    (g >> C_FRAC) as u8,
-                    (b >> C_FRAC) as u8,
-                ));
-                n += 1;
-            }
-            z = z.wrapping_add(gz);
-            r = r.wrapping_add(gr);
-            g = g.wrapping_add(gg);
-            b = b.wrapping_add(gb);
-        }
-        return n;
+    let (mut z, mut r, mut g, mut b) = (z, r, g, b);
+    if color.len() >= SHORT_SPAN {
+        return gouraud_run::<C, D, WRITE>(
+            color,
+            depth,
+            [z, r as u32, g as u32, b as u32],
+            [gz, gr as u32, gg as u32, gb as u32],
+        );
     }
-    // Longer spans: as in `span_flat`, a u16 count and no branch in the
-    // loop, so the compiler can vectorize it.
+    let mut n = 0;
+    for (c, d) in color.iter_mut().zip(depth.iter_mut()) {
+        let zz = depth16(z);
+        if D::pass(zz, *d) {
+            if WRITE {
+                *d = zz;
+            }
+            *c = C::from(Rgb888::new(
+                (r >> C_FRAC) as u8,
+                (g >> C_FRAC) as u8,
+                (b >> C_FRAC) as u8,
+            ));
+            n += 1;
+        }
+        z = z.wrapping_add(gz);
+        r = r.wrapping_add(gr);
+        g = g.wrapping_add(gg);
+        b = b.wrapping_add(gb);
+    }
+    n
+}
+
+/// The branch-free loop of [`span_gouraud`]: `start` and `step` hold
+/// depth (as in [`span_flat`]), red, green and blue.
+#[inline(never)]
+fn gouraud_run<C: Copy + From<Rgb888>, D: DepthFn, const WRITE: bool>(
+    color: &mut [C],
+    depth: &mut [u16],
+    start: [u32; 4],
+    step: [u32; 4],
+) -> u32 {
+    let [mut z, mut r, mut g, mut b] = start;
+    let [gz, gr, gg, gb] = step;
+    // As in `flat_run`, a u16 count and no branch in the loop.
     let mut n = 0u16;
     for (c, d) in color.iter_mut().zip(depth.iter_mut()) {
         let zz = depth16(z);
@@ -383,5 +602,139 @@ mod tests {
                 assert_eq!(depth16(shifted), (exact >> Z_FRAC) as u16);
             }
         }
+    }
+
+    /// The attribute evaluation as it was before the `i32` planes: `i64`
+    /// planes `(gx16 i + gy16 j + k) >> 4` with gradients clamped to ±2^40
+    /// and every value clamped to its range at the span start.
+    fn reference_start(v: &[SubPoint; 3], vals: [[i64; 3]; 4], i: i32, j: i32) -> [i32; 4] {
+        let (x1, y1) = (v[1].x as i64 - v[0].x as i64, v[1].y as i64 - v[0].y as i64);
+        let (x2, y2) = (v[2].x as i64 - v[0].x as i64, v[2].y as i64 - v[0].y as i64);
+        let area2 = x1 * y2 - x2 * y1;
+        let s = if area2 < 0 { -1 } else { 1 };
+        let (x1, y1, x2, y2, area) = (s * x1, s * y1, s * x2, s * y2, s * area2);
+        let div_round = |n: i64, d: i64| {
+            if n >= 0 {
+                (n + d / 2) / d
+            } else {
+                -((-n + d / 2) / d)
+            }
+        };
+        let mut out = [0; 4];
+        for (a, o) in out.iter_mut().enumerate() {
+            let (frac, max) = if a == 0 {
+                (Z_FRAC, 65_535)
+            } else {
+                (C_FRAC, 255)
+            };
+            let d1 = vals[a][1] - vals[a][0];
+            let d2 = vals[a][2] - vals[a][0];
+            let scale = 1i64 << (frac + SUBPIXEL_BITS);
+            let gx =
+                div_round((d1 * y2 - d2 * y1) * scale, area).clamp(-GRADIENT_LIMIT, GRADIENT_LIMIT);
+            let gy =
+                div_round((d2 * x1 - d1 * x2) * scale, area).clamp(-GRADIENT_LIMIT, GRADIENT_LIMIT);
+            let bias = 1i64 << (frac - 1);
+            let base = (vals[a][0] << frac) + bias;
+            let k = (base << SUBPIXEL_BITS)
+                + gx * (HALF_PIXEL as i64 - v[0].x as i64)
+                + gy * (HALF_PIXEL as i64 - v[0].y as i64);
+            let value = ((gx << SUBPIXEL_BITS) * i as i64 + (gy << SUBPIXEL_BITS) * j as i64 + k)
+                >> SUBPIXEL_BITS;
+            *o = value.clamp(bias, (max << frac) + bias) as i32;
+        }
+        out
+    }
+
+    /// Span starts and steps of `TriangleSetup` against the previous `i64`
+    /// evaluation at every covered pixel of random triangles: ordinary
+    /// ones, huge ones reaching the guard band, and slivers whose gradients
+    /// exceed the clamp. Along a span the reference is the stepped start,
+    /// as the span loops step it.
+    #[test]
+    fn planes_match_the_i64_evaluation() {
+        use crate::raster::{scanline::spans, PixelRect};
+        let mut x = 0x2545_f491_4f6c_dd1du64;
+        let mut next = move |m: u64| {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            x % m
+        };
+        let (mut pixels, mut wide) = (0u64, 0u32);
+        for n in 0..6_000 {
+            let (range, offset) = match n % 4 {
+                0 => (4_000, 0),
+                1 => (1 << 19, 1 << 18),
+                _ => (600, 0),
+            };
+            let mut p = || SubPoint::new(next(range) as i32 - offset, next(range) as i32 - offset);
+            let mut v = [p(), p(), p()];
+            if n % 4 == 3 {
+                // A sliver of twice-area 1, up to 2^17 sub-pixels long:
+                // edge vectors (F(k+1), F(k)) and (F(k), F(k-1)) of
+                // consecutive Fibonacci numbers, whose cross product is
+                // ±1, so its gradients go far beyond the clamp.
+                let (mut f0, mut f1) = (1i32, 1i32);
+                for _ in 0..8 + next(17) {
+                    (f0, f1) = (f1, f0 + f1);
+                }
+                let f2 = f0 + f1;
+                let sx = if next(2) == 0 { 1 } else { -1 };
+                let sy = if next(2) == 0 { 1 } else { -1 };
+                let o = v[0];
+                v[1] = SubPoint::new(o.x + sx * f2, o.y + sy * f1);
+                v[2] = SubPoint::new(o.x + sx * f1, o.y + sy * f0);
+                if next(2) == 0 {
+                    v.swap(0, 2);
+                }
+            }
+            let sv = [0, 1, 2].map(|k| ScreenVertex {
+                x: v[k].x,
+                y: v[k].y,
+                z: next(65_536) as u16,
+                outcode: 0,
+                color: [next(256) as u8, next(256) as u8, next(256) as u8],
+            });
+            let vals = [0, 1, 2, 3].map(|a| {
+                [0, 1, 2].map(|k| {
+                    if a == 0 {
+                        sv[k].z as i64
+                    } else {
+                        sv[k].color[a - 1] as i64
+                    }
+                })
+            });
+            let corners = Corners([&sv[0], &sv[1], &sv[2]]);
+            if crate::raster::signed_area2(&v) == 0 {
+                continue;
+            }
+            let setup = TriangleSetup::new(&corners, true);
+            wide += setup.wide as u32;
+            let steps = setup.steps();
+            let clip = PixelRect::new(0, 0, 4096, 4096);
+            spans(&v, clip, |j, x0, x1| {
+                let start = setup.start(&corners, x0, j);
+                let reference = reference_start(&v, vals, x0, j);
+                assert_eq!(start, reference, "{v:?} at ({x0}, {j})");
+                // Along a span of two pixels or more the step is the exact
+                // x gradient (the old one, saturated to i32, was the same).
+                if x1 - x0 >= 2 {
+                    let next = reference_start(&v, vals, x0 + 1, j);
+                    for a in 0..4 {
+                        let unclamped = |x: [i32; 4]| {
+                            x[a] > if a == 0 { Z_LO } else { C_LO }
+                                && x[a] < if a == 0 { Z_HI } else { C_HI }
+                        };
+                        if unclamped(reference) && unclamped(next) {
+                            assert_eq!(next[a] - reference[a], steps[a], "{v:?} at ({x0}, {j})");
+                        }
+                    }
+                }
+                pixels += (x1 - x0) as u64;
+            });
+        }
+        assert!(pixels > 100_000, "{pixels} pixels");
+        assert!(wide > 100, "{wide} wide triangles");
     }
 }

@@ -33,6 +33,13 @@ impl<C: Copy, const W: usize, const H: usize> TileBuffer<C, W, H> {
 
     /// Clears the top-left `w x h` pixels.
     pub(crate) fn clear(&mut self, w: usize, h: usize, color: C, depth: u16) {
+        if w == W {
+            // Whole rows: one fill over the rows' contiguous storage,
+            // rather than a fill per row.
+            self.color[..h].as_flattened_mut().fill(color);
+            self.depth[..h].as_flattened_mut().fill(depth);
+            return;
+        }
         for row in &mut self.color[..h] {
             row[..w].fill(color);
         }

@@ -5,8 +5,16 @@
 //! and converted once to 16.16 ([`FixedMat4`]); the world-space light
 //! direction is moved into the draw's model space (`M⁻¹ L`, normalised), so
 //! per vertex the stage needs only integer multiply-adds: 12 products for the
-//! position, 3 for the Lambert term, and 3 divisions for the perspective
-//! divide. A Cortex-M0+ therefore does no soft-float per vertex.
+//! position, 3 for the Lambert term, and 3 quotients by `w` for the
+//! perspective divide, which share one divisor (on a 32-bit core, one
+//! reciprocal of `w` and three multiply-highs instead of three 64-bit
+//! divisions; the quotients are the same). A Cortex-M0+ therefore does no
+//! soft-float per vertex.
+//!
+//! The transform's sums of products are checked for overflow only for a
+//! draw whose matrix and mesh could overflow them: the mesh knows its
+//! largest coordinate ([`Mesh::extent`]), so [`DrawSetup::new`] decides once
+//! per draw whether any vertex could ([`FixedMat4::bounded`]).
 //!
 //! # Outcodes and the guard band
 //!
@@ -31,10 +39,11 @@
 //! `[-1, 1]` to `[height, 0]` (screen y grows downwards), both rounded to the
 //! nearest 1/16 pixel. NDC z in `[-1, 1]` maps to depth `0..=65535`.
 
-use crate::math::{FixedMat4, Mat4};
+use crate::math::{Divisor, FixedMat4, Mat4};
 use crate::mesh::Mesh;
 use crate::raster::{SubPoint, SUBPIXEL};
 use crate::scene::{Draw, Light};
+use core::num::NonZeroU64;
 
 /// Outside `x >= -w`.
 pub const OUT_LEFT: u8 = 1;
@@ -115,6 +124,9 @@ struct FixedLight {
 #[derive(Clone, Copy, Debug)]
 pub struct DrawSetup {
     mvp: FixedMat4,
+    /// `mvp` cannot overflow on this draw's mesh (see
+    /// [`FixedMat4::bounded`]), so vertices take the unchecked transform.
+    bounded: bool,
     light: Option<FixedLight>,
     color: [u8; 3],
 }
@@ -155,19 +167,25 @@ impl DrawSetup {
         use embedded_graphics::prelude::RgbColor;
         Ok(Self {
             mvp,
+            bounded: mvp.bounded(draw.mesh.extent()),
             light,
             color: [draw.color.r(), draw.color.g(), draw.color.b()],
         })
     }
 
-    /// The clip-space position and lit colour of vertex `i` of `mesh`.
-    #[inline]
+    /// The clip-space position and lit colour of vertex `i` of `mesh`, the
+    /// mesh of the draw this was set up for.
+    #[inline(always)]
     pub fn clip_vertex(&self, mesh: &Mesh<'_>, i: usize) -> Result<ClipVertex, VertexError> {
         let p = mesh.positions()[i];
-        let pos = self
-            .mvp
-            .transform_point([p[0].to_bits(), p[1].to_bits(), p[2].to_bits()])
-            .ok_or(VertexError::OutOfRange { vertex: i })?;
+        let p = [p[0].to_bits(), p[1].to_bits(), p[2].to_bits()];
+        let pos = if self.bounded {
+            self.mvp.transform_point_bounded(p)
+        } else {
+            self.mvp
+                .transform_point(p)
+                .ok_or(VertexError::OutOfRange { vertex: i })?
+        };
         let base = match mesh.colors() {
             Some(c) => {
                 use embedded_graphics::prelude::RgbColor;
@@ -205,9 +223,20 @@ fn light_vertex(l: &FixedLight, n: crate::mesh::Vec3Fx, base: [u8; 3]) -> [u8; 3
 }
 
 /// The outcode of a clip-space position.
-#[inline]
+#[inline(always)]
 pub fn outcode(p: &[i32; 4]) -> u8 {
     let (x, y, z, w) = (p[0] as i64, p[1] as i64, p[2] as i64, p[3] as i64);
+    // Most vertices are inside the view volume: then every bit is clear
+    // (inside `|x| <= w` is inside the guard band too).
+    if w >= W_MIN && x.abs() <= w && y.abs() <= w && z.abs() <= w {
+        return 0;
+    }
+    outcode_slow(x, y, z, w)
+}
+
+/// [`outcode`] of a vertex outside the view volume.
+#[inline(never)]
+fn outcode_slow(x: i64, y: i64, z: i64, w: i64) -> u8 {
     let mut c = 0;
     if x < -w {
         c |= OUT_LEFT;
@@ -259,17 +288,36 @@ impl Viewport {
 
     /// Screen position and depth of a clip-space point with `w >= W_MIN - 1`
     /// inside the guard band (up to clipping round-off).
-    #[inline]
+    ///
+    /// The three quotients by `w` share one divisor (through `w`'s
+    /// reciprocal on 32-bit targets); each is `n / w` rounded to nearest,
+    /// ties away from zero, as three divisions would give.
+    #[inline(always)]
     pub fn project(&self, p: &[i32; 4]) -> (SubPoint, u16) {
         let w = (p[3] as i64).max(1);
-        let x = self.half_w + div_round(p[0] as i64 * self.half_w, w);
-        let y = self.half_h - div_round(p[1] as i64 * self.half_h, w);
-        let z = div_round((p[2] as i64 + w) * 65_535, 2 * w).clamp(0, 65_535);
+        // `w >= 1`, so this never falls back.
+        let d = Divisor::new(NonZeroU64::new(w as u64).unwrap_or(NonZeroU64::MIN));
+        let half = w as u64 / 2;
+        // div_round(n, w), for |n| < 2^48.
+        let round = |n: i64| -> i64 {
+            let q = d.div(n.unsigned_abs() + half) as i64;
+            if n < 0 {
+                -q
+            } else {
+                q
+            }
+        };
+        let x = self.half_w + round(p[0] as i64 * self.half_w);
+        let y = self.half_h - round(p[1] as i64 * self.half_h);
+        // div_round(n, 2w) = floor((|n| + w) / (2w)) = floor((|n| + w) / w) / 2.
+        let n = (p[2] as i64 + w) * 65_535;
+        let z = (d.div(n.unsigned_abs() + w as u64) >> 1) as i64;
+        let z = if n < 0 { -z } else { z }.clamp(0, 65_535);
         (SubPoint::new(x as i32, y as i32), z as u16)
     }
 
     /// Runs the vertex stage on one vertex.
-    #[inline]
+    #[inline(always)]
     pub fn screen_vertex(&self, v: &ClipVertex) -> ScreenVertex {
         let outcode = outcode(&v.pos);
         let (p, z) = if outcode & MUST_CLIP == 0 {
@@ -287,8 +335,10 @@ impl Viewport {
     }
 }
 
-/// `n / d` rounded to nearest (ties away from zero), for `d > 0`.
-#[inline]
+/// `n / d` rounded to nearest (ties away from zero), for `d > 0`: the
+/// rounding of every quotient of the vertex and attribute set-up (which
+/// compute it through [`Divisor`]; the tests check them against this).
+#[cfg(test)]
 pub(crate) fn div_round(n: i64, d: i64) -> i64 {
     if n >= 0 {
         (n + d / 2) / d
@@ -329,5 +379,33 @@ mod tests {
         assert_eq!(div_round(-5, 2), -3);
         assert_eq!(div_round(4, 3), 1);
         assert_eq!(div_round(-4, 3), -1);
+    }
+
+    /// `project` (one divisor for the three quotients) against the three
+    /// `div_round`s it replaces, over `w` from 1 to 2^31 and coordinates
+    /// up to the guard band and a little beyond (clipping round-off).
+    #[test]
+    fn projection_matches_three_divisions() {
+        let vp = Viewport::new(4096, 3001);
+        let mut x = 0x2545_f491_4f6c_dd1du64;
+        let mut next = move || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            x
+        };
+        for _ in 0..200_000 {
+            let w = ((next() >> (33 + next() % 31)) as i64).max(1);
+            let mut c = || {
+                let r = (next() % (10 * w as u64 + 1)) as i64 - 5 * w;
+                r.clamp(i32::MIN as i64, i32::MAX as i64) as i32
+            };
+            let p = [c(), c(), c(), w as i32];
+            let (s, z) = vp.project(&p);
+            let ex = vp.half_w + div_round(p[0] as i64 * vp.half_w, w);
+            let ey = vp.half_h - div_round(p[1] as i64 * vp.half_h, w);
+            let ez = div_round((p[2] as i64 + w) * 65_535, 2 * w).clamp(0, 65_535);
+            assert_eq!((s.x as i64, s.y as i64, z as i64), (ex, ey, ez), "{p:?}");
+        }
     }
 }

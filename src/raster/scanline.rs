@@ -21,10 +21,18 @@
 //!   on a left edge is drawn and one on a right edge is not.
 //!
 //! Set-up needs `i64` products (screen coordinates within the guard band
-//! reach ±2^18 sub-pixels); the per-row stepping is `i32` adds and one
-//! compare per edge.
+//! reach ±2^18 sub-pixels) but `i32` divisions, two per edge, except for
+//! the start column of a long edge far from the origin; the per-row
+//! stepping is `i32` adds and one compare per edge.
+//!
+//! The walk is a resumable `Walker`, which records the spans of the next
+//! rows in a buffer rather than calling back for each: the renderer walks a
+//! triangle's rows in a tile into a buffer of one span per tile row, so the
+//! edge loop runs with nothing else in registers, and shades them
+//! afterwards. [`spans`] drives the same walker through a small buffer.
 
 use super::{first_centre_at_or_after, PixelRect, SubPoint, HALF_PIXEL, SUBPIXEL};
+use core::num::NonZeroU32;
 
 /// One edge being walked down the rows: the first covered column at the
 /// current row, and the exact remainder of that ceiling.
@@ -44,26 +52,45 @@ struct EdgeStepper {
 
 impl EdgeStepper {
     /// Starts the edge `p -> q` (`q.y > p.y`) at pixel row `row`.
-    #[inline]
+    ///
+    /// Two divisions: the per-row step, whose operands always fit `i32`,
+    /// and the start column, whose numerator fits `i32` for all but long
+    /// edges far from the origin. A 32-bit division is a single instruction
+    /// on a Cortex-M3/M4 where the 64-bit one is a library call, so the
+    /// 64-bit one is only used when needed; both give the same quotient.
+    #[inline(always)]
     fn new(p: SubPoint, q: SubPoint, row: i32) -> Self {
-        let dx = q.x as i64 - p.x as i64;
-        let dy = q.y as i64 - p.y as i64;
+        // Within the guard band coordinates are below 2^18 in magnitude
+        // (see `crate::vertex`), so differences fit i32 with room to spare.
+        let dx = q.x - p.x;
+        let dy = q.y - p.y;
         debug_assert!(dy > 0);
-        let den = SUBPIXEL as i64 * dy;
+        // dy > 0 (the caller walks edges downwards); the fallback only
+        // spares the divisions their checks.
+        let dy = NonZeroU32::new(dy as u32).unwrap_or(NonZeroU32::MIN);
+        let den = NonZeroU32::new(dy.get() * SUBPIXEL as u32).unwrap_or(NonZeroU32::MIN);
         // x_edge(y_c) - ½px, times den, as a sub-pixel numerator:
-        // (p.x - ½) * dy + (y_c - p.y) * dx, over SUBPIXEL * dy.
-        let yc = row as i64 * SUBPIXEL as i64 + HALF_PIXEL as i64;
-        let num = (p.x as i64 - HALF_PIXEL as i64) * dy + (yc - p.y as i64) * dx;
-        let (col, rem) = ceil_div_rem(num, den);
-        let (step_col, step_rem) = ceil_div_rem(SUBPIXEL as i64 * dx, den);
+        // (p.x - ½) * dy + (y_c - p.y) * dx, over SUBPIXEL * dy (< 2^39).
+        let yc = row * SUBPIXEL + HALF_PIXEL;
+        let num = (p.x - HALF_PIXEL) as i64 * dy.get() as i64 + (yc - p.y) as i64 * dx as i64;
+        let (col, rem) = match i32::try_from(num) {
+            Ok(n) => ceil_div_rem32(n, den),
+            Err(_) => {
+                let (c, r) = ceil_div_rem(num, den.get() as i64);
+                (c as i32, r as i32)
+            }
+        };
+        // ceil(SUBPIXEL dx / (SUBPIXEL dy)) = ceil(dx / dy), with the
+        // remainder scaled back by SUBPIXEL.
+        let (step_col, step_rem) = ceil_div_rem32(dx, dy);
         // Within the guard band every quantity here fits i32; see the
         // module docs of `crate::vertex` for the bound.
         Self {
-            col: col as i32,
-            rem: rem as i32,
-            step_col: step_col as i32,
-            step_rem: step_rem as i32,
-            den: den as i32,
+            col,
+            rem,
+            step_col,
+            step_rem: step_rem * SUBPIXEL,
+            den: den.get() as i32,
         }
     }
 
@@ -91,7 +118,25 @@ fn ceil_div_rem(n: i64, d: i64) -> (i64, i64) {
     }
 }
 
-/// Row count above which [`spans`] first tests whether the triangle misses
+/// [`ceil_div_rem`] for an `i32` numerator and a divisor below 2^31, as
+/// unsigned divisions by a divisor known to be non-zero, which need no
+/// checks for division by zero or overflow.
+#[inline(always)]
+fn ceil_div_rem32(n: i32, d: NonZeroU32) -> (i32, i32) {
+    if n > 0 {
+        // ceil(n / d) = (n - 1) / d + 1, n - 1 >= 0.
+        let m = n as u32 - 1;
+        let (q, r) = (m / d, m % d);
+        ((q + 1) as i32, (d.get() - 1 - r) as i32)
+    } else {
+        // ceil(n / d) = -floor(-n / d), -n >= 0.
+        let m = n.unsigned_abs();
+        let (q, r) = (m / d, m % d);
+        (-(q as i32), r as i32)
+    }
+}
+
+/// Row count above which [`Walker::new`] first tests whether the triangle misses
 /// the clip rectangle altogether.
 const CHECK_ROWS: i32 = 16;
 
@@ -126,6 +171,158 @@ fn may_cover(v: &[SubPoint; 3], area2: i64, clip: PixelRect) -> bool {
     true
 }
 
+/// A run of covered pixels: row `j`, columns `x0..x1`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub(crate) struct Span {
+    pub j: i32,
+    pub x0: i32,
+    pub x1: i32,
+}
+
+/// The scanline walk of one triangle over a clip rectangle, resumable: each
+/// [`Walker::walk`] records the spans of the next rows in a buffer.
+///
+/// The long edge a -> c (vertices sorted by y) is on the left when the
+/// middle vertex b is right of it. The short edge is a -> b for rows whose
+/// centre lies above b, then b -> c. Both halves run through the same
+/// loop, and no row tests which edge is on which side.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Walker {
+    left: EdgeStepper,
+    right: EdgeStepper,
+    /// The next row, and where the current half ends.
+    row: i32,
+    stop: i32,
+    end: i32,
+    /// Columns of the clip rectangle.
+    x0: i32,
+    x1: i32,
+    /// For the switch to the lower half: b, c, and which side the short
+    /// edge is on.
+    b: SubPoint,
+    c: SubPoint,
+    long_on_left: bool,
+}
+
+impl Walker {
+    /// Starts the walk of triangle `v` over `clip`; `None` when it covers
+    /// no pixel centre there for certain (zero area, no rows, or a tall
+    /// block all of whose centres lie outside one edge).
+    #[inline(always)]
+    pub(crate) fn new(v: &[SubPoint; 3], clip: PixelRect) -> Option<Self> {
+        // Sort by y: a on top, c at the bottom.
+        let (mut a, mut b, mut c) = (v[0], v[1], v[2]);
+        if a.y > b.y {
+            core::mem::swap(&mut a, &mut b);
+        }
+        if b.y > c.y {
+            core::mem::swap(&mut b, &mut c);
+        }
+        if a.y > b.y {
+            core::mem::swap(&mut a, &mut b);
+        }
+        let cross = (b.x as i64 - a.x as i64) * (c.y as i64 - a.y as i64)
+            - (c.x as i64 - a.x as i64) * (b.y as i64 - a.y as i64);
+        if cross == 0 || clip.is_empty() {
+            return None;
+        }
+        // cross > 0: the middle vertex is right of the long edge a -> c.
+        let long_on_left = cross > 0;
+
+        let row_top = first_centre_at_or_after(a.y).max(clip.y0);
+        let row_mid = first_centre_at_or_after(b.y);
+        let row_end = first_centre_at_or_after(c.y).min(clip.y1);
+        if row_top >= row_end {
+            return None;
+        }
+        // Before walking many rows, check that no edge puts every pixel
+        // centre of the clipped block strictly outside (a tile that the
+        // triangle's bounding box overlaps but the triangle misses).
+        if row_end - row_top > CHECK_ROWS
+            && !may_cover(
+                &[a, b, c],
+                cross,
+                PixelRect::new(clip.x0, row_top, clip.x1, row_end),
+            )
+        {
+            return None;
+        }
+        let long = EdgeStepper::new(a, c, row_top);
+        let (short, stop) = if row_top < row_mid {
+            (EdgeStepper::new(a, b, row_top), row_mid.min(row_end))
+        } else {
+            (EdgeStepper::new(b, c, row_top), row_end)
+        };
+        let (left, right) = if long_on_left {
+            (long, short)
+        } else {
+            (short, long)
+        };
+        Some(Self {
+            left,
+            right,
+            row: row_top,
+            stop,
+            end: row_end,
+            x0: clip.x0,
+            x1: clip.x1,
+            b,
+            c,
+            long_on_left,
+        })
+    }
+
+    /// Whether every row has been walked.
+    #[inline(always)]
+    pub(crate) fn done(&self) -> bool {
+        self.row >= self.end
+    }
+
+    /// Walks the next rows, at most as many as `out` holds, recording the
+    /// non-empty spans in `out`, in order; returns how many.
+    #[inline(always)]
+    pub(crate) fn walk(&mut self, out: &mut [Span]) -> usize {
+        // The state in locals, so the loop keeps it in registers.
+        let (mut left, mut right, mut row, mut stop) = (self.left, self.right, self.row, self.stop);
+        let (x0, x1) = (self.x0, self.x1);
+        // Rows left in `out`; spans recorded (never more than rows walked).
+        let (mut room, mut n) = (out.len(), 0);
+        loop {
+            let rows = ((stop - row) as usize).min(room);
+            for j in row..row + rows as i32 {
+                let s = Span {
+                    j,
+                    x0: left.col.max(x0),
+                    x1: right.col.min(x1),
+                };
+                // Written whether empty or not, kept only if not: no branch.
+                if let Some(o) = out.get_mut(n) {
+                    *o = s;
+                }
+                n += (s.x0 < s.x1) as usize;
+                left.step();
+                right.step();
+            }
+            room -= rows;
+            row += rows as i32;
+            if row < stop || row >= self.end {
+                // `out` is full, or the triangle ends.
+                break;
+            }
+            // Only reached after the upper half, with `row == row_mid`.
+            let lower = EdgeStepper::new(self.b, self.c, row);
+            if self.long_on_left {
+                right = lower;
+            } else {
+                left = lower;
+            }
+            stop = self.end;
+        }
+        (self.left, self.right, self.row, self.stop) = (left, right, row, stop);
+        n
+    }
+}
+
 /// Calls `span(row, x_start, x_end)` for every non-empty run of covered
 /// pixels `x_start..x_end` of the triangle `v`, row by row from the top,
 /// restricted to `clip`.
@@ -143,76 +340,16 @@ fn may_cover(v: &[SubPoint; 3], area2: i64, clip: PixelRect) -> bool {
 /// spans(&tri, PixelRect::new(0, 0, 16, 16), |_row, x0, x1| covered += x1 - x0);
 /// assert_eq!(covered, 3 + 2 + 1);
 /// ```
-#[inline]
 pub fn spans<F: FnMut(i32, i32, i32)>(v: &[SubPoint; 3], clip: PixelRect, mut span: F) {
-    // Sort by y: a on top, c at the bottom.
-    let (mut a, mut b, mut c) = (v[0], v[1], v[2]);
-    if a.y > b.y {
-        core::mem::swap(&mut a, &mut b);
-    }
-    if b.y > c.y {
-        core::mem::swap(&mut b, &mut c);
-    }
-    if a.y > b.y {
-        core::mem::swap(&mut a, &mut b);
-    }
-    let cross = (b.x as i64 - a.x as i64) * (c.y as i64 - a.y as i64)
-        - (c.x as i64 - a.x as i64) * (b.y as i64 - a.y as i64);
-    if cross == 0 || clip.is_empty() {
+    let Some(mut w) = Walker::new(v, clip) else {
         return;
-    }
-    // cross > 0: the middle vertex is right of the long edge a -> c.
-    let long_on_left = cross > 0;
-
-    let row_top = first_centre_at_or_after(a.y).max(clip.y0);
-    let row_mid = first_centre_at_or_after(b.y);
-    let row_end = first_centre_at_or_after(c.y).min(clip.y1);
-    if row_top >= row_end {
-        return;
-    }
-    // Before walking many rows, check that no edge puts every pixel centre
-    // of the clipped block strictly outside (a tile that the triangle's
-    // bounding box overlaps but the triangle misses).
-    if row_end - row_top > CHECK_ROWS
-        && !may_cover(
-            &[a, b, c],
-            cross,
-            PixelRect::new(clip.x0, row_top, clip.x1, row_end),
-        )
-    {
-        return;
-    }
-    let mut long = EdgeStepper::new(a, c, row_top);
-    // The short edge is a -> b for rows whose centre lies above the middle
-    // vertex, then b -> c. Both halves run through the same inner loop, so
-    // the span callback is inlined once and no row tests for the switch.
-    let (mut short, mut stop) = if row_top < row_mid {
-        (EdgeStepper::new(a, b, row_top), row_mid.min(row_end))
-    } else {
-        (EdgeStepper::new(b, c, row_top), row_end)
     };
-    let mut row = row_top;
-    loop {
-        while row < stop {
-            let (l, r) = if long_on_left {
-                (long.col, short.col)
-            } else {
-                (short.col, long.col)
-            };
-            let (x0, x1) = (l.max(clip.x0), r.min(clip.x1));
-            if x0 < x1 {
-                span(row, x0, x1);
-            }
-            long.step();
-            short.step();
-            row += 1;
+    let mut buf = [Span::default(); 32];
+    while !w.done() {
+        let n = w.walk(&mut buf);
+        for s in &buf[..n] {
+            span(s.j, s.x0, s.x1);
         }
-        if row >= row_end {
-            return;
-        }
-        // Only reached after the upper half, with `row == row_mid`.
-        short = EdgeStepper::new(b, c, row);
-        stop = row_end;
     }
 }
 
@@ -249,6 +386,28 @@ mod tests {
         let a = count([p(0, 0), p(4, 0), p(4, 4)]);
         let b = count([p(0, 0), p(4, 4), p(0, 4)]);
         assert_eq!(a + b, 16);
+    }
+
+    #[test]
+    fn ceil_div_rem32_matches_the_i64_one() {
+        let mut x = 0x2545_f491_4f6c_dd1du64;
+        for k in 0..100_000i32 {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            let n = match k % 3 {
+                0 => (x >> 32) as i32,
+                1 => (x >> 48) as i32 - (1 << 15),
+                _ => k % 97 - 48,
+            };
+            let d = ((x as u32) >> (1 + x % 31) as u32).max(1);
+            let (q, r) = ceil_div_rem32(n, NonZeroU32::new(d).unwrap());
+            assert_eq!(
+                (q as i64, r as i64),
+                ceil_div_rem(n as i64, d as i64),
+                "{n} / {d}"
+            );
+        }
     }
 
     #[test]
