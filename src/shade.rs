@@ -413,8 +413,20 @@ fn depth16(z: u32) -> u16 {
 /// Spans shorter than this are shaded by a plain loop that converts the
 /// colour only for fragments that pass; longer ones by a branch-free loop
 /// the compiler can vectorize (out of line, so its vector set-up is paid
-/// per long span, not hoisted into every triangle).
-const SHORT_SPAN: usize = 8;
+/// per long span, not hoisted into every triangle). Targets without SIMD
+/// (the microcontrollers) always take the plain loop: there the branch-free
+/// one only adds a load and two stores for every fragment that fails. Both
+/// loops give the same pixels.
+const SHORT_SPAN: usize = if cfg!(any(
+    target_arch = "x86_64",
+    target_arch = "x86",
+    target_arch = "aarch64",
+    target_feature = "simd128"
+)) {
+    8
+} else {
+    usize::MAX
+};
 
 /// Shades one span: `color` and `depth` are the tile row. Returns the
 /// number of fragments written.
