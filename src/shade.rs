@@ -413,20 +413,19 @@ fn depth16(z: u32) -> u16 {
 /// Spans shorter than this are shaded by a plain loop that converts the
 /// colour only for fragments that pass; longer ones by a branch-free loop
 /// the compiler can vectorize (out of line, so its vector set-up is paid
-/// per long span, not hoisted into every triangle). Targets without SIMD
+/// per long span, not hoisted into every triangle).
+const SHORT_SPAN: usize = 8;
+
+/// Whether the target has SIMD for the branch-free loops. Targets without
 /// (the microcontrollers) always take the plain loop: there the branch-free
 /// one only adds a load and two stores for every fragment that fails. Both
 /// loops give the same pixels.
-const SHORT_SPAN: usize = if cfg!(any(
+const VECTOR_LOOPS: bool = cfg!(any(
     target_arch = "x86_64",
     target_arch = "x86",
     target_arch = "aarch64",
     target_feature = "simd128"
-)) {
-    8
-} else {
-    usize::MAX
-};
+));
 
 /// Shades one span: `color` and `depth` are the tile row. Returns the
 /// number of fragments written.
@@ -446,7 +445,7 @@ pub(crate) fn span_flat<C: Copy, D: DepthFn, const WRITE: bool>(
     let gz = (s.steps()[0] as u32) << (16 - Z_FRAC);
     let (a, b) = ((x0 - ox) as usize, (x1 - ox) as usize);
     let (color, depth) = (&mut color[a..b], &mut depth[a..b]);
-    if color.len() >= SHORT_SPAN {
+    if VECTOR_LOOPS && color.len() >= SHORT_SPAN {
         return flat_run::<C, D, WRITE>(flat, color, depth, z, gz);
     }
     let mut n = 0;
@@ -508,7 +507,7 @@ pub(crate) fn span_gouraud<C: Copy + From<Rgb888>, D: DepthFn, const WRITE: bool
     let (a0, a1) = ((x0 - ox) as usize, (x1 - ox) as usize);
     let (color, depth) = (&mut color[a0..a1], &mut depth[a0..a1]);
     let (mut z, mut r, mut g, mut b) = (z, r, g, b);
-    if color.len() >= SHORT_SPAN {
+    if VECTOR_LOOPS && color.len() >= SHORT_SPAN {
         return gouraud_run::<C, D, WRITE>(
             color,
             depth,
