@@ -27,6 +27,9 @@ use microraster::shapes::{
 };
 use microraster::Profiler;
 
+#[path = "../demo_scene/mod.rs"]
+mod demo_scene;
+
 /// Frame width.
 pub const WIDTH: u32 = 320;
 /// Frame height.
@@ -39,22 +42,25 @@ pub type BenchRenderer = Renderer<Rgb565, 32, 32>;
 pub type BenchWorkspace = Workspace<2048, 4096, 80>;
 
 /// The demo's background (`examples/common/mod.rs`).
-pub const CLEAR: Rgb565 = Rgb565::new(3, 6, 8);
+pub const CLEAR: Rgb565 = demo_scene::DEMO_CLEAR;
 
-/// Knot resolution of the demo: 200 x 10 = 2,000 vertices.
-const KNOT_SEGMENTS: usize = 200;
-const KNOT_SIDES: usize = 10;
+use demo_scene::{KNOT_SEGMENTS, KNOT_SIDES};
 const KNOT_VERTICES: usize = torus_knot_size(KNOT_SEGMENTS, KNOT_SIDES).0;
 const KNOT_TRIANGLES: usize = torus_knot_size(KNOT_SEGMENTS, KNOT_SIDES).1;
 
-/// The demo's torus knot, `torus_knot(2, 3, 1.0, 0.28, 200, 10)` as in
-/// `examples/common/mod.rs`, evaluated by the compiler into flash (72,000
-/// bytes).
-pub static KNOT: MeshData<KNOT_VERTICES, KNOT_TRIANGLES> =
-    match torus_knot_data(2, 3, 1.0, 0.28, KNOT_SEGMENTS, KNOT_SIDES) {
-        Ok(m) => m,
-        Err(_) => panic!("the demo knot's parameters are valid"),
-    };
+/// The demo's torus knot (`examples/demo_scene`), evaluated by the compiler
+/// into flash (72,000 bytes).
+pub static KNOT: MeshData<KNOT_VERTICES, KNOT_TRIANGLES> = match torus_knot_data(
+    demo_scene::KNOT_P,
+    demo_scene::KNOT_Q,
+    demo_scene::KNOT_RADIUS,
+    demo_scene::KNOT_TUBE,
+    KNOT_SEGMENTS,
+    KNOT_SIDES,
+) {
+    Ok(m) => m,
+    Err(_) => panic!("the demo knot's parameters are valid"),
+};
 
 /// `v` in 16.16, rounded to the nearest with ties to even, as
 /// `I16F16::from_num` rounds (`v` well inside the 16.16 range).
@@ -269,49 +275,7 @@ impl core::fmt::Display for FrameError {
     }
 }
 
-/// The demo camera for a `width` x `height` frame (`examples/common/mod.rs`).
-fn demo_camera(width: u32, height: u32) -> Option<Camera> {
-    let view = Mat4::look_at(
-        Vec3::new(0.0, 0.6, 4.2),
-        Vec3::new(0.35, 0.0, 0.0),
-        Vec3::new(0.0, 1.0, 0.0),
-    )?;
-    let proj = Mat4::perspective(0.9, width as f32 / height as f32, 0.5, 20.0)?;
-    Some(Camera::new(view, proj))
-}
-
-/// The demo light (`examples/common/mod.rs`).
-fn demo_light() -> Light {
-    Light::new(Vec3::new(-0.6, 0.8, 0.9)).ambient(Rgb888::new(40, 40, 56))
-}
-
-/// The knot and the cube at animation time `t` (`common::draws`).
-fn demo_draws<'a>(
-    knot: &'a Mesh<'a>,
-    cube: &'a Mesh<'a>,
-    t: f32,
-    shading: Shading,
-) -> [Draw<'a>; 2] {
-    [
-        Draw::new(knot)
-            .transform(
-                Mat4::translation(Vec3::new(-0.3, 0.0, 0.0))
-                    * Mat4::rotation_y(t)
-                    * Mat4::rotation_x(0.4),
-            )
-            .color(Rgb888::new(230, 120, 40))
-            .shading(shading),
-        Draw::new(cube)
-            .transform(
-                Mat4::translation(Vec3::new(1.75, 0.1, -0.3))
-                    * Mat4::rotation_y(-1.3 * t + 0.5)
-                    * Mat4::rotation_x(0.6)
-                    * Mat4::scale(Vec3::new(0.42, 0.42, 0.42)),
-            )
-            .color(Rgb888::new(70, 150, 230))
-            .shading(shading),
-    ]
-}
+use demo_scene::{camera as demo_camera, draws as demo_draws, light as demo_light};
 
 /// A camera whose clip space is the model space.
 fn ndc_camera() -> Camera {

@@ -1,0 +1,68 @@
+//! The demo scene's parameters, `no_std` and allocation-free: shared by the
+//! host demo, tests and benchmarks (through `examples/common/mod.rs`) and by
+//! the Cortex-M instruction-count firmware (`examples/icount_scenes`), so
+//! every one of them renders the very same scene.
+#![allow(dead_code)]
+
+use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
+use microraster::prelude::*;
+
+/// The demo's background.
+pub const DEMO_CLEAR: Rgb565 = Rgb565::new(3, 6, 8);
+
+/// The knot: a (2, 3) torus knot of radius 1 with a tube of 0.28.
+pub const KNOT_P: u32 = 2;
+/// See [`KNOT_P`].
+pub const KNOT_Q: u32 = 3;
+/// See [`KNOT_P`].
+pub const KNOT_RADIUS: f32 = 1.0;
+/// See [`KNOT_P`].
+pub const KNOT_TUBE: f32 = 0.28;
+/// Knot resolution: 200 x 10 = 2,000 vertices, 4,000 triangles.
+pub const KNOT_SEGMENTS: usize = 200;
+/// See [`KNOT_SEGMENTS`].
+pub const KNOT_SIDES: usize = 10;
+
+/// The camera for a `width` x `height` frame; `None` only for a zero height.
+pub fn camera(width: u32, height: u32) -> Option<Camera> {
+    let view = Mat4::look_at(
+        Vec3::new(0.0, 0.6, 4.2),
+        Vec3::new(0.35, 0.0, 0.0),
+        Vec3::new(0.0, 1.0, 0.0),
+    )?;
+    let proj = Mat4::perspective(0.9, width as f32 / height as f32, 0.5, 20.0)?;
+    Some(Camera::new(view, proj))
+}
+
+/// One white light from the upper left, with a bluish ambient term.
+pub fn light() -> Light {
+    Light::new(Vec3::new(-0.6, 0.8, 0.9)).ambient(Rgb888::new(40, 40, 56))
+}
+
+/// The knot and the cube at animation time `t` (radians of knot spin).
+pub fn draws<'a>(
+    knot: &'a Mesh<'a>,
+    cube: &'a Mesh<'a>,
+    t: f32,
+    shading: Shading,
+) -> [Draw<'a>; 2] {
+    [
+        Draw::new(knot)
+            .transform(
+                Mat4::translation(Vec3::new(-0.3, 0.0, 0.0))
+                    * Mat4::rotation_y(t)
+                    * Mat4::rotation_x(0.4),
+            )
+            .color(Rgb888::new(230, 120, 40))
+            .shading(shading),
+        Draw::new(cube)
+            .transform(
+                Mat4::translation(Vec3::new(1.75, 0.1, -0.3))
+                    * Mat4::rotation_y(-1.3 * t + 0.5)
+                    * Mat4::rotation_x(0.6)
+                    * Mat4::scale(Vec3::new(0.42, 0.42, 0.42)),
+            )
+            .color(Rgb888::new(70, 150, 230))
+            .shading(shading),
+    ]
+}
