@@ -716,36 +716,9 @@ fn tiny_bin_pool_renders_clipped_triangles_identically() {
     // beyond the guard band: clipped triangles in every pass and rescan.
     let assets = common::DemoAssets::new();
     let (knot, cube) = (assets.knot(), common::cube());
-    let floor_pos = [
-        p3(-6.0, -0.9, -8.0),
-        p3(6.0, -0.9, -8.0),
-        p3(6.0, -0.9, 9.0),
-        p3(-6.0, -0.9, 9.0),
-    ];
-    let floor_col = [
-        Rgb888::new(90, 90, 90),
-        Rgb888::new(200, 60, 60),
-        Rgb888::new(60, 200, 60),
-        Rgb888::new(60, 60, 200),
-    ];
-    let quad = [[0u16, 2, 1], [0, 3, 2]];
-    let floor = Mesh::new(&floor_pos, &quad)
-        .and_then(|m| m.with_colors(&floor_col))
-        .unwrap();
-    let wall_pos = [
-        p3(-3000.0, -0.2, -6.0),
-        p3(3000.0, -0.2, -6.0),
-        p3(3000.0, 0.1, -6.5),
-        p3(-3000.0, 0.1, -6.5),
-    ];
-    let wall = Mesh::new(&wall_pos, &quad).unwrap();
-    let [k, c] = common::draws(&knot, &cube, 2.1, Shading::Gouraud);
-    let d = [
-        k,
-        Draw::new(&floor),
-        c.shading(Shading::Flat),
-        Draw::new(&wall).color(Rgb888::new(250, 250, 120)),
-    ];
+    let extras = common::ClippedExtras::new();
+    let (floor, wall) = (extras.floor(), extras.wall());
+    let d = common::clipped_draws(&knot, &cube, &floor, &wall);
     let size = Size::new(150, 110);
     let scene = Scene::new(common::camera(size.width, size.height), &d).light(common::light());
     let mut r: Renderer<Rgb565, 32, 32> =

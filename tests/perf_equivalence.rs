@@ -14,9 +14,7 @@
 mod common;
 mod support;
 
-use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
-use fixed::types::I16F16;
-use microraster::mesh::Vec3Fx;
+use embedded_graphics::pixelcolor::Rgb565;
 use microraster::prelude::*;
 use support::Capture;
 
@@ -101,48 +99,13 @@ fn demo_renders_the_same_with_every_pool_and_tile() {
     }
 }
 
-fn p3(x: f32, y: f32, z: f32) -> Vec3Fx {
-    [
-        I16F16::from_num(x),
-        I16F16::from_num(y),
-        I16F16::from_num(z),
-    ]
-}
-
 #[test]
 fn clipped_scene_renders_the_same_with_every_pool_and_tile() {
     let assets = common::DemoAssets::new();
     let (knot, cube) = (assets.knot(), common::cube());
-    let floor_pos = [
-        p3(-6.0, -0.9, -8.0),
-        p3(6.0, -0.9, -8.0),
-        p3(6.0, -0.9, 9.0),
-        p3(-6.0, -0.9, 9.0),
-    ];
-    let floor_col = [
-        Rgb888::new(90, 90, 90),
-        Rgb888::new(200, 60, 60),
-        Rgb888::new(60, 200, 60),
-        Rgb888::new(60, 60, 200),
-    ];
-    let quad = [[0u16, 2, 1], [0, 3, 2]];
-    let floor = Mesh::new(&floor_pos, &quad)
-        .and_then(|m| m.with_colors(&floor_col))
-        .unwrap();
-    let wall_pos = [
-        p3(-3000.0, -0.2, -6.0),
-        p3(3000.0, -0.2, -6.0),
-        p3(3000.0, 0.1, -6.5),
-        p3(-3000.0, 0.1, -6.5),
-    ];
-    let wall = Mesh::new(&wall_pos, &quad).unwrap();
-    let [k, c] = common::draws(&knot, &cube, 2.1, Shading::Gouraud);
-    let d = [
-        k,
-        Draw::new(&floor),
-        c.shading(Shading::Flat),
-        Draw::new(&wall).color(Rgb888::new(250, 250, 120)),
-    ];
+    let extras = common::ClippedExtras::new();
+    let (floor, wall) = (extras.floor(), extras.wall());
+    let d = common::clipped_draws(&knot, &cube, &floor, &wall);
     let size = Size::new(150, 110);
     let scene = Scene::new(common::camera(size.width, size.height), &d).light(common::light());
     let reference = render::<32, 32, 2100, 16384, 64>(&scene, size, CullMode::None);

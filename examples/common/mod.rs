@@ -69,3 +69,74 @@ pub fn cube() -> Mesh<'static> {
 pub fn camera(width: u32, height: u32) -> Camera {
     demo_scene::camera(width, height).expect("the demo camera is valid for a non-empty frame")
 }
+
+/// A floor through the near plane and a wall far beyond the guard band: with
+/// the demo's knot and cube, a scene whose triangles are clipped in every
+/// binning pass and re-scanned tile (used by the tests).
+pub struct ClippedExtras {
+    floor_positions: [Vec3Fx; 4],
+    floor_colors: [embedded_graphics::pixelcolor::Rgb888; 4],
+    wall_positions: [Vec3Fx; 4],
+}
+
+/// The two triangles of a quad.
+pub const QUAD: [[u16; 3]; 2] = [[0, 2, 1], [0, 3, 2]];
+
+impl ClippedExtras {
+    pub fn new() -> Self {
+        use embedded_graphics::pixelcolor::Rgb888;
+        let p = |x: f32, y: f32, z: f32| {
+            [
+                I16F16::from_num(x),
+                I16F16::from_num(y),
+                I16F16::from_num(z),
+            ]
+        };
+        Self {
+            floor_positions: [
+                p(-6.0, -0.9, -8.0),
+                p(6.0, -0.9, -8.0),
+                p(6.0, -0.9, 9.0),
+                p(-6.0, -0.9, 9.0),
+            ],
+            floor_colors: [
+                Rgb888::new(90, 90, 90),
+                Rgb888::new(200, 60, 60),
+                Rgb888::new(60, 200, 60),
+                Rgb888::new(60, 60, 200),
+            ],
+            wall_positions: [
+                p(-3000.0, -0.2, -6.0),
+                p(3000.0, -0.2, -6.0),
+                p(3000.0, 0.1, -6.5),
+                p(-3000.0, 0.1, -6.5),
+            ],
+        }
+    }
+
+    pub fn floor(&self) -> Mesh<'_> {
+        Mesh::new(&self.floor_positions, &QUAD)
+            .and_then(|m| m.with_colors(&self.floor_colors))
+            .expect("the floor is valid")
+    }
+
+    pub fn wall(&self) -> Mesh<'_> {
+        Mesh::new(&self.wall_positions, &QUAD).expect("the wall is valid")
+    }
+}
+
+/// The clipped scene's draws: knot (Gouraud), floor, cube (flat), wall.
+pub fn clipped_draws<'a>(
+    knot: &'a Mesh<'a>,
+    cube: &'a Mesh<'a>,
+    floor: &'a Mesh<'a>,
+    wall: &'a Mesh<'a>,
+) -> [Draw<'a>; 4] {
+    let [k, c] = draws(knot, cube, 2.1, Shading::Gouraud);
+    [
+        k,
+        Draw::new(floor),
+        c.shading(Shading::Flat),
+        Draw::new(wall).color(embedded_graphics::pixelcolor::Rgb888::new(250, 250, 120)),
+    ]
+}
