@@ -7,7 +7,12 @@
 //!
 //! ```text
 //! cargo run --release --example demo [-- --frames N --out DIR --flat]
+//!     [--hilbert | --raster scanline|hilbert|auto] [--hilbert-tiles]
 //! ```
+//!
+//! `--hilbert` (or `--raster hilbert`) renders with the Hilbert-order
+//! rasterizer, `--hilbert-tiles` visits the tiles along the Hilbert curve;
+//! both give the same images as the defaults.
 
 mod common;
 
@@ -28,6 +33,8 @@ struct Args {
     frames: usize,
     out: std::path::PathBuf,
     shading: Shading,
+    raster: Rasterizer,
+    tile_order: TileOrder,
 }
 
 fn parse_args() -> Result<Args, String> {
@@ -35,6 +42,8 @@ fn parse_args() -> Result<Args, String> {
         frames: 8,
         out: std::path::PathBuf::from("target/demo"),
         shading: Shading::Gouraud,
+        raster: Rasterizer::Scanline,
+        tile_order: TileOrder::RowMajor,
     };
     let mut it = std::env::args().skip(1);
     while let Some(a) = it.next() {
@@ -47,6 +56,16 @@ fn parse_args() -> Result<Args, String> {
             }
             "--out" => args.out = it.next().ok_or("--out needs a directory")?.into(),
             "--flat" => args.shading = Shading::Flat,
+            "--hilbert" => args.raster = Rasterizer::Hilbert,
+            "--raster" => {
+                args.raster = match it.next().as_deref() {
+                    Some("scanline") => Rasterizer::Scanline,
+                    Some("hilbert") => Rasterizer::Hilbert,
+                    Some("auto") => Rasterizer::Auto,
+                    _ => return Err("--raster needs scanline, hilbert or auto".into()),
+                }
+            }
+            "--hilbert-tiles" => args.tile_order = TileOrder::Hilbert,
             other => return Err(format!("unknown argument {other:?}")),
         }
     }
@@ -64,13 +83,19 @@ fn main() {
     let assets = DemoAssets::new();
     let knot = assets.knot();
     let cube = cube();
-    let mut renderer = DemoRenderer::new(Config::new(Size::new(WIDTH, HEIGHT), DEMO_CLEAR));
+    let mut renderer = DemoRenderer::new(
+        Config::new(Size::new(WIDTH, HEIGHT), DEMO_CLEAR)
+            .rasterizer(args.raster)
+            .tile_order(args.tile_order),
+    );
     let mut workspace = Box::new(DemoWorkspace::new());
     let mut display = SimulatorDisplay::<Rgb565>::new(Size::new(WIDTH, HEIGHT));
     println!(
-        "renderer RAM: tile buffer + settings {} B, workspace {} B",
+        "renderer RAM: tile buffer + settings {} B, workspace {} B; {:?} rasterizer, {:?} tiles",
         core::mem::size_of::<DemoRenderer>(),
-        core::mem::size_of::<DemoWorkspace>()
+        core::mem::size_of::<DemoWorkspace>(),
+        args.raster,
+        args.tile_order
     );
 
     #[cfg(feature = "window")]

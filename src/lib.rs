@@ -69,19 +69,22 @@ pub mod sink;
 pub mod tile;
 pub mod vertex;
 
+pub use raster::Rasterizer;
 pub use render::{Config, FrameStats, Profiler, RenderError, Renderer, Stage, Workspace};
 pub use shade::DepthTest;
 pub use sink::{NullSink, TileSink};
-pub use tile::{TileBuffer, TileView};
+pub use tile::{TileBuffer, TileOrder, TileView};
 
 /// The types most programs need.
 pub mod prelude {
     pub use crate::math::{Mat4, Vec3};
     pub use crate::mesh::{Mesh, MeshError};
+    pub use crate::raster::Rasterizer;
     pub use crate::render::{Config, FrameStats, RenderError, Renderer, Workspace};
     pub use crate::scene::{Camera, CullMode, Draw, Light, Scene, Shading};
     pub use crate::shade::DepthTest;
     pub use crate::sink::{NullSink, TileSink};
+    pub use crate::tile::TileOrder;
     pub use embedded_graphics::prelude::{Point, Size};
 }
 

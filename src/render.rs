@@ -54,15 +54,17 @@
 //! store, and gives bit-identical vertices every time.
 
 use crate::clip::{clip_triangle, MAX_CLIPPED_VERTICES};
-use crate::raster::scanline::{Span, Walker};
-use crate::raster::{first_centre_at_or_after, signed_area2, PixelRect, SubPoint};
+use crate::raster::scanline::Walker;
+use crate::raster::{
+    first_centre_at_or_after, hilbert, signed_area2, PixelRect, Rasterizer, Span, SubPoint,
+};
 use crate::scene::{CullMode, Scene, Shading};
 use crate::shade::{
     span_flat, span_gouraud, Corners, DAlways, DEqual, DGreater, DGreaterEqual, DLess, DLessEqual,
     DepthFn, DepthTest, SpanPos, TriangleSetup,
 };
 use crate::sink::{rectangle, TileSink};
-use crate::tile::{TileBuffer, TileGrid};
+use crate::tile::{TileBuffer, TileGrid, TileOrder};
 use crate::vertex::{
     DrawSetup, ScreenVertex, VertexError, Viewport, MAX_VIEWPORT, MUST_CLIP, REJECT_MASK,
 };
@@ -165,11 +167,16 @@ pub struct Config<C> {
     pub depth_test: DepthTest,
     /// Whether passing fragments write depth.
     pub depth_write: bool,
+    /// Which rasterizer finds covered pixels (the image is the same).
+    pub rasterizer: Rasterizer,
+    /// The order tiles are rendered and streamed in (the image is the
+    /// same).
+    pub tile_order: TileOrder,
 }
 
 impl<C> Config<C> {
     /// Defaults: clear depth 65535, back-face culling, `LessEqual` with
-    /// depth writes.
+    /// depth writes, the scanline rasterizer, row-major tiles.
     pub const fn new(size: Size, clear_color: C) -> Self {
         Self {
             size,
@@ -178,7 +185,31 @@ impl<C> Config<C> {
             cull: CullMode::Back,
             depth_test: DepthTest::LessEqual,
             depth_write: true,
+            rasterizer: Rasterizer::Scanline,
+            tile_order: TileOrder::RowMajor,
         }
+    }
+
+    /// Selects the rasterizer. A `const fn`, so a configuration fixed at
+    /// compile time can be a `const`:
+    ///
+    /// ```
+    /// use microraster::prelude::*;
+    /// use embedded_graphics::pixelcolor::{Rgb565, RgbColor};
+    /// const CONFIG: Config<Rgb565> = Config::new(Size::new(128, 96), Rgb565::BLACK)
+    ///     .rasterizer(Rasterizer::Hilbert)
+    ///     .tile_order(TileOrder::Hilbert);
+    /// assert_eq!(CONFIG.rasterizer, Rasterizer::Hilbert);
+    /// ```
+    pub const fn rasterizer(mut self, r: Rasterizer) -> Self {
+        self.rasterizer = r;
+        self
+    }
+
+    /// Selects the order tiles are rendered in.
+    pub const fn tile_order(mut self, order: TileOrder) -> Self {
+        self.tile_order = order;
+        self
     }
 
     /// Sets the clear colour.
@@ -794,6 +825,52 @@ impl Frame<'_, '_> {
     }
 }
 
+/// One binning pass over every triangle: classifies it and appends a
+/// visible one to the bin of each tile of the pass its bounds touch. The
+/// pass holds the tiles visited `t0..`: in row-major order, or with
+/// `HILBERT` along the Hilbert curve over the tile grid.
+#[inline(always)]
+fn bin_pass<const TW: usize, const TH: usize, const HILBERT: bool>(
+    frame: &Frame<'_, '_>,
+    grid: &TileGrid,
+    t0: usize,
+    bins: &mut Bins<'_>,
+    cache: &mut SetupCache,
+    tally: &mut Tally,
+) {
+    let cols = grid.cols as usize;
+    let mut t = 0usize;
+    let mut vbase = 0usize;
+    for (d, draw) in frame.scene.draws.iter().enumerate() {
+        let verts = &frame.vertices[vbase..vbase + draw.mesh.vertex_count()];
+        vbase += verts.len();
+        for &idx in draw.mesh.triangles() {
+            if let Some(r) = frame.classify(d, verts, idx, cache, tally) {
+                // A visible rectangle lies inside the frame, so its
+                // coordinates are not negative.
+                let (c0, c1) = (r.x0 as usize / TW, (r.x1 as usize - 1) / TW + 1);
+                let (r0, r1) = (r.y0 as usize / TH, (r.y1 as usize - 1) / TH + 1);
+                for row in r0..r1 {
+                    if HILBERT {
+                        for col in c0..c1 {
+                            let p = grid.position(col as u32, row as u32) as usize;
+                            bins.push(p.wrapping_sub(t0), t as u16);
+                        }
+                    } else {
+                        // Tiles before the pass wrap around to indices the
+                        // pass does not hold.
+                        let first = (row * cols).wrapping_sub(t0);
+                        for col in c0..c1 {
+                            bins.push(first.wrapping_add(col), t as u16);
+                        }
+                    }
+                }
+            }
+            t += 1;
+        }
+    }
+}
+
 /// Walks the draws alongside increasing global triangle indices, with the
 /// slices of the current draw at hand.
 struct DrawCursor<'f> {
@@ -1014,7 +1091,9 @@ where
             heads,
             tails,
         } = ws;
-        let grid = TileGrid::new(size.width, size.height, TW as u32, TH as u32);
+        let grid = TileGrid::new(size.width, size.height, TW as u32, TH as u32)
+            .ordered(self.config.tile_order);
+        let hilbert_tiles = self.config.tile_order == TileOrder::Hilbert;
         let frame = Frame {
             scene,
             vertices: &vertices[..needed],
@@ -1029,7 +1108,6 @@ where
         };
         let mut cache: SetupCache = None;
         let n_tiles = grid.count() as usize;
-        let cols = grid.cols as usize;
         let mut t0 = 0usize;
         while t0 < n_tiles {
             let t_end = (t0 + T).min(n_tiles);
@@ -1045,28 +1123,12 @@ where
             let first_pass = stats.bin_passes == 0;
             stats.bin_passes += 1;
             let mut tally = Tally::default();
-            let mut t = 0usize;
-            let mut vbase = 0usize;
-            for (d, draw) in scene.draws.iter().enumerate() {
-                let verts = &frame.vertices[vbase..vbase + draw.mesh.vertex_count()];
-                vbase += verts.len();
-                for &idx in draw.mesh.triangles() {
-                    if let Some(r) = frame.classify(d, verts, idx, &mut cache, &mut tally) {
-                        // A visible rectangle lies inside the frame, so its
-                        // coordinates are not negative.
-                        let (c0, c1) = (r.x0 as usize / TW, (r.x1 as usize - 1) / TW + 1);
-                        let (r0, r1) = (r.y0 as usize / TH, (r.y1 as usize - 1) / TH + 1);
-                        for row in r0..r1 {
-                            // Tiles before the pass wrap around to indices
-                            // the pass does not hold.
-                            let first = (row * cols).wrapping_sub(t0);
-                            for col in c0..c1 {
-                                bins.push(first.wrapping_add(col), t as u16);
-                            }
-                        }
-                    }
-                    t += 1;
-                }
+            // Monomorphized per tile order, so the row-major loop keeps its
+            // shape.
+            if hilbert_tiles {
+                bin_pass::<TW, TH, true>(&frame, &grid, t0, &mut bins, &mut cache, &mut tally);
+            } else {
+                bin_pass::<TW, TH, false>(&frame, &grid, t0, &mut bins, &mut cache, &mut tally);
             }
             if first_pass {
                 stats.rejected = tally.fates[Fate::Rejected as usize];
@@ -1079,7 +1141,8 @@ where
                 // Tile t0 alone overflows the pool: scan every triangle
                 // against it.
                 stats.rescanned_tiles += 1;
-                let rect = grid.rect(t0 as u32);
+                let tile = grid.tile_at(t0 as u32) as usize;
+                let rect = grid.rect(tile as u32);
                 let list = TileList::Scan {
                     cur: DrawCursor::new(&frame),
                     frame: &frame,
@@ -1090,7 +1153,7 @@ where
                 self.draw_tile(
                     &frame,
                     &grid,
-                    t0,
+                    tile,
                     &mut cache,
                     (sink, &mut *profiler),
                     &mut stats,
@@ -1103,7 +1166,7 @@ where
                 self.draw_tile(
                     &frame,
                     &grid,
-                    t0 + k,
+                    grid.tile_at((t0 + k) as u32) as usize,
                     &mut cache,
                     (sink, &mut *profiler),
                     &mut stats,
@@ -1154,7 +1217,10 @@ where
             DepthTest::Greater => Some(go!(DGreater)),
         };
         let shaded = match shaders {
-            Some(shaders) => raster_tile(tile, &rect, frame, cache, list, shaders),
+            Some(mut shaders) => {
+                shaders.raster = cfg.rasterizer;
+                raster_tile(tile, &rect, frame, cache, list, shaders)
+            }
             None => 0,
         };
         stats.pixels_shaded += shaded;
@@ -1272,7 +1338,15 @@ fn fill<C, const TW: usize, const TH: usize>(
 where
     C: PixelColor + From<Rgb888>,
 {
-    let count = find_spans(&sv, rect, found);
+    let v = sv.map(|v| SubPoint::new(v.x, v.y));
+    let count = match shaders.raster {
+        Rasterizer::Scanline => find_spans(&v, rect, found),
+        Rasterizer::Hilbert => hilbert::find_spans(&v, *rect, found),
+        Rasterizer::Auto => match whole_tile(&v, rect, found) {
+            Some(n) => n,
+            None => find_spans(&v, rect, found),
+        },
+    };
     if count == 0 {
         return 0;
     }
@@ -1291,8 +1365,10 @@ where
 type ShadeFn<C, const TW: usize, const TH: usize> =
     fn(&mut TileBuffer<C, TW, TH>, &PixelRect, [&ScreenVertex; 3], [u8; 3], &[Span]) -> u32;
 
-/// The shading functions of a frame, Gouraud and flat.
+/// How a frame draws a triangle: its rasterizer and its shading
+/// functions, Gouraud and flat.
 struct Shaders<C, const TW: usize, const TH: usize> {
+    raster: Rasterizer,
     gouraud: ShadeFn<C, TW, TH>,
     flat: ShadeFn<C, TW, TH>,
 }
@@ -1303,24 +1379,47 @@ where
 {
     fn new<D: DepthFn, const WRITE: bool>() -> Self {
         Self {
+            raster: Rasterizer::Scanline,
             gouraud: shade::<C, D, WRITE, true, TW, TH>,
             flat: shade::<C, D, WRITE, false, TW, TH>,
         }
     }
 }
 
-/// The first phase of [`fill`]: records the spans of triangle `sv` in the
-/// tile `rect` in `found`, and returns how many. Out of line, so that the
-/// edge walk has the registers to itself.
+/// The first phase of [`fill`] with the scanline rasterizer: records the
+/// spans of triangle `v` in the tile `rect` in `found`, and returns how
+/// many (the Hilbert rasterizer finds the same spans). Out of line, so that
+/// the edge walk has the registers to itself.
 #[inline(never)]
-fn find_spans(sv: &[&ScreenVertex; 3], rect: &PixelRect, found: &mut [Span]) -> usize {
-    let v = sv.map(|v| SubPoint::new(v.x, v.y));
+fn find_spans(v: &[SubPoint; 3], rect: &PixelRect, found: &mut [Span]) -> usize {
     // The walk stays inside `rect`, at most as many rows as `found` holds
     // (TH), so one call records every span.
-    match Walker::new(&v, *rect) {
+    match Walker::new(v, *rect) {
         Some(mut walker) => walker.walk(found),
         None => 0,
     }
+}
+
+/// For [`Rasterizer::Auto`]: when triangle `v`'s bounds hold the whole
+/// tile `rect` and the Hilbert rasterizer's block test finds every pixel
+/// centre of the tile covered, records one full span per row and returns
+/// how many; otherwise `None` (the scanline walk then finds the spans).
+#[inline(never)]
+fn whole_tile(v: &[SubPoint; 3], rect: &PixelRect, found: &mut [Span]) -> Option<usize> {
+    let b = PixelRect::covering(v);
+    let holds = b.x0 <= rect.x0 && b.y0 <= rect.y0 && b.x1 >= rect.x1 && b.y1 >= rect.y1;
+    if !holds || !hilbert::covers_rect(v, rect) {
+        return None;
+    }
+    let rows = (rect.y1 - rect.y0) as usize;
+    for (r, s) in found[..rows].iter_mut().enumerate() {
+        *s = Span {
+            j: rect.y0 + r as i32,
+            x0: rect.x0,
+            x1: rect.x1,
+        };
+    }
+    Some(rows)
 }
 
 /// The second phase of [`fill`]: sets up the attribute planes of the

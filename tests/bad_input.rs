@@ -100,16 +100,43 @@ fn perspective() -> Camera {
 
 const SIZE: Size = Size::new(32, 24);
 
-fn renderer() -> Renderer<Rgb565, 16, 16> {
-    Renderer::new(Config::new(SIZE, Rgb565::BLACK))
+/// Every test here runs with each rasterizer and tile order, which must
+/// agree exactly: the first is the reference.
+const COMBOS: [(Rasterizer, TileOrder); 3] = [
+    (Rasterizer::Scanline, TileOrder::RowMajor),
+    (Rasterizer::Hilbert, TileOrder::RowMajor),
+    (Rasterizer::Auto, TileOrder::Hilbert),
+];
+
+fn renderer((raster, order): (Rasterizer, TileOrder)) -> Renderer<Rgb565, 16, 16> {
+    Renderer::new(
+        Config::new(SIZE, Rgb565::BLACK)
+            .rasterizer(raster)
+            .tile_order(order),
+    )
 }
 
-/// Renders into a fresh [`Recorder`] with a roomy workspace.
+/// Renders into a fresh [`Recorder`] with a roomy workspace, with every
+/// rasterizer and tile order (which must agree).
 fn render_to_recorder(scene: &Scene<'_>) -> (Result<FrameStats, RenderError<Refused>>, Recorder) {
-    let mut ws: Box<Workspace<64, 256, 16>> = Box::new(Workspace::new());
-    let mut rec = Recorder::default();
-    let res = renderer().render(&mut ws, scene, &mut rec);
-    (res, rec)
+    let mut first: Option<(Result<FrameStats, RenderError<Refused>>, Recorder)> = None;
+    for combo in COMBOS {
+        let mut ws: Box<Workspace<64, 256, 16>> = Box::new(Workspace::new());
+        let mut rec = Recorder::default();
+        let res = renderer(combo).render(&mut ws, scene, &mut rec);
+        match &first {
+            None => first = Some((res, rec)),
+            Some((r0, rec0)) => {
+                assert_eq!(&res, r0, "{combo:?}");
+                assert_eq!(
+                    (rec.calls, rec.pixels),
+                    (rec0.calls, rec0.pixels),
+                    "{combo:?}"
+                );
+            }
+        }
+    }
+    first.expect("at least one combination")
 }
 
 /// Asserts a pre-flight error: exactly `want`, and nothing sent.
@@ -120,13 +147,21 @@ fn assert_preflight(scene: &Scene<'_>, want: RenderError<Refused>) {
     assert_eq!(rec.calls, 0, "the sink received tiles before {want:?}");
 }
 
-/// Renders to an image.
+/// Renders to an image, with every rasterizer and tile order (which must
+/// give the same image and statistics).
 fn image(scene: &Scene<'_>) -> (Vec<Rgb565>, FrameStats) {
-    let mut ws: Box<Workspace<64, 256, 16>> = Box::new(Workspace::new());
-    let mut cap = Capture::new(SIZE, Rgb565::new(31, 0, 31));
-    let stats = renderer().render(&mut ws, scene, &mut cap).unwrap();
-    assert!(cap.writes.iter().all(|&n| n == 1));
-    (cap.pixels, stats)
+    let mut first: Option<(Vec<Rgb565>, FrameStats)> = None;
+    for combo in COMBOS {
+        let mut ws: Box<Workspace<64, 256, 16>> = Box::new(Workspace::new());
+        let mut cap = Capture::new(SIZE, Rgb565::new(31, 0, 31));
+        let stats = renderer(combo).render(&mut ws, scene, &mut cap).unwrap();
+        assert!(cap.writes.iter().all(|&n| n == 1));
+        match &first {
+            None => first = Some((cap.pixels, stats)),
+            Some(f) => assert_same(&format!("{combo:?}"), &(cap.pixels, stats), f),
+        }
+    }
+    first.expect("at least one combination")
 }
 
 fn with_element(mut m: Mat4, c: usize, r: usize, v: f32) -> Mat4 {
@@ -335,15 +370,21 @@ fn vertices_at_the_16_16_limits_render() {
     let positions = [[lo, lo, fx(0.0)], [hi, lo, fx(0.0)], [fx(0.0), hi, fx(0.0)]];
     let mesh = Mesh::new(&positions, &TRI_IDX).unwrap();
     let draws = [Draw::new(&mesh).color(Rgb888::WHITE)];
-    let mut r: Renderer<BinaryColor, 16, 16> = Renderer::new(Config::new(SIZE, BinaryColor::Off));
-    let mut ws: Workspace<3, 16, 8> = Workspace::new();
-    let mut cap = Capture::new(SIZE, BinaryColor::Off);
-    let stats = r
-        .render(&mut ws, &Scene::new(ortho(), &draws), &mut cap)
-        .unwrap();
-    assert_eq!(stats.clipped, 1);
-    assert_eq!(stats.pixels_shaded, SIZE.width * SIZE.height);
-    assert!(cap.pixels.iter().all(|&c| c == BinaryColor::On));
+    for (raster, order) in COMBOS {
+        let mut r: Renderer<BinaryColor, 16, 16> = Renderer::new(
+            Config::new(SIZE, BinaryColor::Off)
+                .rasterizer(raster)
+                .tile_order(order),
+        );
+        let mut ws: Workspace<3, 16, 8> = Workspace::new();
+        let mut cap = Capture::new(SIZE, BinaryColor::Off);
+        let stats = r
+            .render(&mut ws, &Scene::new(ortho(), &draws), &mut cap)
+            .unwrap();
+        assert_eq!(stats.clipped, 1);
+        assert_eq!(stats.pixels_shaded, SIZE.width * SIZE.height);
+        assert!(cap.pixels.iter().all(|&c| c == BinaryColor::On));
+    }
 }
 
 #[test]
@@ -386,9 +427,16 @@ fn degenerate_triangles_draw_nothing() {
     let mesh = Mesh::new(&positions, &triangles).unwrap();
     let draws = [Draw::new(&mesh).color(Rgb888::WHITE)];
     for cam in [ortho(), perspective()] {
-        for cull in [CullMode::None, CullMode::Back, CullMode::Front] {
-            let mut r: Renderer<Gray8, 16, 16> =
-                Renderer::new(Config::new(SIZE, Gray8::BLACK).cull(cull));
+        for (cull, (raster, order)) in [CullMode::None, CullMode::Back, CullMode::Front]
+            .into_iter()
+            .flat_map(|c| COMBOS.map(|k| (c, k)))
+        {
+            let mut r: Renderer<Gray8, 16, 16> = Renderer::new(
+                Config::new(SIZE, Gray8::BLACK)
+                    .cull(cull)
+                    .rasterizer(raster)
+                    .tile_order(order),
+            );
             let mut ws: Workspace<8, 64, 8> = Workspace::new();
             let mut cap = Capture::new(SIZE, Gray8::new(9));
             let stats = r
@@ -461,8 +509,15 @@ fn largest_viewports_render() {
     let draws = [Draw::new(&mesh)];
     let scene = Scene::new(ortho(), &draws);
     let mut ws: Box<Workspace<3, 64, 64>> = Box::new(Workspace::new());
-    for size in [Size::new(4096, 3), Size::new(2, 4096), Size::new(1, 1)] {
-        let mut r: Renderer<Rgb565, 64, 64> = Renderer::new(Config::new(size, Rgb565::BLACK));
+    for (size, (raster, order)) in [Size::new(4096, 3), Size::new(2, 4096), Size::new(1, 1)]
+        .into_iter()
+        .flat_map(|s| COMBOS.map(|k| (s, k)))
+    {
+        let mut r: Renderer<Rgb565, 64, 64> = Renderer::new(
+            Config::new(size, Rgb565::BLACK)
+                .rasterizer(raster)
+                .tile_order(order),
+        );
         let mut rec = Recorder::default();
         let stats = r.render(&mut ws, &scene, &mut rec).unwrap();
         assert_eq!(rec.pixels, size.width as u64 * size.height as u64);
@@ -568,7 +623,7 @@ fn too_many_vertices_for_the_workspace() {
     let a = triangle();
     let draws = [Draw::new(&a), Draw::new(&a)];
     let scene = Scene::new(ortho(), &draws);
-    let mut r = renderer();
+    let mut r = renderer(COMBOS[0]);
     let mut rec = Recorder::default();
     let mut ws: Workspace<5, 64, 8> = Workspace::new();
     assert_eq!(
@@ -632,10 +687,10 @@ fn sink_errors_are_returned_and_stop_the_frame() {
             };
             let res = if pool {
                 let mut ws: Workspace<3, 1, 1> = Workspace::new();
-                renderer().render(&mut ws, &scene, &mut rec)
+                renderer(COMBOS[0]).render(&mut ws, &scene, &mut rec)
             } else {
                 let mut ws: Workspace<3, 64, 8> = Workspace::new();
-                renderer().render(&mut ws, &scene, &mut rec)
+                renderer(COMBOS[0]).render(&mut ws, &scene, &mut rec)
             };
             assert_eq!(res, Err(RenderError::Sink(Refused(k))), "{name}");
             // The tiles before the failing one were delivered; none after.
@@ -651,16 +706,31 @@ fn sink_errors_are_returned_and_stop_the_frame() {
 // Capacity fallbacks.
 // ---------------------------------------------------------------------------
 
+/// Renders with every rasterizer and tile order (which must give the same
+/// image) and returns the first result.
 fn render_rgb565<const V: usize, const B: usize, const T: usize>(
     scene: &Scene<'_>,
     size: Size,
 ) -> (Vec<Rgb565>, FrameStats) {
-    let mut r: Renderer<Rgb565, 32, 32> = Renderer::new(Config::new(size, common::DEMO_CLEAR));
-    let mut ws: Box<Workspace<V, B, T>> = Box::new(Workspace::new());
-    let mut cap = Capture::new(size, Rgb565::new(31, 0, 31));
-    let stats = r.render(&mut ws, scene, &mut cap).unwrap();
-    assert!(cap.writes.iter().all(|&n| n == 1));
-    (cap.pixels, stats)
+    let mut first: Option<(Vec<Rgb565>, FrameStats)> = None;
+    for (raster, order) in COMBOS {
+        let mut r: Renderer<Rgb565, 32, 32> = Renderer::new(
+            Config::new(size, common::DEMO_CLEAR)
+                .rasterizer(raster)
+                .tile_order(order),
+        );
+        let mut ws: Box<Workspace<V, B, T>> = Box::new(Workspace::new());
+        let mut cap = Capture::new(size, Rgb565::new(31, 0, 31));
+        let stats = r.render(&mut ws, scene, &mut cap).unwrap();
+        assert!(cap.writes.iter().all(|&n| n == 1));
+        match &first {
+            None => first = Some((cap.pixels, stats)),
+            // The passes may differ: which tiles share a pass depends on
+            // the order they are visited in.
+            Some(f) => assert_same(&format!("{raster:?} {order:?}"), &(cap.pixels, stats), f),
+        }
+    }
+    first.expect("at least one combination")
 }
 
 fn assert_same(
@@ -721,8 +791,20 @@ fn tiny_bin_pool_renders_clipped_triangles_identically() {
     let d = common::clipped_draws(&knot, &cube, &floor, &wall);
     let size = Size::new(150, 110);
     let scene = Scene::new(common::camera(size.width, size.height), &d).light(common::light());
-    let mut r: Renderer<Rgb565, 32, 32> =
-        Renderer::new(Config::new(size, common::DEMO_CLEAR).cull(CullMode::None));
+    let mut r: Renderer<Rgb565, 32, 32> = Renderer::new(
+        Config::new(size, common::DEMO_CLEAR)
+            .cull(CullMode::None)
+            .rasterizer(Rasterizer::Hilbert)
+            .tile_order(TileOrder::Hilbert),
+    );
+    let hilbert_tiny = {
+        let mut cap = Capture::new(size, Rgb565::new(31, 0, 31));
+        let mut ws: Box<Workspace<2100, 8, 2>> = Box::new(Workspace::new());
+        let stats = r.render(&mut ws, &scene, &mut cap).unwrap();
+        (cap.pixels, stats)
+    };
+    r.config_mut().rasterizer = Rasterizer::Scanline;
+    r.config_mut().tile_order = TileOrder::RowMajor;
     let run = |r: &mut Renderer<Rgb565, 32, 32>, big: bool| {
         let mut cap = Capture::new(size, Rgb565::new(31, 0, 31));
         let stats = if big {
@@ -744,6 +826,11 @@ fn tiny_bin_pool_renders_clipped_triangles_identically() {
         tiny.1
     );
     assert_same("clipped scene, Workspace<2100, 8, 2>", &tiny, &big);
+    assert_same(
+        "clipped scene, Hilbert rasterizer and tiles, Workspace<2100, 8, 2>",
+        &hilbert_tiny,
+        &big,
+    );
 }
 
 /// One tile holding 65,536 triangles with a pool of 65,535 entries: the

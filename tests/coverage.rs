@@ -1,7 +1,8 @@
-//! Coverage: the scanline rasterizer against an independent, exact
-//! edge-function reference with the top-left rule, and watertightness of
-//! meshes that tile a region exactly, both through
-//! `microraster::raster::scanline::spans` and through the whole renderer.
+//! Coverage: both rasterizers against an independent, exact edge-function
+//! reference with the top-left rule, and watertightness of meshes that tile
+//! a region exactly, both through `microraster::raster::scanline::spans` /
+//! `microraster::raster::hilbert::spans` (which must give the very same
+//! spans) and through the whole renderer with every rasterizer.
 //!
 //! Conventions under test (see `src/raster/mod.rs`): pixel `(i, j)` has its
 //! centre at sub-pixel `(16 i + 8, 16 j + 8)`; a centre is covered when it is
@@ -14,7 +15,7 @@ use embedded_graphics::pixelcolor::{Gray8, GrayColor, Rgb888, RgbColor};
 use fixed::types::I16F16;
 use microraster::mesh::Vec3Fx;
 use microraster::prelude::*;
-use microraster::raster::{scanline::spans, PixelRect, SubPoint};
+use microraster::raster::{hilbert, scanline, PixelRect, SubPoint};
 use proptest::prelude::*;
 use proptest::test_runner::TestCaseError;
 use support::Capture;
@@ -78,34 +79,38 @@ fn centre(i: i32) -> i64 {
     i as i64 * SUB + HALF
 }
 
-/// Runs `spans` for `tris` within `clip` and counts hits per pixel of
-/// `clip`. Any span outside `clip`, empty or inverted is an error.
+/// Runs the scanline and the Hilbert rasterizer's `spans` for `tris`
+/// within `clip` and counts hits per pixel of `clip`. The two must give the
+/// same spans in the same order; any span outside `clip`, empty or inverted
+/// is an error.
 fn count_hits(tris: &[[SubPoint; 3]], clip: PixelRect) -> Result<Vec<u32>, TestCaseError> {
     let w = (clip.x1 - clip.x0).max(0) as usize;
     let h = (clip.y1 - clip.y0).max(0) as usize;
     let mut hits = vec![0u32; w * h];
-    let mut bad: Option<String> = None;
     for tri in tris {
-        spans(tri, clip, |row, x0, x1| {
-            if bad.is_some() {
-                return;
-            }
+        let (mut by_scanline, mut by_hilbert) = (Vec::new(), Vec::new());
+        scanline::spans(tri, clip, |row, x0, x1| by_scanline.push((row, x0, x1)));
+        hilbert::spans(tri, clip, |row, x0, x1| by_hilbert.push((row, x0, x1)));
+        prop_assert_eq!(
+            &by_scanline,
+            &by_hilbert,
+            "scanline vs. Hilbert spans of {:?} in {:?}",
+            tri,
+            clip
+        );
+        for (row, x0, x1) in by_scanline {
             if !(x0 < x1 && clip.x0 <= x0 && x1 <= clip.x1 && clip.y0 <= row && row < clip.y1) {
-                bad = Some(format!(
+                return Err(TestCaseError::fail(format!(
                     "span row {row} x {x0}..{x1} of {tri:?} is empty or outside {clip:?}"
-                ));
-                return;
+                )));
             }
             let r = (row - clip.y0) as usize * w;
             for x in x0..x1 {
                 hits[r + (x - clip.x0) as usize] += 1;
             }
-        });
+        }
     }
-    match bad {
-        Some(b) => Err(TestCaseError::fail(b)),
-        None => Ok(hits),
-    }
+    Ok(hits)
 }
 
 // ---------------------------------------------------------------------------
@@ -613,6 +618,24 @@ fn render_grid<const TW: usize, const TH: usize>(
     h: u32,
     g: &Grid,
 ) -> Result<(), TestCaseError> {
+    for (raster, order) in [
+        (Rasterizer::Scanline, TileOrder::RowMajor),
+        (Rasterizer::Hilbert, TileOrder::RowMajor),
+        (Rasterizer::Auto, TileOrder::Hilbert),
+    ] {
+        render_grid_with::<TW, TH>(w, h, g, raster, order)?;
+    }
+    Ok(())
+}
+
+/// [`render_grid`] with one rasterizer and tile order.
+fn render_grid_with<const TW: usize, const TH: usize>(
+    w: u32,
+    h: u32,
+    g: &Grid,
+    raster: Rasterizer,
+    order: TileOrder,
+) -> Result<(), TestCaseError> {
     let (verts, tris) = g.mesh();
     // The viewport maps NDC x to half_w + x * half_w sub-pixels (and y
     // flipped), rounding to nearest. A clip x rounded to 1/65536 is off by
@@ -638,7 +661,9 @@ fn render_grid<const TW: usize, const TH: usize>(
     let mut renderer: Renderer<Gray8, TW, TH> = Renderer::new(
         Config::new(size, Gray8::BLACK)
             .cull(CullMode::None)
-            .depth_test(DepthTest::Always),
+            .depth_test(DepthTest::Always)
+            .rasterizer(raster)
+            .tile_order(order),
     );
     let mut ws: Box<Workspace<128, 4096, 128>> = Box::new(Workspace::new());
     let mut cap = Capture::new(size, Gray8::new(77));
@@ -649,7 +674,7 @@ fn render_grid<const TW: usize, const TH: usize>(
     prop_assert!(lit != Gray8::BLACK);
     prop_assert!(
         cap.writes.iter().all(|&n| n == 1),
-        "{TW}x{TH}: a pixel was not sent exactly once"
+        "{TW}x{TH} {raster:?} {order:?}: a pixel was not sent exactly once"
     );
     let r = g.region();
     let mut expected = 0u32;
@@ -661,7 +686,9 @@ fn render_grid<const TW: usize, const TH: usize>(
             prop_assert_eq!(
                 got == lit,
                 want,
-                "{}x{} tiles, {}x{} frame: pixel ({}, {}) is {:?}; region {:?}",
+                "{:?} {:?}, {}x{} tiles, {}x{} frame: pixel ({}, {}) is {:?}; region {:?}",
+                raster,
+                order,
                 TW,
                 TH,
                 w,

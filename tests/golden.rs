@@ -17,11 +17,36 @@ use support::{check_golden, Capture};
 const W: u32 = 160;
 const H: u32 = 120;
 
+/// Renders with the scanline rasterizer in row-major tile order, checks
+/// that every other rasterizer and tile order gives the same pixels, and
+/// returns the first image.
 fn render<C>(scene: &Scene<'_>, size: Size, clear: C, cull: CullMode) -> Capture<C>
 where
     C: embedded_graphics::pixelcolor::PixelColor + From<Rgb888>,
 {
-    let mut r: Renderer<C, 32, 32> = Renderer::new(Config::new(size, clear).cull(cull));
+    let config = Config::new(size, clear).cull(cull);
+    let reference = render_with(scene, config);
+    for (raster, order) in [
+        (Rasterizer::Hilbert, TileOrder::RowMajor),
+        (Rasterizer::Auto, TileOrder::RowMajor),
+        (Rasterizer::Scanline, TileOrder::Hilbert),
+        (Rasterizer::Hilbert, TileOrder::Hilbert),
+    ] {
+        let other = render_with(scene, config.rasterizer(raster).tile_order(order));
+        assert!(
+            other.pixels == reference.pixels,
+            "{raster:?} with {order:?} tiles differs from the scanline rasterizer"
+        );
+    }
+    reference
+}
+
+fn render_with<C>(scene: &Scene<'_>, config: Config<C>) -> Capture<C>
+where
+    C: embedded_graphics::pixelcolor::PixelColor + From<Rgb888>,
+{
+    let (size, clear) = (config.size, config.clear_color);
+    let mut r: Renderer<C, 32, 32> = Renderer::new(config);
     let mut ws: Box<Workspace<2048, 4096, 80>> = Box::new(Workspace::new());
     let mut cap = Capture::new(size, clear);
     let stats = r.render(&mut ws, scene, &mut cap).expect("scene renders");

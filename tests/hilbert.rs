@@ -27,9 +27,10 @@ fn hilbert_set(
 ) -> BTreeSet<(i32, i32)> {
     let mut s = BTreeSet::new();
     if let Some(e) = Edges::new(v) {
-        walk(&e, x0, y0, order, clip, |x, y, side| {
-            for j in y..y + side {
-                for i in x..x + side {
+        walk(&e, x0, y0, order, clip, |x, y, w, h| {
+            assert!(w > 0 && (h == w || h == 1), "block {w}x{h}");
+            for j in y..y + h {
+                for i in x..x + w {
                     assert!(s.insert((i, j)), "hilbert reported ({i}, {j}) twice");
                 }
             }
@@ -120,9 +121,9 @@ fn interior_blocks_are_filled_whole() {
     let e = Edges::new(&v).unwrap();
     let mut blocks = 0;
     let mut pixels = 0;
-    let classified = walk(&e, 0, 0, 6, PixelRect::new(0, 0, 64, 64), |_, _, side| {
+    let classified = walk(&e, 0, 0, 6, PixelRect::new(0, 0, 64, 64), |_, _, w, h| {
         blocks += 1;
-        pixels += side * side;
+        pixels += w * h;
     });
     assert_eq!(
         pixels as usize,

@@ -13,7 +13,11 @@
 //! * a block inside all three edges at all its pixel centres is covered
 //!   whole, with no per-pixel edge test;
 //! * any other block is split into its four quadrants, visited in Hilbert
-//!   order; a single pixel is decided exactly.
+//!   order, down to a leaf (8 x 8 pixels, see below) whose pixels are then
+//!   decided exactly, one by one.
+//!
+//! The walk, [`walk`], reports covered rectangles: whole blocks and the
+//! covered run of each row of a leaf.
 //!
 //! # The state machine
 //!
@@ -61,15 +65,44 @@
 //! The edge equations are exact integer functions of the 1/16-pixel screen
 //! positions, with the top-left rule applied as a bias of one on edges that
 //! are neither top nor left, so the covered set is exactly the one of
-//! [`super::scanline`] and of the reference in the tests. The paper sets its
-//! equations up from homogeneous vertices `(x·w, y·w, w)`; for a triangle
-//! that has been clipped and projected, those equations are the screen-space
-//! ones scaled by `w1·w2 > 0`, which changes neither sign nor zero, so
-//! working on the snapped screen positions loses nothing and keeps the two
-//! rasterizers bit-identical. The values need more than 16.16 (up to 2^39
-//! for screen positions within the guard band), hence `i64`.
+//! [`super::scanline`] and of the reference in the tests.
+//!
+//! ## Why screen space and `i64`, not normalised 16.16
+//!
+//! The paper sets its equations up from homogeneous vertices
+//! `(x·w, y·w, w)`: the rows of the adjugate of the 3x3 vertex matrix, whose
+//! determinant's sign gives the facing. For a triangle that the vertex stage
+//! has already clipped (near and far, and to the guard band) and projected,
+//! those rows are the screen-space equations below scaled by `w_j·w_k > 0`,
+//! which changes neither a sign nor a zero. [`Edges::new`] computes exactly
+//! those rows for the matrix `[x_k, y_k, 1]` of the snapped screen
+//! positions (`a = y_j - y_k`, `b = x_k - x_j`, `c = x_j·y_k - x_k·y_j`,
+//! oriented by the determinant `2·area`). Normalising each edge to 16.16 by
+//! its largest exponent, as the paper does for hardware, would round the
+//! coefficients, and a centre within that rounding of an edge could then
+//! fall on the other side of it than in the scanline rasterizer: the images
+//! would differ. Kept exact, the values need up to 2^39 for screen
+//! positions within the guard band, hence `i64`, and every decision is the
+//! exact one. The attribute equations are not part of this module: both
+//! rasterizers hand their spans to the same shading code ([`crate::shade`]).
+//!
+//! # In the renderer
+//!
+//! The renderer shades spans, one per covered row of a triangle in a tile.
+//! Its Hilbert span finder (also behind [`spans`]) walks the smallest
+//! power-of-two square at the top-left of the triangle's bounds in the
+//! tile, and each covered block widens the span of each of its rows; since
+//! a triangle's covered centres in a row are contiguous, the union is
+//! exactly the scanline rasterizer's span.
+//! The hierarchy stops at leaves of `8 x 8` pixels ([`LEAF_SHIFT`]): a leaf
+//! that straddles an edge is finished by testing its pixels row by row,
+//! which measured cheaper than three more levels of classification.
+//!
+//! The same tables order the tiles of a frame: [`rank_in_grid`] and
+//! [`cell_at_rank`] give the Hilbert visiting order of a grid of any size
+//! (see [`crate::tile::TileOrder`]).
 
-use super::{PixelRect, SubPoint, HALF_PIXEL, SUBPIXEL};
+use super::{PixelRect, Span, SubPoint, HALF_PIXEL, SUBPIXEL};
 
 /// `QUAD[T][k]`: the quadrant visited `k`-th in state `T`, as `qx | qy << 1`,
 /// 2 bits per entry, entry `T * 4 + k`.
@@ -177,15 +210,56 @@ impl Edges {
     }
 }
 
-/// Per-level constants of the walk: for blocks of side `s`, the change of
-/// each edge value over one block step in x and y, and over the block's
-/// extent to its largest and smallest corner.
-#[derive(Clone, Copy, Debug, Default)]
-struct Level {
-    step_x: [i64; 3],
-    step_y: [i64; 3],
-    to_max: [i64; 3],
-    to_min: [i64; 3],
+/// The per-pixel constants of the walk, from which those of every level
+/// follow by a shift: over a block of side `2^l`, edge `k` changes by
+/// `a[k] << l` per block step in x and `b[k] << l` in y, and its largest
+/// and smallest value lie `(up[k] << l) - up[k]` and
+/// `(down[k] << l) - down[k]` from its value at the block's first pixel
+/// centre (the corner where each of `a` and `b` is largest, or smallest,
+/// `2^l - 1` pixels away).
+#[derive(Clone, Copy, Debug)]
+struct Steps {
+    a: [i64; 3],
+    b: [i64; 3],
+    up: [i64; 3],
+    down: [i64; 3],
+}
+
+impl Steps {
+    fn new(edges: &Edges) -> Self {
+        let (mut a, mut b, mut up, mut down) = ([0; 3], [0; 3], [0; 3], [0; 3]);
+        for k in 0..3 {
+            a[k] = edges.a[k] * SUBPIXEL as i64;
+            b[k] = edges.b[k] * SUBPIXEL as i64;
+            up[k] = a[k].max(0) + b[k].max(0);
+            down[k] = a[k].min(0) + b[k].min(0);
+        }
+        Self { a, b, up, down }
+    }
+
+    #[inline(always)]
+    fn step_x(&self, shift: u32) -> [i64; 3] {
+        self.a.map(|a| a << shift)
+    }
+
+    #[inline(always)]
+    fn step_y(&self, shift: u32) -> [i64; 3] {
+        self.b.map(|b| b << shift)
+    }
+}
+
+/// How a block of side `2^shift` stands against the edges: with `e` the
+/// edge values at its first pixel centre, whether it lies wholly outside
+/// one edge, and whether it lies wholly inside all three.
+#[inline(always)]
+fn classify(steps: &Steps, e: &[i64; 3], shift: u32) -> (bool, bool) {
+    let mut outside = false;
+    let mut inside = true;
+    for ((e, up), down) in e.iter().zip(steps.up).zip(steps.down) {
+        outside |= e + (up << shift) - up < 0;
+        inside &= e + (down << shift) - down >= 0;
+    }
+    (outside, inside)
 }
 
 /// What to do with a block, decided by the traversal's visitor.
@@ -199,57 +273,42 @@ enum Visit {
 
 /// The state-machine walk shared by the rasterizer and the tests: visits
 /// blocks of the `2^order` region at `(x0, y0)` in Hilbert order, starting
-/// with the whole region, handing `visit` each block's position, side, edge
-/// values at its first pixel centre and per-level constants; `Split` on a
-/// single pixel is treated as `Skip`. Returns the edge values at the end,
-/// which equal those at the start.
+/// with the whole region, handing `visit` each block's position, side as a
+/// shift (`side = 1 << shift`) and edge values at its first pixel centre;
+/// `Split` on a single pixel is treated as `Skip`. Returns the edge values
+/// at the end, which equal those at the start.
 fn traverse<F>(edges: &Edges, x0: i32, y0: i32, order: u32, mut visit: F) -> [i64; 3]
 where
-    F: FnMut(i32, i32, i32, &[i64; 3], &Level) -> Visit,
+    F: FnMut(i32, i32, u32, &[i64; 3]) -> Visit,
 {
     let order = order.min(MAX_ORDER);
-    let mut levels = [Level::default(); MAX_ORDER as usize + 1];
-    for (l, lv) in levels.iter_mut().enumerate().take(order as usize + 1) {
-        // Level l has blocks of side 2^(order - l).
-        let side = 1i64 << (order as usize - l);
-        for k in 0..3 {
-            let (a, b) = (edges.a[k] * SUBPIXEL as i64, edges.b[k] * SUBPIXEL as i64);
-            lv.step_x[k] = a * side;
-            lv.step_y[k] = b * side;
-            let (ea, eb) = (a * (side - 1), b * (side - 1));
-            lv.to_max[k] = ea.max(0) + eb.max(0);
-            lv.to_min[k] = ea.min(0) + eb.min(0);
-        }
-    }
-
+    let steps = Steps::new(edges);
     let mut e = edges.at(x0, y0);
     let (mut x, mut y) = (x0, y0);
+    // Blocks at `level` have side `1 << (order - level)`.
     let mut level = 0u32;
     let mut state = I;
     // Digit `l` (2 bits at 2*l) is which child of its parent the block at
     // level l is.
     let mut digits = 0u32;
     loop {
-        let side = 1i32 << (order - level);
-        if side > 1 && visit(x, y, side, &e, &levels[level as usize]) == Visit::Split {
+        let shift = order - level;
+        if visit(x, y, shift, &e) == Visit::Split && shift > 0 {
             // Into the first child, in this block's state.
             level += 1;
-            let child = &levels[level as usize];
+            let half = shift - 1;
             let q = entry(QUAD, state, 0);
             if q & 1 != 0 {
-                x += side / 2;
-                add(&mut e, &child.step_x);
+                x += 1 << half;
+                add(&mut e, &steps.step_x(half));
             }
             if q & 2 != 0 {
-                y += side / 2;
-                add(&mut e, &child.step_y);
+                y += 1 << half;
+                add(&mut e, &steps.step_y(half));
             }
             digits &= !(3 << (2 * level));
             state = entry(NEXT, state, 0);
             continue;
-        }
-        if side == 1 {
-            visit(x, y, 1, &e, &levels[level as usize]);
         }
         // Next sibling, climbing while this was the last child.
         loop {
@@ -258,25 +317,25 @@ where
             }
             let k = (digits >> (2 * level)) & 3;
             let parent = entry(NEXT, state, k);
-            let lv = &levels[level as usize];
-            let side = 1i32 << (order - level);
+            let shift = order - level;
+            let side = 1i32 << shift;
             if k < 3 {
                 match entry(MOVE, parent, k) {
                     0 => {
                         x += side;
-                        add(&mut e, &lv.step_x);
+                        add(&mut e, &steps.step_x(shift));
                     }
                     1 => {
                         y += side;
-                        add(&mut e, &lv.step_y);
+                        add(&mut e, &steps.step_y(shift));
                     }
                     2 => {
                         x -= side;
-                        sub(&mut e, &lv.step_x);
+                        sub(&mut e, &steps.step_x(shift));
                     }
                     _ => {
                         y -= side;
-                        sub(&mut e, &lv.step_y);
+                        sub(&mut e, &steps.step_y(shift));
                     }
                 }
                 digits += 1 << (2 * level);
@@ -287,11 +346,11 @@ where
             let q = entry(QUAD, parent, 3);
             if q & 1 != 0 {
                 x -= side;
-                sub(&mut e, &lv.step_x);
+                sub(&mut e, &steps.step_x(shift));
             }
             if q & 2 != 0 {
                 y -= side;
-                sub(&mut e, &lv.step_y);
+                sub(&mut e, &steps.step_y(shift));
             }
             state = parent;
             level -= 1;
@@ -313,11 +372,19 @@ fn sub(e: &mut [i64; 3], d: &[i64; 3]) {
     }
 }
 
+/// Blocks of at most `1 << LEAF_SHIFT` pixels a side that straddle an
+/// edge are finished pixel by pixel, row by row, rather than split further:
+/// the last levels of the hierarchy would cost a classification per block
+/// for a handful of pixels each.
+pub const LEAF_SHIFT: u32 = 3;
+
 /// Walks the `2^order`-sided region whose top-left pixel is `(x0, y0)` in
-/// Hilbert order and calls `covered(x, y, side)` for every `side x side`
-/// block of covered pixel centres of the triangle (a single covered pixel
-/// has side 1), restricted to `clip`. Returns the number of blocks
-/// classified, a cost measure.
+/// Hilbert order and calls `covered(x, y, w, h)` for rectangles of covered
+/// pixel centres of the triangle, restricted to `clip`: whole blocks inside
+/// all three edges (`w == h`, a power of two), and the covered run of each
+/// row of a leaf block (at most `1 << LEAF_SHIFT` pixels a side) that
+/// straddles an edge (`h == 1`). Every covered pixel is reported exactly
+/// once. Returns the number of blocks classified, a cost measure.
 ///
 /// ```
 /// use microraster::raster::hilbert::{walk, Edges};
@@ -325,10 +392,10 @@ fn sub(e: &mut [i64; 3], d: &[i64; 3]) {
 /// // The 4x4 right triangle of the scanline example: 3 + 2 + 1 pixels.
 /// let e = Edges::new(&[SubPoint::new(0, 0), SubPoint::new(64, 0), SubPoint::new(0, 64)]).unwrap();
 /// let mut covered = 0;
-/// walk(&e, 0, 0, 2, PixelRect::new(0, 0, 4, 4), |_, _, side| covered += side * side);
+/// walk(&e, 0, 0, 2, PixelRect::new(0, 0, 4, 4), |_, _, w, h| covered += w * h);
 /// assert_eq!(covered, 6);
 /// ```
-pub fn walk<F: FnMut(i32, i32, i32)>(
+pub fn walk<F: FnMut(i32, i32, i32, i32)>(
     edges: &Edges,
     x0: i32,
     y0: i32,
@@ -337,21 +404,163 @@ pub fn walk<F: FnMut(i32, i32, i32)>(
     mut covered: F,
 ) -> u32 {
     let mut blocks = 0;
-    traverse(edges, x0, y0, order, |x, y, side, e, lv| {
+    let steps = Steps::new(edges);
+    traverse(edges, x0, y0, order, |x, y, shift, e| {
         blocks += 1;
-        let block = PixelRect::new(x, y, x + side, y + side);
-        let in_clip = block.intersect(&clip);
-        if in_clip.is_empty() || (0..3).any(|k| e[k] + lv.to_max[k] < 0) {
+        let side = 1i32 << shift;
+        let (bx1, by1) = (x + side, y + side);
+        if x >= clip.x1 || y >= clip.y1 || bx1 <= clip.x0 || by1 <= clip.y0 {
             return Visit::Skip;
         }
-        if (0..3).all(|k| e[k] + lv.to_min[k] >= 0) && in_clip == block {
-            covered(x, y, side);
+        let (outside, inside) = classify(&steps, e, shift);
+        if outside {
             return Visit::Skip;
         }
-        // A single pixel inside the clip was decided exactly above.
-        Visit::Split
+        let in_clip = x >= clip.x0 && y >= clip.y0 && bx1 <= clip.x1 && by1 <= clip.y1;
+        if inside && in_clip {
+            covered(x, y, side, side);
+            return Visit::Skip;
+        }
+        if shift > LEAF_SHIFT {
+            return Visit::Split;
+        }
+        leaf(&steps, e, x, y, side, &clip, &mut covered);
+        Visit::Skip
     });
     blocks
+}
+
+/// Finishes a leaf block at `(x, y)` with edge values `e` at its first
+/// pixel centre: tests its pixels inside `clip` one by one and reports
+/// each row's covered run (the covered centres of a row of a triangle are
+/// contiguous).
+#[inline(always)]
+fn leaf<F: FnMut(i32, i32, i32, i32)>(
+    steps: &Steps,
+    e: &[i64; 3],
+    x: i32,
+    y: i32,
+    side: i32,
+    clip: &PixelRect,
+    covered: &mut F,
+) {
+    let (c0, c1) = (x.max(clip.x0), (x + side).min(clip.x1));
+    let (r0, r1) = (y.max(clip.y0), (y + side).min(clip.y1));
+    let mut row = [0i64; 3];
+    for k in 0..3 {
+        row[k] = e[k] + steps.a[k] * (c0 - x) as i64 + steps.b[k] * (r0 - y) as i64;
+    }
+    for j in r0..r1 {
+        let mut p = row;
+        let mut first = c1;
+        let mut last = c1;
+        for i in c0..c1 {
+            let inside = p[0] >= 0 && p[1] >= 0 && p[2] >= 0;
+            if inside && first == c1 {
+                first = i;
+            } else if !inside && first != c1 {
+                last = i;
+                break;
+            }
+            add(&mut p, &steps.a);
+        }
+        if first < last {
+            covered(first, j, last - first, 1);
+        }
+        add(&mut row, &steps.b);
+    }
+}
+
+/// Records the spans of triangle `v` within `clip` in `out`, one per
+/// covered row in row order (the same spans as the scanline walker gives),
+/// and returns how many. Only the first `out.len()` rows of the triangle's
+/// bounds in `clip` are walked.
+///
+/// The region walked is the smallest `2^n` square at the top-left of the
+/// triangle's pixel bounds in `clip`; blocks outside those bounds are
+/// skipped by the walk's clip test. Every covered block widens the span of
+/// each of its rows; a triangle's covered centres in a row are contiguous,
+/// so the union of its blocks there is exactly one span.
+#[inline(never)]
+pub(crate) fn find_spans(v: &[SubPoint; 3], clip: PixelRect, out: &mut [Span]) -> usize {
+    let Some(edges) = Edges::new(v) else {
+        return 0;
+    };
+    let mut bounds = PixelRect::covering(v).intersect(&clip);
+    bounds.y1 = bounds.y1.min(bounds.y0.saturating_add(out.len() as i32));
+    if bounds.is_empty() {
+        return 0;
+    }
+    let rows = (bounds.y1 - bounds.y0) as usize;
+    for (r, s) in out[..rows].iter_mut().enumerate() {
+        *s = Span {
+            j: bounds.y0 + r as i32,
+            x0: i32::MAX,
+            x1: i32::MIN,
+        };
+    }
+    let (w, h) = (bounds.x1 - bounds.x0, bounds.y1 - bounds.y0);
+    let order = order_for(w as u32, h as u32);
+    walk(&edges, bounds.x0, bounds.y0, order, bounds, |x, y, w, h| {
+        let first = (y - bounds.y0) as usize;
+        for s in &mut out[first..first + h as usize] {
+            s.x0 = s.x0.min(x);
+            s.x1 = s.x1.max(x + w);
+        }
+    });
+    let mut n = 0;
+    for r in 0..rows {
+        if out[r].x0 < out[r].x1 {
+            out[n] = out[r];
+            n += 1;
+        }
+    }
+    n
+}
+
+/// Whether triangle `v` covers every pixel centre of `rect` (not empty):
+/// the hierarchy's first test, on the rectangle as one block, with the edge
+/// values at the corner where each is smallest. [`super::Rasterizer::Auto`]
+/// asks it of triangles whose bounds hold a whole tile, which then need no
+/// edge walk at all.
+pub(crate) fn covers_rect(v: &[SubPoint; 3], rect: &PixelRect) -> bool {
+    let Some(edges) = Edges::new(v) else {
+        return false;
+    };
+    let e = edges.at(rect.x0, rect.y0);
+    let (w, h) = (
+        (rect.x1 - rect.x0 - 1) as i64,
+        (rect.y1 - rect.y0 - 1) as i64,
+    );
+    (0..3).all(|k| {
+        let (a, b) = (edges.a[k] * SUBPIXEL as i64, edges.b[k] * SUBPIXEL as i64);
+        e[k] + a.min(0) * w + b.min(0) * h >= 0
+    })
+}
+
+/// Calls `span(row, x0, x1)` for every row of pixel centres triangle `v`
+/// covers within `clip`, in row order: the spans of the Hilbert walk, which
+/// are those of [`super::scanline::spans`] (the tests prove it).
+///
+/// ```
+/// use microraster::raster::{hilbert, PixelRect, SubPoint};
+/// let tri = [SubPoint::new(0, 0), SubPoint::new(64, 0), SubPoint::new(0, 64)];
+/// let mut covered = 0;
+/// hilbert::spans(&tri, PixelRect::new(0, 0, 16, 16), |_row, x0, x1| covered += x1 - x0);
+/// assert_eq!(covered, 3 + 2 + 1);
+/// ```
+pub fn spans<F: FnMut(i32, i32, i32)>(v: &[SubPoint; 3], clip: PixelRect, mut span: F) {
+    let bounds = PixelRect::covering(v).intersect(&clip);
+    let mut buf = [Span::default(); 32];
+    let mut y0 = bounds.y0;
+    while y0 < bounds.y1 {
+        let band = PixelRect::new(bounds.x0, y0, bounds.x1, bounds.y1);
+        let n = find_spans(v, band, &mut buf);
+        for s in &buf[..n] {
+            span(s.j, s.x0, s.x1);
+        }
+        y0 = y0.saturating_add(buf.len() as i32);
+    }
 }
 
 /// The cell `(x, y)` of the `index`-th step along the Hilbert curve of a
@@ -390,6 +599,88 @@ pub const fn cell_to_index(order: u32, x: u32, y: u32) -> u32 {
         state = entry(NEXT, state, k);
     }
     index
+}
+
+/// The number of cells of a `cols x rows` grid inside the `side`-sided
+/// square at `(x, y)`.
+const fn cells_in(x: u32, y: u32, side: u32, cols: u32, rows: u32) -> u32 {
+    let w = if x + side < cols {
+        side
+    } else {
+        cols.saturating_sub(x)
+    };
+    let h = if y + side < rows {
+        side
+    } else {
+        rows.saturating_sub(y)
+    };
+    w * h
+}
+
+/// The position of cell `(x, y)` of a `cols x rows` grid when only the
+/// grid's cells are visited, in the order of the Hilbert curve over the
+/// smallest power-of-two square holding the grid: the number of grid cells
+/// the curve passes before it. `O(log side)`: at every level, the grid
+/// cells of the quadrants visited before the cell's own are counted as
+/// rectangles.
+///
+/// ```
+/// use microraster::raster::hilbert::{cell_at_rank, rank_in_grid};
+/// // A 3 x 2 grid (in a 4 x 4 curve): (0,0) (1,0) (1,1) (0,1) (2,1) (2,0).
+/// assert_eq!(rank_in_grid(3, 2, 2, 0), 5);
+/// assert_eq!(cell_at_rank(3, 2, 4), (2, 1));
+/// ```
+pub const fn rank_in_grid(cols: u32, rows: u32, x: u32, y: u32) -> u32 {
+    let mut level = order_for(cols, rows);
+    let (mut bx, mut by, mut rank) = (0u32, 0u32, 0u32);
+    let mut state = I;
+    while level > 0 {
+        level -= 1;
+        let half = 1u32 << level;
+        let q = (((x >> level) & 1) | (((y >> level) & 1) << 1)) as u8;
+        let mut k = 0;
+        while k < 4 {
+            let qk = entry(QUAD, state, k);
+            let (qx, qy) = (bx + (qk as u32 & 1) * half, by + (qk as u32 >> 1) * half);
+            if qk == q || k == 3 {
+                bx = qx;
+                by = qy;
+                state = entry(NEXT, state, k);
+                break;
+            }
+            rank += cells_in(qx, qy, half, cols, rows);
+            k += 1;
+        }
+    }
+    rank
+}
+
+/// The cell at position `rank` of the Hilbert-order visit of a
+/// `cols x rows` grid: the inverse of [`rank_in_grid`] for
+/// `rank < cols * rows`.
+pub const fn cell_at_rank(cols: u32, rows: u32, rank: u32) -> (u32, u32) {
+    let mut level = order_for(cols, rows);
+    let (mut bx, mut by, mut rank) = (0u32, 0u32, rank);
+    let mut state = I;
+    while level > 0 {
+        level -= 1;
+        let half = 1u32 << level;
+        let mut k = 0;
+        while k < 4 {
+            let qk = entry(QUAD, state, k);
+            let (qx, qy) = (bx + (qk as u32 & 1) * half, by + (qk as u32 >> 1) * half);
+            let n = cells_in(qx, qy, half, cols, rows);
+            if rank < n || k == 3 {
+                bx = qx;
+                by = qy;
+                state = entry(NEXT, state, k);
+                break;
+            }
+            rank -= n;
+            k += 1;
+        }
+    }
+    (bx, by)
 }
 
 /// The order (`log2` of the side) of the smallest power-of-two square that
@@ -478,7 +769,8 @@ mod tests {
         for order in 1..=8u32 {
             let (x0, y0) = (-7, 13);
             let mut d = 0u32;
-            let end = traverse(&edges, x0, y0, order, |x, y, side, e, _| {
+            let end = traverse(&edges, x0, y0, order, |x, y, shift, e| {
+                let side = 1 << shift;
                 assert_eq!(
                     *e,
                     edges.at(x, y),
@@ -507,6 +799,35 @@ mod tests {
                     "order {order} index {d}"
                 );
                 assert_eq!(cell_to_index(order, x, y), d);
+            }
+        }
+    }
+
+    /// Grid ranks follow the curve, skip nothing and repeat nothing, for
+    /// grids of every shape up to 17 x 17.
+    #[test]
+    fn grid_ranks_follow_the_curve_over_any_grid() {
+        for cols in 1..=17u32 {
+            for rows in 1..=17u32 {
+                let order = order_for(cols, rows);
+                let mut expected = 0;
+                for d in 0..(1u32 << (2 * order)) {
+                    let (x, y) = index_to_cell(order, d);
+                    if x < cols && y < rows {
+                        assert_eq!(
+                            rank_in_grid(cols, rows, x, y),
+                            expected,
+                            "{cols}x{rows} ({x}, {y})"
+                        );
+                        assert_eq!(
+                            cell_at_rank(cols, rows, expected),
+                            (x, y),
+                            "{cols}x{rows} rank {expected}"
+                        );
+                        expected += 1;
+                    }
+                }
+                assert_eq!(expected, cols * rows);
             }
         }
     }

@@ -8,12 +8,35 @@
 //! edge (the triangle lies to its right). Two triangles sharing an edge
 //! therefore never both cover a pixel and never both miss one.
 //!
-//! [`scanline`] is the edge-walking rasterizer. Both rasterizers of the crate
-//! must produce exactly this coverage; the tests check it against an
-//! independent edge-function reference.
+//! [`scanline`] is the edge-walking rasterizer, [`hilbert`] the Hilbert-order
+//! hierarchical one ([`Rasterizer`] selects). Both produce exactly this
+//! coverage; the tests check it against an independent edge-function
+//! reference and against each other.
 
 pub mod hilbert;
 pub mod scanline;
+
+/// Which rasterizer finds the pixels a triangle covers.
+///
+/// Both give exactly the same coverage (the tests prove it on random
+/// triangles and meshes), and shading is shared, so every choice renders
+/// the same image; they differ only in speed. BENCHMARKS.md has the
+/// measurements behind [`Rasterizer::Auto`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, Hash)]
+pub enum Rasterizer {
+    /// The edge-walking [`scanline`] rasterizer (default).
+    #[default]
+    Scanline,
+    /// The Hilbert-order hierarchical edge-equation rasterizer
+    /// ([`hilbert`]).
+    Hilbert,
+    /// Per triangle and tile: a triangle whose bounds hold the whole tile
+    /// gets the Hilbert rasterizer's block test on the tile as one block,
+    /// and a tile wholly inside it is filled with no edge walk; everything
+    /// else takes the scanline walk. Measured faster on scenes of big,
+    /// screen-filling triangles, slightly slower on small ones.
+    Auto,
+}
 
 /// Sub-pixel precision of screen coordinates, in bits.
 pub const SUBPIXEL_BITS: u32 = 4;
@@ -36,6 +59,15 @@ impl SubPoint {
     pub const fn new(x: i32, y: i32) -> Self {
         Self { x, y }
     }
+}
+
+/// A run of covered pixels: row `j`, columns `x0..x1`, as both
+/// rasterizers record them for shading.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub(crate) struct Span {
+    pub j: i32,
+    pub x0: i32,
+    pub x1: i32,
 }
 
 /// A half-open rectangle of whole pixels: columns `x0..x1`, rows `y0..y1`.

@@ -31,7 +31,7 @@
 //! edge loop runs with nothing else in registers, and shades them
 //! afterwards. [`spans`] drives the same walker through a small buffer.
 
-use super::{first_centre_at_or_after, PixelRect, SubPoint, HALF_PIXEL, SUBPIXEL};
+use super::{first_centre_at_or_after, PixelRect, Span, SubPoint, HALF_PIXEL, SUBPIXEL};
 use core::num::NonZeroU32;
 
 /// One edge being walked down the rows: the first covered column at the
@@ -169,14 +169,6 @@ fn may_cover(v: &[SubPoint; 3], area2: i64, clip: PixelRect) -> bool {
         }
     }
     true
-}
-
-/// A run of covered pixels: row `j`, columns `x0..x1`.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub(crate) struct Span {
-    pub j: i32,
-    pub x0: i32,
-    pub x1: i32,
 }
 
 /// The scanline walk of one triangle over a clip rectangle, resumable: each
