@@ -6,16 +6,18 @@
 //! cargo bench --bench raster -- demo_320x240 # one group
 //! ```
 //!
-//! * `triangles/{4px,100px,10000px}`: a frame of many copies of one
-//!   Gouraud-shaded triangle of about that many pixels, scattered over a
-//!   320x240 frame, into `NullSink`; the throughput is in triangles.
+//! * `triangles/{scanline,hilbert,auto}/{4px,32px,100px,1000px,10000px}`:
+//!   a frame of many copies of one Gouraud-shaded triangle of about that
+//!   many pixels, scattered over a 320x240 frame, into `NullSink`, with
+//!   each rasterizer; the throughput is in triangles.
 //! * `fill/flat_depth_8_layers`: 8 flat-shaded, depth-tested 320x240 quads
 //!   drawn back to front (every fragment passes and is written), into
 //!   `NullSink`; the throughput is in shaded pixels.
 //! * `demo_320x240/*`: frame 0 of the demo (4,000-triangle lit torus knot
 //!   plus a cube), Gouraud, depth-tested, `Renderer<Rgb565, 32, 32>` and
 //!   `Workspace<2048, 4096, 80>`, into `NullSink` or into a full frame
-//!   buffer; and the same frame rendered by the euc crate.
+//!   buffer (`_hilbert` and `_auto`: with those rasterizers); and the same
+//!   frame rendered by the euc crate.
 
 #[path = "../examples/common/mod.rs"]
 mod common;
@@ -31,23 +33,32 @@ use std::time::Duration;
 /// Layers of the fill-rate scene.
 const FILL_LAYERS: usize = 8;
 
+/// The rasterizers compared, with their names in benchmark ids.
+const RASTERIZERS: [(&str, Rasterizer); 3] = [
+    ("scanline", Rasterizer::Scanline),
+    ("hilbert", Rasterizer::Hilbert),
+    ("auto", Rasterizer::Auto),
+];
+
 fn triangles(c: &mut Criterion) {
     let mut g = c.benchmark_group("triangles");
-    let mut r = renderer();
     let mut ws: Box<CopiesWorkspace> = Box::default();
     for (name, area, count) in TRIANGLE_SIZES {
         let scene = Copies::new(area, count);
-        let stats = scene.render(&mut r, &mut ws, &mut NullSink);
-        assert_eq!(stats.drawn as usize, count);
-        println!(
-            "triangles/{name}: {count} triangles, {:.1} pixels each, {} tile visits",
-            stats.pixels_shaded as f64 / count as f64,
-            stats.tiles
-        );
-        g.throughput(Throughput::Elements(count as u64));
-        g.bench_function(BenchmarkId::from_parameter(name), |b| {
-            b.iter(|| black_box(scene.render(&mut r, &mut ws, &mut NullSink)))
-        });
+        for (raster_name, raster) in RASTERIZERS {
+            let mut r = renderer_with(raster);
+            let stats = scene.render(&mut r, &mut ws, &mut NullSink);
+            assert_eq!(stats.drawn as usize, count);
+            println!(
+                "triangles/{raster_name}/{name}: {count} triangles, {:.1} pixels each, {} tile visits",
+                stats.pixels_shaded as f64 / count as f64,
+                stats.tiles
+            );
+            g.throughput(Throughput::Elements(count as u64));
+            g.bench_function(BenchmarkId::new(raster_name, name), |b| {
+                b.iter(|| black_box(scene.render(&mut r, &mut ws, &mut NullSink)))
+            });
+        }
     }
     g.finish();
 }
@@ -74,6 +85,12 @@ fn demo(c: &mut Criterion) {
     g.bench_function("microraster_gouraud_nullsink", |b| {
         b.iter(|| black_box(scene.render(&mut r, &mut ws, Shading::Gouraud, &mut NullSink)))
     });
+    for (raster_name, raster) in &RASTERIZERS[1..] {
+        let mut r = renderer_with(*raster);
+        g.bench_function(format!("microraster_gouraud_nullsink_{raster_name}"), |b| {
+            b.iter(|| black_box(scene.render(&mut r, &mut ws, Shading::Gouraud, &mut NullSink)))
+        });
+    }
     let mut fb = FrameBuffer::new();
     g.bench_function("microraster_gouraud_framebuffer", |b| {
         b.iter(|| black_box(scene.render(&mut r, &mut ws, Shading::Gouraud, &mut fb)))

@@ -2,13 +2,15 @@
 //! counts under valgrind (see `scripts/count-instructions.sh`).
 //!
 //! ```text
-//! cargo run --release --example count -- SCENE [N]
+//! cargo run --release --example count -- SCENE [N [RASTERIZER]]
 //! ```
 //!
 //! `SCENE` is one of `demo` (the demo frame 0, Gouraud, depth-tested),
 //! `demo-flat`, `fill` (8 flat, depth-tested 320x240 quads drawn back to
-//! front), `tri4`, `tri100`, `tri10000` (copies of one triangle of about
-//! that many pixels) or `euc` (the demo frame rendered by the euc crate).
+//! front), `tri4`, `tri32`, `tri100`, `tri1000`, `tri10000` (copies of one
+//! triangle of about that many pixels) or `euc` (the demo frame rendered by
+//! the euc crate). `RASTERIZER` is `scanline` (default), `hilbert` or
+//! `auto`.
 //! Every frame of a run is identical; each is rendered by the function
 //! `count::frame`, so `valgrind --tool=callgrind
 //! --toggle-collect='*count::frame*'` counts exactly N frames, all-in (scene
@@ -67,6 +69,13 @@ fn main() {
             std::process::exit(2);
         }
     };
+    let raster = match args.next() {
+        None => Rasterizer::Scanline,
+        Some(a) => parse_rasterizer(&a).unwrap_or_else(|| {
+            eprintln!("count: RASTERIZER is scanline, hilbert or auto, not {a:?}");
+            std::process::exit(2);
+        }),
+    };
     let copies = |size: &str| {
         let (_, area, count) = TRIANGLE_SIZES
             .iter()
@@ -93,17 +102,20 @@ fn main() {
             ws: Box::default(),
         },
         "tri4" => copies("4px"),
+        "tri32" => copies("32px"),
         "tri100" => copies("100px"),
+        "tri1000" => copies("1000px"),
         "tri10000" => copies("10000px"),
         "euc" => Job::Euc(Box::default()),
         other => {
             eprintln!(
-                "count: unknown scene {other:?} (demo, demo-flat, fill, tri4, tri100, tri10000, euc)"
+                "count: unknown scene {other:?} \
+                 (demo, demo-flat, fill, tri4, tri32, tri100, tri1000, tri10000, euc)"
             );
             std::process::exit(2);
         }
     };
-    let mut r = renderer();
+    let mut r = renderer_with(raster);
     let mut first = None;
     for _ in 0..n {
         let s = frame(&mut job, &mut r);
@@ -114,7 +126,7 @@ fn main() {
     }
     match first.flatten() {
         Some(s) => println!(
-            "scene={name} frames={n} triangles_in={} culled={} rejected={} clipped={} drawn={} \
+            "scene={name} frames={n} rasterizer={raster:?} triangles_in={} culled={} rejected={} clipped={} drawn={} \
              pixels_shaded={} tiles={} bin_passes={} rescanned_tiles={}",
             s.triangles_in,
             s.culled,

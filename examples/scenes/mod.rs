@@ -31,9 +31,25 @@ pub type DemoWorkspace = Workspace<2048, 4096, 80>;
 pub type CopiesWorkspace = Workspace<24_000, 32_768, 80>;
 
 /// A renderer with the demo's settings (back-face culling, `LessEqual`,
-/// depth writes).
+/// depth writes) and the scanline rasterizer.
 pub fn renderer() -> BenchRenderer {
-    BenchRenderer::new(Config::new(Size::new(WIDTH, HEIGHT), common::DEMO_CLEAR))
+    renderer_with(Rasterizer::Scanline)
+}
+
+/// [`renderer`] with the given rasterizer.
+pub fn renderer_with(raster: Rasterizer) -> BenchRenderer {
+    BenchRenderer::new(Config::new(Size::new(WIDTH, HEIGHT), common::DEMO_CLEAR).rasterizer(raster))
+}
+
+/// The rasterizer named on a command line: `scanline`, `hilbert` or
+/// `auto`.
+pub fn parse_rasterizer(name: &str) -> Option<Rasterizer> {
+    match name {
+        "scanline" => Some(Rasterizer::Scanline),
+        "hilbert" => Some(Rasterizer::Hilbert),
+        "auto" => Some(Rasterizer::Auto),
+        _ => None,
+    }
 }
 
 /// A camera whose clip space is the model space: x, y, z in `[-1, 1]` are
@@ -227,11 +243,13 @@ impl Copies {
     }
 }
 
-/// The three triangle sizes of the throughput benchmarks: (name, target
-/// pixel area, copies per frame).
-pub const TRIANGLE_SIZES: [(&str, f32, usize); 3] = [
+/// The triangle sizes of the throughput benchmarks: (name, target pixel
+/// area, copies per frame).
+pub const TRIANGLE_SIZES: [(&str, f32, usize); 5] = [
     ("4px", 4.0, 8_000),
+    ("32px", 32.0, 4_000),
     ("100px", 100.0, 2_000),
+    ("1000px", 1_000.0, 400),
     ("10000px", 10_000.0, 100),
 ];
 
