@@ -1,0 +1,1390 @@
+//! Wavefront OBJ (and MTL) parsing into a [`Model`] ready for 16.16 fixed
+//! point.
+//!
+//! # What is read
+//!
+//! * `v x y z [w]` positions (`w` is ignored) and the common colour
+//!   extension `v x y z r g b` (`r g b` in 0..1, clamped).
+//! * `vt u [v [w]]` texture coordinates (`v` defaults to 0, `w` is ignored).
+//! * `vn x y z` normals (normalised on import).
+//! * `f` faces in the `v`, `v/vt`, `v//vn` and `v/vt/vn` forms (one form per
+//!   face), with 1-based or negative (relative) indices that refer to
+//!   elements defined *before* the face. Polygons with more than three
+//!   corners are triangulated by ear clipping in the polygon's dominant
+//!   plane (see [`triangulate`]).
+//! * `o` and `g` start a group; faces before either go into the group
+//!   `default`. `usemtl` sets the material of the faces that follow, and
+//!   `mtllib` loads material libraries (`newmtl`, `Kd`, `map_Kd`).
+//!   A group's faces with different materials become separate [`Group`]s of
+//!   the same name; groups with no triangle are dropped, and faces of the
+//!   same group and material are merged into one range even when the file
+//!   interleaves them.
+//! * `#` starts a comment (anywhere on a line, so names cannot contain `#`).
+//!   A line ending in `\` continues on the next. CRLF line endings, tabs and
+//!   trailing whitespace are fine. Other statements (`s`, `l`, `p`, `vp`,
+//!   curves and surfaces, ...) are ignored and counted in
+//!   [`Model::warnings`].
+//!
+//! # What comes out
+//!
+//! One vertex per unique (position, texture coordinate, normal) triple that
+//! a kept triangle uses, numbered in the order the triangles first use them;
+//! triangles ordered group by group; normals, texture coordinates and
+//! colours either for every vertex or not at all (the rules are on
+//! [`Model`]); and the bounding box and sphere of the positions after
+//! [`Fit`] has moved them into the 16.16 range.
+
+use std::collections::{BTreeMap, HashMap};
+use std::fs;
+use std::io;
+use std::ops::Range;
+use std::path::{Path, PathBuf};
+
+use crate::error::{ErrorKind, ImportError};
+
+/// How positions are fitted into 16.16 fixed point (range ±32768,
+/// resolution 1/65536).
+///
+/// Whatever is applied, `output = (input + offset) * scale` with the
+/// [`Model::offset`] and [`Model::scale`] reported, so
+/// `input = output / scale - offset`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Fit {
+    /// Keep the coordinates as they are (offset 0, scale 1); it is an error
+    /// if one cannot be represented in 16.16.
+    Keep,
+    /// Move the bounding box centre to the origin and scale uniformly so
+    /// that the bounding sphere's radius is 1.
+    Unit,
+    /// [`Keep`](Fit::Keep) when every coordinate is within ±1024 and the
+    /// bounding sphere's radius is at least 1/64 (so the model has at least
+    /// ~1,000 steps of 16.16 resolution across it), [`Unit`](Fit::Unit)
+    /// otherwise.
+    #[default]
+    Auto,
+}
+
+impl Fit {
+    /// The lower-case name used on the command line: `keep`, `unit`, `auto`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Fit::Keep => "keep",
+            Fit::Unit => "unit",
+            Fit::Auto => "auto",
+        }
+    }
+
+    /// The fit of that [`name`](Fit::name), if any.
+    pub fn from_name(name: &str) -> Option<Fit> {
+        match name {
+            "keep" => Some(Fit::Keep),
+            "unit" => Some(Fit::Unit),
+            "auto" => Some(Fit::Auto),
+            _ => None,
+        }
+    }
+}
+
+/// The integer type of the output's triangle indices.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum IndexWidth {
+    /// `u16`, what microraster's `Mesh` takes: at most 65,536 vertices.
+    #[default]
+    U16,
+    /// `u32`, for models too big for `u16` (split them before drawing).
+    U32,
+}
+
+impl IndexWidth {
+    /// How many vertices indices of this width address.
+    pub fn max_vertices(self) -> usize {
+        match self {
+            IndexWidth::U16 => 1 << 16,
+            IndexWidth::U32 => usize::try_from(1u64 << 32).unwrap_or(usize::MAX),
+        }
+    }
+
+    /// The Rust type name: `u16` or `u32`.
+    pub fn rust_type(self) -> &'static str {
+        match self {
+            IndexWidth::U16 => "u16",
+            IndexWidth::U32 => "u32",
+        }
+    }
+}
+
+/// Options of the OBJ import.
+///
+/// ```
+/// use microraster_import::{Fit, IndexWidth, ObjOptions};
+/// let options = ObjOptions::default()
+///     .with_fit(Fit::Unit)
+///     .with_index_width(IndexWidth::U32)
+///     .with_compute_normals(false);
+/// assert_eq!(options.fit, Fit::Unit);
+/// ```
+#[derive(Clone, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub struct ObjOptions {
+    /// How positions are moved into the 16.16 range (default [`Fit::Auto`]).
+    pub fit: Fit,
+    /// Triangle index type (default [`IndexWidth::U16`]); more unique
+    /// vertices than it addresses is an error.
+    pub index_width: IndexWidth,
+    /// Compute area-weighted normals for vertices that have no `vn`
+    /// (default `true`). When `false`, normals are output only if every
+    /// vertex has a `vn`.
+    pub compute_normals: bool,
+    /// The most `v`, `vt` and `vn` statements accepted, each
+    /// (default 4,194,304).
+    pub max_elements: usize,
+    /// The most triangles accepted, after triangulation (default
+    /// 1,048,576).
+    pub max_triangles: usize,
+    /// The most corners accepted in one face (default 256).
+    pub max_face_corners: usize,
+}
+
+impl Default for ObjOptions {
+    fn default() -> Self {
+        Self {
+            fit: Fit::Auto,
+            index_width: IndexWidth::U16,
+            compute_normals: true,
+            max_elements: 1 << 22,
+            max_triangles: 1 << 20,
+            max_face_corners: 256,
+        }
+    }
+}
+
+impl ObjOptions {
+    /// The defaults.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Sets [`fit`](ObjOptions::fit).
+    pub fn with_fit(mut self, fit: Fit) -> Self {
+        self.fit = fit;
+        self
+    }
+
+    /// Sets [`index_width`](ObjOptions::index_width).
+    pub fn with_index_width(mut self, index_width: IndexWidth) -> Self {
+        self.index_width = index_width;
+        self
+    }
+
+    /// Sets [`compute_normals`](ObjOptions::compute_normals).
+    pub fn with_compute_normals(mut self, compute_normals: bool) -> Self {
+        self.compute_normals = compute_normals;
+        self
+    }
+
+    /// Sets [`max_elements`](ObjOptions::max_elements).
+    pub fn with_max_elements(mut self, max_elements: usize) -> Self {
+        self.max_elements = max_elements;
+        self
+    }
+
+    /// Sets [`max_triangles`](ObjOptions::max_triangles).
+    pub fn with_max_triangles(mut self, max_triangles: usize) -> Self {
+        self.max_triangles = max_triangles;
+        self
+    }
+
+    /// Sets [`max_face_corners`](ObjOptions::max_face_corners).
+    pub fn with_max_face_corners(mut self, max_face_corners: usize) -> Self {
+        self.max_face_corners = max_face_corners;
+        self
+    }
+}
+
+/// A material from an MTL file (or a name `usemtl` used without one).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Material {
+    /// The name given by `newmtl` / `usemtl`.
+    pub name: String,
+    /// The diffuse colour `Kd`, as written (white when absent or when the
+    /// material is not defined).
+    pub diffuse: [f32; 3],
+    /// The diffuse texture's file name (`map_Kd`), as written (relative to
+    /// the MTL file), without its options.
+    pub texture: Option<String>,
+}
+
+/// A run of triangles with one name and one material.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Group {
+    /// The `o` or `g` name (`default` for faces before any).
+    pub name: String,
+    /// The material set by `usemtl`, if any.
+    pub material: Option<Material>,
+    /// The group's triangles: a range of [`Model::triangles`].
+    pub triangles: Range<usize>,
+}
+
+/// An axis-aligned bounding box.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Aabb {
+    /// The smallest coordinates.
+    pub min: [f32; 3],
+    /// The largest coordinates.
+    pub max: [f32; 3],
+}
+
+impl Aabb {
+    /// The box's centre.
+    pub fn center(&self) -> [f32; 3] {
+        std::array::from_fn(|k| ((self.min[k] as f64 + self.max[k] as f64) / 2.0) as f32)
+    }
+}
+
+/// A bounding sphere.
+///
+/// This importer's sphere is centred on the bounding box's centre, with the
+/// largest distance from there to a position as its radius: not the
+/// smallest sphere (Ritter's is up to ~5% tighter on typical models), but
+/// exact and the one [`Fit::Unit`] scales to radius 1.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Sphere {
+    /// The centre.
+    pub center: [f32; 3],
+    /// The radius.
+    pub radius: f32,
+}
+
+/// An imported model: flat arrays ready to become 16.16 `static`s.
+///
+/// Per-vertex arrays are either as long as [`positions`](Model::positions)
+/// or empty:
+///
+/// * **normals**: unit length. A `vn` is used where a vertex has one (a
+///   zero-length `vn` counts as none); the others get the normalised sum of
+///   the face normals (cross products, so weighted by area) of all the
+///   triangles around their position, if
+///   [`ObjOptions::compute_normals`] is on. With it off, normals are empty
+///   unless every vertex has a `vn`.
+/// * **uvs**: present when any vertex has a `vt`; vertices without get
+///   `[0, 0]` (and a warning).
+/// * **colors**: present when any used `v` has a colour; the others are
+///   white (and a warning).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Model {
+    /// The OBJ file's path (as given).
+    pub source: PathBuf,
+    /// The options it was imported with.
+    pub options: ObjOptions,
+    /// What [`Fit::Auto`] resolved to: [`Fit::Keep`] or [`Fit::Unit`].
+    pub fit_applied: Fit,
+    /// Positions after fitting: `(original + offset) * scale`.
+    pub positions: Vec<[f32; 3]>,
+    /// Unit normals, one per position, or empty.
+    pub normals: Vec<[f32; 3]>,
+    /// Texture coordinates, one per position, or empty.
+    pub uvs: Vec<[f32; 2]>,
+    /// Vertex colours, one per position, or empty.
+    pub colors: Vec<[u8; 3]>,
+    /// Triangles as indices into the per-vertex arrays, counter-clockwise
+    /// as in the file, group by group.
+    pub triangles: Vec<[u32; 3]>,
+    /// The groups, in the order of their first triangle in the file.
+    pub groups: Vec<Group>,
+    /// The bounding box of [`positions`](Model::positions).
+    pub bounds: Aabb,
+    /// The bounding sphere of [`positions`](Model::positions).
+    pub sphere: Sphere,
+    /// Added to the original positions before scaling.
+    pub offset: [f64; 3],
+    /// The uniform scale applied after the offset.
+    pub scale: f64,
+    /// Degenerate triangles (no area) that were dropped.
+    pub degenerate: usize,
+    /// The files read: the OBJ's path, then each MTL file found.
+    pub files: Vec<PathBuf>,
+    /// Things that did not stop the import, one line each.
+    pub warnings: Vec<String>,
+}
+
+/// `x` as raw 16.16 bits, rounded to nearest (ties away from zero), or
+/// `None` if it is not finite or outside the 16.16 range.
+///
+/// ```
+/// use microraster_import::to_fixed;
+/// assert_eq!(to_fixed(1.0), Some(65536));
+/// assert_eq!(to_fixed(-0.5), Some(-32768));
+/// assert_eq!(to_fixed(1.0 / 131072.0), Some(1)); // a tie rounds away from zero
+/// assert_eq!(to_fixed(32768.0), None);
+/// ```
+pub fn to_fixed(x: f64) -> Option<i32> {
+    let r = (x * 65536.0).round();
+    if r.is_finite() && r >= i32::MIN as f64 && r <= i32::MAX as f64 {
+        Some(r as i32)
+    } else {
+        None
+    }
+}
+
+/// [`to_fixed`], saturating at the range's ends (and 0 for NaN).
+fn to_fixed_saturating(x: f32) -> i32 {
+    // `as` saturates and maps NaN to 0.
+    (x as f64 * 65536.0).round() as i32
+}
+
+impl Model {
+    /// The positions as raw I16F16 bits (round to nearest; saturating,
+    /// which only matters if the positions were changed after import).
+    pub fn positions_fixed(&self) -> Vec<[i32; 3]> {
+        self.positions
+            .iter()
+            .map(|p| p.map(to_fixed_saturating))
+            .collect()
+    }
+
+    /// The normals as raw I16F16 bits (round to nearest).
+    pub fn normals_fixed(&self) -> Vec<[i32; 3]> {
+        self.normals
+            .iter()
+            .map(|p| p.map(to_fixed_saturating))
+            .collect()
+    }
+
+    /// The texture coordinates as raw I16F16 bits (round to nearest).
+    pub fn uvs_fixed(&self) -> Vec<[i32; 2]> {
+        self.uvs
+            .iter()
+            .map(|p| p.map(to_fixed_saturating))
+            .collect()
+    }
+
+    /// Number of vertices.
+    pub fn vertex_count(&self) -> usize {
+        self.positions.len()
+    }
+
+    /// Number of triangles.
+    pub fn triangle_count(&self) -> usize {
+        self.triangles.len()
+    }
+}
+
+/// Reads the OBJ file at `path`, and the MTL files it names (relative to its
+/// directory; a missing one is a warning, an unreadable one an error).
+///
+/// Bytes that are not UTF-8 are replaced (OBJ is ASCII; this only affects
+/// names).
+pub fn load_obj(path: &Path, options: &ObjOptions) -> Result<Model, ImportError> {
+    let bytes = fs::read(path).map_err(|e| ImportError::io(path, e))?;
+    let source = String::from_utf8_lossy(&bytes);
+    let dir = parent_dir(path);
+    let mut loader = |name: &str| -> Result<Option<(PathBuf, String)>, ImportError> {
+        let mtl = dir.join(name);
+        match fs::read(&mtl) {
+            Ok(bytes) => Ok(Some((mtl, String::from_utf8_lossy(&bytes).into_owned()))),
+            Err(e) if e.kind() == io::ErrorKind::NotFound => Ok(None),
+            Err(e) => Err(ImportError::io(&mtl, e)),
+        }
+    };
+    parse(&source, path, &mut loader, options)
+}
+
+/// Parses OBJ text held in memory.
+///
+/// `path` is only used in errors, warnings and [`Model::source`], and to
+/// name MTL files: `mtl_loader` gets each `mtllib` file name as written and
+/// returns the file's text, or `None` if there is no such file (a warning).
+///
+/// ```
+/// use std::path::Path;
+/// use microraster_import::{parse_obj, ObjOptions};
+///
+/// let obj = "mtllib m.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nusemtl red\nf 1 2 3 4\n";
+/// let mtl = "newmtl red\nKd 1 0 0\n";
+/// let model = parse_obj(obj, Path::new("quad.obj"), |name| {
+///     (name == "m.mtl").then(|| mtl.to_string())
+/// }, &ObjOptions::default())
+/// .unwrap();
+/// assert_eq!(model.triangles.len(), 2);
+/// assert_eq!(model.groups[0].material.as_ref().unwrap().diffuse, [1.0, 0.0, 0.0]);
+/// ```
+pub fn parse_obj(
+    source: &str,
+    path: &Path,
+    mut mtl_loader: impl FnMut(&str) -> Option<String>,
+    options: &ObjOptions,
+) -> Result<Model, ImportError> {
+    let dir = parent_dir(path);
+    let mut loader = |name: &str| -> Result<Option<(PathBuf, String)>, ImportError> {
+        Ok(mtl_loader(name).map(|text| (dir.join(name), text)))
+    };
+    parse(source, path, &mut loader, options)
+}
+
+fn parent_dir(path: &Path) -> PathBuf {
+    path.parent().map(Path::to_path_buf).unwrap_or_default()
+}
+
+type Loader<'a> = dyn FnMut(&str) -> Result<Option<(PathBuf, String)>, ImportError> + 'a;
+
+/// Logical lines: comments stripped, `\` continuations joined, with the
+/// 1-based number of each one's first physical line.
+struct Lines<'a> {
+    physical: std::iter::Enumerate<std::str::Split<'a, char>>,
+}
+
+impl<'a> Lines<'a> {
+    fn new(source: &'a str) -> Self {
+        Self {
+            physical: source.split('\n').enumerate(),
+        }
+    }
+}
+
+impl Iterator for Lines<'_> {
+    type Item = (usize, String);
+
+    fn next(&mut self) -> Option<(usize, String)> {
+        let mut logical = String::new();
+        let mut start = None;
+        for (i, raw) in self.physical.by_ref() {
+            start.get_or_insert(i + 1);
+            let content = match raw.find('#') {
+                Some(p) => &raw[..p],
+                None => raw,
+            };
+            let content = content.trim_end();
+            match content.strip_suffix('\\') {
+                Some(head) => {
+                    logical.push_str(head);
+                    logical.push(' ');
+                }
+                None => {
+                    logical.push_str(content);
+                    return Some((start.unwrap_or(i + 1), logical));
+                }
+            }
+        }
+        start.map(|line| (line, logical))
+    }
+}
+
+/// Which of a corner's parts are present: (texture coordinate, normal).
+type Form = (bool, bool);
+
+const NONE: u32 = u32::MAX;
+
+/// A resolved face corner: 0-based (position, texture coordinate, normal),
+/// [`NONE`] where absent.
+type Corner = [u32; 3];
+
+struct GroupBuild {
+    name: String,
+    material: Option<String>,
+    triangles: Vec<[Corner; 3]>,
+}
+
+struct Parser<'p> {
+    path: &'p Path,
+    options: &'p ObjOptions,
+    positions: Vec<[f32; 3]>,
+    /// Per position; empty until the first coloured `v`.
+    colors: Vec<Option<[f32; 3]>>,
+    texcoords: Vec<[f32; 2]>,
+    normals: Vec<[f32; 3]>,
+    groups: Vec<GroupBuild>,
+    group_index: HashMap<(String, Option<String>), usize>,
+    /// The index in `groups` of the current (group, material), once known.
+    current: Option<usize>,
+    group: String,
+    material: Option<String>,
+    materials: HashMap<String, Material>,
+    triangle_count: usize,
+    degenerate: usize,
+    ignored: BTreeMap<String, usize>,
+    files: Vec<PathBuf>,
+    warnings: Vec<String>,
+}
+
+const MAX_IGNORED_KINDS: usize = 32;
+
+fn parse(
+    source: &str,
+    path: &Path,
+    loader: &mut Loader<'_>,
+    options: &ObjOptions,
+) -> Result<Model, ImportError> {
+    let mut p = Parser {
+        path,
+        options,
+        positions: Vec::new(),
+        colors: Vec::new(),
+        texcoords: Vec::new(),
+        normals: Vec::new(),
+        groups: Vec::new(),
+        group_index: HashMap::new(),
+        current: None,
+        group: "default".to_string(),
+        material: None,
+        materials: HashMap::new(),
+        triangle_count: 0,
+        degenerate: 0,
+        ignored: BTreeMap::new(),
+        files: vec![path.to_path_buf()],
+        warnings: Vec::new(),
+    };
+    for (line, text) in Lines::new(source) {
+        p.statement(line, &text, loader)?;
+    }
+    p.finish()
+}
+
+fn malformed(statement: &str, message: String) -> ErrorKind {
+    ErrorKind::Malformed {
+        statement: statement.to_string(),
+        message,
+    }
+}
+
+/// At most 40 characters of `s`, for messages.
+fn clip(s: &str) -> String {
+    if s.chars().count() <= 40 {
+        s.to_string()
+    } else {
+        let mut t: String = s.chars().take(40).collect();
+        t.push_str("...");
+        t
+    }
+}
+
+fn number(statement: &str, token: &str) -> Result<f32, ErrorKind> {
+    match token.parse::<f32>() {
+        Ok(x) if x.is_finite() => Ok(x),
+        Ok(_) => Err(ErrorKind::NonFinite { token: clip(token) }),
+        Err(_) => Err(malformed(
+            statement,
+            format!("expected a number, found `{}`", clip(token)),
+        )),
+    }
+}
+
+fn numbers<const N: usize>(statement: &str, tokens: &[&str]) -> Result<[f32; N], ErrorKind> {
+    let mut out = [0.0; N];
+    for (o, t) in out.iter_mut().zip(tokens) {
+        *o = number(statement, t)?;
+    }
+    Ok(out)
+}
+
+/// The rest of a statement after its keyword, whitespace runs collapsed.
+fn rest(tokens: &[&str]) -> String {
+    tokens.join(" ")
+}
+
+fn resolve(index: i64, defined: usize, element: &'static str) -> Result<u32, ErrorKind> {
+    let out_of_range = ErrorKind::IndexOutOfRange {
+        element,
+        index,
+        defined,
+    };
+    let i = match index {
+        0 => return Err(ErrorKind::ZeroIndex { element }),
+        i if i > 0 => i as u64 - 1,
+        i => match (defined as u64).checked_sub(i.unsigned_abs()) {
+            Some(i) => i,
+            None => return Err(out_of_range),
+        },
+    };
+    if i < defined as u64 {
+        // `defined` is bounded by `max_elements`, itself below u32::MAX.
+        u32::try_from(i).map_err(|_| out_of_range)
+    } else {
+        Err(out_of_range)
+    }
+}
+
+/// A corner's written indices: position, optional texture coordinate,
+/// optional normal.
+fn parse_corner(token: &str) -> Result<(i64, Option<i64>, Option<i64>), ErrorKind> {
+    let bad = |what: &str| {
+        malformed(
+            "f",
+            format!(
+                "{what} in corner `{}` (expected v, v/vt, v//vn or v/vt/vn)",
+                clip(token)
+            ),
+        )
+    };
+    let mut parts = token.split('/');
+    let v = parts.next().unwrap_or("");
+    let vt = parts.next().unwrap_or("");
+    let vn = parts.next().unwrap_or("");
+    if parts.next().is_some() {
+        return Err(bad("too many `/`"));
+    }
+    let index = |s: &str| -> Result<Option<i64>, ErrorKind> {
+        if s.is_empty() {
+            Ok(None)
+        } else {
+            s.parse::<i64>()
+                .map(Some)
+                .map_err(|_| bad(&format!("bad index `{}`", clip(s))))
+        }
+    };
+    let v = index(v)?.ok_or_else(|| bad("no vertex index"))?;
+    Ok((v, index(vt)?, index(vn)?))
+}
+
+impl Parser<'_> {
+    fn err(&self, line: usize, kind: ErrorKind) -> ImportError {
+        ImportError::new(self.path, Some(line), kind)
+    }
+
+    fn statement(
+        &mut self,
+        line: usize,
+        text: &str,
+        loader: &mut Loader<'_>,
+    ) -> Result<(), ImportError> {
+        let mut tokens = text.split_whitespace();
+        let Some(keyword) = tokens.next() else {
+            return Ok(());
+        };
+        let args: Vec<&str> = tokens.collect();
+        let result = match keyword {
+            "v" => self.vertex(&args),
+            "vt" => self.texcoord(&args),
+            "vn" => self.normal(&args),
+            "f" => self.face(&args),
+            "o" | "g" => {
+                self.current = None;
+                let name = rest(&args);
+                self.group = if name.is_empty() {
+                    "default".to_string()
+                } else {
+                    name
+                };
+                Ok(())
+            }
+            "usemtl" => {
+                self.current = None;
+                let name = rest(&args);
+                self.material = (!name.is_empty()).then_some(name);
+                Ok(())
+            }
+            "mtllib" => return self.mtllib(&args, loader),
+            other => {
+                let n = self.ignored.len();
+                match self.ignored.get_mut(other) {
+                    Some(count) => *count += 1,
+                    None if n < MAX_IGNORED_KINDS => {
+                        self.ignored.insert(other.to_string(), 1);
+                    }
+                    None => *self.ignored.entry("(other)".to_string()).or_insert(0) += 1,
+                }
+                Ok(())
+            }
+        };
+        result.map_err(|kind| self.err(line, kind))
+    }
+
+    fn check_count(&self, len: usize, element: &'static str) -> Result<(), ErrorKind> {
+        let limit = self.options.max_elements.min(NONE as usize - 1);
+        if len >= limit {
+            Err(ErrorKind::TooManyElements { element, limit })
+        } else {
+            Ok(())
+        }
+    }
+
+    fn vertex(&mut self, args: &[&str]) -> Result<(), ErrorKind> {
+        self.check_count(self.positions.len(), "vertex")?;
+        let (position, color) = match args.len() {
+            3 | 4 => {
+                if let Some(w) = args.get(3) {
+                    number("v", w)?;
+                }
+                (numbers("v", args)?, None)
+            }
+            6 => {
+                let [x, y, z, r, g, b] = numbers("v", args)?;
+                ([x, y, z], Some([r, g, b]))
+            }
+            n => {
+                return Err(malformed(
+                    "v",
+                    format!("expected x y z, x y z w or x y z r g b; found {n} values"),
+                ))
+            }
+        };
+        self.positions.push(position);
+        if color.is_some() || !self.colors.is_empty() {
+            // Earlier vertices (before the first coloured one) have none.
+            self.colors.resize(self.positions.len() - 1, None);
+            self.colors.push(color);
+        }
+        Ok(())
+    }
+
+    fn texcoord(&mut self, args: &[&str]) -> Result<(), ErrorKind> {
+        self.check_count(self.texcoords.len(), "texture coordinate")?;
+        if args.is_empty() || args.len() > 3 {
+            return Err(malformed(
+                "vt",
+                format!("expected u, u v or u v w; found {} values", args.len()),
+            ));
+        }
+        let u = number("vt", args[0])?;
+        let v = match args.get(1) {
+            Some(t) => number("vt", t)?,
+            None => 0.0,
+        };
+        if let Some(w) = args.get(2) {
+            number("vt", w)?;
+        }
+        for value in [u, v] {
+            if to_fixed(value as f64).is_none() {
+                return Err(ErrorKind::OutOfFixedRange {
+                    what: "texture",
+                    value: value as f64,
+                });
+            }
+        }
+        self.texcoords.push([u, v]);
+        Ok(())
+    }
+
+    fn normal(&mut self, args: &[&str]) -> Result<(), ErrorKind> {
+        self.check_count(self.normals.len(), "normal")?;
+        if args.len() != 3 {
+            return Err(malformed(
+                "vn",
+                format!("expected x y z; found {} values", args.len()),
+            ));
+        }
+        self.normals.push(numbers("vn", args)?);
+        Ok(())
+    }
+
+    fn face(&mut self, args: &[&str]) -> Result<(), ErrorKind> {
+        if args.len() < 3 {
+            return Err(malformed(
+                "f",
+                format!("a face needs at least 3 corners, found {}", args.len()),
+            ));
+        }
+        if args.len() > self.options.max_face_corners {
+            return Err(ErrorKind::TooManyCorners {
+                count: args.len(),
+                limit: self.options.max_face_corners,
+            });
+        }
+        let mut corners: Vec<Corner> = Vec::with_capacity(args.len());
+        let mut form: Option<Form> = None;
+        for token in args {
+            let (v, vt, vn) = parse_corner(token)?;
+            let this: Form = (vt.is_some(), vn.is_some());
+            match form {
+                None => form = Some(this),
+                Some(f) if f != this => {
+                    return Err(ErrorKind::MixedFaceForms {
+                        first: clip(args[0]),
+                        other: clip(token),
+                    })
+                }
+                Some(_) => {}
+            }
+            let v = resolve(v, self.positions.len(), "vertex")?;
+            let vt = match vt {
+                Some(i) => resolve(i, self.texcoords.len(), "texture coordinate")?,
+                None => NONE,
+            };
+            let vn = match vn {
+                Some(i) => resolve(i, self.normals.len(), "normal")?,
+                None => NONE,
+            };
+            corners.push([v, vt, vn]);
+        }
+        let points: Vec<[f64; 3]> = corners
+            .iter()
+            .map(|c| self.positions[c[0] as usize].map(f64::from))
+            .collect();
+        for [a, b, c] in triangulate(&points) {
+            let tri = [corners[a], corners[b], corners[c]];
+            let area2 = cross(sub(points[b], points[a]), sub(points[c], points[a]));
+            if tri[0][0] == tri[1][0]
+                || tri[1][0] == tri[2][0]
+                || tri[0][0] == tri[2][0]
+                || dot(area2, area2) == 0.0
+            {
+                self.degenerate += 1;
+                continue;
+            }
+            if self.triangle_count >= self.options.max_triangles {
+                return Err(ErrorKind::TooManyTriangles {
+                    limit: self.options.max_triangles,
+                });
+            }
+            self.triangle_count += 1;
+            let g = match self.current {
+                Some(g) => g,
+                None => {
+                    let key = (self.group.clone(), self.material.clone());
+                    let next = self.groups.len();
+                    let g = *self.group_index.entry(key).or_insert(next);
+                    if g == next {
+                        self.groups.push(GroupBuild {
+                            name: self.group.clone(),
+                            material: self.material.clone(),
+                            triangles: Vec::new(),
+                        });
+                    }
+                    self.current = Some(g);
+                    g
+                }
+            };
+            self.groups[g].triangles.push(tri);
+        }
+        Ok(())
+    }
+
+    fn mtllib(&mut self, args: &[&str], loader: &mut Loader<'_>) -> Result<(), ImportError> {
+        if args.is_empty() {
+            return Ok(());
+        }
+        // A file name with spaces, or several names.
+        let whole = rest(args);
+        let names: Vec<String> = if args.len() == 1 {
+            vec![whole]
+        } else {
+            match loader(&whole)? {
+                Some((path, text)) => return self.mtl(&path, &text),
+                None => args.iter().map(|s| s.to_string()).collect(),
+            }
+        };
+        for name in names {
+            match loader(&name)? {
+                Some((path, text)) => self.mtl(&path, &text)?,
+                None => self.warnings.push(format!(
+                    "material library `{name}` not found; its materials are white"
+                )),
+            }
+        }
+        Ok(())
+    }
+
+    fn mtl(&mut self, path: &Path, text: &str) -> Result<(), ImportError> {
+        if !self.files.iter().any(|f| f == path) {
+            self.files.push(path.to_path_buf());
+        }
+        let mut current: Option<String> = None;
+        for (line, statement) in Lines::new(text) {
+            let tokens: Vec<&str> = statement.split_whitespace().collect();
+            let Some((&keyword, args)) = tokens.split_first() else {
+                continue;
+            };
+            let err = |kind| ImportError::new(path, Some(line), kind);
+            match keyword {
+                "newmtl" => {
+                    let name = rest(args);
+                    if name.is_empty() {
+                        return Err(err(malformed(
+                            "newmtl",
+                            "expected a material name".to_string(),
+                        )));
+                    }
+                    self.materials.insert(
+                        name.clone(),
+                        Material {
+                            name: name.clone(),
+                            diffuse: [1.0; 3],
+                            texture: None,
+                        },
+                    );
+                    current = Some(name);
+                }
+                "Kd" | "map_Kd" => {
+                    let Some(material) = current.as_ref().and_then(|n| self.materials.get_mut(n))
+                    else {
+                        self.warnings.push(format!(
+                            "{}:{line}: `{keyword}` before any `newmtl` ignored",
+                            path.display()
+                        ));
+                        continue;
+                    };
+                    if keyword == "map_Kd" {
+                        let name = texture_name(args);
+                        if name.is_empty() {
+                            return Err(err(malformed(
+                                "map_Kd",
+                                "expected a file name".to_string(),
+                            )));
+                        }
+                        material.texture = Some(name);
+                    } else if matches!(args.first(), Some(&"spectral") | Some(&"xyz")) {
+                        self.warnings.push(format!(
+                            "{}:{line}: `Kd {}` is not supported; the colour stays white",
+                            path.display(),
+                            args[0]
+                        ));
+                    } else {
+                        material.diffuse = match args.len() {
+                            1 => [number("Kd", args[0]).map_err(err)?; 3],
+                            3 => numbers("Kd", args).map_err(err)?,
+                            n => {
+                                return Err(err(malformed(
+                                    "Kd",
+                                    format!("expected r g b; found {n} values"),
+                                )))
+                            }
+                        };
+                    }
+                }
+                _ => {}
+            }
+        }
+        Ok(())
+    }
+
+    fn finish(self) -> Result<Model, ImportError> {
+        let whole = |kind| ImportError::new(self.path, None, kind);
+        if self.triangle_count == 0 {
+            return Err(whole(ErrorKind::NoTriangles {
+                degenerate: self.degenerate,
+            }));
+        }
+        let mut warnings = self.warnings;
+
+        // Unique vertices, numbered in the order triangles first use them.
+        let mut index: HashMap<Corner, u32> = HashMap::new();
+        let mut corners: Vec<Corner> = Vec::new();
+        let mut triangles: Vec<[u32; 3]> = Vec::with_capacity(self.triangle_count);
+        let mut groups = Vec::with_capacity(self.groups.len());
+        let mut undefined: Vec<String> = Vec::new();
+        for g in &self.groups {
+            let start = triangles.len();
+            for tri in &g.triangles {
+                triangles.push(tri.map(|c| {
+                    *index.entry(c).or_insert_with(|| {
+                        corners.push(c);
+                        // At most 3 * max_triangles corners; saturate rather
+                        // than wrap (the count check below fails first).
+                        u32::try_from(corners.len() - 1).unwrap_or(u32::MAX)
+                    })
+                }));
+            }
+            let material = g.material.as_ref().map(|name| {
+                self.materials.get(name).cloned().unwrap_or_else(|| {
+                    if !undefined.contains(name) {
+                        undefined.push(name.clone());
+                    }
+                    Material {
+                        name: name.clone(),
+                        diffuse: [1.0; 3],
+                        texture: None,
+                    }
+                })
+            });
+            groups.push(Group {
+                name: g.name.clone(),
+                material,
+                triangles: start..triangles.len(),
+            });
+        }
+        for name in undefined {
+            warnings.push(format!("material `{name}` is not defined; it is white"));
+        }
+        let limit = self.options.index_width.max_vertices();
+        if corners.len() > limit {
+            return Err(whole(ErrorKind::TooManyVertices {
+                count: corners.len(),
+                limit,
+            }));
+        }
+
+        let source_pos = |c: &Corner| self.positions[c[0] as usize].map(f64::from);
+
+        // Fit into 16.16.
+        let (min, max) = bounds(corners.iter().map(source_pos));
+        let center: [f64; 3] = std::array::from_fn(|k| (min[k] + max[k]) / 2.0);
+        let radius = corners
+            .iter()
+            .map(|c| length(sub(source_pos(c), center)))
+            .fold(0.0, f64::max);
+        let largest = (0..3)
+            .map(|k| min[k].abs().max(max[k].abs()))
+            .fold(0.0, f64::max);
+        let fit_applied = match self.options.fit {
+            Fit::Auto if largest <= 1024.0 && radius >= 1.0 / 64.0 => Fit::Keep,
+            Fit::Auto => Fit::Unit,
+            f => f,
+        };
+        let (offset, scale) =
+            if fit_applied == Fit::Unit && radius > 0.0 && (1.0 / radius).is_finite() {
+                (center.map(|c| -c), 1.0 / radius)
+            } else {
+                ([0.0; 3], 1.0)
+            };
+        if fit_applied == Fit::Keep {
+            for value in [min, max].iter().flatten() {
+                if to_fixed(*value).is_none() {
+                    return Err(whole(ErrorKind::OutOfFixedRange {
+                        what: "position",
+                        value: *value,
+                    }));
+                }
+            }
+        }
+        let positions: Vec<[f32; 3]> = corners
+            .iter()
+            .map(|c| {
+                let p = source_pos(c);
+                std::array::from_fn(|k| ((p[k] + offset[k]) * scale) as f32)
+            })
+            .collect();
+        // Triangles that 16.16 rounding flattens (far smaller than the
+        // model): kept, but worth knowing about.
+        let fixed: Vec<[i128; 3]> = positions
+            .iter()
+            .map(|p| p.map(|c| to_fixed_saturating(c) as i128))
+            .collect();
+        let collapsed = triangles
+            .iter()
+            .filter(|t| {
+                let [a, b, c] = t.map(|i| fixed[i as usize]);
+                let (u, v) = (
+                    [0, 1, 2].map(|k| b[k] - a[k]),
+                    [0, 1, 2].map(|k| c[k] - a[k]),
+                );
+                u[1] * v[2] == u[2] * v[1]
+                    && u[2] * v[0] == u[0] * v[2]
+                    && u[0] * v[1] == u[1] * v[0]
+            })
+            .count();
+        if collapsed > 0 {
+            warnings.push(format!(
+                "{collapsed} triangle(s) have no area at 16.16 resolution \
+                 (too small for the model's size)"
+            ));
+        }
+        let (min, max) = bounds(positions.iter().map(|p| p.map(f64::from)));
+        let center: [f64; 3] = std::array::from_fn(|k| (min[k] + max[k]) / 2.0);
+        let radius = positions
+            .iter()
+            .map(|p| length(sub(p.map(f64::from), center)))
+            .fold(0.0, f64::max);
+
+        // Normals.
+        let given = |c: &Corner| -> Option<[f64; 3]> {
+            let n = self.normals.get(c[2] as usize)?.map(f64::from);
+            normalize(n)
+        };
+        let all_given = corners.iter().all(|c| given(c).is_some());
+        let any_given = corners.iter().any(|c| c[2] != NONE);
+        let normals: Vec<[f32; 3]> = if all_given {
+            corners
+                .iter()
+                .map(|c| given(c).unwrap_or([0.0, 0.0, 1.0]).map(|x| x as f32))
+                .collect()
+        } else if self.options.compute_normals {
+            let mut sums = vec![[0.0f64; 3]; self.positions.len()];
+            let mut first: Vec<Option<[f64; 3]>> = vec![None; self.positions.len()];
+            for tri in &triangles {
+                let [a, b, c] = tri.map(|i| source_pos(&corners[i as usize]));
+                let n = cross(sub(b, a), sub(c, a));
+                for &i in tri {
+                    let v = corners[i as usize][0] as usize;
+                    sums[v] = add(sums[v], n);
+                    first[v].get_or_insert(n);
+                }
+            }
+            corners
+                .iter()
+                .map(|c| {
+                    let v = c[0] as usize;
+                    given(c)
+                        .or_else(|| normalize(sums[v]))
+                        .or_else(|| first[v].and_then(normalize))
+                        .unwrap_or([0.0, 0.0, 1.0])
+                        .map(|x| x as f32)
+                })
+                .collect()
+        } else {
+            if any_given {
+                warnings.push(
+                    "some vertices have no usable `vn` and normal computation is off; normals dropped"
+                        .to_string(),
+                );
+            }
+            Vec::new()
+        };
+
+        // Texture coordinates.
+        let missing_uv = corners.iter().filter(|c| c[1] == NONE).count();
+        let uvs: Vec<[f32; 2]> = if missing_uv == corners.len() {
+            Vec::new()
+        } else {
+            if missing_uv > 0 {
+                warnings.push(format!(
+                    "{missing_uv} vertices have no `vt`; their texture coordinates are (0, 0)"
+                ));
+            }
+            corners
+                .iter()
+                .map(|c| {
+                    self.texcoords
+                        .get(c[1] as usize)
+                        .copied()
+                        .unwrap_or([0.0; 2])
+                })
+                .collect()
+        };
+
+        // Colours.
+        let color = |c: &Corner| self.colors.get(c[0] as usize).copied().flatten();
+        let missing_color = corners.iter().filter(|c| color(c).is_none()).count();
+        let colors: Vec<[u8; 3]> = if missing_color == corners.len() {
+            Vec::new()
+        } else {
+            if missing_color > 0 {
+                warnings.push(format!(
+                    "{missing_color} vertices have no colour; they are white"
+                ));
+            }
+            corners
+                .iter()
+                .map(|c| color(c).unwrap_or([1.0; 3]).map(unit_to_u8))
+                .collect()
+        };
+
+        if self.degenerate > 0 {
+            warnings.push(format!(
+                "dropped {} degenerate triangle(s) (no area)",
+                self.degenerate
+            ));
+        }
+        for (keyword, count) in &self.ignored {
+            warnings.push(format!("ignored {count} `{}` statement(s)", clip(keyword)));
+        }
+
+        Ok(Model {
+            source: self.path.to_path_buf(),
+            options: self.options.clone(),
+            fit_applied,
+            positions,
+            normals,
+            uvs,
+            colors,
+            triangles,
+            groups,
+            bounds: Aabb {
+                min: min.map(|x| x as f32),
+                max: max.map(|x| x as f32),
+            },
+            sphere: Sphere {
+                center: center.map(|x| x as f32),
+                radius: radius as f32,
+            },
+            offset,
+            scale,
+            degenerate: self.degenerate,
+            files: self.files,
+            warnings,
+        })
+    }
+}
+
+/// A colour channel in 0..1 (clamped) to 0..255, rounded to nearest.
+pub(crate) fn unit_to_u8(x: f32) -> u8 {
+    (x.clamp(0.0, 1.0) * 255.0).round() as u8
+}
+
+/// The file name of a `map_Kd` statement: the arguments after its options
+/// (`-s 1 1 1`, `-clamp on`, `-mm 0 1`, ...). The last argument is always
+/// part of the name.
+fn texture_name(args: &[&str]) -> String {
+    let Some(last) = args.len().checked_sub(1) else {
+        return String::new();
+    };
+    let mut i = 0;
+    while i < last && args[i].starts_with('-') {
+        let option = args[i];
+        i += 1;
+        match option {
+            // One to three numbers.
+            "-o" | "-s" | "-t" => {
+                let mut k = 0;
+                while k < 3 && i < last && args[i].parse::<f32>().is_ok() {
+                    i += 1;
+                    k += 1;
+                }
+            }
+            "-mm" => i = (i + 2).min(last),
+            _ => i = (i + 1).min(last),
+        }
+    }
+    rest(&args[i..])
+}
+
+fn bounds(points: impl Iterator<Item = [f64; 3]>) -> ([f64; 3], [f64; 3]) {
+    let mut min = [f64::INFINITY; 3];
+    let mut max = [f64::NEG_INFINITY; 3];
+    for p in points {
+        for k in 0..3 {
+            min[k] = min[k].min(p[k]);
+            max[k] = max[k].max(p[k]);
+        }
+    }
+    if min[0] > max[0] {
+        ([0.0; 3], [0.0; 3])
+    } else {
+        (min, max)
+    }
+}
+
+fn sub(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
+}
+
+fn add(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
+}
+
+fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+fn length(a: [f64; 3]) -> f64 {
+    dot(a, a).sqrt()
+}
+
+fn normalize(a: [f64; 3]) -> Option<[f64; 3]> {
+    let l = length(a);
+    (l > 0.0 && l.is_finite()).then(|| a.map(|x| x / l))
+}
+
+/// Polygons with more corners than this are fan-triangulated: ear clipping
+/// costs up to the cube of the corner count.
+pub const EAR_CLIPPING_MAX_CORNERS: usize = 256;
+
+/// Splits a polygon into triangles, as indices into `points`, keeping its
+/// winding.
+///
+/// A triangle is returned as is. A larger polygon is projected onto the
+/// plane of its dominant axis (from Newell's normal) and ear-clipped there,
+/// so convex and concave simple polygons are split exactly, into
+/// `points.len() - 2` triangles. Polygons with no area, self-intersecting
+/// ones where no ear is left, and ones with more than
+/// [`EAR_CLIPPING_MAX_CORNERS`] corners fall back to a fan around the
+/// first remaining corner; any degenerate triangles that gives are dropped
+/// by the importer. Never panics.
+///
+/// ```
+/// use microraster_import::triangulate;
+/// // An L shape: a fan from corner 0 would cover the notch.
+/// let l = [[0.0, 0.0, 0.0], [2.0, 0.0, 0.0], [2.0, 1.0, 0.0],
+///          [1.0, 1.0, 0.0], [1.0, 2.0, 0.0], [0.0, 2.0, 0.0]];
+/// assert_eq!(triangulate(&l).len(), 4);
+/// ```
+pub fn triangulate(points: &[[f64; 3]]) -> Vec<[usize; 3]> {
+    let n = points.len();
+    if n < 3 {
+        return Vec::new();
+    }
+    if n == 3 {
+        return vec![[0, 1, 2]];
+    }
+    let fan = |rest: &[usize]| -> Vec<[usize; 3]> {
+        (1..rest.len().saturating_sub(1))
+            .map(|i| [rest[0], rest[i], rest[i + 1]])
+            .collect()
+    };
+    let all: Vec<usize> = (0..n).collect();
+    if n > EAR_CLIPPING_MAX_CORNERS {
+        return fan(&all);
+    }
+    // Newell's normal, and the plane of its largest component.
+    let mut normal = [0.0f64; 3];
+    for i in 0..n {
+        let a = points[i];
+        let b = points[(i + 1) % n];
+        normal[0] += (a[1] - b[1]) * (a[2] + b[2]);
+        normal[1] += (a[2] - b[2]) * (a[0] + b[0]);
+        normal[2] += (a[0] - b[0]) * (a[1] + b[1]);
+    }
+    let axis = (0..3)
+        .max_by(|&a, &b| normal[a].abs().total_cmp(&normal[b].abs()))
+        .unwrap_or(2);
+    if normal[axis] == 0.0 || !normal[axis].is_finite() {
+        return fan(&all);
+    }
+    // Project so that the polygon winds counter-clockwise in 2D.
+    let (u, v) = match axis {
+        0 => (1, 2),
+        1 => (2, 0),
+        _ => (0, 1),
+    };
+    let flip = normal[axis] < 0.0;
+    let p2: Vec<[f64; 2]> = points
+        .iter()
+        .map(|p| if flip { [p[v], p[u]] } else { [p[u], p[v]] })
+        .collect();
+    let turn = |a: usize, b: usize, c: usize| -> f64 {
+        let (a, b, c) = (p2[a], p2[b], p2[c]);
+        (b[0] - a[0]) * (c[1] - a[1]) - (b[1] - a[1]) * (c[0] - a[0])
+    };
+    let mut remaining = all;
+    let mut out = Vec::with_capacity(n - 2);
+    // Starting at corner 1 makes a convex polygon's triangles those of the
+    // fan around corner 0: (0, 1, 2), (0, 2, 3), ...
+    let mut start = 1;
+    while remaining.len() > 3 {
+        let m = remaining.len();
+        let ear = (0..m).map(|k| (start + k) % m).find(|&i| {
+            let (a, b, c) = (
+                remaining[(i + m - 1) % m],
+                remaining[i],
+                remaining[(i + 1) % m],
+            );
+            if turn(a, b, c) <= 0.0 {
+                return false;
+            }
+            remaining.iter().all(|&q| {
+                if q == a || q == b || q == c {
+                    return true;
+                }
+                let pq = p2[q];
+                if pq == p2[a] || pq == p2[b] || pq == p2[c] {
+                    return true;
+                }
+                // Outside (strictly) of at least one edge.
+                turn(a, b, q) < 0.0 || turn(b, c, q) < 0.0 || turn(c, a, q) < 0.0
+            })
+        });
+        match ear {
+            Some(i) => {
+                out.push([
+                    remaining[(i + m - 1) % m],
+                    remaining[i],
+                    remaining[(i + 1) % m],
+                ]);
+                remaining.remove(i);
+                start = i % remaining.len();
+            }
+            None => {
+                out.extend(fan(&remaining));
+                return out;
+            }
+        }
+    }
+    out.push([remaining[0], remaining[1], remaining[2]]);
+    out
+}

@@ -1,0 +1,358 @@
+//! Rust source output: the arrays read back equal the model's fixed-point
+//! data exactly, and files are written atomically.
+
+mod common;
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+use common::{declared_len, parse_items, Item, Value};
+use microraster_import::{
+    load_obj, model_to_rust, obj_to_rust, parse_obj, write_atomic, ErrorKind, Fit, IndexWidth,
+    Model, ObjOptions,
+};
+
+const FX: &str = "::fixed::types::I16F16::from_bits";
+const RGB: &str = "::embedded_graphics::pixelcolor::Rgb888::new";
+
+fn data(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data")
+        .join(name)
+}
+
+fn temp_dir(tag: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("mri-{tag}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// The rows of a fixed-point array item, checking its declared length.
+fn fixed_rows<const N: usize>(item: &Item) -> Vec<[i32; N]> {
+    let rows = item.value.array();
+    assert_eq!(declared_len(&item.ty), rows.len(), "{}", item.ty);
+    rows.iter()
+        .map(|row| {
+            let row = row.array();
+            assert_eq!(row.len(), N);
+            std::array::from_fn(|k| row[k].call(FX)[0].int() as i32)
+        })
+        .collect()
+}
+
+fn int_rows(item: &Item) -> Vec<[u32; 3]> {
+    let rows = item.value.array();
+    assert_eq!(declared_len(&item.ty), rows.len(), "{}", item.ty);
+    rows.iter()
+        .map(|row| {
+            let row = row.array();
+            std::array::from_fn(|k| row[k].int() as u32)
+        })
+        .collect()
+}
+
+fn colors(item: &Item) -> Vec<[u8; 3]> {
+    let rows = item.value.array();
+    assert_eq!(declared_len(&item.ty), rows.len(), "{}", item.ty);
+    rows.iter()
+        .map(|c| {
+            let args = c.call(RGB);
+            std::array::from_fn(|k| u8::try_from(args[k].int()).unwrap())
+        })
+        .collect()
+}
+
+fn f32s(item: &Item) -> Vec<f32> {
+    match &item.value {
+        Value::Array(v) => v.iter().map(|x| x.float() as f32).collect(),
+        v => vec![v.float() as f32],
+    }
+}
+
+/// Parses `text` and checks every item against `model`.
+fn check_round_trip(model: &Model, text: &str, p: &str) -> BTreeMap<String, Item> {
+    let items = parse_items(text).unwrap_or_else(|e| panic!("{e}\n{text}"));
+    let get = |name: &str| {
+        items
+            .get(&format!("{p}_{name}"))
+            .unwrap_or_else(|| panic!("no {p}_{name}"))
+    };
+    let positions = get("POSITIONS");
+    assert_eq!(
+        positions.ty,
+        format!("[[::fixed::types::I16F16; 3]; {}]", model.positions.len())
+    );
+    assert_eq!(positions.kind, "static");
+    assert_eq!(fixed_rows::<3>(positions), model.positions_fixed());
+    match items.get(&format!("{p}_NORMALS")) {
+        Some(n) => assert_eq!(fixed_rows::<3>(n), model.normals_fixed()),
+        None => assert!(model.normals.is_empty()),
+    }
+    match items.get(&format!("{p}_UVS")) {
+        Some(n) => {
+            assert_eq!(
+                n.ty,
+                format!("[[::fixed::types::I16F16; 2]; {}]", model.uvs.len())
+            );
+            assert_eq!(fixed_rows::<2>(n), model.uvs_fixed());
+        }
+        None => assert!(model.uvs.is_empty()),
+    }
+    match items.get(&format!("{p}_COLORS")) {
+        Some(c) => assert_eq!(colors(c), model.colors),
+        None => assert!(model.colors.is_empty()),
+    }
+    let triangles = get("TRIANGLES");
+    let index = model.options.index_width.rust_type();
+    assert_eq!(
+        triangles.ty,
+        format!("[[{index}; 3]; {}]", model.triangles.len())
+    );
+    assert_eq!(int_rows(triangles), model.triangles);
+
+    let groups = get("GROUPS");
+    assert_eq!(
+        groups.ty,
+        format!("[(&str, usize, usize); {}]", model.groups.len())
+    );
+    let read: Vec<(String, usize, usize)> = groups
+        .value
+        .array()
+        .iter()
+        .map(|g| match g {
+            Value::Tuple(t) => match &t[..] {
+                [Value::Str(name), Value::Int(first), Value::Int(count)] => {
+                    (name.clone(), *first as usize, *count as usize)
+                }
+                other => panic!("{other:?}"),
+            },
+            other => panic!("{other:?}"),
+        })
+        .collect();
+    let expected: Vec<(String, usize, usize)> = model
+        .groups
+        .iter()
+        .map(|g| (g.name.clone(), g.triangles.start, g.triangles.len()))
+        .collect();
+    assert_eq!(read, expected);
+    let group_colors = colors(get("GROUP_COLORS"));
+    let expected: Vec<[u8; 3]> = model
+        .groups
+        .iter()
+        .map(|g| {
+            g.material
+                .as_ref()
+                .map_or([1.0; 3], |m| m.diffuse)
+                .map(|c| (c.clamp(0.0, 1.0) * 255.0).round() as u8)
+        })
+        .collect();
+    assert_eq!(group_colors, expected);
+    let textures: Vec<Option<String>> = get("GROUP_TEXTURES")
+        .value
+        .array()
+        .iter()
+        .map(|t| match t {
+            Value::Path(p) if p == "None" => None,
+            Value::Call(p, args) if p == "Some" => match &args[..] {
+                [Value::Str(s)] => Some(s.clone()),
+                other => panic!("{other:?}"),
+            },
+            other => panic!("{other:?}"),
+        })
+        .collect();
+    let expected: Vec<Option<String>> = model
+        .groups
+        .iter()
+        .map(|g| g.material.as_ref().and_then(|m| m.texture.clone()))
+        .collect();
+    assert_eq!(textures, expected);
+
+    assert_eq!(f32s(get("SCALE")), [model.scale as f32]);
+    assert_eq!(get("SCALE").kind, "const");
+    assert_eq!(f32s(get("OFFSET")), model.offset.map(|x| x as f32));
+    assert_eq!(f32s(get("BOUNDS_MIN")), model.bounds.min);
+    assert_eq!(f32s(get("BOUNDS_MAX")), model.bounds.max);
+    assert_eq!(f32s(get("SPHERE_CENTER")), model.sphere.center);
+    assert_eq!(f32s(get("SPHERE_RADIUS")), [model.sphere.radius]);
+    items
+}
+
+#[test]
+fn cube_round_trip() {
+    let model = load_obj(
+        &data("cube.obj"),
+        &ObjOptions::default().with_fit(Fit::Unit),
+    )
+    .unwrap();
+    let text = model_to_rust(&model, "texturedCube").unwrap();
+    let items = check_round_trip(&model, &text, "TEXTURED_CUBE");
+    assert!(items.contains_key("TEXTURED_CUBE_UVS"));
+    assert!(items.contains_key("TEXTURED_CUBE_NORMALS"));
+    assert!(!items.contains_key("TEXTURED_CUBE_COLORS"));
+    assert_eq!(items.len(), 13);
+    // Unit fit of [-1, 1]^3: radius √3, so 1 becomes 1/√3 = 37837.23/65536.
+    assert_eq!(
+        fixed_rows::<3>(&items["TEXTURED_CUBE_POSITIONS"])[0],
+        [-37837; 3]
+    );
+    // The header says where it came from and how.
+    assert!(text.starts_with(
+        "// Generated by microraster-import 0.1.0 from `cube.obj`. Do not edit.\n\
+         // Materials from `cube.mtl`.\n\
+         // Options: fit unit, u16 indices, computed normals on.\n\
+         // 24 vertices, 12 triangles, 2 groups; 0 degenerate triangles dropped.\n"
+    ));
+    assert!(text.contains("// Warning: ignored 1 `s` statement(s)\n"));
+    // Deterministic.
+    assert_eq!(text, model_to_rust(&model, "texturedCube").unwrap());
+}
+
+#[test]
+fn coloured_u32_model_with_odd_names_round_trip() {
+    let obj = "mtllib m.mtl\n\
+               g \"quoted\\name\" \n\
+               v 0 0 0 1 0 0\nv 3000 0 0 0 1 0\nv 0 3000 0 0 0 1\nv 3000 3000 0 0.5 0.5 0.5\n\
+               usemtl m\nf 1 2 3\n\
+               g default\nusemtl other\nf 2 4 3\n";
+    let mtl = "newmtl m\nKd 0.2 0.4 2\nmap_Kd tex \"1\".png\n";
+    let model = parse_obj(
+        obj,
+        Path::new("weird dir/odd.obj"),
+        |_| Some(mtl.to_string()),
+        &ObjOptions::default().with_index_width(IndexWidth::U32),
+    )
+    .unwrap();
+    assert_eq!(model.fit_applied, Fit::Unit);
+    assert_eq!(model.groups[0].name, "\"quoted\\name\"");
+    let text = model_to_rust(&model, "odd").unwrap();
+    let items = check_round_trip(&model, &text, "ODD");
+    assert!(items.contains_key("ODD_COLORS"));
+    assert!(!items.contains_key("ODD_UVS"));
+    assert!(text.contains("// Options: fit auto (applied: unit), u32 indices"));
+    // Kd is clamped for the colour: 0.2, 0.4, 2 -> 51, 102, 255.
+    assert_eq!(
+        colors(&items["ODD_GROUP_COLORS"]),
+        [[51, 102, 255], [255; 3]]
+    );
+}
+
+#[test]
+fn bad_names_are_errors() {
+    let model = parse_obj(
+        "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n",
+        Path::new("t.obj"),
+        |_| None,
+        &ObjOptions::default(),
+    )
+    .unwrap();
+    for bad in ["", "1abc", "a-b", "a b", "ü", "_", "x\n"] {
+        let e = model_to_rust(&model, bad).unwrap_err();
+        assert!(matches!(e.kind(), ErrorKind::BadName { name } if name == bad));
+        assert_eq!(
+            e.to_string(),
+            format!(
+                "t.obj: name `{}` is not an identifier (ASCII letters, digits and `_`, \
+                 not starting with a digit)",
+                bad.escape_debug()
+            )
+        );
+        assert!(!e.to_string().contains('\n'));
+    }
+    assert!(model_to_rust(&model, "_private")
+        .unwrap()
+        .contains("pub static _PRIVATE_POSITIONS"));
+}
+
+#[test]
+fn obj_to_rust_writes_the_file_and_lists_what_it_read() {
+    let dir = temp_dir("obj-to-rust");
+    let out = dir.join("cube.rs");
+    let summary = obj_to_rust(data("cube.obj"), &out, "cube", &ObjOptions::default()).unwrap();
+    assert_eq!(
+        (summary.vertices, summary.triangles, summary.groups),
+        (24, 12, 2)
+    );
+    assert_eq!(summary.fit_applied, Fit::Keep);
+    assert_eq!(summary.files, [data("cube.obj"), data("cube.mtl")]);
+    assert_eq!(
+        summary.rerun_if_changed(),
+        format!(
+            "cargo:rerun-if-changed={}\ncargo:rerun-if-changed={}\n",
+            data("cube.obj").display(),
+            data("cube.mtl").display()
+        )
+    );
+    assert_eq!(
+        summary.to_string(),
+        "24 vertices, 12 triangles, 2 groups, scale 1 (fit keep)"
+    );
+    let text = std::fs::read_to_string(&out).unwrap();
+    let model = load_obj(&data("cube.obj"), &ObjOptions::default()).unwrap();
+    check_round_trip(&model, &text, "CUBE");
+    // No temporary file is left behind.
+    let names: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name())
+        .collect();
+    assert_eq!(names, ["cube.rs"]);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn failed_conversion_leaves_the_output_alone() {
+    let dir = temp_dir("atomic");
+    let out = dir.join("model.rs");
+    std::fs::write(&out, "// the previous version\n").unwrap();
+    // Bad input: an error naming the file and line; the output untouched.
+    let bad = dir.join("bad.obj");
+    std::fs::write(&bad, "v 0 0 0\nf 1 1 7\n").unwrap();
+    let e = obj_to_rust(&bad, &out, "model", &ObjOptions::default()).unwrap_err();
+    assert_eq!(e.line(), Some(2));
+    assert_eq!(e.path(), bad);
+    assert_eq!(
+        std::fs::read_to_string(&out).unwrap(),
+        "// the previous version\n"
+    );
+    // A bad name fails before anything is read or written.
+    let e = obj_to_rust(
+        dir.join("missing.obj"),
+        &out,
+        "no good",
+        &ObjOptions::default(),
+    )
+    .unwrap_err();
+    assert!(matches!(e.kind(), ErrorKind::BadName { .. }));
+    // An output directory that does not exist: an I/O error naming the
+    // temporary file, nothing left behind.
+    let e = obj_to_rust(
+        data("cube.obj"),
+        dir.join("nowhere/model.rs"),
+        "model",
+        &ObjOptions::default(),
+    )
+    .unwrap_err();
+    assert!(matches!(e.kind(), ErrorKind::Io(_)));
+    assert!(e.path().starts_with(dir.join("nowhere")));
+    let names: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().into_string().unwrap())
+        .collect::<std::collections::BTreeSet<_>>()
+        .into_iter()
+        .collect();
+    assert_eq!(names, ["bad.obj", "model.rs"]);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn write_atomic_skips_identical_content() {
+    let dir = temp_dir("write");
+    let path = dir.join("x.rs");
+    assert!(write_atomic(&path, "a").unwrap());
+    assert!(!write_atomic(&path, "a").unwrap());
+    assert!(write_atomic(&path, "b").unwrap());
+    assert_eq!(std::fs::read_to_string(&path).unwrap(), "b");
+    let e = write_atomic(Path::new("/"), "x").unwrap_err();
+    assert!(matches!(e.kind(), ErrorKind::Io(_)));
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -1,0 +1,164 @@
+//! Imported assets on the renderer's side: the Rust source that
+//! `microraster-import` writes for `import/tests/data/cube.obj` is checked in
+//! (`tests/data/imported_cube.rs`, regenerated with `BLESS=1 cargo test
+//! --test import`), compiles as-is (this file `include!`s it), holds exactly
+//! the importer's data, and renders the same image as the same cube built
+//! in code.
+
+#[path = "../examples/common/mod.rs"]
+mod common;
+mod support;
+
+use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
+use fixed::types::I16F16;
+use microraster::mesh::Vec3Fx;
+use microraster::prelude::*;
+use microraster_import::{load_obj, model_to_rust, Fit, ObjOptions};
+use std::path::{Path, PathBuf};
+use support::Capture;
+
+/// The generated source, compiled here as a firmware would `include!` it.
+#[allow(dead_code)]
+mod imported {
+    include!("data/imported_cube.rs");
+}
+
+fn root() -> &'static Path {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+}
+
+fn cube_obj() -> PathBuf {
+    root().join("import/tests/data/cube.obj")
+}
+
+fn options() -> ObjOptions {
+    ObjOptions::new().with_fit(Fit::Keep)
+}
+
+#[test]
+fn checked_in_source_is_what_the_importer_writes() {
+    let model = load_obj(&cube_obj(), &options()).expect("the test cube imports");
+    let source = model_to_rust(&model, "imported_cube").expect("a valid name");
+    let path = root().join("tests/data/imported_cube.rs");
+    if std::env::var_os("BLESS").is_some() {
+        std::fs::write(&path, &source).unwrap();
+    }
+    let checked_in = std::fs::read_to_string(&path).unwrap();
+    assert!(
+        checked_in == source,
+        "tests/data/imported_cube.rs is stale: BLESS=1 cargo test --test import"
+    );
+}
+
+#[test]
+fn compiled_statics_hold_the_imported_data() {
+    let model = load_obj(&cube_obj(), &options()).unwrap();
+    let bits = |v: &[[I16F16; 3]]| v.iter().map(|p| p.map(|c| c.to_bits())).collect::<Vec<_>>();
+    assert_eq!(
+        bits(&imported::IMPORTED_CUBE_POSITIONS),
+        model.positions_fixed()
+    );
+    assert_eq!(
+        bits(&imported::IMPORTED_CUBE_NORMALS),
+        model.normals_fixed()
+    );
+    let tris: Vec<[u32; 3]> = imported::IMPORTED_CUBE_TRIANGLES
+        .iter()
+        .map(|t| t.map(u32::from))
+        .collect();
+    assert_eq!(tris, model.triangles);
+    assert_eq!(
+        imported::IMPORTED_CUBE_GROUP_COLORS[0],
+        Rgb888::new(255, 0, 0)
+    );
+    // The mesh checks pass on the flash-resident arrays.
+    Mesh::new(
+        &imported::IMPORTED_CUBE_POSITIONS,
+        &imported::IMPORTED_CUBE_TRIANGLES,
+    )
+    .and_then(|m| m.with_normals(&imported::IMPORTED_CUBE_NORMALS))
+    .expect("the imported cube is a valid mesh");
+}
+
+/// The cube of `cube.obj` written out by hand: its six faces (corners as in
+/// the file, counter-clockwise from outside) with their normals, each quad
+/// split as a fan from its first corner.
+fn cube_in_code() -> (Vec<Vec3Fx>, Vec<Vec3Fx>, Vec<[u16; 3]>) {
+    let corner = |k: usize| {
+        let c = [
+            [-1, -1, -1],
+            [1, -1, -1],
+            [1, 1, -1],
+            [-1, 1, -1],
+            [-1, -1, 1],
+            [1, -1, 1],
+            [1, 1, 1],
+            [-1, 1, 1],
+        ][k - 1];
+        c.map(I16F16::from_num)
+    };
+    let faces: [([usize; 4], [i32; 3]); 6] = [
+        ([1, 4, 3, 2], [0, 0, -1]),
+        ([5, 6, 7, 8], [0, 0, 1]),
+        ([1, 2, 6, 5], [0, -1, 0]),
+        ([4, 8, 7, 3], [0, 1, 0]),
+        ([1, 5, 8, 4], [-1, 0, 0]),
+        ([2, 3, 7, 6], [1, 0, 0]),
+    ];
+    let (mut positions, mut normals, mut triangles) = (Vec::new(), Vec::new(), Vec::new());
+    for (corners, n) in faces {
+        let base = positions.len() as u16;
+        for k in corners {
+            positions.push(corner(k));
+            normals.push(n.map(I16F16::from_num));
+        }
+        triangles.push([base, base + 1, base + 2]);
+        triangles.push([base, base + 2, base + 3]);
+    }
+    (positions, normals, triangles)
+}
+
+fn render(mesh: &Mesh<'_>, raster: Rasterizer) -> Capture<Rgb565> {
+    let size = Size::new(96, 72);
+    let draws = [Draw::new(mesh)
+        .transform(
+            Mat4::rotation_y(0.6) * Mat4::rotation_x(0.4) * Mat4::scale(Vec3::new(0.8, 0.8, 0.8)),
+        )
+        .color(Rgb888::new(255, 0, 0))];
+    let scene = Scene::new(common::camera(size.width, size.height), &draws).light(common::light());
+    let mut r: Renderer<Rgb565, 32, 32> =
+        Renderer::new(Config::new(size, common::DEMO_CLEAR).rasterizer(raster));
+    let mut ws: Box<Workspace<64, 256, 16>> = Box::default();
+    let mut cap = Capture::new(size, Rgb565::new(31, 0, 31));
+    r.render(&mut ws, &scene, &mut cap)
+        .expect("the cube renders");
+    cap
+}
+
+#[test]
+fn imported_cube_renders_like_the_cube_built_in_code() {
+    let imported = Mesh::new(
+        &imported::IMPORTED_CUBE_POSITIONS,
+        &imported::IMPORTED_CUBE_TRIANGLES,
+    )
+    .and_then(|m| m.with_normals(&imported::IMPORTED_CUBE_NORMALS))
+    .unwrap();
+    let (positions, normals, triangles) = cube_in_code();
+    let in_code = Mesh::new(&positions, &triangles)
+        .and_then(|m| m.with_normals(&normals))
+        .unwrap();
+    for raster in [Rasterizer::Scanline, Rasterizer::Hilbert] {
+        let a = render(&imported, raster);
+        let b = render(&in_code, raster);
+        let lit = a
+            .pixels
+            .iter()
+            .filter(|&&c| c != common::DEMO_CLEAR)
+            .count();
+        assert!(lit > 1000, "the cube covers {lit} pixels");
+        assert!(
+            a.pixels == b.pixels,
+            "{raster:?}: imported and hand-built cubes differ"
+        );
+    }
+}
