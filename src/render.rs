@@ -1201,9 +1201,9 @@ where
         macro_rules! go {
             ($d:ty) => {
                 if cfg.depth_write {
-                    Shaders::new::<$d, true>()
+                    Shaders::new::<$d, true>(cfg.rasterizer)
                 } else {
-                    Shaders::new::<$d, false>()
+                    Shaders::new::<$d, false>(cfg.rasterizer)
                 }
             };
         }
@@ -1217,10 +1217,7 @@ where
             DepthTest::Greater => Some(go!(DGreater)),
         };
         let shaded = match shaders {
-            Some(mut shaders) => {
-                shaders.raster = cfg.rasterizer;
-                raster_tile(tile, &rect, frame, cache, list, shaders)
-            }
+            Some(shaders) => raster_tile(tile, &rect, frame, cache, list, shaders),
             None => 0,
         };
         stats.pixels_shaded += shaded;
@@ -1377,9 +1374,9 @@ impl<C, const TW: usize, const TH: usize> Shaders<C, TW, TH>
 where
     C: PixelColor + From<Rgb888>,
 {
-    fn new<D: DepthFn, const WRITE: bool>() -> Self {
+    fn new<D: DepthFn, const WRITE: bool>(raster: Rasterizer) -> Self {
         Self {
-            raster: Rasterizer::Scanline,
+            raster,
             gouraud: shade::<C, D, WRITE, true, TW, TH>,
             flat: shade::<C, D, WRITE, false, TW, TH>,
         }

@@ -275,14 +275,14 @@ enum Visit {
 /// blocks of the `2^order` region at `(x0, y0)` in Hilbert order, starting
 /// with the whole region, handing `visit` each block's position, side as a
 /// shift (`side = 1 << shift`) and edge values at its first pixel centre;
-/// `Split` on a single pixel is treated as `Skip`. Returns the edge values
-/// at the end, which equal those at the start.
-fn traverse<F>(edges: &Edges, x0: i32, y0: i32, order: u32, mut visit: F) -> [i64; 3]
+/// `Split` on a single pixel is treated as `Skip`. `steps` are the edges'
+/// [`Steps`], which the caller's visitor needs too and so sets up once.
+/// Returns the edge values at the end, which equal those at the start.
+fn traverse<F>(edges: &Edges, steps: &Steps, x0: i32, y0: i32, order: u32, mut visit: F) -> [i64; 3]
 where
     F: FnMut(i32, i32, u32, &[i64; 3]) -> Visit,
 {
     let order = order.min(MAX_ORDER);
-    let steps = Steps::new(edges);
     let mut e = edges.at(x0, y0);
     let (mut x, mut y) = (x0, y0);
     // Blocks at `level` have side `1 << (order - level)`.
@@ -405,7 +405,7 @@ pub fn walk<F: FnMut(i32, i32, i32, i32)>(
 ) -> u32 {
     let mut blocks = 0;
     let steps = Steps::new(edges);
-    traverse(edges, x0, y0, order, |x, y, shift, e| {
+    traverse(edges, &steps, x0, y0, order, |x, y, shift, e| {
         blocks += 1;
         let side = 1i32 << shift;
         let (bx1, by1) = (x + side, y + side);
@@ -769,20 +769,27 @@ mod tests {
         for order in 1..=8u32 {
             let (x0, y0) = (-7, 13);
             let mut d = 0u32;
-            let end = traverse(&edges, x0, y0, order, |x, y, shift, e| {
-                let side = 1 << shift;
-                assert_eq!(
-                    *e,
-                    edges.at(x, y),
-                    "order {order} block ({x}, {y}) side {side}"
-                );
-                if side == 1 {
-                    let (hx, hy) = d2xy(order, d);
-                    assert_eq!((x - x0, y - y0), (hx, hy), "order {order}, index {d}");
-                    d += 1;
-                }
-                Visit::Split
-            });
+            let end = traverse(
+                &edges,
+                &Steps::new(&edges),
+                x0,
+                y0,
+                order,
+                |x, y, shift, e| {
+                    let side = 1 << shift;
+                    assert_eq!(
+                        *e,
+                        edges.at(x, y),
+                        "order {order} block ({x}, {y}) side {side}"
+                    );
+                    if side == 1 {
+                        let (hx, hy) = d2xy(order, d);
+                        assert_eq!((x - x0, y - y0), (hx, hy), "order {order}, index {d}");
+                        d += 1;
+                    }
+                    Visit::Split
+                },
+            );
             assert_eq!(d, 1 << (2 * order), "order {order}: every cell once");
             assert_eq!(end, edges.at(x0, y0), "order {order}: back to the start");
         }
