@@ -66,6 +66,7 @@ pub mod scene;
 pub mod shade;
 pub mod shapes;
 pub mod sink;
+pub mod texture;
 pub mod tile;
 pub mod vertex;
 
