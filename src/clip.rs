@@ -14,7 +14,7 @@
 //! two triangles sharing an edge produce the very same new vertex and stay
 //! watertight after clipping.
 
-use crate::vertex::{ClipVertex, GUARD_K, OUT_FAR, OUT_GUARD, OUT_NEAR, OUT_W, W_MIN};
+use crate::vertex::{ClipVertex, BARY_ONE, GUARD_K, OUT_FAR, OUT_GUARD, OUT_NEAR, OUT_W, W_MIN};
 
 /// Capacity of a clipped polygon. A convex triangle clipped by seven planes
 /// has at most ten vertices; the margin absorbs a vertex that fixed-point
@@ -74,6 +74,9 @@ fn intersect(inside: &ClipVertex, d_in: i64, outside: &ClipVertex, d_out: i64) -
     for k in 0..3 {
         v.color[k] = lerp(inside.color[k], outside.color[k]);
     }
+    for k in 0..2 {
+        v.bary[k] = lerp(inside.bary[k], outside.bary[k]);
+    }
     v
 }
 
@@ -99,13 +102,15 @@ fn clip_against(input: &Polygon, plane: Plane, out: &mut Polygon) {
 }
 
 /// Clips triangle `tri` against the planes selected by `outcodes` (the OR
-/// of its vertices' outcodes). The result may be empty.
+/// of its vertices' outcodes). The result may be empty. Every vertex of
+/// the result has in [`ClipVertex::bary`] its place in `tri` (whatever the
+/// input's `bary`).
 ///
 /// ```
 /// use microraster::clip::clip_triangle;
 /// use microraster::vertex::{outcode, ClipVertex};
 /// let one = 1 << 16;
-/// let v = |x: i32, z: i32| ClipVertex { pos: [x, 0, z, one], color: [0; 3] };
+/// let v = |x: i32, z: i32| ClipVertex { pos: [x, 0, z, one], color: [0; 3], bary: [0; 2] };
 /// // One vertex in front of the near plane (z < -w), two inside.
 /// let tri = [v(0, -2 * one), v(one / 2, 0), v(-one / 2, 0)];
 /// let codes = tri.iter().fold(0, |c, v| c | outcode(&v.pos));
@@ -116,8 +121,10 @@ fn clip_against(input: &Polygon, plane: Plane, out: &mut Polygon) {
 pub fn clip_triangle(tri: &[ClipVertex; 3], outcodes: u8) -> Polygon {
     let mut a = Polygon::new();
     let mut b = Polygon::new();
-    for v in tri {
-        let _ = a.push(*v);
+    for (k, v) in tri.iter().enumerate() {
+        let mut v = *v;
+        v.bary = [(k == 1) as i32 * BARY_ONE, (k == 2) as i32 * BARY_ONE];
+        let _ = a.push(v);
     }
     let mut planes: heapless::Vec<Plane, 7> = heapless::Vec::new();
     if outcodes & OUT_W != 0 {

@@ -64,6 +64,7 @@ pub mod raster;
 pub mod render;
 pub mod scene;
 pub mod shade;
+pub mod shader;
 pub mod shapes;
 pub mod sink;
 pub mod texture;
@@ -82,8 +83,9 @@ pub mod prelude {
     pub use crate::mesh::{Mesh, MeshError};
     pub use crate::raster::Rasterizer;
     pub use crate::render::{Config, FrameStats, RenderError, Renderer, Workspace};
-    pub use crate::scene::{Camera, CullMode, Draw, Light, Scene, Shading};
+    pub use crate::scene::{Blend, Camera, CullMode, Draw, Edges, Light, Scene, Shading};
     pub use crate::shade::DepthTest;
+    pub use crate::shader::{FragmentShader, Perspective};
     pub use crate::sink::{NullSink, TileSink};
     pub use crate::tile::TileOrder;
     pub use embedded_graphics::prelude::{Point, Size};

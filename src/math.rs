@@ -393,6 +393,19 @@ impl FixedMat4 {
         })
     }
 
+    /// The `w` row of [`transform_point_bounded`](Self::transform_point_bounded),
+    /// in wrapping arithmetic: equal to `transform_point`'s `w` whenever
+    /// that succeeded.
+    #[inline(always)]
+    pub fn transform_w_unchecked(&self, p: [i32; 3]) -> i32 {
+        let m = &self.m;
+        let acc = (m[0][3] as i64 * p[0] as i64)
+            .wrapping_add(m[1][3] as i64 * p[1] as i64)
+            .wrapping_add(m[2][3] as i64 * p[2] as i64)
+            .wrapping_add((m[3][3] as i64) << 16);
+        (acc.wrapping_add(1 << 15) >> 16) as i32
+    }
+
     /// [`transform_point`](Self::transform_point) without its overflow
     /// checks, for a matrix that is [`bounded`](Self::bounded) for the
     /// point's extent; then it gives the same result (the sums are exact,

@@ -13,6 +13,11 @@ use fixed::types::I16F16;
 /// A vertex position or normal in model space, 16.16 fixed point.
 pub type Vec3Fx = [I16F16; 3];
 
+/// Texture coordinates `(u, v)` of a vertex, 16.16 fixed point: `0..1`
+/// spans a texture once, `v = 0` is its top row (see
+/// [`Texture::sample`](crate::texture::Texture::sample)).
+pub type UvFx = [I16F16; 2];
+
 /// An indexed triangle mesh.
 ///
 /// Triangles list vertex indices counter-clockwise as seen from the front
@@ -40,6 +45,7 @@ pub struct Mesh<'a> {
     positions: &'a [Vec3Fx],
     normals: Option<&'a [Vec3Fx]>,
     colors: Option<&'a [Rgb888]>,
+    uvs: Option<&'a [UvFx]>,
     triangles: &'a [[u16; 3]],
     /// The largest magnitude of any position coordinate (raw 16.16), which
     /// bounds the vertex transform's sums once per draw.
@@ -60,7 +66,7 @@ pub enum MeshError {
     },
     /// A per-vertex array has a different length from `positions`.
     LengthMismatch {
-        /// Which array: `"normals"` or `"colors"`.
+        /// Which array: `"normals"`, `"colors"` or `"uvs"`.
         what: &'static str,
         /// Its length.
         len: usize,
@@ -126,6 +132,7 @@ impl<'a> Mesh<'a> {
             positions,
             normals: None,
             colors: None,
+            uvs: None,
             triangles,
             extent,
         })
@@ -145,6 +152,13 @@ impl<'a> Mesh<'a> {
         Ok(self)
     }
 
+    /// Adds per-vertex texture coordinates, read by textured shaders.
+    pub fn with_uvs(mut self, uvs: &'a [UvFx]) -> Result<Self, MeshError> {
+        check_len("uvs", uvs.len(), self.positions.len())?;
+        self.uvs = Some(uvs);
+        Ok(self)
+    }
+
     /// The vertex positions.
     pub fn positions(&self) -> &'a [Vec3Fx] {
         self.positions
@@ -158,6 +172,11 @@ impl<'a> Mesh<'a> {
     /// The vertex colours, if any.
     pub fn colors(&self) -> Option<&'a [Rgb888]> {
         self.colors
+    }
+
+    /// The texture coordinates, if any.
+    pub fn uvs(&self) -> Option<&'a [UvFx]> {
+        self.uvs
     }
 
     /// The triangles, as vertex indices.

@@ -54,22 +54,27 @@
 //! store, and gives bit-identical vertices every time.
 
 use crate::clip::{clip_triangle, MAX_CLIPPED_VERTICES};
+use crate::raster::line::{draw_line, draw_point, DepthMode, LinePoint};
 use crate::raster::scanline::Walker;
 use crate::raster::{
     first_centre_at_or_after, hilbert, signed_area2, PixelRect, Rasterizer, Span, SubPoint,
 };
-use crate::scene::{CullMode, Scene, Shading};
+use crate::scene::{Blend, CullMode, Draw, Light, Scene, Shading};
+use crate::shade::perspective::{span_shader, Output, PerspectiveSetup, ShaderTriangle};
 use crate::shade::{
     span_flat, span_gouraud, Corners, DAlways, DEqual, DGreater, DGreaterEqual, DLess, DLessEqual,
     DepthFn, DepthTest, SpanPos, TriangleSetup,
 };
+use crate::shader::{self, FragmentShader, Perspective, ShaderError, Varyings, VertexInput};
 use crate::sink::{rectangle, TileSink};
+use crate::texture::Texture;
 use crate::tile::{TileBuffer, TileGrid, TileOrder};
 use crate::vertex::{
-    DrawSetup, ScreenVertex, VertexError, Viewport, MAX_VIEWPORT, MUST_CLIP, REJECT_MASK,
+    DrawSetup, ScreenVertex, VertexError, Viewport, BARY_ONE, MAX_VIEWPORT, MUST_CLIP, REJECT_MASK,
 };
 use embedded_graphics::pixelcolor::{PixelColor, Rgb888};
 use embedded_graphics::prelude::Size;
+use fixed::types::I16F16;
 
 /// Most triangles one frame can hold: bins store `u16` indices.
 pub const MAX_TRIANGLES: usize = 1 << 16;
@@ -172,6 +177,8 @@ pub struct Config<C> {
     /// The order tiles are rendered and streamed in (the image is the
     /// same).
     pub tile_order: TileOrder,
+    /// How fragment shaders' varyings are interpolated.
+    pub perspective: Perspective,
 }
 
 impl<C> Config<C> {
@@ -187,6 +194,7 @@ impl<C> Config<C> {
             depth_write: true,
             rasterizer: Rasterizer::Scanline,
             tile_order: TileOrder::RowMajor,
+            perspective: Perspective::Exact,
         }
     }
 
@@ -209,6 +217,13 @@ impl<C> Config<C> {
     /// Selects the order tiles are rendered in.
     pub const fn tile_order(mut self, order: TileOrder) -> Self {
         self.tile_order = order;
+        self
+    }
+
+    /// Selects how fragment shaders' varyings are interpolated (default
+    /// [`Perspective::Exact`]).
+    pub const fn perspective(mut self, p: Perspective) -> Self {
+        self.perspective = p;
         self
     }
 
@@ -353,6 +368,18 @@ pub enum RenderError<E> {
         /// Triangles in the scene.
         count: usize,
     },
+    /// A draw uses [`Shading::Shader`] and the scene has no shader.
+    MissingShader {
+        /// Index of the draw in the scene.
+        draw: usize,
+    },
+    /// A draw lacks what the scene's shader reads.
+    Shader {
+        /// Index of the draw in the scene.
+        draw: usize,
+        /// What is missing.
+        error: ShaderError,
+    },
     /// The sink failed; tiles before it were delivered.
     Sink(E),
 }
@@ -386,6 +413,11 @@ impl<E: core::fmt::Debug> core::fmt::Display for RenderError<E> {
                 f,
                 "the scene has {count} triangles, more than {MAX_TRIANGLES}"
             ),
+            Self::MissingShader { draw } => write!(
+                f,
+                "draw {draw} uses Shading::Shader but the scene has no shader"
+            ),
+            Self::Shader { draw, error } => write!(f, "draw {draw}: {error}"),
             Self::Sink(e) => write!(f, "the sink failed: {e:?}"),
         }
     }
@@ -599,7 +631,8 @@ struct Tally {
 
 /// Read-only state of the frame being rendered.
 struct Frame<'s, 'v> {
-    scene: &'s Scene<'s>,
+    draws: &'s [Draw<'s>],
+    light: Option<&'s Light>,
     vertices: &'v [ScreenVertex],
     view_proj: crate::math::Mat4,
     viewport: Viewport,
@@ -630,6 +663,23 @@ fn covering(v: &[SubPoint; 3]) -> PixelRect {
     )
 }
 
+/// `r` grown by `m` pixels on every side.
+#[inline(always)]
+fn grow(r: &PixelRect, m: i32) -> PixelRect {
+    PixelRect::new(r.x0 - m, r.y0 - m, r.x1 + m, r.y1 + m)
+}
+
+/// How far beyond the pixel centres it covers a triangle of `draw` may
+/// draw: the lines of its edges reach the pixels holding its vertices
+/// (one pixel), its points half their size.
+fn margin(draw: &Draw<'_>) -> i32 {
+    match (draw.shading, draw.edges) {
+        (Shading::Points(size), _) => size as i32 / 2 + 1,
+        (Shading::Wireframe, _) | (_, Some(_)) => 1,
+        _ => 0,
+    }
+}
+
 /// [`PixelRect::intersect`], inlined.
 #[inline(always)]
 fn meet(a: &PixelRect, b: &PixelRect) -> PixelRect {
@@ -642,6 +692,21 @@ fn meet(a: &PixelRect, b: &PixelRect) -> PixelRect {
 }
 
 impl Frame<'_, '_> {
+    /// The fixed-point set-up of draw `d`, from `cache` or computed again
+    /// (and cached). `None` cannot happen: the vertex stage accepted the
+    /// draw, and the set-up is deterministic.
+    #[inline(never)]
+    fn setup(&self, d: usize, cache: &mut SetupCache) -> Option<DrawSetup> {
+        match cache {
+            Some((c, s)) if *c == d => Some(*s),
+            _ => {
+                let s = DrawSetup::new(&self.draws[d], &self.view_proj, self.light).ok()?;
+                *cache = Some((d, s));
+                Some(s)
+            }
+        }
+    }
+
     /// Whether a triangle or polygon of twice signed screen area `area2`
     /// survives culling: never with zero area, otherwise by the cull mode.
     #[inline(always)]
@@ -665,6 +730,7 @@ impl Frame<'_, '_> {
         d: usize,
         verts: &[ScreenVertex],
         idx: [u16; 3],
+        margin: i32,
         cache: &mut SetupCache,
         tally: &mut Tally,
     ) -> Option<PixelRect> {
@@ -678,7 +744,7 @@ impl Frame<'_, '_> {
         let fate = if and & REJECT_MASK != 0 {
             Fate::Rejected
         } else if any & MUST_CLIP != 0 {
-            return self.classify_clipped(d, idx, any, sv[0].color, cache, tally);
+            return self.classify_clipped(d, idx, any, sv[0].color, margin, cache, tally);
         } else {
             let v = [
                 SubPoint::new(sv[0].x, sv[0].y),
@@ -689,7 +755,7 @@ impl Frame<'_, '_> {
             if !self.keeps(area2) {
                 Fate::Culled
             } else {
-                let rect = meet(&covering(&v), &self.frame);
+                let rect = meet(&grow(&covering(&v), margin), &self.frame);
                 if !rect.is_empty() {
                     tally.fates[Fate::Visible as usize] += 1;
                     return Some(rect);
@@ -705,17 +771,20 @@ impl Frame<'_, '_> {
     /// the bounds of all its visible pieces.
     #[cold]
     #[inline(never)]
+    #[allow(clippy::too_many_arguments)]
     fn classify_clipped(
         &self,
         d: usize,
         idx: [u16; 3],
         any: u8,
         flat: [u8; 3],
+        margin: i32,
         cache: &mut SetupCache,
         tally: &mut Tally,
     ) -> Option<PixelRect> {
         let mut r = PixelRect::new(i32::MAX, i32::MAX, i32::MIN, i32::MIN);
-        let fate = self.clipped_pieces(d, idx, any, flat, cache, &mut |sv, _| {
+        let fate = self.clipped_pieces(d, idx, any, flat, cache, &mut |piece, _| {
+            let sv = &piece.sv;
             let b = covering(&[
                 SubPoint::new(sv[0].x, sv[0].y),
                 SubPoint::new(sv[1].x, sv[1].y),
@@ -730,7 +799,7 @@ impl Frame<'_, '_> {
         });
         tally.clipped += 1;
         tally.fates[fate as usize] += 1;
-        (fate == Fate::Visible).then(|| meet(&r, &self.frame))
+        (fate == Fate::Visible).then(|| meet(&grow(&r, margin), &self.frame))
     }
 
     /// Clips triangle `idx` of draw `d` (outcodes or-ed to `any`) and
@@ -747,20 +816,12 @@ impl Frame<'_, '_> {
         cache: &mut SetupCache,
         // Dynamic: the clipper is rare, and one copy of it serves every
         // monomorphized span loop.
-        f: &mut dyn FnMut(&[ScreenVertex; 3], [u8; 3]),
+        f: &mut dyn FnMut(&Piece, [u8; 3]),
     ) -> Fate {
-        let draw = &self.scene.draws[d];
+        let draw = &self.draws[d];
         // Transform the three vertices again and clip.
-        let setup = match cache {
-            Some((c, s)) if *c == d => *s,
-            _ => match DrawSetup::new(draw, &self.view_proj, self.scene.light.as_ref()) {
-                Ok(s) => {
-                    *cache = Some((d, s));
-                    s
-                }
-                // Cannot happen: the vertex stage accepted this draw.
-                Err(_) => return Fate::Rejected,
-            },
+        let Some(setup) = self.setup(d, cache) else {
+            return Fate::Rejected;
         };
         let mut tri = [crate::vertex::ClipVertex::default(); 3];
         for (k, cv) in tri.iter_mut().enumerate() {
@@ -809,8 +870,13 @@ impl Frame<'_, '_> {
         }
         let mut fate = Fate::Rejected;
         for k in 2..proj.len() {
-            let piece = [proj[0], proj[k - 1], proj[k]];
-            let v = [xy(&piece[0]), xy(&piece[1]), xy(&piece[2])];
+            let corners = [0, k - 1, k];
+            let piece = Piece {
+                sv: corners.map(|c| proj[c]),
+                w: corners.map(|c| poly[c].pos[3]),
+                bary: corners.map(|c| poly[c].bary),
+            };
+            let v = piece.sv.map(|v| xy(&v));
             let area2 = signed_area2(&v);
             if area2 == 0 || (area2 > 0) != (total > 0) {
                 continue;
@@ -823,6 +889,14 @@ impl Frame<'_, '_> {
         }
         fate
     }
+}
+
+/// A piece of a clipped triangle: its projected corners, their clip-space
+/// `w` and their places in the original triangle.
+struct Piece {
+    sv: [ScreenVertex; 3],
+    w: [i32; 3],
+    bary: [[i32; 2]; 3],
 }
 
 /// One binning pass over every triangle: classifies it and appends a
@@ -841,11 +915,12 @@ fn bin_pass<const TW: usize, const TH: usize, const HILBERT: bool>(
     let cols = grid.cols as usize;
     let mut t = 0usize;
     let mut vbase = 0usize;
-    for (d, draw) in frame.scene.draws.iter().enumerate() {
+    for (d, draw) in frame.draws.iter().enumerate() {
         let verts = &frame.vertices[vbase..vbase + draw.mesh.vertex_count()];
         vbase += verts.len();
+        let margin = margin(draw);
         for &idx in draw.mesh.triangles() {
-            if let Some(r) = frame.classify(d, verts, idx, cache, tally) {
+            if let Some(r) = frame.classify(d, verts, idx, margin, cache, tally) {
                 // A visible rectangle lies inside the frame, so its
                 // coordinates are not negative.
                 let (c0, c1) = (r.x0 as usize / TW, (r.x1 as usize - 1) / TW + 1);
@@ -884,12 +959,15 @@ struct DrawCursor<'f> {
     vbase: usize,
     triangles: &'f [[u16; 3]],
     verts: &'f [ScreenVertex],
-    gouraud: bool,
+    shading: Shading,
+    blend: Blend,
+    /// The draw has edges or points to draw.
+    lines: bool,
 }
 
 impl<'f> DrawCursor<'f> {
     fn new(frame: &'f Frame<'f, 'f>) -> Self {
-        let draws = frame.scene.draws;
+        let draws = frame.draws;
         let mut c = Self {
             draws,
             vertices: frame.vertices,
@@ -899,7 +977,9 @@ impl<'f> DrawCursor<'f> {
             vbase: 0,
             triangles: &[],
             verts: &[],
-            gouraud: false,
+            shading: Shading::Flat,
+            blend: Blend::Opaque,
+            lines: false,
         };
         if !draws.is_empty() {
             c.enter(0);
@@ -913,7 +993,9 @@ impl<'f> DrawCursor<'f> {
         self.triangles = draw.mesh.triangles();
         self.verts = &self.vertices[self.vbase..self.vbase + draw.mesh.vertex_count()];
         self.end = self.first + self.triangles.len();
-        self.gouraud = draw.shading == Shading::Gouraud;
+        self.shading = draw.shading;
+        self.blend = draw.blend;
+        self.lines = margin(draw) != 0;
     }
 
     /// Moves to the draw holding global triangle `t`, which must not lie
@@ -923,6 +1005,17 @@ impl<'f> DrawCursor<'f> {
         while t >= self.end {
             self.advance();
         }
+    }
+
+    /// Moves to the draw holding global triangle `t`, before or after the
+    /// current draw.
+    fn go_to(&mut self, t: usize) {
+        if t < self.first {
+            self.first = 0;
+            self.vbase = 0;
+            self.enter(0);
+        }
+        self.seek(t);
     }
 
     #[inline(never)]
@@ -973,7 +1066,8 @@ impl Iterator for TileList<'_, '_> {
                 *next += 1;
                 let idx = cur.triangles[t - cur.first];
                 let mut tally = Tally::default();
-                let vis = frame.classify(cur.draw, cur.verts, idx, cache, &mut tally);
+                let m = margin(&frame.draws[cur.draw]);
+                let vis = frame.classify(cur.draw, cur.verts, idx, m, cache, &mut tally);
                 if vis.is_some_and(|r| !meet(&r, rect).is_empty()) {
                     return Some(t);
                 }
@@ -984,7 +1078,7 @@ impl Iterator for TileList<'_, '_> {
 
 impl<C, const TW: usize, const TH: usize> Renderer<C, TW, TH>
 where
-    C: PixelColor + From<Rgb888>,
+    C: PixelColor + From<Rgb888> + Into<Rgb888>,
 {
     /// A renderer with the given settings.
     pub fn new(config: Config<C>) -> Self {
@@ -1013,30 +1107,36 @@ where
     ///
     /// Every error but [`RenderError::Sink`] is detected before anything is
     /// sent to the sink.
-    pub fn render<S, const V: usize, const B: usize, const T: usize>(
+    ///
+    /// The renderer is monomorphized for the scene's fragment shader `F`
+    /// ([`NoShader`](crate::shader::NoShader) unless
+    /// [`Scene::shader`] set one).
+    pub fn render<S, F, const V: usize, const B: usize, const T: usize>(
         &mut self,
         ws: &mut Workspace<V, B, T>,
-        scene: &Scene<'_>,
+        scene: &Scene<'_, F>,
         sink: &mut S,
     ) -> Result<FrameStats, RenderError<S::Error>>
     where
         S: TileSink<C>,
+        F: FragmentShader<C>,
     {
         self.render_profiled(ws, scene, sink, &mut ())
     }
 
     /// [`render`](Self::render), telling `profiler` when each [`Stage`]
     /// starts.
-    pub fn render_profiled<S, P, const V: usize, const B: usize, const T: usize>(
+    pub fn render_profiled<S, P, F, const V: usize, const B: usize, const T: usize>(
         &mut self,
         ws: &mut Workspace<V, B, T>,
-        scene: &Scene<'_>,
+        scene: &Scene<'_, F>,
         sink: &mut S,
         profiler: &mut P,
     ) -> Result<FrameStats, RenderError<S::Error>>
     where
         S: TileSink<C>,
         P: Profiler,
+        F: FragmentShader<C>,
     {
         let size = self.config.size;
         if size.width == 0 || size.height == 0 {
@@ -1067,6 +1167,14 @@ where
         if n_tris > MAX_TRIANGLES {
             return Err(RenderError::TooManyTriangles { count: n_tris });
         }
+        for (draw, d) in scene.draws.iter().enumerate() {
+            if d.shading == Shading::Shader {
+                let shader = scene.shader.ok_or(RenderError::MissingShader { draw })?;
+                shader
+                    .check(d)
+                    .map_err(|error| RenderError::Shader { draw, error })?;
+            }
+        }
 
         // Vertex stage, once per frame.
         profiler.enter(Stage::Vertex);
@@ -1095,7 +1203,8 @@ where
             .ordered(self.config.tile_order);
         let hilbert_tiles = self.config.tile_order == TileOrder::Hilbert;
         let frame = Frame {
-            scene,
+            draws: scene.draws,
+            light: scene.light.as_ref(),
             vertices: &vertices[..needed],
             view_proj,
             viewport,
@@ -1155,7 +1264,7 @@ where
                     &grid,
                     tile,
                     &mut cache,
-                    (sink, &mut *profiler),
+                    (sink, &mut *profiler, scene.shader),
                     &mut stats,
                     list,
                 )?;
@@ -1168,7 +1277,7 @@ where
                     &grid,
                     grid.tile_at((t0 + k) as u32) as usize,
                     &mut cache,
-                    (sink, &mut *profiler),
+                    (sink, &mut *profiler, scene.shader),
                     &mut stats,
                     TileList::Bin(bins.iter(k)),
                 )?;
@@ -1182,13 +1291,13 @@ where
     /// Clears tile `t`, rasterizes the triangles of `list` into it and
     /// streams it.
     #[allow(clippy::too_many_arguments)]
-    fn draw_tile<'f, S: TileSink<C>, P: Profiler>(
+    fn draw_tile<'f, S: TileSink<C>, P: Profiler, F: FragmentShader<C>>(
         &mut self,
         frame: &'f Frame<'f, 'f>,
         grid: &TileGrid,
         t: usize,
         cache: &mut SetupCache,
-        (sink, profiler): (&mut S, &mut P),
+        (sink, profiler, shader): (&mut S, &mut P, Option<&F>),
         stats: &mut FrameStats,
         list: TileList<'_, 'f>,
     ) -> Result<(), RenderError<S::Error>> {
@@ -1201,9 +1310,9 @@ where
         macro_rules! go {
             ($d:ty) => {
                 if cfg.depth_write {
-                    Shaders::new::<$d, true>(cfg.rasterizer)
+                    Shaders::new::<$d, true>(&cfg, shader)
                 } else {
-                    Shaders::new::<$d, false>(cfg.rasterizer)
+                    Shaders::new::<$d, false>(&cfg, shader)
                 }
             };
         }
@@ -1232,21 +1341,25 @@ where
 /// vertices from the vertex buffer (or clips it again) and draws it with
 /// [`fill`], shading with `shaders`.
 #[inline(never)]
-fn raster_tile<'f, C, const TW: usize, const TH: usize>(
+fn raster_tile<'f, C, F, const TW: usize, const TH: usize>(
     tile: &mut TileBuffer<C, TW, TH>,
     rect: &PixelRect,
     frame: &'f Frame<'f, 'f>,
     cache: &mut SetupCache,
     list: TileList<'_, 'f>,
-    shaders: Shaders<C, TW, TH>,
+    shaders: Shaders<'_, C, F, TW, TH>,
 ) -> u32
 where
-    C: PixelColor + From<Rgb888>,
+    C: PixelColor + From<Rgb888> + Into<Rgb888>,
+    F: FragmentShader<C>,
 {
     let mut cur = DrawCursor::new(frame);
     // The spans of one triangle, reused by all of the tile's triangles:
     // `TH` of 12 bytes on the stack.
     let mut found = [Span::default(); TH];
+    // Transparent triangles, drawn after the opaque ones: (depth key,
+    // triangle), 4 bytes each on the stack.
+    let mut later: heapless::Vec<(u16, u16), MAX_TRANSPARENT> = heapless::Vec::new();
     let mut n = 0;
     for t in list {
         cur.seek(t);
@@ -1257,7 +1370,47 @@ where
             &cur.verts[idx[2] as usize],
         ];
         let any = sv[0].outcode | sv[1].outcode | sv[2].outcode;
-        n += if any & MUST_CLIP != 0 {
+        if cur.lines {
+            n += raster_lines(tile, rect, frame, cache, &cur, idx, any, &shaders);
+            if matches!(cur.shading, Shading::Wireframe | Shading::Points(_)) {
+                continue;
+            }
+        }
+        if cur.blend != Blend::Opaque {
+            // Farthest vertex first; a clipped triangle (whose depths the
+            // vertex buffer does not hold) reaches the near plane: last.
+            let key = if any & MUST_CLIP != 0 {
+                0
+            } else {
+                sv[0].z.max(sv[1].z).max(sv[2].z)
+            };
+            // `t < MAX_TRIANGLES`, so it fits u16. A tile with more
+            // transparent triangles than the list holds draws the rest at
+            // once, in submission order (never drops them).
+            if later.push((key, t as u16)).is_err() {
+                n += raster_transparent(
+                    tile, rect, frame, cache, &cur, idx, any, &mut found, &shaders,
+                );
+            }
+            continue;
+        }
+        n += if cur.shading == Shading::Shader {
+            match shaders.shader {
+                Some(s) => raster_shaded(
+                    tile,
+                    rect,
+                    frame,
+                    cache,
+                    &cur,
+                    idx,
+                    any,
+                    &mut found,
+                    shaders.pass(s, shaders.custom, Blend::Opaque),
+                ),
+                // `render` checked that shader draws have a shader.
+                None => 0,
+            }
+        } else if any & MUST_CLIP != 0 {
             raster_clipped(
                 tile,
                 rect,
@@ -1276,12 +1429,191 @@ where
                 rect,
                 sv,
                 sv[0].color,
-                cur.gouraud,
+                cur.shading == Shading::Gouraud,
                 &mut found,
                 &shaders,
             )
         };
     }
+    if !later.is_empty() {
+        // Back to front; equal keys in submission order (a stable
+        // insertion sort: a few dozen instructions of code, where the
+        // library's sort brings kilobytes, and at most 128 entries).
+        for k in 1..later.len() {
+            let e = later[k];
+            let mut i = k;
+            while i > 0 && later[i - 1].0 < e.0 {
+                later[i] = later[i - 1];
+                i -= 1;
+            }
+            later[i] = e;
+        }
+        let mut cur = DrawCursor::new(frame);
+        for &(_, t) in &later {
+            let t = t as usize;
+            cur.go_to(t);
+            let idx = cur.triangles[t - cur.first];
+            let any = idx
+                .iter()
+                .fold(0, |a, &i| a | cur.verts[i as usize].outcode);
+            n += raster_transparent(
+                tile, rect, frame, cache, &cur, idx, any, &mut found, &shaders,
+            );
+        }
+    }
+    n
+}
+
+/// Most transparent triangles one tile sorts back to front (4 bytes each
+/// on the stack); beyond, they are drawn in submission order.
+pub const MAX_TRANSPARENT: usize = 128;
+
+/// Draws a transparent triangle of the cursor's draw through the
+/// fragment-shader path: the scene's shader, or the flat or Gouraud
+/// colour, blended, depth tested and never writing depth.
+#[inline(never)]
+#[allow(clippy::too_many_arguments)]
+fn raster_transparent<C, F, const TW: usize, const TH: usize>(
+    tile: &mut TileBuffer<C, TW, TH>,
+    rect: &PixelRect,
+    frame: &Frame<'_, '_>,
+    cache: &mut SetupCache,
+    cur: &DrawCursor<'_>,
+    idx: [u16; 3],
+    any: u8,
+    found: &mut [Span; TH],
+    shaders: &Shaders<'_, C, F, TW, TH>,
+) -> u32
+where
+    C: PixelColor + From<Rgb888> + Into<Rgb888>,
+    F: FragmentShader<C>,
+{
+    let blend = cur.blend;
+    let no_write = |mut out: Output| {
+        out.write = false;
+        out.blend = blend;
+        out
+    };
+    match cur.shading {
+        Shading::Shader => match shaders.shader {
+            Some(s) => raster_shaded(
+                tile,
+                rect,
+                frame,
+                cache,
+                cur,
+                idx,
+                any,
+                found,
+                shaders.pass(s, shaders.custom, blend).with(no_write),
+            ),
+            None => 0,
+        },
+        Shading::Flat => raster_shaded(
+            tile,
+            rect,
+            frame,
+            cache,
+            cur,
+            idx,
+            any,
+            found,
+            shaders
+                .pass(&shader::Flat, shaders.flat_t, blend)
+                .with(no_write),
+        ),
+        Shading::Gouraud => raster_shaded(
+            tile,
+            rect,
+            frame,
+            cache,
+            cur,
+            idx,
+            any,
+            found,
+            shaders
+                .pass(&shader::Gouraud, shaders.gouraud_t, blend)
+                .with(no_write),
+        ),
+        // Never deferred: they have no fill.
+        Shading::Wireframe | Shading::Points(_) => 0,
+    }
+}
+
+/// Draws the lines or points of triangle `idx` of the cursor's draw: its
+/// three edges (or, for a clipped triangle, the parts of them that survive
+/// clipping), or a point at each vertex in front of the near plane.
+#[inline(never)]
+#[allow(clippy::too_many_arguments)]
+fn raster_lines<C, F, const TW: usize, const TH: usize>(
+    tile: &mut TileBuffer<C, TW, TH>,
+    rect: &PixelRect,
+    frame: &Frame<'_, '_>,
+    cache: &mut SetupCache,
+    cur: &DrawCursor<'_>,
+    idx: [u16; 3],
+    any: u8,
+    shaders: &Shaders<'_, C, F, TW, TH>,
+) -> u32
+where
+    C: PixelColor + From<Rgb888> + Into<Rgb888>,
+    F: FragmentShader<C>,
+{
+    let draw = &frame.draws[cur.draw];
+    let sv = idx.map(|i| &cur.verts[i as usize]);
+    let mode = DepthMode {
+        test: shaders.out.test,
+        write: shaders.out.write,
+    };
+    let mut n = 0;
+    if let Shading::Points(size) = draw.shading {
+        for v in sv {
+            if v.outcode & MUST_CLIP == 0 {
+                let p = LinePoint::new(SubPoint::new(v.x, v.y), v.z, v.color);
+                n += draw_point(tile, rect, mode, &p, size as u32);
+            }
+        }
+        return n;
+    }
+    let style = draw.edges.unwrap_or_default();
+    let end = |v: &ScreenVertex| {
+        let color = match style.color {
+            Some(c) => {
+                use embedded_graphics::prelude::RgbColor;
+                [c.r(), c.g(), c.b()]
+            }
+            None => v.color,
+        };
+        LinePoint::new(SubPoint::new(v.x, v.y), v.z, color)
+    };
+    let interpolate = style.color.is_none();
+    if any & MUST_CLIP == 0 {
+        for k in 0..3 {
+            let (a, b) = (end(sv[k]), end(sv[(k + 1) % 3]));
+            n += draw_line(tile, rect, mode, &a, &b, interpolate, style.depth_bias);
+        }
+        return n;
+    }
+    let flat = sv[0].color;
+    frame.clipped_pieces(cur.draw, idx, any, flat, cache, &mut |piece, _| {
+        // Only the sides lying on the triangle's own edges: where both
+        // ends have the same zero weight (clipping interpolates the
+        // weights, and zero between zeros stays exactly zero).
+        let w = piece.bary.map(|[b1, b2]| {
+            [
+                BARY_ONE as i64 - b1 as i64 - b2 as i64,
+                b1 as i64,
+                b2 as i64,
+            ]
+        });
+        for k in 0..3 {
+            let k2 = (k + 1) % 3;
+            if (0..3).any(|c| w[k][c] == 0 && w[k2][c] == 0) {
+                let (a, b) = (end(&piece.sv[k]), end(&piece.sv[k2]));
+                n += draw_line(tile, rect, mode, &a, &b, interpolate, style.depth_bias);
+            }
+        }
+    });
     n
 }
 
@@ -1290,7 +1622,7 @@ where
 #[cold]
 #[inline(never)]
 #[allow(clippy::too_many_arguments)]
-fn raster_clipped<C, const TW: usize, const TH: usize>(
+fn raster_clipped<C, F, const TW: usize, const TH: usize>(
     tile: &mut TileBuffer<C, TW, TH>,
     rect: &PixelRect,
     frame: &Frame<'_, '_>,
@@ -1300,17 +1632,118 @@ fn raster_clipped<C, const TW: usize, const TH: usize>(
     any: u8,
     flat: [u8; 3],
     found: &mut [Span; TH],
-    shaders: &Shaders<C, TW, TH>,
+    shaders: &Shaders<'_, C, F, TW, TH>,
 ) -> u32
 where
-    C: PixelColor + From<Rgb888>,
+    C: PixelColor + From<Rgb888> + Into<Rgb888>,
+    F: FragmentShader<C>,
 {
     let mut n = 0;
-    frame.clipped_pieces(cur.draw, idx, any, flat, cache, &mut |sv, flat| {
+    let gouraud = cur.shading == Shading::Gouraud;
+    frame.clipped_pieces(cur.draw, idx, any, flat, cache, &mut |piece, flat| {
+        let sv = &piece.sv;
         let sv = [&sv[0], &sv[1], &sv[2]];
-        n += fill(tile, rect, sv, flat, cur.gouraud, found, shaders);
+        n += fill(tile, rect, sv, flat, gouraud, found, shaders);
     });
     n
+}
+
+/// Draws triangle `idx` of the cursor's draw, a [`Shading::Shader`] draw,
+/// through the frame's fragment shader: its varyings from the shader's
+/// vertex function and its `w` from the draw's transform, both evaluated
+/// again (the vertex buffer keeps neither), or, for a triangle that must
+/// be clipped, its pieces with varyings interpolated at their corners.
+#[inline(never)]
+#[allow(clippy::too_many_arguments)]
+fn raster_shaded<C, G, const TW: usize, const TH: usize>(
+    tile: &mut TileBuffer<C, TW, TH>,
+    rect: &PixelRect,
+    frame: &Frame<'_, '_>,
+    cache: &mut SetupCache,
+    cur: &DrawCursor<'_>,
+    idx: [u16; 3],
+    any: u8,
+    found: &mut [Span; TH],
+    pass: ShaderPass<'_, C, G, TW, TH>,
+) -> u32
+where
+    C: PixelColor + From<Rgb888> + Into<Rgb888>,
+    G: FragmentShader<C>,
+{
+    let shader = pass.shader;
+    let draw = &frame.draws[cur.draw];
+    let mesh = draw.mesh;
+    let var = idx.map(|i| {
+        shader.vertex(&VertexInput {
+            draw: cur.draw,
+            index: i as usize,
+            mesh,
+        })
+    });
+    let sv = [
+        &cur.verts[idx[0] as usize],
+        &cur.verts[idx[1] as usize],
+        &cur.verts[idx[2] as usize],
+    ];
+    let flat = sv[0].color;
+    if any & MUST_CLIP != 0 {
+        let mut n = 0;
+        frame.clipped_pieces(cur.draw, idx, any, flat, cache, &mut |piece, _| {
+            let mut pv = piece.sv;
+            // Flat colour stays the provoking vertex's, as on other paths.
+            pv[0].color = if G::INTERPOLATE_COLOR {
+                pv[0].color
+            } else {
+                flat
+            };
+            let tri = ShaderTriangle {
+                corners: Corners([&pv[0], &pv[1], &pv[2]]),
+                w: piece.w,
+                var: piece.bary.map(|b| lerp_varyings(&var, b)),
+            };
+            n += fill_shaded(tile, rect, &tri, draw.texture, found, &pass);
+        });
+        return n;
+    }
+    let Some(setup) = frame.setup(cur.draw, cache) else {
+        return 0;
+    };
+    let tri = ShaderTriangle {
+        corners: Corners(sv),
+        w: idx.map(|i| setup.clip_w(mesh, i as usize)),
+        var,
+    };
+    fill_shaded(tile, rect, &tri, draw.texture, found, &pass)
+}
+
+/// The varyings at barycentric weights `b` (of vertices 1 and 2,
+/// [`BARY_ONE`] being 1) of a triangle whose vertices have `var`,
+/// rounded to nearest.
+fn lerp_varyings<V: Varyings>(var: &[V; 3], b: [i32; 2]) -> V {
+    let mut out = V::zeroed();
+    let [a0, a1, a2] = [var[0].as_slice(), var[1].as_slice(), var[2].as_slice()];
+    for (k, o) in out.as_mut_slice().iter_mut().enumerate() {
+        let base = a0[k].to_bits() as i128;
+        let d1 = a1[k].to_bits() as i128 - base;
+        let d2 = a2[k].to_bits() as i128 - base;
+        let sum = d1 * b[0] as i128 + d2 * b[1] as i128 + (BARY_ONE as i128 >> 1);
+        *o = I16F16::from_bits((base + (sum >> 30)) as i32);
+    }
+    out
+}
+
+/// Finds the spans of triangle `v` in the tile with `raster`: the first
+/// phase of [`fill`] and [`fill_shaded`].
+#[inline(always)]
+fn find(v: &[SubPoint; 3], rect: &PixelRect, found: &mut [Span], raster: Rasterizer) -> usize {
+    match raster {
+        Rasterizer::Scanline => find_spans(v, rect, found),
+        Rasterizer::Hilbert => hilbert::find_spans(v, *rect, found),
+        Rasterizer::Auto => match whole_tile(v, rect, found) {
+            Some(n) => n,
+            None => find_spans(v, rect, found),
+        },
+    }
 }
 
 /// Draws one triangle into the tile, Gouraud or flat shaded (`flat` is the
@@ -1323,27 +1756,21 @@ where
 /// registers (the edge walk its two edges, the shading its planes), and a
 /// triangle that merely grazes the tile's bounds costs no set-up.
 #[inline(always)]
-fn fill<C, const TW: usize, const TH: usize>(
+fn fill<C, F, const TW: usize, const TH: usize>(
     tile: &mut TileBuffer<C, TW, TH>,
     rect: &PixelRect,
     sv: [&ScreenVertex; 3],
     flat: [u8; 3],
     gouraud: bool,
     found: &mut [Span; TH],
-    shaders: &Shaders<C, TW, TH>,
+    shaders: &Shaders<'_, C, F, TW, TH>,
 ) -> u32
 where
-    C: PixelColor + From<Rgb888>,
+    C: PixelColor + From<Rgb888> + Into<Rgb888>,
+    F: FragmentShader<C>,
 {
     let v = sv.map(|v| SubPoint::new(v.x, v.y));
-    let count = match shaders.raster {
-        Rasterizer::Scanline => find_spans(&v, rect, found),
-        Rasterizer::Hilbert => hilbert::find_spans(&v, *rect, found),
-        Rasterizer::Auto => match whole_tile(&v, rect, found) {
-            Some(n) => n,
-            None => find_spans(&v, rect, found),
-        },
-    };
+    let count = find(&v, rect, found, shaders.raster);
     if count == 0 {
         return 0;
     }
@@ -1356,30 +1783,122 @@ where
     shade(tile, rect, sv, flat, found)
 }
 
+/// [`fill`] for a triangle coloured by a fragment shader.
+#[inline(always)]
+fn fill_shaded<C, G, const TW: usize, const TH: usize>(
+    tile: &mut TileBuffer<C, TW, TH>,
+    rect: &PixelRect,
+    tri: &ShaderTriangle<'_, G::Varyings>,
+    texture: Option<&Texture<'_>>,
+    found: &mut [Span; TH],
+    pass: &ShaderPass<'_, C, G, TW, TH>,
+) -> u32
+where
+    C: PixelColor + From<Rgb888> + Into<Rgb888>,
+    G: FragmentShader<C>,
+{
+    let v = tri.corners.0.map(|v| SubPoint::new(v.x, v.y));
+    let count = find(&v, rect, found, pass.raster);
+    if count == 0 {
+        return 0;
+    }
+    (pass.shade)(
+        tile,
+        rect,
+        tri,
+        &found[..count],
+        pass.shader,
+        texture,
+        pass.out,
+    )
+}
+
 /// The second phase of a triangle's drawing, as monomorphized for the
 /// frame's depth test and writes: the only code that depends on them, so
 /// the tile loop exists once per colour and tile size.
 type ShadeFn<C, const TW: usize, const TH: usize> =
     fn(&mut TileBuffer<C, TW, TH>, &PixelRect, [&ScreenVertex; 3], [u8; 3], &[Span]) -> u32;
 
+/// The second phase for a fragment shader `G`: one function per shader
+/// and colour type (the depth test is decided at run time there).
+type CustomFn<C, G, const TW: usize, const TH: usize> = fn(
+    &mut TileBuffer<C, TW, TH>,
+    &PixelRect,
+    &ShaderTriangle<'_, <G as FragmentShader<C>>::Varyings>,
+    &[Span],
+    &G,
+    Option<&Texture<'_>>,
+    Output,
+) -> u32;
+
 /// How a frame draws a triangle: its rasterizer and its shading
-/// functions, Gouraud and flat.
-struct Shaders<C, const TW: usize, const TH: usize> {
+/// functions: Gouraud, flat, the fragment shader's, and for transparent
+/// draws flat and Gouraud through the fragment-shader path.
+struct Shaders<'s, C: From<Rgb888>, F: FragmentShader<C>, const TW: usize, const TH: usize> {
     raster: Rasterizer,
+    out: Output,
     gouraud: ShadeFn<C, TW, TH>,
     flat: ShadeFn<C, TW, TH>,
+    custom: CustomFn<C, F, TW, TH>,
+    flat_t: CustomFn<C, shader::Flat, TW, TH>,
+    gouraud_t: CustomFn<C, shader::Gouraud, TW, TH>,
+    shader: Option<&'s F>,
 }
 
-impl<C, const TW: usize, const TH: usize> Shaders<C, TW, TH>
+impl<'s, C, F, const TW: usize, const TH: usize> Shaders<'s, C, F, TW, TH>
 where
-    C: PixelColor + From<Rgb888>,
+    C: PixelColor + From<Rgb888> + Into<Rgb888>,
+    F: FragmentShader<C>,
 {
-    fn new<D: DepthFn, const WRITE: bool>(raster: Rasterizer) -> Self {
+    fn new<D: DepthFn, const WRITE: bool>(cfg: &Config<C>, shader: Option<&'s F>) -> Self {
         Self {
-            raster,
+            raster: cfg.rasterizer,
+            out: Output {
+                mode: cfg.perspective,
+                blend: Blend::Opaque,
+                test: cfg.depth_test,
+                write: WRITE,
+            },
             gouraud: shade::<C, D, WRITE, true, TW, TH>,
             flat: shade::<C, D, WRITE, false, TW, TH>,
+            custom: shade_custom::<C, F, TW, TH>,
+            flat_t: shade_custom::<C, shader::Flat, TW, TH>,
+            gouraud_t: shade_custom::<C, shader::Gouraud, TW, TH>,
+            shader,
         }
+    }
+
+    /// A pass through fragment shader `g` with its function `shade`.
+    fn pass<'g, G: FragmentShader<C>>(
+        &self,
+        g: &'g G,
+        shade: CustomFn<C, G, TW, TH>,
+        blend: Blend,
+    ) -> ShaderPass<'g, C, G, TW, TH> {
+        let mut out = self.out;
+        out.blend = blend;
+        ShaderPass {
+            shader: g,
+            shade,
+            raster: self.raster,
+            out,
+        }
+    }
+}
+
+/// Everything the fragment-shader path needs to draw a triangle.
+struct ShaderPass<'g, C, G: FragmentShader<C>, const TW: usize, const TH: usize> {
+    shader: &'g G,
+    shade: CustomFn<C, G, TW, TH>,
+    raster: Rasterizer,
+    out: Output,
+}
+
+impl<'g, C, G: FragmentShader<C>, const TW: usize, const TH: usize> ShaderPass<'g, C, G, TW, TH> {
+    /// The pass with its output changed by `f`.
+    fn with(mut self, f: impl FnOnce(Output) -> Output) -> Self {
+        self.out = f(self.out);
+        self
     }
 }
 
@@ -1432,7 +1951,7 @@ fn shade<C, D: DepthFn, const WRITE: bool, const GOURAUD: bool, const TW: usize,
     found: &[Span],
 ) -> u32
 where
-    C: PixelColor + From<Rgb888>,
+    C: PixelColor + From<Rgb888> + Into<Rgb888>,
 {
     let corners = &Corners(sv);
     let setup = &TriangleSetup::new(corners, GOURAUD);
@@ -1452,6 +1971,38 @@ where
         } else {
             span_flat::<C, D, WRITE>(setup, corners, flat, color, depth, sp)
         };
+    }
+    n
+}
+
+/// The second phase of [`fill_shaded`]: the perspective set-up of the
+/// triangle and its spans shaded through the fragment shader.
+#[inline(never)]
+fn shade_custom<C, F, const TW: usize, const TH: usize>(
+    tile: &mut TileBuffer<C, TW, TH>,
+    rect: &PixelRect,
+    tri: &ShaderTriangle<'_, F::Varyings>,
+    found: &[Span],
+    shader: &F,
+    texture: Option<&Texture<'_>>,
+    out: Output,
+) -> u32
+where
+    C: PixelColor + From<Rgb888> + Into<Rgb888>,
+    F: FragmentShader<C>,
+{
+    let setup = &PerspectiveSetup::new(tri, out.mode == Perspective::Affine);
+    let mut n = 0;
+    for &Span { j, x0, x1 } in found {
+        let row = (j - rect.y0) as usize;
+        let (color, depth) = (&mut tile.color[row][..], &mut tile.depth[row][..]);
+        let sp = SpanPos {
+            ox: rect.x0,
+            j,
+            x0,
+            x1,
+        };
+        n += span_shader::<C, F>(setup, &tri.corners, shader, texture, out, color, depth, sp);
     }
     n
 }

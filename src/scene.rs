@@ -6,6 +6,8 @@
 
 use crate::math::{Mat4, Vec3};
 use crate::mesh::Mesh;
+use crate::shader::NoShader;
+use crate::texture::Texture;
 use embedded_graphics::pixelcolor::Rgb888;
 
 /// How colour varies across a triangle.
@@ -17,6 +19,100 @@ pub enum Shading {
     /// Vertex colours interpolated linearly in screen space.
     #[default]
     Gouraud,
+    /// Coloured per pixel by the scene's fragment shader
+    /// ([`Scene::shader`]), with perspective-correct varyings.
+    Shader,
+    /// No fill: only the edges of the triangles that survive culling,
+    /// as [`Draw::edges`] styles them (by default in the vertex colours).
+    Wireframe,
+    /// No fill: a square of this many pixels a side at every vertex of
+    /// the triangles that survive culling.
+    Points(u8),
+}
+
+/// How a draw's triangle edges are drawn as lines (Bresenham, depth
+/// tested): over the filled triangles as an overlay, or alone under
+/// [`Shading::Wireframe`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Edges {
+    /// One colour for every edge, or `None` for the lit vertex colours
+    /// interpolated along each edge.
+    pub color: Option<Rgb888>,
+    /// Subtracted from the lines' depth (saturating), so that an overlay
+    /// wins the depth test against the faces it outlines: their depths
+    /// differ by rounding only, so a few units suffice.
+    pub depth_bias: u16,
+}
+
+impl Edges {
+    /// Edges in one colour, with a depth bias of 64.
+    pub const fn new(color: Rgb888) -> Self {
+        Self {
+            color: Some(color),
+            depth_bias: 64,
+        }
+    }
+
+    /// Edges in the vertex colours, with a depth bias of 64.
+    pub const fn vertex_colors() -> Self {
+        Self {
+            color: None,
+            depth_bias: 64,
+        }
+    }
+
+    /// Sets the depth bias.
+    pub const fn depth_bias(mut self, bias: u16) -> Self {
+        self.depth_bias = bias;
+        self
+    }
+}
+
+impl Default for Edges {
+    fn default() -> Self {
+        Self::vertex_colors()
+    }
+}
+
+/// How a draw's fragments combine with what the tile already holds.
+///
+/// Transparent draws (anything but [`Blend::Opaque`]) are drawn after all
+/// opaque triangles of a tile, back to front (farthest vertex depth first),
+/// depth tested but without writing depth, so they never hide each other
+/// or what is behind them. Their colour comes through the fragment-shader
+/// path: flat and Gouraud colour perspective-correct, as
+/// [`shader::Flat`](crate::shader::Flat) and
+/// [`shader::Gouraud`](crate::shader::Gouraud) give.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, Hash)]
+pub enum Blend {
+    /// The fragment replaces the pixel.
+    #[default]
+    Opaque,
+    /// Source alpha over one minus source alpha: `(src a + dst (255 - a))
+    /// / 255` per channel, rounded; `a = 255` is opaque but still drawn
+    /// in the transparent pass.
+    Alpha(u8),
+    /// `src + dst` per channel, saturated.
+    Additive,
+}
+
+impl Blend {
+    /// The colour of a pixel holding `dst` after a fragment `src`.
+    #[inline(always)]
+    pub fn apply(self, src: [u8; 3], dst: [u8; 3]) -> [u8; 3] {
+        match self {
+            Blend::Opaque => src,
+            Blend::Alpha(a) => {
+                let (a, b) = (a as u32, 255 - a as u32);
+                [0, 1, 2].map(|k| {
+                    // Exact rounding of p / 255 for p <= 65,025.
+                    let p = src[k] as u32 * a + dst[k] as u32 * b + 128;
+                    ((p + (p >> 8)) >> 8) as u8
+                })
+            }
+            Blend::Additive => [0, 1, 2].map(|k| src[k].saturating_add(dst[k])),
+        }
+    }
 }
 
 /// Which faces are discarded.
@@ -91,8 +187,14 @@ pub struct Draw<'a> {
     pub transform: Mat4,
     /// Base colour, used when the mesh has no vertex colours.
     pub color: Rgb888,
-    /// Flat or Gouraud.
+    /// Flat, Gouraud or the scene's shader.
     pub shading: Shading,
+    /// The texture the scene's shader may sample.
+    pub texture: Option<&'a Texture<'a>>,
+    /// Opaque or transparent.
+    pub blend: Blend,
+    /// Edges drawn as lines over the triangles (see [`Edges`]).
+    pub edges: Option<Edges>,
 }
 
 impl<'a> Draw<'a> {
@@ -103,6 +205,9 @@ impl<'a> Draw<'a> {
             transform: Mat4::IDENTITY,
             color: Rgb888::new(255, 255, 255),
             shading: Shading::Gouraud,
+            texture: None,
+            blend: Blend::Opaque,
+            edges: None,
         }
     }
 
@@ -123,6 +228,25 @@ impl<'a> Draw<'a> {
         self.shading = shading;
         self
     }
+
+    /// Draws the triangles' edges as lines over them (or, under
+    /// [`Shading::Wireframe`], alone).
+    pub fn edges(mut self, edges: Edges) -> Self {
+        self.edges = Some(edges);
+        self
+    }
+
+    /// Makes the draw transparent (see [`Blend`]).
+    pub fn blend(mut self, blend: Blend) -> Self {
+        self.blend = blend;
+        self
+    }
+
+    /// Gives the draw a texture, for the scene's shader to sample.
+    pub fn texture(mut self, texture: &'a Texture<'a>) -> Self {
+        self.texture = Some(texture);
+        self
+    }
 }
 
 /// Everything one frame draws.
@@ -136,8 +260,18 @@ impl<'a> Draw<'a> {
 /// let scene = Scene::new(camera, &[]).light(Light::new(Vec3::new(1.0, 1.0, 1.0)));
 /// assert!(scene.light.is_some());
 /// ```
-#[derive(Clone, Copy, Debug)]
-pub struct Scene<'a> {
+///
+/// Draws with [`Shading::Shader`] are coloured by the scene's fragment
+/// shader, whose type `S` the renderer is monomorphized for:
+///
+/// ```
+/// use microraster::prelude::*;
+/// use microraster::shader::Textured;
+/// let camera = Camera::new(Mat4::IDENTITY, Mat4::IDENTITY);
+/// let scene = Scene::new(camera, &[]).shader(&Textured);
+/// assert!(scene.shader.is_some());
+/// ```
+pub struct Scene<'a, S = NoShader> {
     /// The camera.
     pub camera: Camera,
     /// The light; without one, vertices keep their unlit colour.
@@ -145,21 +279,54 @@ pub struct Scene<'a> {
     /// The draws, rendered in order (later ones win depth ties under
     /// [`crate::DepthTest::LessEqual`]).
     pub draws: &'a [Draw<'a>],
+    /// The fragment shader of [`Shading::Shader`] draws.
+    pub shader: Option<&'a S>,
+}
+
+// By hand: derived impls would require `S: Clone` and `S: Debug`.
+impl<S> Clone for Scene<'_, S> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+impl<S> Copy for Scene<'_, S> {}
+impl<S> core::fmt::Debug for Scene<'_, S> {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.debug_struct("Scene")
+            .field("camera", &self.camera)
+            .field("light", &self.light)
+            .field("draws", &self.draws)
+            .field("shader", &self.shader.map(|_| core::any::type_name::<S>()))
+            .finish()
+    }
 }
 
 impl<'a> Scene<'a> {
-    /// An unlit scene.
+    /// An unlit scene without a fragment shader.
     pub const fn new(camera: Camera, draws: &'a [Draw<'a>]) -> Self {
         Self {
             camera,
             light: None,
             draws,
+            shader: None,
         }
     }
+}
 
+impl<'a, S> Scene<'a, S> {
     /// Lights the scene.
     pub const fn light(mut self, light: Light) -> Self {
         self.light = Some(light);
         self
+    }
+
+    /// Sets the fragment shader of [`Shading::Shader`] draws.
+    pub const fn shader<T>(self, shader: &'a T) -> Scene<'a, T> {
+        Scene {
+            camera: self.camera,
+            light: self.light,
+            draws: self.draws,
+            shader: Some(shader),
+        }
     }
 }

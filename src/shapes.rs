@@ -342,6 +342,22 @@ pub static CUBE_POSITIONS: [Vec3Fx; 24] = cube_positions();
 pub static CUBE_NORMALS: [Vec3Fx; 24] = cube_normals();
 /// The 12 outward-facing triangles of the cube.
 pub static CUBE_TRIANGLES: [[u16; 3]; 12] = cube_triangles();
+/// Texture coordinates of [`CUBE_POSITIONS`]: each face shows the whole
+/// texture once, upright when the face is seen with its `v` axis up.
+pub static CUBE_UVS: [[I16F16; 2]; 24] = cube_uvs();
+
+const fn cube_uvs() -> [[I16F16; 2]; 24] {
+    // Corners (-1,-1), (1,-1), (1,1), (-1,1) of every face, as in
+    // `cube_positions`; texture v runs down.
+    let corner = [[0, 1], [1, 1], [1, 0], [0, 0]];
+    let mut out = [[f(0); 2]; 24];
+    let mut k = 0;
+    while k < 24 {
+        out[k] = [f(corner[k % 4][0]), f(corner[k % 4][1])];
+        k += 1;
+    }
+    out
+}
 
 /// Face axes: normal, then two in-plane axes `u`, `v` with `u x v = n`.
 const FACES: [[[i32; 3]; 3]; 6] = [

@@ -96,7 +96,15 @@ pub struct ClipVertex {
     pub pos: [i32; 4],
     /// Lit colour, 8 bits per channel (kept as `i32` for interpolation).
     pub color: [i32; 3],
+    /// Where the vertex lies in the triangle it was clipped from: the
+    /// weights of that triangle's vertices 1 and 2, [`BARY_ONE`] being 1.
+    /// [`clip_triangle`](crate::clip::clip_triangle) sets and interpolates
+    /// them, so shaders' varyings need not pass through the clipper.
+    pub bary: [i32; 2],
 }
+
+/// The barycentric weight 1 of [`ClipVertex::bary`].
+pub const BARY_ONE: i32 = 1 << 30;
 
 /// Why the vertex stage refused a draw.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -200,7 +208,19 @@ impl DrawSetup {
         Ok(ClipVertex {
             pos,
             color: [color[0] as i32, color[1] as i32, color[2] as i32],
+            bary: [0; 2],
         })
+    }
+
+    /// The clip-space `w` of vertex `i` of `mesh`, exactly as
+    /// [`clip_vertex`](Self::clip_vertex) computes it, for a vertex that
+    /// the vertex stage already transformed without error (then the
+    /// unchecked sum equals the checked one).
+    #[inline(always)]
+    pub fn clip_w(&self, mesh: &Mesh<'_>, i: usize) -> i32 {
+        let p = mesh.positions()[i];
+        self.mvp
+            .transform_w_unchecked([p[0].to_bits(), p[1].to_bits(), p[2].to_bits()])
     }
 }
 

@@ -140,3 +140,56 @@ pub fn clipped_draws<'a>(
         Draw::new(wall).color(embedded_graphics::pixelcolor::Rgb888::new(250, 250, 120)),
     ]
 }
+
+/// A procedural `size` x `size` Rgb565 texture (row-major, as
+/// `Texels::Rgb565` reads): a checkerboard of 8-texel squares, warm and
+/// cool, shaded by a diagonal gradient, with a bright border one texel wide
+/// so that every repeat's edge shows.
+pub fn checker_texels(size: u32) -> Vec<u16> {
+    let mut out = Vec::with_capacity((size * size) as usize);
+    for y in 0..size {
+        for x in 0..size {
+            let shade = (x + y) * 96 / (2 * size.max(1));
+            let (r, g, b) = if x == 0 || y == 0 {
+                (250, 240, 200)
+            } else if ((x / 8) + (y / 8)) % 2 == 0 {
+                (150 + shade, 70 + shade / 2, 40)
+            } else {
+                (30, 90 + shade / 2, 140 + shade)
+            };
+            let c = embedded_graphics::pixelcolor::Rgb565::from(
+                embedded_graphics::pixelcolor::Rgb888::new(r as u8, g as u8, b as u8),
+            );
+            out.push(embedded_graphics::prelude::IntoStorage::into_storage(c));
+        }
+    }
+    out
+}
+
+/// Texture coordinates for the demo knot: `u_repeats` along the knot and
+/// `v_repeats` around the tube, each a tent (up then back down), so that
+/// they are continuous across the mesh's seams (where a vertex cannot hold
+/// two coordinates) and the texture shows mirrored in each half.
+pub fn knot_uvs(u_repeats: f32, v_repeats: f32) -> Vec<[I16F16; 2]> {
+    let tent = |k: usize, n: usize, r: f32| {
+        let t = k.min(n - k) as f32 / n as f32;
+        I16F16::from_num(2.0 * t * r)
+    };
+    let mut out = Vec::with_capacity(KNOT_SEGMENTS * KNOT_SIDES);
+    for i in 0..KNOT_SEGMENTS {
+        for j in 0..KNOT_SIDES {
+            out.push([
+                tent(i, KNOT_SEGMENTS, u_repeats),
+                tent(j, KNOT_SIDES, v_repeats),
+            ]);
+        }
+    }
+    out
+}
+
+/// The cube with texture coordinates (each face shows the texture once).
+pub fn textured_cube() -> Mesh<'static> {
+    cube()
+        .with_uvs(&microraster::shapes::CUBE_UVS)
+        .expect("the cube's coordinates match its vertices")
+}

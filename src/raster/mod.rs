@@ -14,6 +14,7 @@
 //! reference and against each other.
 
 pub mod hilbert;
+pub mod line;
 pub mod scanline;
 
 /// Which rasterizer finds the pixels a triangle covers.

@@ -33,6 +33,8 @@
 //! `z << 2` in a `u32`, whose upper half is then the 16-bit depth. The
 //! results are exactly those of the plain per-pixel test.
 
+pub(crate) mod perspective;
+
 use crate::math::Divisor;
 use crate::raster::{SubPoint, HALF_PIXEL, SUBPIXEL_BITS};
 use crate::vertex::ScreenVertex;
@@ -63,6 +65,24 @@ pub enum DepthTest {
     Greater,
     /// Never passes.
     Never,
+}
+
+impl DepthTest {
+    /// Whether a fragment at depth `new` passes against the stored `old`
+    /// (the fragment-shader path tests at run time; the flat and Gouraud
+    /// paths have the test monomorphized).
+    #[inline(always)]
+    pub fn passes(self, new: u16, old: u16) -> bool {
+        match self {
+            DepthTest::Always => true,
+            DepthTest::Less => new < old,
+            DepthTest::LessEqual => new <= old,
+            DepthTest::Equal => new == old,
+            DepthTest::GreaterEqual => new >= old,
+            DepthTest::Greater => new > old,
+            DepthTest::Never => false,
+        }
+    }
 }
 
 /// A depth comparison, monomorphized into the span loop.

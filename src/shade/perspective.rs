@@ -1,0 +1,395 @@
+//! Span shading through a [`FragmentShader`], with perspective-correct
+//! varyings (the method is in [`crate::shader`]'s docs).
+//!
+//! Per triangle and tile: the three `1 / w` are scaled to
+//! `q_i = 2^28 w_min / w_i` (all `2^28` for [`Perspective::Affine`]), and
+//! three planes are set up over the screen exactly as the colour planes of
+//! the Gouraud path ([`Basis`](super::Basis)): `Q` through `(q0, q1, q2)`,
+//! `B1` through `(0, q1, 0)`, `B2` through `(0, 0, q2)`. Their gradients are
+//! rounded to whole units of `2^-28`, clamped to ±2^40 like every
+//! attribute's (only slivers reach that), and each span starts from the
+//! planes evaluated in `i64`.
+//!
+//! At a sample pixel the weights `b1 = B1 / Q`, `b2 = B2 / Q` come from one
+//! 32-bit reciprocal ([`weights`]); then each varying is
+//! `a0 + (b1 (a1 - a0) + b2 (a2 - a0)) / 2^16` in `i64`, and each colour
+//! channel the same in `i32`. Between samples (quasi-perspective modes)
+//! varyings and colour step linearly in wrapping `i32`, exact modulo 2^32,
+//! with steps from a table of reciprocals of the segment length; the next
+//! sample starts again from exact values, so nothing drifts past a
+//! segment.
+
+use super::{depth16, Basis, Corners, DepthTest, SpanPos, TriangleSetup, GRADIENT_LIMIT, Z_FRAC};
+use crate::raster::SUBPIXEL_BITS;
+use crate::scene::Blend;
+use crate::shader::{Fragment, FragmentShader, Perspective, Varyings};
+use crate::texture::Texture;
+use crate::vertex::ScreenVertex;
+use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
+use fixed::types::I16F16;
+
+/// `1 / w` of the nearest vertex, scaled.
+const Q_ONE: i64 = 1 << 28;
+/// Span starts are clamped to this (the exact values are at most
+/// [`Q_ONE`]; the margin holds the gradients' rounding).
+const Q_MAX: i64 = 1 << 29;
+
+/// A triangle ready for a fragment shader: its corners, their clip-space
+/// `w` and varyings.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct ShaderTriangle<'a, V> {
+    pub corners: Corners<'a>,
+    pub w: [i32; 3],
+    pub var: [V; 3],
+}
+
+/// One plane in `i64`, gradients clamped to ±2^40: the value at the
+/// centre of pixel `(i, j)` is `gx i + gy j + k`.
+#[derive(Clone, Copy, Debug, Default)]
+struct WidePlane {
+    gx: i64,
+    gy: i64,
+    k: i64,
+}
+
+impl WidePlane {
+    fn new(f: &Basis, values: [i64; 3]) -> Self {
+        let (gx, gy) = f.gradients(values, 0);
+        let (gx, gy) = (
+            gx.clamp(-GRADIENT_LIMIT, GRADIENT_LIMIT),
+            gy.clamp(-GRADIENT_LIMIT, GRADIENT_LIMIT),
+        );
+        // |g| <= 2^40 and |o| < 2^19: no overflow.
+        let k = values[0] + ((gx * f.ox + gy * f.oy) >> SUBPIXEL_BITS);
+        Self { gx, gy, k }
+    }
+
+    /// The value at pixel `(i, j)`, clamped to `lo..=hi`. `|i|, |j| < 2^13`,
+    /// so the sum stays below 2^60.
+    #[inline(always)]
+    fn at(&self, i: i32, j: i32, lo: i64, hi: i64) -> i32 {
+        (self.gx * i as i64 + self.gy * j as i64 + self.k).clamp(lo, hi) as i32
+    }
+
+    /// The step along a span, saturated to `i32` (a triangle whose step
+    /// saturates is a sliver of one pixel per span, whose step is unused).
+    #[inline(always)]
+    fn step(&self) -> i32 {
+        self.gx.clamp(-Q_MAX, Q_MAX) as i32
+    }
+}
+
+/// A triangle's perspective set-up.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct PerspectiveSetup<V> {
+    depth: TriangleSetup,
+    /// `Q`, `B1`, `B2`.
+    planes: [WidePlane; 3],
+    var: [V; 3],
+    color: [[u8; 3]; 3],
+}
+
+impl<V: Varyings> PerspectiveSetup<V> {
+    #[inline(always)]
+    pub(crate) fn new(t: &ShaderTriangle<'_, V>, affine: bool) -> Self {
+        let f = Basis::new(&t.corners.points());
+        let q = if affine {
+            [Q_ONE; 3]
+        } else {
+            // Vertices reaching the shader have w >= W_MIN - 1 > 0 (the
+            // clipper's round-off); `max(1)` only keeps this total.
+            let w = t.w.map(|w| (w as i64).max(1));
+            let wmin = w[0].min(w[1]).min(w[2]);
+            w.map(|w| (wmin << 28) / w)
+        };
+        Self {
+            depth: TriangleSetup::new(&t.corners, false),
+            planes: [
+                WidePlane::new(&f, q),
+                WidePlane::new(&f, [0, q[1], 0]),
+                WidePlane::new(&f, [0, 0, q[2]]),
+            ],
+            var: t.var,
+            color: t.corners.0.map(|v: &ScreenVertex| v.color),
+        }
+    }
+
+    /// The varyings and colour (8.16 per channel) at weights `(b1, b2)`.
+    #[inline(always)]
+    fn values(&self, (b1, b2): (i32, i32), interpolate_color: bool) -> (V, [i32; 3]) {
+        let mut out = V::zeroed();
+        let [a0, a1, a2] = [
+            self.var[0].as_slice(),
+            self.var[1].as_slice(),
+            self.var[2].as_slice(),
+        ];
+        for (k, o) in out.as_mut_slice().iter_mut().enumerate() {
+            let base = a0[k].to_bits() as i64;
+            let d1 = a1[k].to_bits() as i64 - base;
+            let d2 = a2[k].to_bits() as i64 - base;
+            // |d| < 2^32, |b| <= 2^17: the sum stays below 2^50. A value
+            // outside 16.16 (weights a hair beyond the triangle) wraps,
+            // never panics.
+            let v = base + ((d1 * b1 as i64 + d2 * b2 as i64 + (1 << 15)) >> 16);
+            *o = I16F16::from_bits(v as i32);
+        }
+        let mut c = [0i32; 3];
+        if interpolate_color {
+            let [c0, c1, c2] = self.color;
+            for (k, o) in c.iter_mut().enumerate() {
+                let base = c0[k] as i32;
+                // |d| <= 255, |b| <= 2^17: below 2^25.
+                *o = (base << 16)
+                    + (c1[k] as i32 - base) * b1
+                    + (c2[k] as i32 - base) * b2
+                    + (1 << 15);
+            }
+        }
+        (out, c)
+    }
+}
+
+/// The perspective-correct weights `(B1 / Q, B2 / Q)` in 0.16 fixed
+/// point, with one 32-bit division: `Q` is shifted to 16 significant bits
+/// (`B1`, `B2` with it), so the reciprocal `2^31 / Q` has 16 as well and
+/// each product fits `u32`. Each weight is within 7 units (of 65,536) of
+/// the exact quotient when `Q >= 2^15`, which holds unless the triangle's
+/// `w` vary by more than 2^13: the truncations of `Q`, of the numerator
+/// and of the reciprocal cost at most 2 units each, the final shift 1.
+#[inline(always)]
+pub(crate) fn weights(q: i32, b1: i32, b2: i32) -> (i32, i32) {
+    let q = q.max(1) as u32;
+    let sh = (32 - q.leading_zeros()).saturating_sub(16);
+    let qn = q >> sh;
+    let r = (1u32 << 31) / qn;
+    let n1 = ((b1.max(0) as u32) >> sh).min(qn);
+    let n2 = ((b2.max(0) as u32) >> sh).min(qn);
+    // n <= qn, so n * r <= 2^31.
+    (((n1 * r) >> 15) as i32, ((n2 * r) >> 15) as i32)
+}
+
+/// `round(2^24 / l)` for segment lengths `l` of 1 to 16.
+const RECIPROCAL: [i64; 17] = {
+    let mut t = [0i64; 17];
+    let mut l = 1;
+    while l <= 16 {
+        t[l] = ((1i64 << 25) / l as i64 + 1) >> 1;
+        l += 1;
+    }
+    t
+};
+
+/// A colour channel in 8.16, rounded and clamped to a byte.
+#[inline(always)]
+fn byte(c: i32) -> u8 {
+    (c >> 16).clamp(0, 255) as u8
+}
+
+/// How the fragments of a span are tested and written.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Output {
+    pub mode: Perspective,
+    pub blend: Blend,
+    pub test: DepthTest,
+    pub write: bool,
+}
+
+/// Shades one span through `shader`: depth test first (a fragment that
+/// fails it costs no division and no shader call), then the shader, whose
+/// `None` writes nothing, then the blend with the pixel. The depth test and
+/// write are decided at run time here (one predictable branch per
+/// fragment), so this loop exists once per shader and colour type rather
+/// than once per depth test too. Returns the number of fragments written.
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+pub(crate) fn span_shader<C, S: FragmentShader<C>>(
+    p: &PerspectiveSetup<S::Varyings>,
+    t: &Corners<'_>,
+    shader: &S,
+    texture: Option<&Texture<'_>>,
+    out: Output,
+    color: &mut [C],
+    depth: &mut [u16],
+    sp: SpanPos,
+) -> u32
+where
+    C: Copy + From<Rgb888> + Into<Rgb888>,
+{
+    let SpanPos { ox, j, x0, x1 } = sp;
+    let Output {
+        mode,
+        blend,
+        test,
+        write,
+    } = out;
+    let mut z = (p.depth.start(t, x0, j)[0] as u32) << (16 - Z_FRAC);
+    let gz = (p.depth.steps()[0] as u32) << (16 - Z_FRAC);
+    let [pq, p1, p2] = &p.planes;
+    let mut q = pq.at(x0, j, 1, Q_MAX);
+    let mut b1 = p1.at(x0, j, -Q_MAX, Q_MAX);
+    let mut b2 = p2.at(x0, j, -Q_MAX, Q_MAX);
+    let (gq, g1, g2) = (pq.step(), p1.step(), p2.step());
+    let (a, b) = ((x0 - ox) as usize, (x1 - ox) as usize);
+    let (color, depth) = (&mut color[a..b], &mut depth[a..b]);
+    let flat = p.color[0];
+    let mut n = 0;
+    let emit = |x: i32, zz: u16, var, c: [i32; 3], out: &mut C, d: &mut u16| -> bool {
+        let frag = Fragment {
+            x,
+            y: j,
+            depth: zz,
+            color: if S::INTERPOLATE_COLOR {
+                [byte(c[0]), byte(c[1]), byte(c[2])]
+            } else {
+                flat
+            },
+            varyings: var,
+            texture,
+        };
+        match shader.fragment(&frag) {
+            Some(c) => {
+                *out = match blend {
+                    Blend::Opaque => c,
+                    _ => {
+                        let (s, d): (Rgb888, Rgb888) = (c.into(), (*out).into());
+                        let [r, g, b] = blend.apply([s.r(), s.g(), s.b()], [d.r(), d.g(), d.b()]);
+                        C::from(Rgb888::new(r, g, b))
+                    }
+                };
+                if write {
+                    *d = zz;
+                }
+                true
+            }
+            None => false,
+        }
+    };
+    let seg = mode.segment() as usize;
+    if seg <= 1 {
+        // Exact or affine: the weights at every pixel (affine: `Q` is
+        // constant, so they are a shift of `B1`, `B2`).
+        let affine = seg == 0;
+        for (k, (c, d)) in color.iter_mut().zip(depth.iter_mut()).enumerate() {
+            let zz = depth16(z);
+            if test.passes(zz, *d) {
+                let w = if affine {
+                    (b1 >> 12, b2 >> 12)
+                } else {
+                    weights(q, b1, b2)
+                };
+                let (var, col) = p.values(w, S::INTERPOLATE_COLOR);
+                n += emit(x0 + k as i32, zz, var, col, c, d) as u32;
+            }
+            z = z.wrapping_add(gz);
+            q = q.wrapping_add(gq);
+            b1 = b1.wrapping_add(g1);
+            b2 = b2.wrapping_add(g2);
+        }
+        return n;
+    }
+    // Quasi-perspective: exact at pixels 0, seg, 2 seg, ... and the last;
+    // linear between.
+    let len = color.len();
+    let (mut var, mut col) = p.values(weights(q, b1, b2), S::INTERPOLATE_COLOR);
+    let mut k = 0;
+    while k < len {
+        let l = seg.min(len - 1 - k);
+        let (mut dv, mut dc) = (S::Varyings::zeroed(), [0i32; 3]);
+        let (mut nvar, mut ncol) = (var, col);
+        if l > 0 {
+            let li = l as i32;
+            let w = weights(
+                q.wrapping_add(gq.wrapping_mul(li)),
+                b1.wrapping_add(g1.wrapping_mul(li)),
+                b2.wrapping_add(g2.wrapping_mul(li)),
+            );
+            (nvar, ncol) = p.values(w, S::INTERPOLATE_COLOR);
+            let r = RECIPROCAL[l];
+            let step = |from: i32, to: i32| -> i32 {
+                // Differences below 2^32 times 2^24: no overflow; the
+                // result wraps to i32 like the values it steps.
+                (((to as i64 - from as i64) * r + (1 << 23)) >> 24) as i32
+            };
+            for (s, (a, b)) in dv
+                .as_mut_slice()
+                .iter_mut()
+                .zip(var.as_slice().iter().zip(nvar.as_slice()))
+            {
+                *s = I16F16::from_bits(step(a.to_bits(), b.to_bits()));
+            }
+            if S::INTERPOLATE_COLOR {
+                for ch in 0..3 {
+                    dc[ch] = step(col[ch], ncol[ch]);
+                }
+            }
+        }
+        // Pixels k..k + l step from the exact values at k; the last pixel
+        // of the span (l = 0) is drawn from exact values too.
+        let stop = if l == 0 { k + 1 } else { k + l };
+        for m in k..stop {
+            let zz = depth16(z);
+            if test.passes(zz, depth[m]) {
+                n += emit(x0 + m as i32, zz, var, col, &mut color[m], &mut depth[m]) as u32;
+            }
+            z = z.wrapping_add(gz);
+            for (a, s) in var.as_mut_slice().iter_mut().zip(dv.as_slice()) {
+                *a = I16F16::from_bits(a.to_bits().wrapping_add(s.to_bits()));
+            }
+            for ch in 0..3 {
+                col[ch] = col[ch].wrapping_add(dc[ch]);
+            }
+        }
+        let li = (stop - k) as i32;
+        q = q.wrapping_add(gq.wrapping_mul(li));
+        b1 = b1.wrapping_add(g1.wrapping_mul(li));
+        b2 = b2.wrapping_add(g2.wrapping_mul(li));
+        (var, col) = (nvar, ncol);
+        k = stop;
+    }
+    n
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn weights_match_the_quotient() {
+        let mut x = 0x2545_f491_4f6c_dd1du64;
+        let mut next = move |m: u64| {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            x % m
+        };
+        for _ in 0..200_000 {
+            let bits = 1 + next(29);
+            let q = 1 + next(1 << bits) as i32;
+            let b1 = next(q as u64 + 1) as i32;
+            let b2 = next((q - b1) as u64 + 1) as i32;
+            let (w1, w2) = weights(q, b1, b2);
+            for (w, b) in [(w1, b1), (w2, b2)] {
+                let exact = b as f64 / q as f64 * 65_536.0;
+                // 7 units for Q >= 2^15 (see `weights`); below, the
+                // truncation of the numerator costs up to one unit of Q.
+                let tol = if q >= 1 << 15 {
+                    7.0
+                } else {
+                    65_536.0 / q as f64 + 2.0
+                };
+                assert!(
+                    (w as f64 - exact).abs() <= tol,
+                    "q {q} b {b}: {w} vs {exact}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn reciprocals_round() {
+        for (l, &r) in RECIPROCAL.iter().enumerate().skip(1) {
+            let exact = (1u64 << 24) as f64 / l as f64;
+            assert!((r as f64 - exact).abs() <= 0.5);
+        }
+    }
+}

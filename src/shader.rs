@@ -1,0 +1,464 @@
+//! Fragment shaders: the per-pixel colour of a draw, as a monomorphized
+//! trait, with perspective-correct varyings.
+//!
+//! A draw with [`Shading::Shader`](crate::scene::Shading::Shader) is
+//! coloured by the scene's [`FragmentShader`]. The renderer is generic over
+//! the shader's type, so its `fragment` function is inlined into the span
+//! loop: there is no `dyn` call per pixel. A shader has two halves:
+//!
+//! * [`vertex`](FragmentShader::vertex) gives the *varyings* of one mesh
+//!   vertex: any number of 16.16 values (`[I16F16; N]`), such as texture
+//!   coordinates or a normal. It is evaluated when a triangle is set up in
+//!   a tile (the renderer keeps no per-vertex varyings in RAM, so it must be
+//!   a pure function of its input);
+//! * [`fragment`](FragmentShader::fragment) gets the varyings interpolated
+//!   at a pixel centre, with the pixel's position, depth and the
+//!   interpolated lit vertex colour, and returns a colour or discards the
+//!   fragment (`None`: nothing is written, depth included).
+//!
+//! # Perspective-correct interpolation
+//!
+//! Following Hecker (*Perspective Texture Mapping*, Game Developer
+//! 1995–96), a varying `a` is not linear in screen space, but `a / w` and
+//! `1 / w` are. The renderer interpolates the *perspective-correct
+//! barycentric coordinates* rather than each varying: per triangle it
+//! scales the three `1 / w` to `q_i = 2^28 w_min / w_i` and sets up three
+//! screen-space planes, `Q = Σ λ_i q_i`, `B1 = λ_1 q_1` and `B2 = λ_2 q_2`
+//! (with `λ` the screen-space barycentrics), whatever the number of
+//! varyings. At a pixel, `b1 = B1 / Q` and `b2 = B2 / Q` are the weights of
+//! vertices 1 and 2 in the triangle itself, and every varying is
+//! `a0 + b1 (a1 - a0) + b2 (a2 - a0)`, colour included. The division is one
+//! 32-bit reciprocal after normalising `Q` to 16 significant bits, so the
+//! weights carry a relative error below 2^-15 (see [`Perspective`]).
+//! Clipped triangles carry the original triangle's barycentrics through the
+//! clipper (interpolated in clip space, where attributes are linear), so
+//! the varyings of a clipped vertex are those of the point it lies on.
+//!
+//! [`Perspective`] selects how often the division happens: at every pixel,
+//! every 8 or 16 pixels with linear steps between (the Quake technique),
+//! or never (affine, screen-space linear).
+//!
+//! # Built-in shaders
+//!
+//! [`Textured`], [`TexturedLit`], [`DepthShade`], [`Normals`],
+//! [`Gouraud`] (perspective-correct colour) and [`Flat`]. Flat and screen-space
+//! Gouraud colour need no shader: they are [`Shading::Flat`] and
+//! [`Shading::Gouraud`], the renderer's fastest paths.
+//!
+//! [`Shading::Flat`]: crate::scene::Shading::Flat
+//! [`Shading::Gouraud`]: crate::scene::Shading::Gouraud
+
+use crate::mesh::Mesh;
+use crate::scene::Draw;
+use crate::texture::Texture;
+use embedded_graphics::pixelcolor::Rgb888;
+use fixed::types::I16F16;
+
+/// How varyings are interpolated across a span.
+///
+/// The weights `b1`, `b2` (see the module docs) are computed exactly, up to
+/// 7/65,536, at *sample* pixels; between samples they
+/// and every varying step linearly. The error of a varying at a pixel
+/// between samples is that of linear interpolation of the true hyperbola
+/// over the segment: at most `|Δa| (r - 1)² / (4 r)`-ish for a segment
+/// whose ends have `1 / w` in ratio `r`, where `Δa` is the varying's change
+/// along the segment. The tests check each mode against an `f64` reference
+/// with its bound.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, Hash)]
+pub enum Perspective {
+    /// Every pixel is a sample: one reciprocal per fragment that passes the
+    /// depth test.
+    #[default]
+    Exact,
+    /// Every 8th pixel of a span (and its last) is a sample.
+    Quasi8,
+    /// Every 16th pixel of a span (and its last) is a sample.
+    Quasi16,
+    /// All `1 / w` treated as equal: varyings are linear in screen space
+    /// (textures swim on planes seen at an angle). Two samples per span.
+    Affine,
+}
+
+impl Perspective {
+    /// Pixels between samples (`0` for affine: only the span's ends).
+    pub(crate) fn segment(self) -> u32 {
+        match self {
+            Perspective::Exact => 1,
+            Perspective::Quasi8 => 8,
+            Perspective::Quasi16 => 16,
+            Perspective::Affine => 0,
+        }
+    }
+}
+
+/// The varyings of a shader: `[I16F16; N]` for any `N`.
+pub trait Varyings: Copy + core::fmt::Debug + private::Sealed {
+    /// All zeros.
+    fn zeroed() -> Self;
+    /// The values.
+    fn as_slice(&self) -> &[I16F16];
+    /// The values, mutable.
+    fn as_mut_slice(&mut self) -> &mut [I16F16];
+}
+
+mod private {
+    pub trait Sealed {}
+    impl<const N: usize> Sealed for [fixed::types::I16F16; N] {}
+}
+
+impl<const N: usize> Varyings for [I16F16; N] {
+    #[inline(always)]
+    fn zeroed() -> Self {
+        [I16F16::ZERO; N]
+    }
+    #[inline(always)]
+    fn as_slice(&self) -> &[I16F16] {
+        self
+    }
+    #[inline(always)]
+    fn as_mut_slice(&mut self) -> &mut [I16F16] {
+        self
+    }
+}
+
+/// What [`FragmentShader::vertex`] reads: one vertex of a draw's mesh.
+#[derive(Clone, Copy, Debug)]
+pub struct VertexInput<'a> {
+    /// Index of the draw in the scene.
+    pub draw: usize,
+    /// Index of the vertex in the draw's mesh (always in range).
+    pub index: usize,
+    /// The draw's mesh.
+    pub mesh: &'a Mesh<'a>,
+}
+
+impl VertexInput<'_> {
+    /// The vertex's texture coordinates, or zeros when the mesh has none.
+    #[inline(always)]
+    pub fn uv(&self) -> [I16F16; 2] {
+        match self.mesh.uvs() {
+            Some(uv) => uv[self.index],
+            None => [I16F16::ZERO; 2],
+        }
+    }
+
+    /// The vertex's model-space normal, or zeros when the mesh has none.
+    #[inline(always)]
+    pub fn normal(&self) -> [I16F16; 3] {
+        match self.mesh.normals() {
+            Some(n) => n[self.index],
+            None => [I16F16::ZERO; 3],
+        }
+    }
+
+    /// The vertex's model-space position.
+    #[inline(always)]
+    pub fn position(&self) -> [I16F16; 3] {
+        self.mesh.positions()[self.index]
+    }
+}
+
+/// One fragment, as [`FragmentShader::fragment`] sees it.
+#[derive(Clone, Copy, Debug)]
+pub struct Fragment<'t, V> {
+    /// Screen column of the pixel.
+    pub x: i32,
+    /// Screen row of the pixel.
+    pub y: i32,
+    /// Its depth, 0 (near) to 65535 (far).
+    pub depth: u16,
+    /// The lit vertex colours interpolated (perspective-correct), or the
+    /// provoking vertex's colour under
+    /// [`FragmentShader::INTERPOLATE_COLOR`]` = false`.
+    pub color: [u8; 3],
+    /// The varyings, interpolated.
+    pub varyings: V,
+    /// The draw's texture, if it has one.
+    pub texture: Option<&'t Texture<'t>>,
+}
+
+/// Why a draw cannot use a shader: found before anything is drawn.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ShaderError {
+    /// The shader samples a texture and the draw has none.
+    MissingTexture,
+    /// The shader reads texture coordinates and the mesh has none.
+    MissingUvs,
+    /// The shader reads normals and the mesh has none.
+    MissingNormals,
+}
+
+impl core::fmt::Display for ShaderError {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str(match self {
+            Self::MissingTexture => "the shader needs a texture and the draw has none",
+            Self::MissingUvs => "the shader needs texture coordinates and the mesh has none",
+            Self::MissingNormals => "the shader needs normals and the mesh has none",
+        })
+    }
+}
+
+/// A fragment shader, monomorphized into the renderer's span loop.
+///
+/// ```
+/// use embedded_graphics::pixelcolor::{Rgb565, RgbColor};
+/// use fixed::types::I16F16;
+/// use microraster::shader::{Fragment, FragmentShader, VertexInput};
+///
+/// /// A checkerboard from the texture coordinates: 8 squares per unit.
+/// struct Checker;
+/// impl FragmentShader<Rgb565> for Checker {
+///     type Varyings = [I16F16; 2];
+///     fn vertex(&self, v: &VertexInput<'_>) -> [I16F16; 2] {
+///         v.uv()
+///     }
+///     fn fragment(&self, f: &Fragment<'_, [I16F16; 2]>) -> Option<Rgb565> {
+///         let [u, v] = f.varyings;
+///         let odd = ((u.to_bits() >> 13) ^ (v.to_bits() >> 13)) & 1 == 1;
+///         Some(if odd { Rgb565::WHITE } else { Rgb565::BLACK })
+///     }
+/// }
+/// ```
+pub trait FragmentShader<C> {
+    /// The interpolated values: `[I16F16; N]`.
+    type Varyings: Varyings;
+
+    /// Whether [`Fragment::color`] is interpolated (three more multiply-adds
+    /// per fragment) or the provoking vertex's colour.
+    const INTERPOLATE_COLOR: bool = true;
+
+    /// Checks that `draw` has what the shader reads (a texture, UVs,
+    /// normals), once per frame before anything is drawn.
+    fn check(&self, _draw: &Draw<'_>) -> Result<(), ShaderError> {
+        Ok(())
+    }
+
+    /// The varyings of one vertex. Must be a pure function of `v`: it is
+    /// evaluated again for every tile the triangle touches.
+    fn vertex(&self, v: &VertexInput<'_>) -> Self::Varyings;
+
+    /// The colour of a fragment, or `None` to discard it (nothing written).
+    fn fragment(&self, f: &Fragment<'_, Self::Varyings>) -> Option<C>;
+}
+
+/// The shader of a scene that has none. [`Shading::Shader`] draws are an
+/// error without a shader ([`RenderError::MissingShader`]).
+///
+/// [`Shading::Shader`]: crate::scene::Shading::Shader
+/// [`RenderError::MissingShader`]: crate::render::RenderError::MissingShader
+#[derive(Clone, Copy, Debug, Default)]
+pub struct NoShader;
+
+impl<C> FragmentShader<C> for NoShader {
+    type Varyings = [I16F16; 0];
+    const INTERPOLATE_COLOR: bool = false;
+    fn vertex(&self, _: &VertexInput<'_>) -> [I16F16; 0] {
+        []
+    }
+    fn fragment(&self, _: &Fragment<'_, [I16F16; 0]>) -> Option<C> {
+        None
+    }
+}
+
+fn needs_uv_texture(draw: &Draw<'_>) -> Result<(), ShaderError> {
+    if draw.texture.is_none() {
+        Err(ShaderError::MissingTexture)
+    } else if draw.mesh.uvs().is_none() {
+        Err(ShaderError::MissingUvs)
+    } else {
+        Ok(())
+    }
+}
+
+/// The draw's texture at the interpolated texture coordinates, unlit.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Textured;
+
+impl<C: From<Rgb888>> FragmentShader<C> for Textured {
+    type Varyings = [I16F16; 2];
+    const INTERPOLATE_COLOR: bool = false;
+    fn check(&self, draw: &Draw<'_>) -> Result<(), ShaderError> {
+        needs_uv_texture(draw)
+    }
+    #[inline(always)]
+    fn vertex(&self, v: &VertexInput<'_>) -> [I16F16; 2] {
+        v.uv()
+    }
+    #[inline(always)]
+    fn fragment(&self, f: &Fragment<'_, [I16F16; 2]>) -> Option<C> {
+        let [r, g, b] = f.texture?.sample(f.varyings[0], f.varyings[1]);
+        Some(C::from(Rgb888::new(r, g, b)))
+    }
+}
+
+/// The draw's texture modulated by the lit vertex colour (interpolated,
+/// perspective-correct): `texel * colour / 255` per channel, rounded.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct TexturedLit;
+
+/// `a * b / 255` rounded to nearest, exact for all bytes.
+#[inline(always)]
+pub fn mul255(a: u8, b: u8) -> u8 {
+    let p = a as u32 * b as u32 + 128;
+    ((p + (p >> 8)) >> 8) as u8
+}
+
+impl<C: From<Rgb888>> FragmentShader<C> for TexturedLit {
+    type Varyings = [I16F16; 2];
+    fn check(&self, draw: &Draw<'_>) -> Result<(), ShaderError> {
+        needs_uv_texture(draw)
+    }
+    #[inline(always)]
+    fn vertex(&self, v: &VertexInput<'_>) -> [I16F16; 2] {
+        v.uv()
+    }
+    #[inline(always)]
+    fn fragment(&self, f: &Fragment<'_, [I16F16; 2]>) -> Option<C> {
+        let t = f.texture?.sample(f.varyings[0], f.varyings[1]);
+        let c = f.color;
+        Some(C::from(Rgb888::new(
+            mul255(t[0], c[0]),
+            mul255(t[1], c[1]),
+            mul255(t[2], c[2]),
+        )))
+    }
+}
+
+/// Depth as grey: white at depth `near`, black at `far` and beyond,
+/// linear between (in the 16-bit depth, which is `z / w`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct DepthShade {
+    near: u16,
+    /// `2^24 / (far - near)`, so a pixel needs one multiply.
+    scale: u32,
+}
+
+impl DepthShade {
+    /// Grey from `near` (white) to `far` (black); `far <= near` is
+    /// treated as `near + 1`.
+    pub const fn new(near: u16, far: u16) -> Self {
+        let span = if far > near { far - near } else { 1 } as u32;
+        Self {
+            near,
+            scale: (1 << 24) / span,
+        }
+    }
+
+    /// The grey of a depth.
+    #[inline(always)]
+    pub fn grey(&self, depth: u16) -> u8 {
+        let d = depth.saturating_sub(self.near) as u32;
+        // d * scale < 2^16 * 2^24 overflows u32: scale down first.
+        let t = ((d as u64 * self.scale as u64) >> 16).min(255) as u8;
+        255 - t
+    }
+}
+
+impl Default for DepthShade {
+    fn default() -> Self {
+        Self::new(0, u16::MAX)
+    }
+}
+
+impl<C: From<Rgb888>> FragmentShader<C> for DepthShade {
+    type Varyings = [I16F16; 0];
+    const INTERPOLATE_COLOR: bool = false;
+    fn vertex(&self, _: &VertexInput<'_>) -> [I16F16; 0] {
+        []
+    }
+    #[inline(always)]
+    fn fragment(&self, f: &Fragment<'_, [I16F16; 0]>) -> Option<C> {
+        let g = self.grey(f.depth);
+        Some(C::from(Rgb888::new(g, g, g)))
+    }
+}
+
+/// The interpolated model-space normal as colour: each component from
+/// `-1..1` to `0..255`.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Normals;
+
+impl<C: From<Rgb888>> FragmentShader<C> for Normals {
+    type Varyings = [I16F16; 3];
+    const INTERPOLATE_COLOR: bool = false;
+    fn check(&self, draw: &Draw<'_>) -> Result<(), ShaderError> {
+        match draw.mesh.normals() {
+            Some(_) => Ok(()),
+            None => Err(ShaderError::MissingNormals),
+        }
+    }
+    #[inline(always)]
+    fn vertex(&self, v: &VertexInput<'_>) -> [I16F16; 3] {
+        v.normal()
+    }
+    #[inline(always)]
+    fn fragment(&self, f: &Fragment<'_, [I16F16; 3]>) -> Option<C> {
+        let c = f
+            .varyings
+            .map(|n| ((n.to_bits().clamp(-65_536, 65_536) + 65_536) * 255 / 131_072) as u8);
+        Some(C::from(Rgb888::new(c[0], c[1], c[2])))
+    }
+}
+
+/// The provoking vertex's lit colour: what
+/// [`Shading::Flat`](crate::scene::Shading::Flat) draws, through the
+/// fragment-shader path (used for transparent flat draws).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Flat;
+
+impl<C: From<Rgb888>> FragmentShader<C> for Flat {
+    type Varyings = [I16F16; 0];
+    const INTERPOLATE_COLOR: bool = false;
+    fn vertex(&self, _: &VertexInput<'_>) -> [I16F16; 0] {
+        []
+    }
+    #[inline(always)]
+    fn fragment(&self, f: &Fragment<'_, [I16F16; 0]>) -> Option<C> {
+        Some(C::from(Rgb888::new(f.color[0], f.color[1], f.color[2])))
+    }
+}
+
+/// The lit vertex colours interpolated perspective-correct (the
+/// [`Shading::Gouraud`](crate::scene::Shading::Gouraud) path interpolates
+/// them linearly in screen space, which is faster).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Gouraud;
+
+impl<C: From<Rgb888>> FragmentShader<C> for Gouraud {
+    type Varyings = [I16F16; 0];
+    fn vertex(&self, _: &VertexInput<'_>) -> [I16F16; 0] {
+        []
+    }
+    #[inline(always)]
+    fn fragment(&self, f: &Fragment<'_, [I16F16; 0]>) -> Option<C> {
+        Some(C::from(Rgb888::new(f.color[0], f.color[1], f.color[2])))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn mul255_is_exact() {
+        for a in 0..=255u32 {
+            for b in 0..=255u32 {
+                let exact = (a * b * 2 + 255) / 510;
+                assert_eq!(mul255(a as u8, b as u8) as u32, exact, "{a} {b}");
+            }
+        }
+    }
+
+    #[test]
+    fn depth_shade_runs_white_to_black() {
+        let d = DepthShade::new(1000, 3000);
+        assert_eq!(d.grey(0), 255);
+        assert_eq!(d.grey(1000), 255);
+        assert_eq!(d.grey(2000), 128);
+        assert_eq!(d.grey(3000), 0);
+        assert_eq!(d.grey(u16::MAX), 0);
+        let degenerate = DepthShade::new(5, 5);
+        assert_eq!(degenerate.grey(5), 255);
+        assert_eq!(degenerate.grey(6), 0);
+    }
+}
