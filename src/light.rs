@@ -775,6 +775,14 @@ impl<const N: usize> LightSetup<N> {
         );
         // Bitwise, as an array comparison would call memcmp.
         let specular_on = (ms[0] | ms[1] | ms[2]) != 0;
+        if let (true, false, FixedFog::None, Some(Source::Directional { dir })) = (
+            self.coarse,
+            specular_on,
+            self.fog,
+            self.lights.first().map(|l| l.source),
+        ) {
+            return self.lambert(ma, md, base, &n, dir);
+        }
 
         // Diffuse and ambient sum I, in 1 / (255 · FULL) of the base colour
         // (so that the sum for a white material is 255 times the vertex
@@ -886,6 +894,72 @@ impl<const N: usize> LightSetup<N> {
                 let fog = self.fog_color[c] as u32 * 256;
                 ((lit * (ONE - f) + fog * f + (1 << 23)) >> 24) as u8
             };
+        }
+        out
+    }
+
+    /// For one directional light without fog (the lighting of a
+    /// [`scene::Light`](crate::scene::Light)): its model-space unit
+    /// direction (Q16), its colour and the ambient light, with which a
+    /// white material without highlights is lit as
+    /// `(base (256 ambient + colour · n·l) + 32,640) / 65,280`, `n·l` in
+    /// 1/256 steps, floored, clamped to `0..=256` (the same bits as
+    /// [`shade`](Self::shade), which the tests check): the vertex stage's
+    /// fast path.
+    pub(crate) fn single_directional(&self) -> Option<([i32; 3], [u8; 3], [u8; 3])> {
+        match (self.coarse, self.fog, self.lights.first()) {
+            (true, FixedFog::None, Some(l)) => match l.source {
+                Source::Directional { dir } => Some((dir, l.color, self.ambient)),
+                _ => None,
+            },
+            _ => None,
+        }
+    }
+
+    /// [`shade`](Self::shade) for the commonest case, as fast as the
+    /// vertex stage's old single-light code: one directional light (the
+    /// coarse `n·l` of [`scene::Light`](crate::scene::Light)), no
+    /// highlights, no fog. The same steps as the general loop with
+    /// everything that cannot apply left out, so the same bits.
+    #[inline(always)]
+    fn lambert(
+        &self,
+        ma: [u8; 3],
+        md: [u8; 3],
+        base: [u8; 3],
+        n: &Normal,
+        dir: [i32; 3],
+    ) -> [u8; 3] {
+        let nl = n.dot(dir);
+        // frac_mul(nl, ONE) = min(nl, ONE) for the coarse n·l.
+        let g = if nl > 0 {
+            (((nl as u32 >> 8).min(256)) << 8).min(ONE)
+        } else {
+            0
+        };
+        let color = self.lights[0].color;
+        let mut out = [0u8; 3];
+        if (ma[0] & ma[1] & ma[2] & md[0] & md[1] & md[2]) == 255 {
+            // A white material: then `k` below is exactly
+            // `256 ambient + colour · n·l` (in 1/256 steps), and the two
+            // divisions by 255 one division by 65,280, which the compiler
+            // does by a multiply.
+            let nl = g >> 8;
+            for c in 0..3 {
+                let k = self.ambient[c] as u32 * 256 + color[c] as u32 * nl;
+                out[c] = ((base[c] as u32 * k + FULL / 2) / FULL).min(255) as u8;
+            }
+            return out;
+        }
+        for c in 0..3 {
+            let mut diffuse = ma[c] as u32 * self.ambient[c] as u32 * 256;
+            if g > 0 {
+                let p = md[c] as u32 * color[c] as u32;
+                diffuse = diffuse.saturating_add((p * g + 128) >> 8);
+            }
+            let k = div255(diffuse.min(255 * K_MAX));
+            let x = base[c] as u32 * k;
+            out[c] = div255((x + FULL / 2) >> 8).min(255) as u8;
         }
         out
     }

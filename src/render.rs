@@ -54,12 +54,13 @@
 //! store, and gives bit-identical vertices every time.
 
 use crate::clip::{clip_triangle, MAX_CLIPPED_VERTICES};
+use crate::light::{DirectionalLight, LightError, LightSetup, Lighting};
 use crate::raster::line::{draw_line, draw_point, DepthMode, LinePoint};
 use crate::raster::scanline::Walker;
 use crate::raster::{
     first_centre_at_or_after, hilbert, signed_area2, PixelRect, Rasterizer, Span, SubPoint,
 };
-use crate::scene::{Blend, CullMode, Draw, Light, Scene, Shading};
+use crate::scene::{Blend, CullMode, Draw, Scene, Shading};
 use crate::shade::perspective::{span_shader, Output, PerspectiveSetup, ShaderTriangle};
 use crate::shade::{
     span_flat, span_gouraud, Corners, DAlways, DEqual, DGreater, DGreaterEqual, DLess, DLessEqual,
@@ -69,6 +70,7 @@ use crate::shader::{self, FragmentShader, Perspective, ShaderError, Varyings, Ve
 use crate::sink::{rectangle, TileSink};
 use crate::texture::Texture;
 use crate::tile::{TileBuffer, TileGrid, TileOrder};
+pub use crate::vertex::MAX_LIGHTS;
 use crate::vertex::{
     DrawSetup, ScreenVertex, VertexError, Viewport, BARY_ONE, MAX_VIEWPORT, MUST_CLIP, REJECT_MASK,
 };
@@ -347,8 +349,10 @@ pub enum RenderError<E> {
     },
     /// The camera's matrices are not finite or not representable.
     BadCamera,
-    /// The light's direction is zero or not finite.
-    BadLight,
+    /// The scene's light or lighting is invalid: a zero or non-finite
+    /// direction or position, a bad range or fog, or more than
+    /// [`MAX_LIGHTS`] lights.
+    Light(LightError),
     /// A draw's matrices or vertices could not be transformed.
     Draw {
         /// Index of the draw in the scene.
@@ -394,7 +398,7 @@ impl<E: core::fmt::Debug> core::fmt::Display for RenderError<E> {
                 size.width, size.height
             ),
             Self::BadCamera => write!(f, "the camera matrices are not finite or exceed 16.16"),
-            Self::BadLight => write!(f, "the light direction is zero or not finite"),
+            Self::Light(e) => write!(f, "lighting: {e}"),
             Self::Draw { draw, error } => match error {
                 VertexError::BadMatrix => write!(
                     f,
@@ -632,7 +636,9 @@ struct Tally {
 /// Read-only state of the frame being rendered.
 struct Frame<'s, 'v> {
     draws: &'s [Draw<'s>],
-    light: Option<&'s Light>,
+    lighting: Option<Lighting<'s>>,
+    /// The camera's position, world space.
+    eye: crate::math::Vec3,
     vertices: &'v [ScreenVertex],
     view_proj: crate::math::Mat4,
     viewport: Viewport,
@@ -700,7 +706,13 @@ impl Frame<'_, '_> {
         match cache {
             Some((c, s)) if *c == d => Some(*s),
             _ => {
-                let s = DrawSetup::new(&self.draws[d], &self.view_proj, self.light).ok()?;
+                let s = DrawSetup::new(
+                    &self.draws[d],
+                    &self.view_proj,
+                    self.lighting.as_ref(),
+                    self.eye,
+                )
+                .ok()?;
                 *cache = Some((d, s));
                 Some(s)
             }
@@ -1149,10 +1161,26 @@ where
         if !view_proj.is_finite() || view_proj.to_fixed().is_none() {
             return Err(RenderError::BadCamera);
         }
-        if let Some(light) = &scene.light {
-            if light.direction.normalize().is_none() {
-                return Err(RenderError::BadLight);
-            }
+        // The lights: the scene's lighting, or its one light as a
+        // lighting of one directional light. Checked once here (with an
+        // identity model matrix), so that per draw only the draw's own
+        // matrix can fail.
+        let one = scene
+            .light
+            .map(|l| [DirectionalLight::new(l.direction, l.color)]);
+        let simple = match (&scene.light, &one) {
+            (Some(l), Some(one)) => Some(Lighting::new(l.ambient).directional(one)),
+            _ => None,
+        };
+        let lighting = scene.lighting.copied().or(simple);
+        let eye = scene.camera.eye();
+        if let Some(l) = &lighting {
+            LightSetup::<MAX_LIGHTS>::new(l, &crate::math::Mat4::IDENTITY, eye).map_err(
+                |e| match e {
+                    LightError::BadMatrix => RenderError::BadCamera,
+                    e => RenderError::Light(e),
+                },
+            )?;
         }
 
         // Capacities first, so nothing is half done.
@@ -1181,7 +1209,7 @@ where
         let viewport = Viewport::new(size.width, size.height);
         let mut base = 0;
         for (di, draw) in scene.draws.iter().enumerate() {
-            let setup = DrawSetup::new(draw, &view_proj, scene.light.as_ref())
+            let setup = DrawSetup::new(draw, &view_proj, lighting.as_ref(), eye)
                 .map_err(|error| RenderError::Draw { draw: di, error })?;
             let out = &mut ws.vertices[base..base + draw.mesh.vertex_count()];
             for (i, sv) in out.iter_mut().enumerate() {
@@ -1204,7 +1232,8 @@ where
         let hilbert_tiles = self.config.tile_order == TileOrder::Hilbert;
         let frame = Frame {
             draws: scene.draws,
-            light: scene.light.as_ref(),
+            lighting,
+            eye,
             vertices: &vertices[..needed],
             view_proj,
             viewport,

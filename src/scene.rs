@@ -4,6 +4,7 @@
 //! so building a scene costs a few words of stack. Everything here is
 //! per-frame set-up in `f32`; the renderer converts it to fixed point once.
 
+use crate::light::{Lighting, Material};
 use crate::math::{Mat4, Vec3};
 use crate::mesh::Mesh;
 use crate::shader::NoShader;
@@ -141,10 +142,22 @@ impl Camera {
     pub const fn new(view: Mat4, projection: Mat4) -> Self {
         Self { view, projection }
     }
+
+    /// The eye's position in world space, for highlights and fog: `-Rᵀ t`
+    /// of a rigid view matrix `[R | t]` (as [`Mat4::look_at`] makes).
+    pub fn eye(&self) -> Vec3 {
+        let m = &self.view.m;
+        let t = [m[3][0], m[3][1], m[3][2]];
+        let col = |c: usize| -(m[c][0] * t[0] + m[c][1] * t[1] + m[c][2] * t[2]);
+        Vec3::new(col(0), col(1), col(2))
+    }
 }
 
 /// A directional light plus an ambient term, evaluated per vertex in fixed
-/// point (Lambert diffuse).
+/// point (Lambert diffuse): the simple case of a
+/// [`Lighting`] with one
+/// [`DirectionalLight`](crate::light::DirectionalLight), which it is turned
+/// into (with the same colours, bit for bit).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Light {
     /// Direction *towards* the light, in world space (need not be unit).
@@ -195,6 +208,8 @@ pub struct Draw<'a> {
     pub blend: Blend,
     /// Edges drawn as lines over the triangles (see [`Edges`]).
     pub edges: Option<Edges>,
+    /// How the surface reflects the scene's lights.
+    pub material: Material,
 }
 
 impl<'a> Draw<'a> {
@@ -208,6 +223,7 @@ impl<'a> Draw<'a> {
             texture: None,
             blend: Blend::Opaque,
             edges: None,
+            material: Material::new(),
         }
     }
 
@@ -233,6 +249,13 @@ impl<'a> Draw<'a> {
     /// [`Shading::Wireframe`], alone).
     pub fn edges(mut self, edges: Edges) -> Self {
         self.edges = Some(edges);
+        self
+    }
+
+    /// Sets the material (the default reflects ambient and diffuse light
+    /// white, without highlights).
+    pub fn material(mut self, material: Material) -> Self {
+        self.material = material;
         self
     }
 
@@ -274,8 +297,14 @@ impl<'a> Draw<'a> {
 pub struct Scene<'a, S = NoShader> {
     /// The camera.
     pub camera: Camera,
-    /// The light; without one, vertices keep their unlit colour.
+    /// One directional light and an ambient term: the simple way to light
+    /// a scene. Without it (or [`lighting`](Self::lighting)), vertices keep
+    /// their unlit colour.
     pub light: Option<Light>,
+    /// Any number of directional and point lights, highlights and fog
+    /// (up to [`MAX_LIGHTS`](crate::render::MAX_LIGHTS) lights); replaces
+    /// [`light`](Self::light) when set.
+    pub lighting: Option<&'a Lighting<'a>>,
     /// The draws, rendered in order (later ones win depth ties under
     /// [`crate::DepthTest::LessEqual`]).
     pub draws: &'a [Draw<'a>],
@@ -295,6 +324,7 @@ impl<S> core::fmt::Debug for Scene<'_, S> {
         f.debug_struct("Scene")
             .field("camera", &self.camera)
             .field("light", &self.light)
+            .field("lighting", &self.lighting)
             .field("draws", &self.draws)
             .field("shader", &self.shader.map(|_| core::any::type_name::<S>()))
             .finish()
@@ -307,6 +337,7 @@ impl<'a> Scene<'a> {
         Self {
             camera,
             light: None,
+            lighting: None,
             draws,
             shader: None,
         }
@@ -320,11 +351,18 @@ impl<'a, S> Scene<'a, S> {
         self
     }
 
+    /// Lights the scene with any number of lights, highlights and fog.
+    pub const fn lighting(mut self, lighting: &'a Lighting<'a>) -> Self {
+        self.lighting = Some(lighting);
+        self
+    }
+
     /// Sets the fragment shader of [`Shading::Shader`] draws.
     pub const fn shader<T>(self, shader: &'a T) -> Scene<'a, T> {
         Scene {
             camera: self.camera,
             light: self.light,
+            lighting: self.lighting,
             draws: self.draws,
             shader: Some(shader),
         }

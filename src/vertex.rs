@@ -2,10 +2,10 @@
 //! viewport transform, all in fixed point.
 //!
 //! Per frame (and per draw) the `f32` matrices of the [`Scene`](crate::scene::Scene) are combined
-//! and converted once to 16.16 ([`FixedMat4`]); the world-space light
-//! direction is moved into the draw's model space (`M⁻¹ L`, normalised), so
-//! per vertex the stage needs only integer multiply-adds: 12 products for the
-//! position, 3 for the Lambert term, and 3 quotients by `w` for the
+//! and converted once to 16.16 ([`FixedMat4`]); the world-space lights are
+//! moved into the draw's model space ([`LightSetup`], see [`crate::light`]),
+//! so per vertex the stage needs only integer multiply-adds: 12 products for
+//! the position, a few per light, and 3 quotients by `w` for the
 //! perspective divide, which share one divisor (on a 32-bit core, one
 //! reciprocal of `w` and three multiply-highs instead of three 64-bit
 //! divisions; the quotients are the same). A Cortex-M0+ therefore does no
@@ -39,10 +39,12 @@
 //! `[-1, 1]` to `[height, 0]` (screen y grows downwards), both rounded to the
 //! nearest 1/16 pixel. NDC z in `[-1, 1]` maps to depth `0..=65535`.
 
+use crate::light::{LightSetup, Lighting, Material};
+use crate::math::Vec3;
 use crate::math::{Divisor, FixedMat4, Mat4};
 use crate::mesh::Mesh;
 use crate::raster::{SubPoint, SUBPIXEL};
-use crate::scene::{Draw, Light};
+use crate::scene::Draw;
 use core::num::NonZeroU64;
 
 /// Outside `x >= -w`.
@@ -119,15 +121,6 @@ pub enum VertexError {
     },
 }
 
-/// A fixed-point light, already in a draw's model space.
-#[derive(Clone, Copy, Debug)]
-struct FixedLight {
-    /// Unit direction towards the light, raw 16.16.
-    dir: [i32; 3],
-    color: [u32; 3],
-    ambient: [u32; 3],
-}
-
 /// Everything the vertex stage needs for one draw, in fixed point.
 #[derive(Clone, Copy, Debug)]
 pub struct DrawSetup {
@@ -135,9 +128,45 @@ pub struct DrawSetup {
     /// `mvp` cannot overflow on this draw's mesh (see
     /// [`FixedMat4::bounded`]), so vertices take the unchecked transform.
     bounded: bool,
-    light: Option<FixedLight>,
+    light: Option<LightSetup<MAX_LIGHTS>>,
+    /// The same lighting when it is one directional light on a white
+    /// material without highlights or fog: a dozen instructions per vertex
+    /// instead of the general loop, same colours.
+    lambert: Option<Lambert>,
+    material: Material,
     color: [u8; 3],
 }
+
+/// One directional light in model space (see
+/// [`LightSetup::single_directional`]).
+#[derive(Clone, Copy, Debug)]
+struct Lambert {
+    dir: [i32; 3],
+    color: [u32; 3],
+    ambient: [u32; 3],
+}
+
+impl Lambert {
+    #[inline(always)]
+    fn shade(&self, n: crate::mesh::Vec3Fx, base: [u8; 3]) -> [u8; 3] {
+        let d = n[0].to_bits() as i64 * self.dir[0] as i64
+            + n[1].to_bits() as i64 * self.dir[1] as i64
+            + n[2].to_bits() as i64 * self.dir[2] as i64;
+        // n·l in 1/256 steps, floored, clamped to [0, 1].
+        let ndotl = (d >> 24).clamp(0, 256) as u32;
+        let mut out = [0u8; 3];
+        for c in 0..3 {
+            let k = self.ambient[c] * 256 + self.color[c] * ndotl; // <= 2^17
+            out[c] = ((base[c] as u32 * k + 32_640) / 65_280).min(255) as u8;
+        }
+        out
+    }
+}
+
+/// Most lights (directional and point together) a frame's
+/// [`Lighting`] may hold: the size of the per-draw set-up, which lives on
+/// the stack while a frame renders (56 bytes per light).
+pub const MAX_LIGHTS: usize = 8;
 
 impl DrawSetup {
     /// Converts a draw's `f32` set-up to fixed point. Deterministic: the
@@ -146,37 +175,42 @@ impl DrawSetup {
     pub fn new(
         draw: &Draw<'_>,
         view_proj: &Mat4,
-        light: Option<&Light>,
+        lighting: Option<&Lighting<'_>>,
+        eye: Vec3,
     ) -> Result<Self, VertexError> {
         let m = &draw.transform;
         if !m.is_finite() {
             return Err(VertexError::BadMatrix);
         }
         let mvp = (*view_proj * *m).to_fixed().ok_or(VertexError::BadMatrix)?;
-        let light = match light {
-            Some(l) => {
-                let local = m
-                    .inverse_transform_vector(l.direction)
-                    .and_then(|v| v.normalize())
-                    .ok_or(VertexError::BadMatrix)?;
-                let fx = |v: f32| (v * 65536.0) as i32;
-                let c = |c: embedded_graphics::pixelcolor::Rgb888| {
-                    use embedded_graphics::prelude::RgbColor;
-                    [c.r() as u32, c.g() as u32, c.b() as u32]
-                };
-                Some(FixedLight {
-                    dir: [fx(local.x), fx(local.y), fx(local.z)],
-                    color: c(l.color),
-                    ambient: c(l.ambient),
-                })
-            }
+        let light = match lighting {
+            // The renderer checked the lights themselves (with an identity
+            // model matrix): what is left to fail is this draw's matrix.
+            Some(l) => Some(LightSetup::new(l, m, eye).map_err(|_| VertexError::BadMatrix)?),
             None => None,
         };
         use embedded_graphics::prelude::RgbColor;
+        let m = &draw.material;
+        let white = [m.ambient, m.diffuse]
+            .iter()
+            .all(|c| (c.r() & c.g() & c.b()) == 255);
+        let dark = (m.specular.r() | m.specular.g() | m.specular.b()) == 0;
+        let lambert = match &light {
+            Some(l) if white && dark => {
+                l.single_directional().map(|(dir, color, ambient)| Lambert {
+                    dir,
+                    color: color.map(u32::from),
+                    ambient: ambient.map(u32::from),
+                })
+            }
+            _ => None,
+        };
         Ok(Self {
             mvp,
             bounded: mvp.bounded(draw.mesh.extent()),
             light,
+            lambert,
+            material: draw.material,
             color: [draw.color.r(), draw.color.g(), draw.color.b()],
         })
     }
@@ -202,7 +236,19 @@ impl DrawSetup {
             None => self.color,
         };
         let color = match (&self.light, mesh.normals()) {
-            (Some(l), Some(n)) => light_vertex(l, n[i], base),
+            (_, Some(n)) if self.lambert.is_some() => match &self.lambert {
+                Some(l) => l.shade(n[i], base),
+                None => base,
+            },
+            (Some(l), Some(n)) => {
+                let n = n[i];
+                l.shade(
+                    &self.material,
+                    base,
+                    p,
+                    [n[0].to_bits(), n[1].to_bits(), n[2].to_bits()],
+                )
+            }
             _ => base,
         };
         Ok(ClipVertex {
@@ -222,24 +268,6 @@ impl DrawSetup {
         self.mvp
             .transform_w_unchecked([p[0].to_bits(), p[1].to_bits(), p[2].to_bits()])
     }
-}
-
-/// Lambert diffuse plus ambient, per channel:
-/// `base * (ambient + light * max(0, n·l)) / 255`, rounded, saturated.
-#[inline]
-fn light_vertex(l: &FixedLight, n: crate::mesh::Vec3Fx, base: [u8; 3]) -> [u8; 3] {
-    let d = n[0].to_bits() as i64 * l.dir[0] as i64
-        + n[1].to_bits() as i64 * l.dir[1] as i64
-        + n[2].to_bits() as i64 * l.dir[2] as i64;
-    // n·l in 1/256 steps, clamped to [0, 1].
-    let ndotl = (d >> 24).clamp(0, 256) as u32;
-    let mut out = [0u8; 3];
-    for c in 0..3 {
-        let intensity = l.ambient[c] * 256 + l.color[c] * ndotl; // <= 2^17
-        let v = (base[c] as u32 * intensity + 32_640) / 65_280;
-        out[c] = v.min(255) as u8;
-    }
-    out
 }
 
 /// The outcode of a clip-space position.
@@ -370,6 +398,44 @@ pub(crate) fn div_round(n: i64, d: i64) -> i64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The fast path of one directional light gives the general
+    /// lighting's colours, for any normal, colour and light.
+    #[test]
+    fn lambert_fast_path_matches_the_light_setup() {
+        use crate::light::{DirectionalLight, Lighting};
+        use embedded_graphics::pixelcolor::Rgb888;
+        let mut x = 0x2545_f491_4f6c_dd1du64;
+        let mut next = move |m: u64| {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            x % m
+        };
+        for _ in 0..200 {
+            let mut f = || next(2001) as f32 / 1000.0 - 1.0;
+            let dir = Vec3::new(f(), f(), f() + 0.01);
+            let model = Mat4::rotation_y(f() * 3.0) * Mat4::rotation_x(f() * 3.0);
+            let mut c = || Rgb888::new(next(256) as u8, next(256) as u8, next(256) as u8);
+            let one = [DirectionalLight::new(dir, c())];
+            let lighting = Lighting::new(c()).directional(&one);
+            let setup: LightSetup<MAX_LIGHTS> =
+                LightSetup::new(&lighting, &model, Vec3::new(0.0, 0.0, 5.0)).unwrap();
+            let (dir, color, ambient) = setup.single_directional().unwrap();
+            let fast = Lambert {
+                dir,
+                color: color.map(u32::from),
+                ambient: ambient.map(u32::from),
+            };
+            for _ in 0..500 {
+                let n = [0; 3]
+                    .map(|_| fixed::types::I16F16::from_bits(next(1 << 18) as i32 - (1 << 17)));
+                let base = [next(256) as u8, next(256) as u8, next(256) as u8];
+                let general = setup.shade(&Material::new(), base, [0; 3], n.map(|v| v.to_bits()));
+                assert_eq!(fast.shade(n, base), general, "{n:?} {base:?}");
+            }
+        }
+    }
 
     #[test]
     fn viewport_maps_ndc_corners_to_pixel_corners() {

@@ -12,6 +12,7 @@ mod support;
 use embedded_graphics::pixelcolor::{BinaryColor, Gray8, GrayColor, Rgb565, Rgb888, RgbColor};
 use embedded_graphics::primitives::Rectangle;
 use fixed::types::I16F16;
+use microraster::light::LightError;
 use microraster::mesh::Vec3Fx;
 use microraster::prelude::*;
 use microraster::render::MAX_TRIANGLES;
@@ -264,11 +265,11 @@ fn zero_or_non_finite_light_is_bad_light() {
         for cam in [ortho(), perspective()] {
             assert_preflight(
                 &Scene::new(cam, &draws).light(Light::new(d)),
-                RenderError::BadLight,
+                RenderError::Light(LightError::BadDirection { light: 0 }),
             );
             assert_preflight(
                 &Scene::new(cam, &[]).light(Light::new(d)),
-                RenderError::BadLight,
+                RenderError::Light(LightError::BadDirection { light: 0 }),
             );
         }
     }
@@ -858,4 +859,195 @@ fn saturated_bin_count_is_an_overflow_not_a_fit() {
     // The lower-left half (NDC y up) of the frame is white.
     assert_eq!(cap.get(1, 14), Gray8::WHITE);
     assert_eq!(cap.get(14, 1), Gray8::BLACK);
+}
+
+// ---------------------------------------------------------------------------
+// Shaders, textures, lines and blending.
+// ---------------------------------------------------------------------------
+
+/// A shader draw without a shader, or without what the shader reads, is an
+/// error before the first tile; nothing reaches the sink.
+#[test]
+fn shader_draws_need_a_shader_and_its_inputs() {
+    use microraster::shader::{Normals, ShaderError, Textured};
+    use microraster::texture::{Texels, Texture};
+    let pos = [p3(-0.5, -0.5, 0.0), p3(0.5, -0.5, 0.0), p3(0.0, 0.5, 0.0)];
+    let uvs = [[fx(0.0); 2]; 3];
+    let tris = [[0u16, 1, 2]];
+    let bare = Mesh::new(&pos, &tris).unwrap();
+    let with_uvs = bare.with_uvs(&uvs).unwrap();
+    let texels = [0u16; 4];
+    let tex = Texture::new(2, 2, Texels::Rgb565(&texels)).unwrap();
+    let cam = Camera::new(Mat4::IDENTITY, Mat4::IDENTITY);
+    let mut r: Renderer<Rgb565, 16, 16> =
+        Renderer::new(Config::new(Size::new(16, 16), Rgb565::BLACK));
+    let mut ws: Workspace<8, 64, 4> = Workspace::new();
+    let mut sink = Recorder::default();
+
+    let d = [Draw::new(&bare), Draw::new(&bare).shading(Shading::Shader)];
+    let e = r.render(&mut ws, &Scene::new(cam, &d), &mut sink);
+    assert_eq!(e, Err(RenderError::MissingShader { draw: 1 }));
+
+    let d = [Draw::new(&with_uvs).shading(Shading::Shader)];
+    let e = r.render(&mut ws, &Scene::new(cam, &d).shader(&Textured), &mut sink);
+    assert_eq!(
+        e,
+        Err(RenderError::Shader {
+            draw: 0,
+            error: ShaderError::MissingTexture
+        })
+    );
+    let d = [Draw::new(&bare).shading(Shading::Shader).texture(&tex)];
+    let e = r.render(&mut ws, &Scene::new(cam, &d).shader(&Textured), &mut sink);
+    assert_eq!(
+        e,
+        Err(RenderError::Shader {
+            draw: 0,
+            error: ShaderError::MissingUvs
+        })
+    );
+    let e = r.render(&mut ws, &Scene::new(cam, &d).shader(&Normals), &mut sink);
+    assert_eq!(
+        e,
+        Err(RenderError::Shader {
+            draw: 0,
+            error: ShaderError::MissingNormals
+        })
+    );
+    assert_eq!(sink.calls, 0, "errors come before the first tile");
+    assert!(e.unwrap_err().to_string().contains("normals"));
+
+    // With everything present, it draws.
+    let d = [Draw::new(&with_uvs).shading(Shading::Shader).texture(&tex)];
+    let s = r
+        .render(&mut ws, &Scene::new(cam, &d).shader(&Textured), &mut sink)
+        .unwrap();
+    assert!(s.pixels_shaded > 0);
+}
+
+/// Texture slices that do not match their size are errors, never a panic
+/// later.
+#[test]
+fn mismatched_texture_slices_are_errors() {
+    use microraster::texture::{Texels, Texture, TextureError};
+    let t = [0u16; 5];
+    assert!(matches!(
+        Texture::new(0, 2, Texels::Rgb565(&t)),
+        Err(TextureError::ZeroSize { .. })
+    ));
+    assert!(matches!(
+        Texture::new(2, 2, Texels::Rgb565(&t)),
+        Err(TextureError::LengthMismatch {
+            expected: 4,
+            actual: 5
+        })
+    ));
+    let idx = [0x00u8, 0x20];
+    let pal = [0u16; 2];
+    assert!(matches!(
+        Texture::new(
+            2,
+            2,
+            Texels::Indexed4 {
+                indices: &idx,
+                palette: &pal
+            }
+        ),
+        Err(TextureError::IndexOutOfRange { index: 2, .. })
+    ));
+}
+
+/// Shader varyings of any value, triangles crossing the near plane and the
+/// guard band, lines and points from clipped triangles, and transparent
+/// draws: no panic (debug builds check overflow), every rasterizer and
+/// perspective mode gives the same image as the scanline one of its mode.
+#[test]
+fn shader_lines_and_blending_survive_clipped_and_extreme_input() {
+    use microraster::shader::{Fragment, FragmentShader, VertexInput};
+    struct Extreme;
+    impl FragmentShader<Rgb565> for Extreme {
+        type Varyings = [I16F16; 3];
+        fn vertex(&self, v: &VertexInput<'_>) -> [I16F16; 3] {
+            let k = v.index as i32;
+            [
+                I16F16::MAX,
+                I16F16::MIN,
+                I16F16::from_bits(k.wrapping_mul(0x3fff_ffff)),
+            ]
+        }
+        fn fragment(&self, f: &Fragment<'_, [I16F16; 3]>) -> Option<Rgb565> {
+            let bits = f.varyings.iter().fold(0u32, |a, v| a ^ v.to_bits() as u32);
+            (bits & 1 == 0).then_some(Rgb565::new(bits as u8 & 31, 20, 9))
+        }
+    }
+    let extras = common::ClippedExtras::new();
+    let (floor, wall) = (extras.floor(), extras.wall());
+    let draws = [
+        Draw::new(&floor)
+            .shading(Shading::Shader)
+            .edges(Edges::default()),
+        Draw::new(&wall)
+            .blend(Blend::Alpha(100))
+            .edges(Edges::new(Rgb888::RED)),
+        Draw::new(&floor).shading(Shading::Points(4)),
+        Draw::new(&wall)
+            .shading(Shading::Wireframe)
+            .blend(Blend::Additive),
+    ];
+    let scene = Scene::new(common::camera(160, 120), &draws).shader(&Extreme);
+    for mode in [
+        Perspective::Exact,
+        Perspective::Quasi8,
+        Perspective::Quasi16,
+        Perspective::Affine,
+    ] {
+        let mut images = Vec::new();
+        for raster in [Rasterizer::Scanline, Rasterizer::Hilbert, Rasterizer::Auto] {
+            let cfg = Config::new(Size::new(160, 120), Rgb565::BLACK)
+                .cull(CullMode::None)
+                .perspective(mode)
+                .rasterizer(raster);
+            let mut r: Renderer<Rgb565, 32, 32> = Renderer::new(cfg);
+            let mut ws: Box<Workspace<64, 512, 32>> = Box::new(Workspace::new());
+            let mut cap = Capture::new(Size::new(160, 120), Rgb565::BLACK);
+            let s = r.render(&mut ws, &scene, &mut cap).unwrap();
+            assert!(s.clipped > 0 && s.pixels_shaded > 0, "{s:?}");
+            images.push(cap.pixels);
+        }
+        assert!(images.iter().all(|i| *i == images[0]), "{mode:?}");
+    }
+}
+
+/// A transparent draw is blended over what the tile holds and leaves its
+/// depth alone.
+#[test]
+fn transparent_draws_blend_and_write_no_depth() {
+    let pos = [
+        p3(-1.0, -1.0, 0.0),
+        p3(1.0, -1.0, 0.0),
+        p3(1.0, 1.0, 0.0),
+        p3(-1.0, 1.0, 0.0),
+    ];
+    let tris = [[0u16, 1, 2], [0, 2, 3]];
+    let quad = Mesh::new(&pos, &tris).unwrap();
+    let cam = Camera::new(Mat4::IDENTITY, Mat4::IDENTITY);
+    let d = [Draw::new(&quad)
+        .color(Rgb888::new(200, 100, 0))
+        .shading(Shading::Flat)
+        .blend(Blend::Alpha(128))];
+    let clear = Rgb888::new(0, 0, 200);
+    let mut r: Renderer<Rgb888, 16, 16> =
+        Renderer::new(Config::new(Size::new(16, 16), clear).clear_depth(60_000));
+    let mut ws: Workspace<4, 64, 1> = Workspace::new();
+    let mut cap = Capture::new(Size::new(16, 16), clear);
+    let s = r.render(&mut ws, &Scene::new(cam, &d), &mut cap).unwrap();
+    assert_eq!(s.pixels_shaded, 256);
+    let expect = Blend::Alpha(128).apply([200, 100, 0], [0, 0, 200]);
+    assert_eq!(expect, [100, 50, 100]);
+    assert!(cap.pixels.iter().all(|&c| c == Rgb888::new(100, 50, 100)));
+    for y in 0..16 {
+        for x in 0..16 {
+            assert_eq!(r.tile().depth(x, y), Some(60_000));
+        }
+    }
 }

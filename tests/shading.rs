@@ -296,3 +296,48 @@ fn transparent_object() {
     let scene = Scene::new(camera(W, H), &d).light(light());
     golden("transparent", &scene, config().cull(CullMode::None));
 }
+
+/// Several lights at once: a dim directional light, a warm and a cool
+/// point light, shiny materials (Blinn-Phong highlights) and linear fog,
+/// on the knot (Gouraud) and the lit textured cube.
+#[test]
+fn lights_highlights_and_fog() {
+    use microraster::light::{DirectionalLight, Fog, Lighting, Material, PointLight};
+    let assets = DemoAssets::new();
+    let knot = assets.knot();
+    let texels = checker_texels(32);
+    let tex = Texture::new(32, 32, Texels::Rgb565(&texels))
+        .unwrap()
+        .filter(Filter::Bilinear);
+    let cube = textured_cube();
+    let sun = [DirectionalLight::new(
+        Vec3::new(-0.3, 1.0, 0.4),
+        Rgb888::new(70, 70, 90),
+    )];
+    let lamps = [
+        PointLight::new(Vec3::new(-1.8, 1.2, 1.5), Rgb888::new(255, 170, 90), 5.0),
+        PointLight::new(Vec3::new(2.2, -0.8, 1.8), Rgb888::new(80, 160, 255), 5.0),
+    ];
+    let lighting = Lighting::new(Rgb888::new(25, 25, 35))
+        .directional(&sun)
+        .point(&lamps)
+        .fog(Fog::Linear {
+            start: 3.5,
+            end: 7.0,
+        })
+        .fog_color(Rgb888::new(24, 24, 64));
+    let shiny = Material::new()
+        .specular(Rgb888::new(255, 255, 255))
+        .shininess(40);
+    let [k, c] = draws(&knot, &cube, 0.7, Shading::Gouraud);
+    let d = [
+        k.material(shiny),
+        c.material(shiny.shininess(12))
+            .shading(Shading::Shader)
+            .texture(&tex),
+    ];
+    let scene = Scene::new(camera(W, H), &d)
+        .lighting(&lighting)
+        .shader(&TexturedLit);
+    golden("lights_and_fog", &scene, config());
+}
