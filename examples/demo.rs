@@ -1,25 +1,44 @@
 //! The host demo: a lit, rotating torus knot and cube, rendered tile by tile
-//! into the embedded-graphics simulator.
+//! into the embedded-graphics simulator; or any OBJ model, rendered once
+//! into a PNG.
 //!
 //! Headless by default: writes PNG frames to `target/demo/` and prints the
 //! statistics of every frame. With `--features window` it opens the live
 //! simulator window instead (needs SDL2).
 //!
 //! ```text
-//! cargo run --release --example demo [-- --frames N --out DIR --flat]
+//! cargo run --release --example demo [-- --frames N --out DIR]
+//!     [--shader flat|gouraud|textured|textured-lit|depth|normals|wireframe|points]
+//!     [--perspective exact|quasi8|quasi16|affine]
 //!     [--hilbert | --raster scanline|hilbert|auto] [--hilbert-tiles]
+//!
+//! cargo run --release --example demo -- --obj MODEL.obj [--out MODEL.png]
+//!     [--size WxH] [--yaw DEG] [--shader ...] [--texture IMAGE.png]
 //! ```
 //!
 //! `--hilbert` (or `--raster hilbert`) renders with the Hilbert-order
 //! rasterizer, `--hilbert-tiles` visits the tiles along the Hilbert curve;
-//! both give the same images as the defaults.
+//! both give the same images as the defaults. `--flat` is `--shader flat`.
+//! The textured shaders use a procedural checker texture unless
+//! `--texture` names a PNG.
+//!
+//! With `--obj`, the model is recentred and scaled by the importer, framed
+//! from its bounding sphere, turned by `--yaw` degrees about the vertical
+//! and lit; the picture goes to `--out` (default `model.png`). A bad file
+//! gives a one-line error and exit status 1.
 
 mod common;
 
 use common::*;
-use embedded_graphics::pixelcolor::Rgb565;
+use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
 use embedded_graphics_simulator::{OutputSettingsBuilder, SimulatorDisplay};
+use fixed::types::I16F16;
+use microraster::light::{DirectionalLight, Lighting, Material, PointLight};
+use microraster::mesh::Vec3Fx;
 use microraster::prelude::*;
+use microraster::shader::{DepthShade, Normals, Textured, TexturedLit};
+use microraster::texture::{Filter, Texels, Texture};
+use std::path::PathBuf;
 
 const WIDTH: u32 = 320;
 const HEIGHT: u32 = 240;
@@ -28,22 +47,78 @@ const HEIGHT: u32 = 240;
 /// demo scene and every tile of a 320x240 frame in one binning pass.
 type DemoRenderer = Renderer<Rgb565, 32, 32>;
 type DemoWorkspace = Workspace<2048, 4096, 80>;
+/// For `--obj`: room for 262,144 vertices (4 MiB, boxed); triangles beyond
+/// the bin pool are drawn in more binning passes.
+type ModelWorkspace = Workspace<262_144, 65_535, 4096>;
+
+/// What colours the draws.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Look {
+    Flat,
+    Gouraud,
+    Textured,
+    TexturedLit,
+    Depth,
+    Normals,
+    Wireframe,
+    Points,
+}
+
+impl Look {
+    fn parse(name: &str) -> Option<Self> {
+        Some(match name {
+            "flat" => Look::Flat,
+            "gouraud" => Look::Gouraud,
+            "textured" => Look::Textured,
+            "textured-lit" => Look::TexturedLit,
+            "depth" => Look::Depth,
+            "normals" => Look::Normals,
+            "wireframe" => Look::Wireframe,
+            "points" => Look::Points,
+            _ => return None,
+        })
+    }
+
+    fn shading(self) -> Shading {
+        match self {
+            Look::Flat => Shading::Flat,
+            Look::Gouraud => Shading::Gouraud,
+            Look::Wireframe => Shading::Wireframe,
+            Look::Points => Shading::Points(2),
+            _ => Shading::Shader,
+        }
+    }
+
+    fn textured(self) -> bool {
+        matches!(self, Look::Textured | Look::TexturedLit)
+    }
+}
 
 struct Args {
     frames: usize,
-    out: std::path::PathBuf,
-    shading: Shading,
+    out: Option<PathBuf>,
+    look: Look,
+    perspective: Perspective,
     raster: Rasterizer,
     tile_order: TileOrder,
+    obj: Option<PathBuf>,
+    size: Size,
+    yaw: f32,
+    texture: Option<PathBuf>,
 }
 
 fn parse_args() -> Result<Args, String> {
     let mut args = Args {
         frames: 8,
-        out: std::path::PathBuf::from("target/demo"),
-        shading: Shading::Gouraud,
+        out: None,
+        look: Look::Gouraud,
+        perspective: Perspective::Exact,
         raster: Rasterizer::Scanline,
         tile_order: TileOrder::RowMajor,
+        obj: None,
+        size: Size::new(WIDTH, HEIGHT),
+        yaw: 30.0,
+        texture: None,
     };
     let mut it = std::env::args().skip(1);
     while let Some(a) = it.next() {
@@ -54,8 +129,22 @@ fn parse_args() -> Result<Args, String> {
                     .and_then(|v| v.parse().ok())
                     .ok_or("--frames needs a number")?
             }
-            "--out" => args.out = it.next().ok_or("--out needs a directory")?.into(),
-            "--flat" => args.shading = Shading::Flat,
+            "--out" => args.out = Some(it.next().ok_or("--out needs a path")?.into()),
+            "--flat" => args.look = Look::Flat,
+            "--shader" => {
+                args.look = it.next().as_deref().and_then(Look::parse).ok_or(
+                    "--shader needs flat, gouraud, textured, textured-lit, depth, normals, wireframe or points",
+                )?
+            }
+            "--perspective" => {
+                args.perspective = match it.next().as_deref() {
+                    Some("exact") => Perspective::Exact,
+                    Some("quasi8") => Perspective::Quasi8,
+                    Some("quasi16") => Perspective::Quasi16,
+                    Some("affine") => Perspective::Affine,
+                    _ => return Err("--perspective needs exact, quasi8, quasi16 or affine".into()),
+                }
+            }
             "--hilbert" => args.raster = Rasterizer::Hilbert,
             "--raster" => {
                 args.raster = match it.next().as_deref() {
@@ -66,10 +155,33 @@ fn parse_args() -> Result<Args, String> {
                 }
             }
             "--hilbert-tiles" => args.tile_order = TileOrder::Hilbert,
+            "--obj" => args.obj = Some(it.next().ok_or("--obj needs a file")?.into()),
+            "--texture" => args.texture = Some(it.next().ok_or("--texture needs a PNG file")?.into()),
+            "--yaw" => {
+                args.yaw = it
+                    .next()
+                    .and_then(|v| v.parse::<f32>().ok())
+                    .filter(|v| v.is_finite())
+                    .ok_or("--yaw needs an angle in degrees")?
+            }
+            "--size" => {
+                let v = it.next().ok_or("--size needs WxH")?;
+                let (w, h) = v
+                    .split_once('x')
+                    .and_then(|(w, h)| Some((w.parse::<u32>().ok()?, h.parse::<u32>().ok()?)))
+                    .filter(|&(w, h)| (1..=4096).contains(&w) && (1..=4096).contains(&h))
+                    .ok_or(format!("--size needs WxH, each 1 to 4096, not {v:?}"))?;
+                args.size = Size::new(w, h);
+            }
             other => return Err(format!("unknown argument {other:?}")),
         }
     }
     Ok(args)
+}
+
+fn fail(message: impl std::fmt::Display) -> ! {
+    eprintln!("demo: {message}");
+    std::process::exit(1);
 }
 
 fn main() {
@@ -80,86 +192,437 @@ fn main() {
             std::process::exit(2);
         }
     };
+    // The texture of the textured shaders: a PNG, or the procedural
+    // checker.
+    let (tex_size, texels) = match &args.texture {
+        Some(path) => {
+            let image = microraster_import::load_png(path).unwrap_or_else(|e| fail(e));
+            let data = image
+                .convert(microraster_import::TextureFormat::Rgb565)
+                .unwrap_or_else(|e| fail(e));
+            let microraster_import::Texels::U16(t) = data.texels else {
+                fail("the importer gave no Rgb565 texels")
+            };
+            ((data.width, data.height), t)
+        }
+        None => ((32, 32), checker_texels(32)),
+    };
+    let texture = Texture::new(tex_size.0, tex_size.1, Texels::Rgb565(&texels))
+        .unwrap_or_else(|e| fail(e))
+        .filter(Filter::Bilinear);
+    match &args.obj {
+        // The model's workspace is megabytes: built on a thread whose
+        // stack holds it on its way into the box.
+        Some(path) => std::thread::scope(|s| {
+            let job = std::thread::Builder::new()
+                .stack_size(64 << 20)
+                .spawn_scoped(s, || render_model(&args, path, &texture))
+                .unwrap_or_else(|e| fail(format!("cannot start the renderer thread: {e}")));
+            if job.join().is_err() {
+                std::process::exit(1);
+            }
+        }),
+        None => demo(&args, &texture),
+    }
+}
+
+/// The scene's fragment shader for `look`, and the scene rendered with it
+/// by `f`.
+fn with_shader<R>(look: Look, f: impl ShaderUser<R>) -> R {
+    match look {
+        Look::TexturedLit => f.call(&TexturedLit),
+        Look::Depth => f.call(&DepthShade::new(56_000, 64_000)),
+        Look::Normals => f.call(&Normals),
+        _ => f.call(&Textured),
+    }
+}
+
+/// Something generic over the scene's shader type (a closure cannot be).
+trait ShaderUser<R> {
+    fn call<S: FragmentShader<Rgb565>>(self, shader: &S) -> R;
+}
+
+/// The rotating knot and cube.
+fn demo(args: &Args, texture: &Texture<'_>) {
     let assets = DemoAssets::new();
+    let knot_uvs = knot_uvs(6.0, 1.0);
     let knot = assets.knot();
-    let cube = cube();
+    let knot = if args.look.textured() {
+        knot.with_uvs(&knot_uvs).expect("one coordinate per vertex")
+    } else {
+        knot
+    };
+    let cube = textured_cube();
+    let size = Size::new(WIDTH, HEIGHT);
     let mut renderer = DemoRenderer::new(
-        Config::new(Size::new(WIDTH, HEIGHT), DEMO_CLEAR)
+        Config::new(size, DEMO_CLEAR)
             .rasterizer(args.raster)
-            .tile_order(args.tile_order),
+            .tile_order(args.tile_order)
+            .perspective(args.perspective),
     );
     let mut workspace = Box::new(DemoWorkspace::new());
-    let mut display = SimulatorDisplay::<Rgb565>::new(Size::new(WIDTH, HEIGHT));
     println!(
-        "renderer RAM: tile buffer + settings {} B, workspace {} B; {:?} rasterizer, {:?} tiles",
+        "renderer RAM: tile buffer + settings {} B, workspace {} B; {:?} rasterizer, {:?} tiles, {:?}",
         core::mem::size_of::<DemoRenderer>(),
         core::mem::size_of::<DemoWorkspace>(),
         args.raster,
-        args.tile_order
+        args.tile_order,
+        args.look,
     );
-
-    #[cfg(feature = "window")]
-    {
-        use embedded_graphics_simulator::{SimulatorEvent, Window};
-        let _ = &args.out;
-        let mut window = Window::new(
-            "microraster demo",
-            &OutputSettingsBuilder::new().scale(2).build(),
-        );
-        let mut t = 0.0f32;
-        'running: loop {
-            let draws = draws(&knot, &cube, t, args.shading);
-            let scene = Scene::new(camera(WIDTH, HEIGHT), &draws).light(light());
-            renderer
-                .render(&mut workspace, &scene, &mut display)
-                .expect("demo scene renders");
-            window.update(&display);
-            if window.events().any(|e| e == SimulatorEvent::Quit) {
-                break 'running;
-            }
-            t += 0.03;
-        }
+    struct Frames<'a> {
+        args: &'a Args,
+        knot: &'a Mesh<'a>,
+        cube: &'a Mesh<'a>,
+        texture: &'a Texture<'a>,
+        renderer: &'a mut DemoRenderer,
+        workspace: &'a mut DemoWorkspace,
     }
-
-    #[cfg(not(feature = "window"))]
-    {
-        use embedded_graphics::draw_target::DrawTarget;
-        use embedded_graphics::pixelcolor::RgbColor;
-        if let Err(e) = std::fs::create_dir_all(&args.out) {
-            eprintln!("demo: cannot create {}: {e}", args.out.display());
-            std::process::exit(1);
-        }
-        let settings = OutputSettingsBuilder::new().build();
-        println!("frame  tris_in culled rejected clipped drawn  pixels tiles passes");
-        for f in 0..args.frames {
-            let t = f as f32 * core::f32::consts::TAU / args.frames.max(1) as f32 / 3.0;
-            let draws = draws(&knot, &cube, t, args.shading);
-            let scene = Scene::new(camera(WIDTH, HEIGHT), &draws).light(light());
-            display.clear(Rgb565::BLACK).ok();
-            let s = match renderer.render(&mut workspace, &scene, &mut display) {
-                Ok(s) => s,
-                Err(e) => {
-                    eprintln!("demo: frame {f}: {e}");
-                    std::process::exit(1);
-                }
+    impl ShaderUser<()> for Frames<'_> {
+        fn call<S: FragmentShader<Rgb565>>(self, shader: &S) {
+            let look = self.args.look;
+            // Textured and lit: white surfaces (the texture gives the
+            // colour), shiny, under a sun and a warm lamp.
+            let sun = [DirectionalLight::new(
+                Vec3::new(-0.6, 0.8, 0.9),
+                Rgb888::new(200, 200, 210),
+            )];
+            let lamp = [PointLight::new(
+                Vec3::new(1.0, 1.4, 2.2),
+                Rgb888::new(255, 190, 120),
+                4.5,
+            )];
+            let lighting = Lighting::new(Rgb888::new(40, 40, 56))
+                .directional(&sun)
+                .point(&lamp);
+            let shiny = Material::new()
+                .specular(Rgb888::new(200, 200, 200))
+                .shininess(24);
+            let scene_at = |t: f32| {
+                draws(self.knot, self.cube, t, look.shading()).map(|d| {
+                    let d = d.texture(self.texture);
+                    if look == Look::TexturedLit {
+                        d.color(Rgb888::new(255, 255, 255)).material(shiny)
+                    } else {
+                        d
+                    }
+                })
             };
-            println!(
-                "{f:5} {:8} {:6} {:8} {:7} {:5} {:7} {:5} {:6}",
-                s.triangles_in,
-                s.culled,
-                s.rejected,
-                s.clipped,
-                s.drawn,
-                s.pixels_shaded,
-                s.tiles,
-                s.bin_passes
-            );
-            let path = args.out.join(format!("frame_{f:03}.png"));
-            if let Err(e) = display.to_rgb_output_image(&settings).save_png(&path) {
-                eprintln!("demo: cannot write {}: {e}", path.display());
-                std::process::exit(1);
+            let lit = (look == Look::TexturedLit).then_some(&lighting);
+            #[cfg(feature = "window")]
+            {
+                use embedded_graphics_simulator::{SimulatorEvent, Window};
+                let mut display = SimulatorDisplay::<Rgb565>::new(Size::new(WIDTH, HEIGHT));
+                let mut window = Window::new(
+                    "microraster demo",
+                    &OutputSettingsBuilder::new().scale(2).build(),
+                );
+                let mut t = 0.0f32;
+                loop {
+                    let d = scene_at(t);
+                    let scene = light_up(Scene::new(camera(WIDTH, HEIGHT), &d).shader(shader), lit);
+                    self.renderer
+                        .render(self.workspace, &scene, &mut display)
+                        .expect("demo scene renders");
+                    window.update(&display);
+                    if window.events().any(|e| e == SimulatorEvent::Quit) {
+                        break;
+                    }
+                    t += 0.03;
+                }
+            }
+            #[cfg(not(feature = "window"))]
+            {
+                let out = self
+                    .args
+                    .out
+                    .clone()
+                    .unwrap_or_else(|| PathBuf::from("target/demo"));
+                if let Err(e) = std::fs::create_dir_all(&out) {
+                    fail(format!("cannot create {}: {e}", out.display()));
+                }
+                let frames = self.args.frames;
+                println!("frame  tris_in culled rejected clipped drawn  pixels tiles passes");
+                for f in 0..frames {
+                    let t = f as f32 * core::f32::consts::TAU / frames.max(1) as f32 / 3.0;
+                    let d = scene_at(t);
+                    let scene = light_up(Scene::new(camera(WIDTH, HEIGHT), &d).shader(shader), lit);
+                    let (s, display) = render_png(self.renderer, self.workspace, &scene);
+                    println!(
+                        "{f:5} {:8} {:6} {:8} {:7} {:5} {:7} {:5} {:6}",
+                        s.triangles_in,
+                        s.culled,
+                        s.rejected,
+                        s.clipped,
+                        s.drawn,
+                        s.pixels_shaded,
+                        s.tiles,
+                        s.bin_passes
+                    );
+                    save(&display, &out.join(format!("frame_{f:03}.png")));
+                }
+                println!("wrote {frames} frames to {}", out.display());
             }
         }
-        println!("wrote {} frames to {}", args.frames, args.out.display());
     }
+    with_shader(
+        args.look,
+        Frames {
+            args,
+            knot: &knot,
+            cube: &cube,
+            texture,
+            renderer: &mut renderer,
+            workspace: &mut workspace,
+        },
+    );
+}
+
+/// Lights `scene` with `lighting`, or else with the demo's one light.
+fn light_up<'a, S>(scene: Scene<'a, S>, lighting: Option<&'a Lighting<'a>>) -> Scene<'a, S> {
+    match lighting {
+        Some(l) => scene.lighting(l),
+        None => scene.light(light()),
+    }
+}
+
+/// Renders `scene` into a fresh simulator display.
+fn render_png<S, const V: usize, const B: usize, const T: usize>(
+    renderer: &mut DemoRenderer,
+    workspace: &mut Workspace<V, B, T>,
+    scene: &Scene<'_, S>,
+) -> (FrameStats, SimulatorDisplay<Rgb565>)
+where
+    S: FragmentShader<Rgb565>,
+{
+    let mut display = SimulatorDisplay::<Rgb565>::new(renderer.config().size);
+    match renderer.render(workspace, scene, &mut display) {
+        Ok(s) => (s, display),
+        Err(e) => fail(e),
+    }
+}
+
+fn save(display: &SimulatorDisplay<Rgb565>, path: &std::path::Path) {
+    let settings = OutputSettingsBuilder::new().build();
+    if let Err(e) = display.to_rgb_output_image(&settings).save_png(path) {
+        fail(format!("cannot write {}: {e}", path.display()));
+    }
+}
+
+/// One model's mesh data in 16.16, split into pieces of at most 65,536
+/// vertices (the reach of `u16` indices).
+struct ModelPieces {
+    pieces: Vec<Piece>,
+}
+
+struct Piece {
+    /// The group's diffuse colour (`Kd`), if its material has one.
+    color: Option<Rgb888>,
+    positions: Vec<Vec3Fx>,
+    normals: Vec<Vec3Fx>,
+    uvs: Vec<[I16F16; 2]>,
+    colors: Vec<Rgb888>,
+    triangles: Vec<[u16; 3]>,
+}
+
+impl ModelPieces {
+    fn new(m: &microraster_import::Model) -> Result<Self, String> {
+        let fx = |v: f32| -> Result<I16F16, String> {
+            I16F16::checked_from_num(v).ok_or(format!("coordinate {v} is outside 16.16"))
+        };
+        let mut pieces: Vec<Piece> = Vec::new();
+        let mut map: std::collections::HashMap<u32, u16> = std::collections::HashMap::new();
+        // Groups in order; each starts a piece (its own draw and colour).
+        let mut starts = m.groups.iter().peekable();
+        let mut color = None;
+        for (ti, t) in m.triangles.iter().enumerate() {
+            let mut new_group = false;
+            while let Some(g) = starts.next_if(|g| g.triangles.start <= ti) {
+                new_group = true;
+                color = g.material.as_ref().map(|mat| {
+                    let c = mat
+                        .diffuse
+                        .map(|v| (v.clamp(0.0, 1.0) * 255.0).round() as u8);
+                    Rgb888::new(c[0], c[1], c[2])
+                });
+            }
+            let fits = !new_group
+                && pieces.last().is_some_and(|p| {
+                    let new = t.iter().filter(|i| !map.contains_key(i)).count();
+                    p.positions.len() + new <= 1 << 16
+                });
+            if !fits {
+                map.clear();
+                pieces.push(Piece {
+                    color,
+                    positions: Vec::new(),
+                    normals: Vec::new(),
+                    uvs: Vec::new(),
+                    colors: Vec::new(),
+                    triangles: Vec::new(),
+                });
+            }
+            let piece = pieces.last_mut().expect("a piece was just pushed");
+            let mut tri = [0u16; 3];
+            for (k, &i) in t.iter().enumerate() {
+                let v = i as usize;
+                tri[k] = match map.get(&i) {
+                    Some(&j) => j,
+                    None => {
+                        let j = piece.positions.len() as u16;
+                        let p = m.positions[v];
+                        piece.positions.push([fx(p[0])?, fx(p[1])?, fx(p[2])?]);
+                        if let Some(n) = m.normals.get(v) {
+                            piece.normals.push([fx(n[0])?, fx(n[1])?, fx(n[2])?]);
+                        }
+                        if let Some(uv) = m.uvs.get(v) {
+                            // OBJ puts v = 0 at the bottom of the image,
+                            // textures here at the top.
+                            piece.uvs.push([fx(uv[0])?, fx(1.0 - uv[1])?]);
+                        }
+                        if let Some(c) = m.colors.get(v) {
+                            piece.colors.push(Rgb888::new(c[0], c[1], c[2]));
+                        }
+                        map.insert(i, j);
+                        j
+                    }
+                };
+            }
+            piece.triangles.push(tri);
+        }
+        Ok(Self { pieces })
+    }
+
+    fn meshes(&self) -> Result<Vec<(Mesh<'_>, Option<Rgb888>)>, String> {
+        self.pieces
+            .iter()
+            .map(|p| {
+                let mut mesh = Mesh::new(&p.positions, &p.triangles).map_err(|e| e.to_string())?;
+                if !p.normals.is_empty() {
+                    mesh = mesh.with_normals(&p.normals).map_err(|e| e.to_string())?;
+                }
+                if !p.uvs.is_empty() {
+                    mesh = mesh.with_uvs(&p.uvs).map_err(|e| e.to_string())?;
+                }
+                if !p.colors.is_empty() {
+                    mesh = mesh.with_colors(&p.colors).map_err(|e| e.to_string())?;
+                }
+                Ok((mesh, p.color))
+            })
+            .collect()
+    }
+}
+
+/// `--obj`: one frame of the model into a PNG.
+fn render_model(args: &Args, path: &std::path::Path, texture: &Texture<'_>) {
+    let options = microraster_import::ObjOptions::new().with_fit(microraster_import::Fit::Unit);
+    let model = microraster_import::load_obj(path, &options).unwrap_or_else(|e| fail(e));
+    if model.triangles.is_empty() {
+        fail(format!("{}: no triangles", path.display()));
+    }
+    let pieces =
+        ModelPieces::new(&model).unwrap_or_else(|e| fail(format!("{}: {e}", path.display())));
+    let meshes = pieces
+        .meshes()
+        .unwrap_or_else(|e| fail(format!("{}: {e}", path.display())));
+    if args.look.textured() && meshes.iter().any(|(m, _)| m.uvs().is_none()) {
+        fail(format!(
+            "{}: --shader {:?} needs texture coordinates (vt) and the model has none",
+            path.display(),
+            args.look
+        ));
+    }
+    let yaw = Mat4::rotation_y(args.yaw.to_radians());
+    let draws: Vec<Draw<'_>> = meshes
+        .iter()
+        .map(|(m, color)| {
+            let d = Draw::new(m)
+                .transform(yaw)
+                .color(color.unwrap_or(Rgb888::new(210, 200, 190)))
+                .shading(args.look.shading())
+                .texture(texture);
+            if args.look == Look::Wireframe {
+                d.edges(Edges::new(Rgb888::new(230, 230, 230)).depth_bias(0))
+            } else {
+                d
+            }
+        })
+        .collect();
+    // Framing: the bounding sphere, seen slightly from above, fills the
+    // smaller field of view with a margin.
+    let s = &model.sphere;
+    let (c, r) = (
+        Vec3::new(s.center[0] as f32, s.center[1] as f32, s.center[2] as f32),
+        (s.radius as f32).max(1e-3),
+    );
+    let size = args.size;
+    let aspect = size.width as f32 / size.height as f32;
+    let fovy = 0.8f32;
+    let half = 0.5 * fovy.min(2.0 * ((0.5 * fovy).tan() * aspect).atan());
+    let dist = 1.15 * r / half.sin();
+    let dir = Vec3::new(0.0, 0.35, 1.0)
+        .normalize()
+        .expect("a unit vector");
+    let eye = Vec3::new(c.x + dir.x * dist, c.y + dir.y * dist, c.z + dir.z * dist);
+    let camera = Camera::new(
+        Mat4::look_at(eye, c, Vec3::new(0.0, 1.0, 0.0))
+            .unwrap_or_else(|| fail("cannot aim the camera")),
+        Mat4::perspective(
+            fovy,
+            aspect,
+            (dist - 1.5 * r).max(dist * 0.01),
+            dist + 1.5 * r,
+        )
+        .unwrap_or_else(|| fail("cannot frame the model")),
+    );
+    let light = Light::new(Vec3::new(-0.5, 0.8, 0.7)).ambient(Rgb888::new(50, 50, 60));
+    let mut renderer = DemoRenderer::new(
+        Config::new(size, DEMO_CLEAR)
+            .rasterizer(args.raster)
+            .tile_order(args.tile_order)
+            .perspective(args.perspective),
+    );
+    let mut workspace: Box<ModelWorkspace> = Box::default();
+    struct One<'a> {
+        draws: &'a [Draw<'a>],
+        camera: Camera,
+        light: Light,
+        renderer: &'a mut DemoRenderer,
+        workspace: &'a mut ModelWorkspace,
+    }
+    impl ShaderUser<(FrameStats, SimulatorDisplay<Rgb565>)> for One<'_> {
+        fn call<S: FragmentShader<Rgb565>>(
+            self,
+            shader: &S,
+        ) -> (FrameStats, SimulatorDisplay<Rgb565>) {
+            let scene = Scene::new(self.camera, self.draws)
+                .light(self.light)
+                .shader(shader);
+            render_png(self.renderer, self.workspace, &scene)
+        }
+    }
+    let (stats, display) = with_shader(
+        args.look,
+        One {
+            draws: &draws,
+            camera,
+            light,
+            renderer: &mut renderer,
+            workspace: &mut workspace,
+        },
+    );
+    let out = args
+        .out
+        .clone()
+        .unwrap_or_else(|| PathBuf::from("model.png"));
+    save(&display, &out);
+    println!(
+        "{}: {} triangles in {} draw(s), scale {:.4}; {} drawn, {} pixels; wrote {}",
+        path.display(),
+        stats.triangles_in,
+        draws.len(),
+        model.scale,
+        stats.drawn,
+        stats.pixels_shaded,
+        out.display()
+    );
 }
