@@ -55,29 +55,34 @@ impl Plane {
 /// The point where the edge from `inside` (distance `d_in >= 0`) to
 /// `outside` (distance `d_out < 0`) meets the plane.
 fn intersect(inside: &ClipVertex, d_in: i64, outside: &ClipVertex, d_out: i64) -> ClipVertex {
-    let den = (d_in - d_out) as i128;
-    let lerp = |a: i32, b: i32| -> i32 {
-        let num = (b as i128 - a as i128) * d_in as i128;
-        // Round to nearest; |num / den| <= |b - a|, so the result stays
-        // between a and b and fits i32.
-        let q = if num >= 0 {
-            (num + den / 2) / den
-        } else {
-            -((-num + den / 2) / den)
-        };
-        (a as i128 + q) as i32
-    };
+    let den = d_in - d_out;
     let mut v = ClipVertex::default();
     for k in 0..4 {
-        v.pos[k] = lerp(inside.pos[k], outside.pos[k]);
+        v.pos[k] = lerp(inside.pos[k], outside.pos[k], d_in, den);
     }
     for k in 0..3 {
-        v.color[k] = lerp(inside.color[k], outside.color[k]);
+        v.color[k] = lerp(inside.color[k], outside.color[k], d_in, den);
     }
     for k in 0..2 {
-        v.bary[k] = lerp(inside.bary[k], outside.bary[k]);
+        v.bary[k] = lerp(inside.bary[k], outside.bary[k], d_in, den);
     }
     v
+}
+
+/// `a + (b - a) d_in / den`, rounded to nearest, for `0 <= d_in <= den`.
+/// Out of line: its `i128` division is a large library call sequence on a
+/// 32-bit core, and clipping is rare, so one copy serves all nine values.
+#[inline(never)]
+fn lerp(a: i32, b: i32, d_in: i64, den: i64) -> i32 {
+    let (num, den) = ((b as i128 - a as i128) * d_in as i128, den as i128);
+    // Round to nearest; |num / den| <= |b - a|, so the result stays
+    // between a and b and fits i32.
+    let q = if num >= 0 {
+        (num + den / 2) / den
+    } else {
+        -((-num + den / 2) / den)
+    };
+    (a as i128 + q) as i32
 }
 
 fn clip_against(input: &Polygon, plane: Plane, out: &mut Polygon) {

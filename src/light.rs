@@ -583,6 +583,12 @@ enum FixedFog {
 #[derive(Clone, Copy, Debug)]
 pub struct LightSetup<const N: usize> {
     lights: [FixedLight; N],
+    core: Core,
+}
+
+/// The part of a [`LightSetup`] that does not depend on its capacity.
+#[derive(Clone, Copy, Debug)]
+struct Core {
     count: usize,
     ambient: [u8; 3],
     /// The eye in model space, raw 16.16.
@@ -631,12 +637,64 @@ impl<const N: usize> LightSetup<N> {
     /// parameters; a singular or non-finite matrix or a non-finite eye (see
     /// [`LightError`]). Light indices count within their own slice.
     pub fn new(lighting: &Lighting<'_>, model: &Mat4, eye: Vec3) -> Result<Self, LightError> {
+        let mut lights = [FixedLight::OFF; N];
+        let core = Core::new(lighting, model, eye, &mut lights)?;
+        Ok(Self { lights, core })
+    }
+
+    /// The lit colour of a vertex.
+    ///
+    /// `base` is the vertex or draw colour (it multiplies the material's
+    /// ambient and diffuse reflectance); `position` and `normal` are in the
+    /// draw's model space, raw 16.16 bits. The normal should be unit length
+    /// (it is not normalised; see the [module docs](self)), but any normal,
+    /// zero or huge, gives a defined colour.
+    #[inline]
+    pub fn shade(
+        &self,
+        material: &Material,
+        base: [u8; 3],
+        position: [i32; 3],
+        normal: [i32; 3],
+    ) -> [u8; 3] {
+        let lights = &self.lights[..self.core.count.min(N)];
+        self.core.shade(lights, material, base, position, normal)
+    }
+
+    /// For one directional light without fog (the lighting of a
+    /// [`scene::Light`](crate::scene::Light)): its model-space unit
+    /// direction (Q16), its colour and the ambient light, with which a
+    /// white material without highlights is lit as
+    /// `(base (256 ambient + colour · n·l) + 32,640) / 65,280`, `n·l` in
+    /// 1/256 steps, floored, clamped to `0..=256` (the same bits as
+    /// [`shade`](Self::shade), which the tests check): the vertex stage's
+    /// fast path.
+    pub(crate) fn single_directional(&self) -> Option<([i32; 3], [u8; 3], [u8; 3])> {
+        self.core
+            .single_directional(&self.lights[..self.core.count.min(N)])
+    }
+}
+
+/// Everything of a [`LightSetup`] but its lights: the code that does not
+/// depend on `N` lives here, so that it is compiled once (in this crate)
+/// rather than once per instance and codegen unit of every user.
+impl Core {
+    /// [`LightSetup::new`] into the light slots `lights`.
+    fn new(
+        lighting: &Lighting<'_>,
+        model: &Mat4,
+        eye: Vec3,
+        lights: &mut [FixedLight],
+    ) -> Result<Self, LightError> {
         let count = lighting
             .directional
             .len()
             .saturating_add(lighting.point.len());
-        if count > N {
-            return Err(LightError::TooManyLights { count, max: N });
+        if count > lights.len() {
+            return Err(LightError::TooManyLights {
+                count,
+                max: lights.len(),
+            });
         }
         if !model.is_finite() {
             return Err(LightError::BadMatrix);
@@ -660,7 +718,6 @@ impl<const N: usize> LightSetup<N> {
             .ok_or(LightError::BadMatrix)?;
 
         let coarse = lighting.directional.len() == 1 && lighting.point.is_empty();
-        let mut lights = [FixedLight::OFF; N];
         let mut slots = lights.iter_mut();
         for (i, l) in lighting.directional.iter().enumerate() {
             if l.direction.normalize().is_none() {
@@ -742,8 +799,7 @@ impl<const N: usize> LightSetup<N> {
             }
         };
 
-        Ok(Self {
-            lights,
+        Ok(Core {
             count,
             ambient: rgb(lighting.ambient),
             eye,
@@ -760,8 +816,9 @@ impl<const N: usize> LightSetup<N> {
     /// draw's model space, raw 16.16 bits. The normal should be unit length
     /// (it is not normalised; see the [module docs](self)), but any normal,
     /// zero or huge, gives a defined colour.
-    pub fn shade(
+    fn shade(
         &self,
+        lights: &[FixedLight],
         material: &Material,
         base: [u8; 3],
         position: [i32; 3],
@@ -779,9 +836,9 @@ impl<const N: usize> LightSetup<N> {
             self.coarse,
             specular_on,
             self.fog,
-            self.lights.first().map(|l| l.source),
+            lights.first().map(|l| l.source),
         ) {
-            return self.lambert(ma, md, base, &n, dir);
+            return self.lambert(lights, ma, md, base, &n, dir);
         }
 
         // Diffuse and ambient sum I, in 1 / (255 · FULL) of the base colour
@@ -797,7 +854,7 @@ impl<const N: usize> LightSetup<N> {
         let mut view: Option<Option<Unit>> = None;
         let to_eye = || normalize(offset(self.eye, position));
 
-        for light in self.lights.iter().take(self.count) {
+        for light in lights.iter() {
             let (l, att) = match light.source {
                 Source::Off => continue,
                 Source::Directional { dir } => (dir, ONE),
@@ -906,8 +963,8 @@ impl<const N: usize> LightSetup<N> {
     /// 1/256 steps, floored, clamped to `0..=256` (the same bits as
     /// [`shade`](Self::shade), which the tests check): the vertex stage's
     /// fast path.
-    pub(crate) fn single_directional(&self) -> Option<([i32; 3], [u8; 3], [u8; 3])> {
-        match (self.coarse, self.fog, self.lights.first()) {
+    fn single_directional(&self, lights: &[FixedLight]) -> Option<([i32; 3], [u8; 3], [u8; 3])> {
+        match (self.coarse, self.fog, lights.first()) {
             (true, FixedFog::None, Some(l)) => match l.source {
                 Source::Directional { dir } => Some((dir, l.color, self.ambient)),
                 _ => None,
@@ -924,6 +981,7 @@ impl<const N: usize> LightSetup<N> {
     #[inline(always)]
     fn lambert(
         &self,
+        lights: &[FixedLight],
         ma: [u8; 3],
         md: [u8; 3],
         base: [u8; 3],
@@ -937,7 +995,7 @@ impl<const N: usize> LightSetup<N> {
         } else {
             0
         };
-        let color = self.lights[0].color;
+        let color = lights[0].color;
         let mut out = [0u8; 3];
         if (ma[0] & ma[1] & ma[2] & md[0] & md[1] & md[2]) == 255 {
             // A white material: then `k` below is exactly
@@ -1552,7 +1610,7 @@ mod tests {
             Vec3::default(),
         )
         .unwrap();
-        let FixedFog::Linear { scale, offset } = s.fog else {
+        let FixedFog::Linear { scale, offset } = s.core.fog else {
             panic!()
         };
         let f = |d: i64| {
