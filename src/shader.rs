@@ -93,6 +93,8 @@ impl Perspective {
 
 /// The varyings of a shader: `[I16F16; N]` for any `N`.
 pub trait Varyings: Copy + core::fmt::Debug + private::Sealed {
+    /// How many values.
+    const LEN: usize;
     /// All zeros.
     fn zeroed() -> Self;
     /// The values.
@@ -107,6 +109,7 @@ mod private {
 }
 
 impl<const N: usize> Varyings for [I16F16; N] {
+    const LEN: usize = N;
     #[inline(always)]
     fn zeroed() -> Self {
         [I16F16::ZERO; N]

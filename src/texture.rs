@@ -645,23 +645,30 @@ impl<'a> Texture<'a> {
     /// `v = 0` is the image's top edge). Texel `i`'s centre is at
     /// `(i + ½) / width`, as in OpenGL. Applies the filter and the wrap
     /// modes (see the [module docs](self)); any `u`, `v` is valid.
-    #[inline]
+    ///
+    /// The nearest-texel path is inlined into the caller (the span loop);
+    /// bilinear filtering, four times the work, is a call.
+    #[inline(always)]
     pub fn sample(&self, u: I16F16, v: I16F16) -> [u8; 3] {
         let (u, v) = (u.to_bits(), v.to_bits());
         match self.filter {
             Filter::Nearest => self.fetch(self.u.nearest(u), self.v.nearest(v)),
-            Filter::Bilinear => {
-                let (x0, x1, fx) = self.u.taps(u);
-                let (y0, y1, fy) = self.v.taps(v);
-                let (a, b) = (self.fetch_call(x0, y0), self.fetch_call(x1, y0));
-                let (c, d) = (self.fetch_call(x0, y1), self.fetch_call(x1, y1));
-                let mut out = [0; 3];
-                for (k, o) in out.iter_mut().enumerate() {
-                    *o = blend_channel(a[k], b[k], c[k], d[k], fx, fy);
-                }
-                out
-            }
+            Filter::Bilinear => self.bilinear(u, v),
         }
+    }
+
+    /// [`sample`](Self::sample) with [`Filter::Bilinear`].
+    #[inline(never)]
+    fn bilinear(&self, u: i32, v: i32) -> [u8; 3] {
+        let (x0, x1, fx) = self.u.taps(u);
+        let (y0, y1, fy) = self.v.taps(v);
+        let (a, b) = (self.fetch_call(x0, y0), self.fetch_call(x1, y0));
+        let (c, d) = (self.fetch_call(x0, y1), self.fetch_call(x1, y1));
+        let mut out = [0; 3];
+        for (k, o) in out.iter_mut().enumerate() {
+            *o = blend_channel(a[k], b[k], c[k], d[k], fx, fy);
+        }
+        out
     }
 
     /// [`fetch`](Self::fetch) as a call: bilinear filtering reads four

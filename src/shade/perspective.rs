@@ -264,7 +264,10 @@ where
             None => false,
         }
     };
-    let seg = mode.segment() as usize;
+    // A shader that reads neither varyings nor colour needs no weights:
+    // every pixel is then a depth test and the shader.
+    let weighted = S::Varyings::LEN > 0 || S::INTERPOLATE_COLOR;
+    let seg = if weighted { mode.segment() as usize } else { 0 };
     if seg <= 1 {
         // Exact or affine: the weights at every pixel (affine: `Q` is
         // constant, so they are a shift of `B1`, `B2`).
@@ -272,7 +275,9 @@ where
         for (k, (c, d)) in color.iter_mut().zip(depth.iter_mut()).enumerate() {
             let zz = depth16(z);
             if test.passes(zz, *d) {
-                let w = if affine {
+                let w = if !weighted {
+                    (0, 0)
+                } else if affine {
                     (b1 >> 12, b2 >> 12)
                 } else {
                     weights(q, b1, b2)
