@@ -13,6 +13,10 @@
 //! * `fill/flat_depth_8_layers`: 8 flat-shaded, depth-tested 320x240 quads
 //!   drawn back to front (every fragment passes and is written), into
 //!   `NullSink`; the throughput is in shaded pixels.
+//! * `fill_shader/{flat,gouraud,textured_nearest,textured_bilinear,textured_lit}/{exact,quasi8,quasi16,affine}`:
+//!   the same 8 layers through each built-in fragment shader (32x32
+//!   Rgb565 checker texture, repeated 4 x 3 times per quad) in each
+//!   perspective mode.
 //! * `demo_320x240/*`: frame 0 of the demo (4,000-triangle lit torus knot
 //!   plus a cube), Gouraud, depth-tested, `Renderer<Rgb565, 32, 32>` and
 //!   `Workspace<2048, 4096, 80>`, into `NullSink` or into a full frame
@@ -77,6 +81,53 @@ fn fill(c: &mut Criterion) {
     g.finish();
 }
 
+/// Fill rate of every built-in fragment shader in every perspective mode:
+/// the fill scene's 8 layers through `Shading::Shader`.
+fn fill_shaders(c: &mut Criterion) {
+    use microraster::shader::{Flat, Gouraud, Textured, TexturedLit};
+    use microraster::texture::Filter;
+    let mut g = c.benchmark_group("fill_shader");
+    let mut ws: Box<DemoWorkspace> = Box::default();
+    let scene = FillScene::new(FILL_LAYERS);
+    let nearest = scene.texture;
+    let bilinear = nearest.filter(Filter::Bilinear);
+    for (mode_name, mode) in PERSPECTIVE_MODES {
+        let mut r = BenchRenderer::new(renderer().config().perspective(mode));
+        macro_rules! bench {
+            ($name:literal, $shader:expr, $tex:expr) => {{
+                let stats = scene.render_shader(&mut r, &mut ws, &$shader, $tex, &mut NullSink);
+                assert_eq!(stats.pixels_shaded, FILL_LAYERS as u32 * WIDTH * HEIGHT);
+                g.throughput(Throughput::Elements(stats.pixels_shaded as u64));
+                g.bench_function(BenchmarkId::new($name, mode_name), |b| {
+                    b.iter(|| {
+                        black_box(scene.render_shader(
+                            &mut r,
+                            &mut ws,
+                            &$shader,
+                            $tex,
+                            &mut NullSink,
+                        ))
+                    })
+                });
+            }};
+        }
+        bench!("flat", Flat, &nearest);
+        bench!("gouraud", Gouraud, &nearest);
+        bench!("textured_nearest", Textured, &nearest);
+        bench!("textured_bilinear", Textured, &bilinear);
+        bench!("textured_lit", TexturedLit, &nearest);
+    }
+    g.finish();
+}
+
+/// The perspective modes, with their names in benchmark ids.
+const PERSPECTIVE_MODES: [(&str, Perspective); 4] = [
+    ("exact", Perspective::Exact),
+    ("quasi8", Perspective::Quasi8),
+    ("quasi16", Perspective::Quasi16),
+    ("affine", Perspective::Affine),
+];
+
 fn demo(c: &mut Criterion) {
     let mut g = c.benchmark_group("demo_320x240");
     let scene = DemoScene::new();
@@ -118,6 +169,6 @@ fn config() -> Criterion {
 criterion_group! {
     name = benches;
     config = config();
-    targets = triangles, fill, demo
+    targets = triangles, fill, fill_shaders, demo
 }
 criterion_main!(benches);

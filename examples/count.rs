@@ -8,8 +8,11 @@
 //! `SCENE` is one of `demo` (the demo frame 0, Gouraud, depth-tested),
 //! `demo-flat`, `fill` (8 flat, depth-tested 320x240 quads drawn back to
 //! front), `tri4`, `tri32`, `tri100`, `tri1000`, `tri10000` (copies of one
-//! triangle of about that many pixels) or `euc` (the demo frame rendered by
-//! the euc crate). `RASTERIZER` is `scanline` (default), `hilbert` or
+//! triangle of about that many pixels), `euc` (the demo frame rendered by
+//! the euc crate), or `fill-SHADER-MODE`: the fill scene through a
+//! fragment shader, `SHADER` one of `flat`, `gouraud`, `nearest`,
+//! `bilinear` (textured) and `lit` (textured and lit), `MODE` one of
+//! `exact`, `quasi8`, `quasi16` and `affine`. `RASTERIZER` is `scanline` (default), `hilbert` or
 //! `auto`.
 //! Every frame of a run is identical; each is rendered by the function
 //! `count::frame`, so `valgrind --tool=callgrind
@@ -41,6 +44,21 @@ enum Job {
         ws: Box<CopiesWorkspace>,
     },
     Euc(Box<EucDemo>),
+    Shaded {
+        scene: FillScene,
+        ws: Box<DemoWorkspace>,
+        shader: FillShader,
+    },
+}
+
+/// The fragment shaders of the `fill-*` scenes.
+#[derive(Clone, Copy)]
+enum FillShader {
+    Flat,
+    Gouraud,
+    Nearest,
+    Bilinear,
+    Lit,
 }
 
 /// One frame, all-in. Not inlined, so callgrind can collect exactly it.
@@ -55,7 +73,48 @@ fn frame(job: &mut Job, r: &mut BenchRenderer) -> Option<FrameStats> {
             e.render();
             None
         }
+        Job::Shaded { scene, ws, shader } => {
+            use microraster::shader::{Flat, Gouraud, Textured, TexturedLit};
+            let nearest = scene.texture;
+            let bilinear = nearest.filter(microraster::texture::Filter::Bilinear);
+            Some(match shader {
+                FillShader::Flat => scene.render_shader(r, ws, &Flat, &nearest, sink),
+                FillShader::Gouraud => scene.render_shader(r, ws, &Gouraud, &nearest, sink),
+                FillShader::Nearest => scene.render_shader(r, ws, &Textured, &nearest, sink),
+                FillShader::Bilinear => scene.render_shader(r, ws, &Textured, &bilinear, sink),
+                FillShader::Lit => scene.render_shader(r, ws, &TexturedLit, &nearest, sink),
+            })
+        }
     }
+}
+
+/// The job and perspective mode of a `fill-SHADER-MODE` scene name.
+fn shaded(name: &str) -> Option<(Job, Perspective)> {
+    let rest = name.strip_prefix("fill-")?;
+    let (shader, mode) = rest.split_once('-')?;
+    let shader = match shader {
+        "flat" => FillShader::Flat,
+        "gouraud" => FillShader::Gouraud,
+        "nearest" => FillShader::Nearest,
+        "bilinear" => FillShader::Bilinear,
+        "lit" => FillShader::Lit,
+        _ => return None,
+    };
+    let mode = match mode {
+        "exact" => Perspective::Exact,
+        "quasi8" => Perspective::Quasi8,
+        "quasi16" => Perspective::Quasi16,
+        "affine" => Perspective::Affine,
+        _ => return None,
+    };
+    Some((
+        Job::Shaded {
+            scene: FillScene::new(FILL_LAYERS),
+            ws: Box::default(),
+            shader,
+        },
+        mode,
+    ))
 }
 
 fn main() {
@@ -87,6 +146,7 @@ fn main() {
             ws: Box::default(),
         }
     };
+    let mut perspective = Perspective::Exact;
     let mut job = match name.as_str() {
         "demo" | "demo-flat" => Job::Demo {
             scene: DemoScene::new(),
@@ -107,15 +167,21 @@ fn main() {
         "tri1000" => copies("1000px"),
         "tri10000" => copies("10000px"),
         "euc" => Job::Euc(Box::default()),
+        other if shaded(other).is_some() => {
+            let (job, mode) = shaded(other).expect("just checked");
+            perspective = mode;
+            job
+        }
         other => {
             eprintln!(
                 "count: unknown scene {other:?} \
-                 (demo, demo-flat, fill, tri4, tri32, tri100, tri1000, tri10000, euc)"
+                 (demo, demo-flat, fill, tri4, tri32, tri100, tri1000, tri10000, euc, \
+                 fill-SHADER-MODE)"
             );
             std::process::exit(2);
         }
     };
-    let mut r = renderer_with(raster);
+    let mut r = BenchRenderer::new(renderer_with(raster).config().perspective(perspective));
     let mut first = None;
     for _ in 0..n {
         let s = frame(&mut job, &mut r);

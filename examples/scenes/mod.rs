@@ -133,6 +133,9 @@ impl DemoScene {
 /// back (z = 0.8) to the front (z = -0.8).
 pub struct FillScene {
     mesh: Mesh<'static>,
+    /// A 32x32 checker texture (`common::checker_texels`), repeated four
+    /// times across each quad by the mesh's texture coordinates.
+    pub texture: microraster::texture::Texture<'static>,
 }
 
 impl FillScene {
@@ -141,6 +144,7 @@ impl FillScene {
         let mut positions = Vec::new();
         let mut colors = Vec::new();
         let mut triangles = Vec::new();
+        let mut uvs = Vec::new();
         for l in 0..layers {
             let z = 0.8 - 1.6 * l as f32 / (layers.max(2) - 1) as f32;
             let b = positions.len() as u16;
@@ -158,12 +162,48 @@ impl FillScene {
                 90,
             );
             colors.extend([c; 4]);
+            uvs.extend([
+                [fx(0.0), fx(3.0)],
+                [fx(4.0), fx(3.0)],
+                [fx(4.0), fx(0.0)],
+                [fx(0.0), fx(0.0)],
+            ]);
             triangles.extend([[b, b + 1, b + 2], [b, b + 2, b + 3]]);
         }
         let mesh = Mesh::new(leak(positions), leak(triangles))
             .and_then(|m| m.with_colors(leak(colors)))
+            .and_then(|m| m.with_uvs(leak(uvs)))
             .expect("fill quads are valid");
-        Self { mesh }
+        let texels = leak(common::checker_texels(32));
+        let texture = microraster::texture::Texture::new(
+            32,
+            32,
+            microraster::texture::Texels::Rgb565(texels),
+        )
+        .expect("the checker texture is valid");
+        Self { mesh, texture }
+    }
+
+    /// Renders the quads through fragment shader `shader` (every draw
+    /// [`Shading::Shader`], sampling `texture`), with the depth test.
+    pub fn render_shader<S, F>(
+        &self,
+        r: &mut BenchRenderer,
+        ws: &mut DemoWorkspace,
+        shader: &F,
+        texture: &microraster::texture::Texture<'_>,
+        sink: &mut S,
+    ) -> FrameStats
+    where
+        S: TileSink<Rgb565>,
+        S::Error: core::fmt::Debug,
+        F: FragmentShader<Rgb565>,
+    {
+        let draws = [Draw::new(&self.mesh)
+            .shading(Shading::Shader)
+            .texture(texture)];
+        let scene = Scene::new(ndc_camera(), &draws).shader(shader);
+        r.render(ws, &scene, sink).expect("fill frame renders")
     }
 
     /// Renders the quads with flat shading and the depth test.
