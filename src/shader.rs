@@ -438,6 +438,99 @@ impl<C: From<Rgb888>> FragmentShader<C> for Gouraud {
     }
 }
 
+/// A colour format that ordered dithering quantizes to: the target's
+/// levels per channel, and the quantized colour of an 8-bit colour at a
+/// pixel.
+///
+/// Ordered dithering (Bayer 1973, *An optimum method for two-level
+/// rendition of continuous-tone pictures*) adds to each channel, before it
+/// is cut to the target's levels, a threshold from a 4x4 matrix indexed by
+/// the pixel position: `level = floor(c (L - 1) / 255 + (t + ½) / 16)`
+/// with `t` in `0..16`. Over any 4x4 block the mean level is then within
+/// one sixteenth of a level of the exact `c (L - 1) / 255`, so smooth
+/// gradients keep their slope instead of breaking into bands. Integer
+/// arithmetic only, the same bits everywhere.
+pub trait Dither: Sized {
+    /// The colour of `c` at pixel `(x, y)`.
+    fn dither(c: [u8; 3], x: i32, y: i32) -> Self;
+}
+
+/// The 4x4 Bayer matrix: thresholds `0..16`.
+const BAYER4: [[u8; 4]; 4] = [[0, 8, 2, 10], [12, 4, 14, 6], [3, 11, 1, 9], [15, 7, 13, 5]];
+
+/// `c` (0..=255) cut to `levels` levels with Bayer threshold `t`.
+#[inline(always)]
+pub fn dither_channel(c: u8, levels: u32, t: u8) -> u32 {
+    // floor((c (L - 1) 32 + (2t + 1) 255) / (255 · 32)); below L.
+    (c as u32 * (levels - 1) * 32 + (2 * t as u32 + 1) * 255) / (255 * 32)
+}
+
+#[inline(always)]
+fn threshold(x: i32, y: i32) -> u8 {
+    BAYER4[(y & 3) as usize][(x & 3) as usize]
+}
+
+impl Dither for embedded_graphics::pixelcolor::Rgb565 {
+    #[inline(always)]
+    fn dither(c: [u8; 3], x: i32, y: i32) -> Self {
+        let t = threshold(x, y);
+        Self::new(
+            dither_channel(c[0], 32, t) as u8,
+            dither_channel(c[1], 64, t) as u8,
+            dither_channel(c[2], 32, t) as u8,
+        )
+    }
+}
+
+impl Dither for embedded_graphics::pixelcolor::Gray4 {
+    #[inline(always)]
+    fn dither(c: [u8; 3], x: i32, y: i32) -> Self {
+        use embedded_graphics::pixelcolor::{Gray8, GrayColor};
+        // The luma embedded-graphics gives, then 256 levels to 16.
+        let luma = Gray8::from(Rgb888::new(c[0], c[1], c[2])).luma();
+        Self::new(dither_channel(luma, 16, threshold(x, y)) as u8)
+    }
+}
+
+/// 8 bits per channel already: no dithering, the plain conversion.
+impl Dither for Rgb888 {
+    #[inline(always)]
+    fn dither(c: [u8; 3], _: i32, _: i32) -> Self {
+        Rgb888::new(c[0], c[1], c[2])
+    }
+}
+
+/// Shader `S`'s colours, ordered-dithered to the target's levels (see
+/// [`Dither`]): for `Rgb565` and `Gray4` targets, whose 32, 64 or 16 levels
+/// band smooth shading. Wraps any shader that outputs `Rgb888`.
+///
+/// ```
+/// use embedded_graphics::pixelcolor::Rgb565;
+/// use microraster::shader::{Dithered, FragmentShader, Gouraud};
+/// fn takes<S: FragmentShader<Rgb565>>(_: &S) {}
+/// takes(&Dithered(Gouraud));
+/// ```
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Dithered<S>(pub S);
+
+impl<C: Dither, S: FragmentShader<Rgb888>> FragmentShader<C> for Dithered<S> {
+    type Varyings = S::Varyings;
+    const INTERPOLATE_COLOR: bool = S::INTERPOLATE_COLOR;
+    fn check(&self, draw: &Draw<'_>) -> Result<(), ShaderError> {
+        self.0.check(draw)
+    }
+    #[inline(always)]
+    fn vertex(&self, v: &VertexInput<'_>) -> Self::Varyings {
+        self.0.vertex(v)
+    }
+    #[inline(always)]
+    fn fragment(&self, f: &Fragment<'_, Self::Varyings>) -> Option<C> {
+        use embedded_graphics::pixelcolor::RgbColor;
+        let c = self.0.fragment(f)?;
+        Some(C::dither([c.r(), c.g(), c.b()], f.x, f.y))
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -450,6 +543,35 @@ mod tests {
                 assert_eq!(mul255(a as u8, b as u8) as u32, exact, "{a} {b}");
             }
         }
+    }
+
+    /// Every level of every channel width: the mean over the 16 Bayer
+    /// thresholds is within 1/16 level of exact, the extremes are exact,
+    /// and no level leaves the range.
+    #[test]
+    fn dithering_keeps_the_mean() {
+        for levels in [16u32, 32, 64] {
+            for c in 0..=255u8 {
+                let sum: u32 = (0..16).map(|t| dither_channel(c, levels, t)).sum();
+                let mean = sum as f64 / 16.0;
+                let exact = c as f64 * (levels - 1) as f64 / 255.0;
+                assert!(
+                    (mean - exact).abs() <= 1.0 / 16.0 + 1e-9,
+                    "{levels} {c}: {mean} vs {exact}"
+                );
+                assert!((0..16).all(|t| dither_channel(c, levels, t) < levels));
+            }
+            assert!((0..16).all(|t| dither_channel(0, levels, t) == 0));
+            assert!((0..16).all(|t| dither_channel(255, levels, t) == levels - 1));
+        }
+        // Each threshold appears once per 4x4 block.
+        let mut seen = [false; 16];
+        for row in BAYER4 {
+            for t in row {
+                seen[t as usize] = true;
+            }
+        }
+        assert!(seen.iter().all(|&s| s));
     }
 
     #[test]

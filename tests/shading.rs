@@ -11,7 +11,7 @@ mod common;
 mod gallery_scenes;
 mod support;
 
-use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
+use embedded_graphics::pixelcolor::{Rgb565, Rgb888, RgbColor};
 use gallery_scenes::*;
 use microraster::prelude::*;
 use support::{check_golden, Capture};
@@ -70,4 +70,95 @@ fn readme_gallery_is_current() {
         pixels == expected,
         "docs/gallery.png is stale: regenerate it with cargo run --example gallery"
     );
+}
+
+/// A horizontal grey ramp on a 16-level `Gray4` target, plain (banded)
+/// and ordered-dithered, and a dark colour ramp on `Rgb565`.
+#[test]
+fn ordered_dithering() {
+    use embedded_graphics::pixelcolor::Gray4;
+    use fixed::types::I16F16;
+    use microraster::shader::{Dithered, Gouraud};
+    let p = |x: f32, y: f32| [I16F16::from_num(x), I16F16::from_num(y), I16F16::ZERO];
+    let pos = [p(-1.0, -1.0), p(1.0, -1.0), p(1.0, 1.0), p(-1.0, 1.0)];
+    let tris = [[0u16, 1, 2], [0, 2, 3]];
+    let grey = [
+        Rgb888::new(0, 0, 0),
+        Rgb888::new(255, 255, 255),
+        Rgb888::new(255, 255, 255),
+        Rgb888::new(0, 0, 0),
+    ];
+    let dark = [
+        Rgb888::new(0, 10, 30),
+        Rgb888::new(60, 40, 90),
+        Rgb888::new(60, 40, 90),
+        Rgb888::new(0, 10, 30),
+    ];
+    let cam = Camera::new(Mat4::IDENTITY, Mat4::IDENTITY);
+    let size = Size::new(W, 40);
+    for (name, colors) in [("ramp", &grey), ("dark_ramp", &dark)] {
+        let mesh = Mesh::new(&pos, &tris).unwrap().with_colors(colors).unwrap();
+        let d = [Draw::new(&mesh).shading(Shading::Shader)];
+        let plain = Scene::new(cam, &d).shader(&Gouraud);
+        let dithered = Scene::new(cam, &d).shader(&Dithered(Gouraud));
+        for raster in [Rasterizer::Scanline, Rasterizer::Hilbert] {
+            let mut images = Vec::new();
+            for (suffix, dither) in [("", false), ("_dithered", true)] {
+                if name == "ramp" {
+                    let cfg = Config::new(size, Gray4::new(0)).rasterizer(raster);
+                    let mut r: Renderer<Gray4, 32, 32> = Renderer::new(cfg);
+                    let mut ws: Workspace<4, 64, 16> = Workspace::new();
+                    let mut cap = Capture::new(size, Gray4::new(0));
+                    if dither {
+                        r.render(&mut ws, &dithered, &mut cap).unwrap();
+                    } else {
+                        r.render(&mut ws, &plain, &mut cap).unwrap();
+                    }
+                    images.push((format!("{name}_gray4{suffix}"), cap.to_rgb()));
+                } else {
+                    let cfg = Config::new(size, Rgb565::new(0, 0, 0)).rasterizer(raster);
+                    let mut r: Renderer<Rgb565, 32, 32> = Renderer::new(cfg);
+                    let mut ws: Workspace<4, 64, 16> = Workspace::new();
+                    let mut cap = Capture::new(size, Rgb565::new(0, 0, 0));
+                    if dither {
+                        r.render(&mut ws, &dithered, &mut cap).unwrap();
+                    } else {
+                        r.render(&mut ws, &plain, &mut cap).unwrap();
+                    }
+                    images.push((format!("{name}_rgb565{suffix}"), cap.to_rgb()));
+                }
+            }
+            // Dithering changes the picture, and keeps each column's mean
+            // brightness closer to the exact ramp than banding does.
+            assert!(
+                images[0].1 != images[1].1,
+                "{name}: dithering changed nothing"
+            );
+            for (golden, px) in &images {
+                check_golden(golden, size, px);
+            }
+            if name == "ramp" {
+                let column_mean = |px: &Vec<Rgb888>, x: u32| -> f64 {
+                    (0..size.height)
+                        .map(|y| px[(y * size.width + x) as usize].r() as f64)
+                        .sum::<f64>()
+                        / size.height as f64
+                };
+                let err = |px: &Vec<Rgb888>| -> f64 {
+                    (0..size.width)
+                        .map(|x| {
+                            let exact = 255.0 * (x as f64 + 0.5) / size.width as f64;
+                            (column_mean(px, x) - exact).abs()
+                        })
+                        .sum::<f64>()
+                        / size.width as f64
+                };
+                let (banded, dithered) = (err(&images[0].1), err(&images[1].1));
+                assert!(
+                    dithered < banded * 0.6,
+                    "dithered error {dithered} against banded {banded}"
+                );
+            }
+        }
+    }
 }
