@@ -58,6 +58,7 @@
 #![warn(missing_docs)]
 
 pub mod clip;
+pub mod cull;
 pub mod light;
 pub mod math;
 pub mod mesh;

@@ -50,6 +50,9 @@ pub struct Mesh<'a> {
     /// The largest magnitude of any position coordinate (raw 16.16), which
     /// bounds the vertex transform's sums once per draw.
     extent: u32,
+    /// The smallest and largest coordinates of the positions (raw 16.16):
+    /// the bounding box, for culling whole draws.
+    bounds: [[i32; 3]; 2],
 }
 
 /// Why a mesh could not be built.
@@ -128,6 +131,16 @@ impl<'a> Mesh<'a> {
             .map(|c| c.to_bits().unsigned_abs())
             .max()
             .unwrap_or(0);
+        let mut bounds = [[i32::MAX; 3], [i32::MIN; 3]];
+        for p in positions {
+            for k in 0..3 {
+                bounds[0][k] = bounds[0][k].min(p[k].to_bits());
+                bounds[1][k] = bounds[1][k].max(p[k].to_bits());
+            }
+        }
+        if positions.is_empty() {
+            bounds = [[0; 3]; 2];
+        }
         Ok(Self {
             positions,
             normals: None,
@@ -135,6 +148,7 @@ impl<'a> Mesh<'a> {
             uvs: None,
             triangles,
             extent,
+            bounds,
         })
     }
 
@@ -188,6 +202,12 @@ impl<'a> Mesh<'a> {
     /// (found when the mesh was built).
     pub fn extent(&self) -> u32 {
         self.extent
+    }
+
+    /// The bounding box of the positions: the smallest and the largest
+    /// coordinates (found when the mesh was built; zeros for no vertices).
+    pub fn bounds(&self) -> [Vec3Fx; 2] {
+        self.bounds.map(|c| c.map(I16F16::from_bits))
     }
 
     /// Number of vertices.

@@ -181,6 +181,9 @@ pub struct Config<C> {
     pub tile_order: TileOrder,
     /// How fragment shaders' varyings are interpolated.
     pub perspective: Perspective,
+    /// Whether draws wholly outside the view frustum are culled before
+    /// the vertex stage ([`crate::cull`]; the image is the same).
+    pub frustum_cull: bool,
 }
 
 impl<C> Config<C> {
@@ -197,6 +200,7 @@ impl<C> Config<C> {
             rasterizer: Rasterizer::Scanline,
             tile_order: TileOrder::RowMajor,
             perspective: Perspective::Exact,
+            frustum_cull: true,
         }
     }
 
@@ -219,6 +223,13 @@ impl<C> Config<C> {
     /// Selects the order tiles are rendered in.
     pub const fn tile_order(mut self, order: TileOrder) -> Self {
         self.tile_order = order;
+        self
+    }
+
+    /// Enables or disables culling whole draws against the view frustum
+    /// (default on; the image is the same either way).
+    pub const fn frustum_cull(mut self, on: bool) -> Self {
+        self.frustum_cull = on;
         self
     }
 
@@ -281,6 +292,9 @@ pub struct FrameStats {
     pub bin_passes: u32,
     /// Tiles drawn by scanning all triangles because their bin overflowed.
     pub rescanned_tiles: u32,
+    /// Draws culled whole against the view frustum (their triangles are
+    /// counted in `rejected`).
+    pub draws_culled: u32,
 }
 
 /// A stage of a frame, as reported to a [`Profiler`].
@@ -631,6 +645,7 @@ enum Fate {
 struct Tally {
     fates: [u32; 3],
     clipped: u32,
+    draws_culled: u32,
 }
 
 /// Read-only state of the frame being rendered.
@@ -639,6 +654,8 @@ struct Frame<'s, 'v> {
     lighting: Option<Lighting<'s>>,
     /// The camera's position, world space.
     eye: crate::math::Vec3,
+    /// Cull draws outside the frustum ([`Config::frustum_cull`]).
+    cull_draws: bool,
     vertices: &'v [ScreenVertex],
     view_proj: crate::math::Mat4,
     viewport: Viewport,
@@ -698,6 +715,12 @@ fn meet(a: &PixelRect, b: &PixelRect) -> PixelRect {
 }
 
 impl Frame<'_, '_> {
+    /// Whether draw `d` is culled whole against the view frustum (the same
+    /// answer every time it is asked: the test is deterministic).
+    fn draw_culled(&self, d: usize) -> bool {
+        self.cull_draws && crate::cull::outside(&self.view_proj, &self.draws[d])
+    }
+
     /// The fixed-point set-up of draw `d`, from `cache` or computed again
     /// (and cached). `None` cannot happen: the vertex stage accepted the
     /// draw, and the set-up is deterministic.
@@ -930,6 +953,13 @@ fn bin_pass<const TW: usize, const TH: usize, const HILBERT: bool>(
     for (d, draw) in frame.draws.iter().enumerate() {
         let verts = &frame.vertices[vbase..vbase + draw.mesh.vertex_count()];
         vbase += verts.len();
+        if frame.draw_culled(d) {
+            let n = draw.mesh.triangle_count();
+            t += n;
+            tally.fates[Fate::Rejected as usize] += n as u32;
+            tally.draws_culled += 1;
+            continue;
+        }
         let margin = margin(draw);
         for &idx in draw.mesh.triangles() {
             if let Some(r) = frame.classify(d, verts, idx, margin, cache, tally) {
@@ -1075,6 +1105,10 @@ impl Iterator for TileList<'_, '_> {
                     cur.advance();
                     continue;
                 }
+                if t == cur.first && frame.draw_culled(cur.draw) {
+                    *next = cur.end;
+                    continue;
+                }
                 *next += 1;
                 let idx = cur.triangles[t - cur.first];
                 let mut tally = Tally::default();
@@ -1209,8 +1243,16 @@ where
         let viewport = Viewport::new(size.width, size.height);
         let mut base = 0;
         for (di, draw) in scene.draws.iter().enumerate() {
+            // The set-up checks the draw's matrix whether the draw is seen
+            // or not; a draw wholly outside the frustum is then not
+            // transformed (its vertices cannot overflow what is never
+            // computed), and binning skips it the same way.
             let setup = DrawSetup::new(draw, &view_proj, lighting.as_ref(), eye)
                 .map_err(|error| RenderError::Draw { draw: di, error })?;
+            if self.config.frustum_cull && crate::cull::outside(&view_proj, draw) {
+                base += draw.mesh.vertex_count();
+                continue;
+            }
             let out = &mut ws.vertices[base..base + draw.mesh.vertex_count()];
             for (i, sv) in out.iter_mut().enumerate() {
                 let cv = setup
@@ -1238,6 +1280,7 @@ where
             view_proj,
             viewport,
             cull: self.config.cull,
+            cull_draws: self.config.frustum_cull,
             frame: PixelRect::new(0, 0, size.width as i32, size.height as i32),
         };
         let mut stats = FrameStats {
@@ -1273,6 +1316,7 @@ where
                 stats.culled = tally.fates[Fate::Culled as usize];
                 stats.drawn = tally.fates[Fate::Visible as usize];
                 stats.clipped = tally.clipped;
+                stats.draws_culled = tally.draws_culled;
             }
 
             if bins.tiles() == 0 {
