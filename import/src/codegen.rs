@@ -139,7 +139,7 @@ fn fixed_row(values: &[i32]) -> String {
 /// |---|---|---|
 /// | `P_POSITIONS` | `[[I16F16; 3]; V]` | always |
 /// | `P_NORMALS` | `[[I16F16; 3]; V]` | if the model has normals |
-/// | `P_UVS` | `[[I16F16; 2]; V]` | if it has texture coordinates |
+/// | `P_UVS` | `[[I16F16; 2]; V]` | if it has texture coordinates; `v` flipped to `1 - v` ([`Model::uvs_fixed`]) |
 /// | `P_COLORS` | `[Rgb888; V]` | if it has vertex colours |
 /// | `P_TRIANGLES` | `[[u16; 3]; T]` (or `u32`, per [`IndexWidth`](crate::IndexWidth)) | always |
 /// | `P_GROUPS` | `[(&str, usize, usize); G]`: name, first triangle, triangle count | always |

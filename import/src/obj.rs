@@ -350,11 +350,16 @@ impl Model {
             .collect()
     }
 
-    /// The texture coordinates as raw I16F16 bits (round to nearest).
+    /// The texture coordinates as raw I16F16 bits (round to nearest), in
+    /// microraster's convention: `(u, 1 - v)`. An OBJ file's `v = 0` is
+    /// the bottom of the image, a `microraster::texture::Texture`'s the top
+    /// row (as in the PNG the importer converts), so `v` is flipped here and
+    /// an imported model shows its textures upright. `uvs` keeps the
+    /// file's values.
     pub fn uvs_fixed(&self) -> Vec<[i32; 2]> {
         self.uvs
             .iter()
-            .map(|p| p.map(to_fixed_saturating))
+            .map(|&[u, v]| [to_fixed_saturating(u), to_fixed_saturating(1.0 - v)])
             .collect()
     }
 

@@ -807,8 +807,10 @@ fn fixed_point_helpers_round_to_nearest() {
     // 1.00001 * 65536 = 65536.655... (in f32: 65536.656)
     assert_eq!(p[1][0], 65537);
     assert_eq!(p[2][0], -65537);
-    // 0.1 * 65536 = 6553.6, 0.9 * 65536 = 58982.4.
-    assert_eq!(m.uvs_fixed()[0], [6554, 58982]);
+    // 0.1 * 65536 = 6553.6; v is flipped to 1 - 0.9 = 0.1 (microraster's
+    // textures have v = 0 at the top, OBJ at the bottom).
+    assert_eq!(m.uvs[0], [0.1, 0.9]);
+    assert_eq!(m.uvs_fixed()[0], [6554, 6554]);
 }
 
 #[test]
