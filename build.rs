@@ -14,6 +14,11 @@
 //! target. `.cargo/config.toml` therefore links the other two boards through
 //! `scripts/lld-in-out-dir.sh`, which runs lld from `memory/`. Host, RISC-V
 //! and library-only builds ignore all of this.
+//!
+//! With the `assets` feature it also converts `examples/assets/rocket.obj`
+//! (and its materials) into `$OUT_DIR/rocket.rs`, `static` arrays that the
+//! OLED firmware and its end-to-end test `include!`: the model goes from
+//! the OBJ file to flash at build time, through the workspace's importer.
 
 use std::{env, fs, path::PathBuf};
 
@@ -28,7 +33,22 @@ fn board_map(target: &str) -> Option<&'static str> {
     }
 }
 
+/// `examples/assets/rocket.obj` to `$OUT_DIR/rocket.rs` (feature `assets`):
+/// recentred and scaled to the unit sphere, normals computed, `u16`
+/// indices. A bad file stops the build with the importer's message.
+#[cfg(feature = "assets")]
+fn convert_assets() {
+    let out = PathBuf::from(env::var_os("OUT_DIR").expect("cargo sets OUT_DIR")).join("rocket.rs");
+    let options = microraster_import::ObjOptions::new().with_fit(microraster_import::Fit::Unit);
+    match microraster_import::obj_to_rust("examples/assets/rocket.obj", &out, "rocket", &options) {
+        Ok(summary) => print!("{}", summary.rerun_if_changed()),
+        Err(e) => panic!("{e}"),
+    }
+}
+
 fn main() {
+    #[cfg(feature = "assets")]
+    convert_assets();
     println!("cargo:rerun-if-changed=build.rs");
     println!("cargo:rerun-if-changed=memory");
     println!("cargo:rerun-if-changed=memory.x");

@@ -11,6 +11,9 @@
 //! the environment it stops after N frames, prints `done` and idles, which is
 //! how the end-to-end test takes the panel's picture.
 //!
+//! With `--features assets` it shows `examples/assets/rocket.obj` instead,
+//! converted into flash-resident arrays by `build.rs` at build time.
+//!
 //! On a host build this file is only a stub that says how to build it.
 
 #![cfg_attr(target_os = "none", no_std)]
@@ -40,6 +43,7 @@ mod firmware {
 
     // Built in place in RAM (.bss), never moved through the stack: together
     // they are about 28 KiB of the board's 64 KiB.
+    #[cfg(not(feature = "assets"))]
     static KNOT: ConstStaticCell<KnotData> = ConstStaticCell::new(KnotData::new());
     static WORKSPACE: ConstStaticCell<OledWorkspace> = ConstStaticCell::new(OledWorkspace::new());
 
@@ -219,9 +223,16 @@ mod firmware {
 
     #[entry]
     fn main() -> ! {
-        let knot = KNOT.take();
-        knot.generate();
-        let mesh = knot.mesh();
+        // The imported rocket (`--features assets`), in flash since the
+        // build; or the knot, generated into RAM.
+        #[cfg(feature = "assets")]
+        let (meshes, camera) = (rocket::meshes(), rocket::camera());
+        #[cfg(not(feature = "assets"))]
+        let (mesh, camera) = {
+            let knot = KNOT.take();
+            knot.generate();
+            (knot.mesh(), camera())
+        };
         let workspace = WORKSPACE.take();
         let mut renderer = OledRenderer::new(config());
         let mut oled = Oled::init();
@@ -230,8 +241,11 @@ mod firmware {
 
         let mut frame = 0;
         loop {
+            #[cfg(feature = "assets")]
+            let draws = rocket::draws(&meshes, frame);
+            #[cfg(not(feature = "assets"))]
             let draws = [draw(&mesh, frame)];
-            let scene = Scene::new(camera(), &draws).light(light());
+            let scene = Scene::new(camera, &draws).light(light());
             match renderer.render(workspace, &scene, &mut oled) {
                 Ok(s) => hprintln!(
                     "frame {}: {} of {} triangles drawn, {} pixels shaded, {} tiles",

@@ -45,6 +45,11 @@ fn build_firmware() -> PathBuf {
             "--target",
             "thumbv7m-none-eabi",
         ])
+        .args(if cfg!(feature = "assets") {
+            &["--features", "assets"][..]
+        } else {
+            &[]
+        })
         .env("CARGO_TARGET_DIR", &target_dir)
         .env("MICRORASTER_OLED_FRAMES", "1")
         .status()
@@ -121,11 +126,21 @@ fn panel_from_ppm(data: &[u8]) -> Vec<u8> {
 }
 
 fn host_frame() -> Vec<u8> {
+    // The firmware's scene: the imported rocket with `--features assets`,
+    // the knot otherwise.
+    #[cfg(feature = "assets")]
+    let (meshes, cam) = (rocket::meshes(), rocket::camera());
+    #[cfg(feature = "assets")]
+    let draws = rocket::draws(&meshes, 0);
+    #[cfg(not(feature = "assets"))]
     let mut knot = Box::new(KnotData::new());
+    #[cfg(not(feature = "assets"))]
     knot.generate();
+    #[cfg(not(feature = "assets"))]
     let mesh = knot.mesh();
-    let draws = [draw(&mesh, 0)];
-    let scene = Scene::new(camera(), &draws).light(light());
+    #[cfg(not(feature = "assets"))]
+    let (draws, cam) = ([draw(&mesh, 0)], camera());
+    let scene = Scene::new(cam, &draws).light(light());
     let mut renderer = OledRenderer::new(config());
     let mut ws: Box<OledWorkspace> = Box::new(OledWorkspace::new());
     let mut cap = support::Capture::new(Size::new(WIDTH, HEIGHT), Gray4::new(0));
@@ -226,20 +241,24 @@ fn oled_firmware_in_qemu_matches_host_render() {
             .map(|&l| embedded_graphics::pixelcolor::Rgb888::new(l * 17, l * 17, l * 17))
             .collect()
     };
-    // The emulated panel's picture, for people to look at.
+    // The emulated panel's picture, for people to look at; the README
+    // shows it (the knot, and with `--features assets` the imported
+    // rocket), so it must be the current one.
+    let name = if cfg!(feature = "assets") {
+        "oled_panel_rocket.png"
+    } else {
+        "oled_panel.png"
+    };
     let shots = Path::new(env!("CARGO_MANIFEST_DIR")).join("target/qemu-e2e");
-    support::write_png(
-        &shots.join("oled_panel.png"),
-        Size::new(WIDTH, HEIGHT),
-        &to_rgb(&panel),
-    );
-    // The README shows this picture; it must be the current one.
-    let docs = Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/oled_panel.png");
-    let readme = support::read_png(&docs).expect("docs/oled_panel.png exists");
+    support::write_png(&shots.join(name), Size::new(WIDTH, HEIGHT), &to_rgb(&panel));
+    let docs = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("docs")
+        .join(name);
+    let readme = support::read_png(&docs).unwrap_or_else(|| panic!("docs/{name} exists"));
     if diff == 0 {
         assert!(
             readme.1 == to_rgb(&panel),
-            "docs/oled_panel.png is stale: copy target/qemu-e2e/oled_panel.png over it"
+            "docs/{name} is stale: copy target/qemu-e2e/{name} over it"
         );
     }
     if diff != 0 {

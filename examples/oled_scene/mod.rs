@@ -107,3 +107,64 @@ pub fn light() -> Light {
 pub fn config() -> Config<Gray4> {
     Config::new(Size::new(WIDTH, HEIGHT), CLEAR)
 }
+
+/// The imported model (feature `assets`): `examples/assets/rocket.obj`,
+/// converted into `static` arrays in flash by `build.rs` at build time
+/// (recentred and scaled to the unit sphere, normals computed), drawn one
+/// group per draw in its material's colour.
+#[cfg(feature = "assets")]
+pub mod rocket {
+    use super::*;
+
+    include!(concat!(env!("OUT_DIR"), "/rocket.rs"));
+
+    /// The model's groups (body, nose, nozzle, fins): one draw each.
+    pub const GROUPS: usize = ROCKET_GROUPS.len();
+    /// Vertices the draws transform: every group's mesh shares all of the
+    /// model's vertices.
+    pub const DRAW_VERTICES: usize = ROCKET_POSITIONS.len() * GROUPS;
+    const _: () = assert!(
+        DRAW_VERTICES <= VERTICES,
+        "the OLED workspace holds the rocket"
+    );
+
+    /// One mesh per group, over the shared vertex arrays.
+    pub fn meshes() -> [Mesh<'static>; GROUPS] {
+        core::array::from_fn(|g| {
+            let (_, first, count) = ROCKET_GROUPS[g];
+            match Mesh::new(&ROCKET_POSITIONS, &ROCKET_TRIANGLES[first..first + count])
+                .and_then(|m| m.with_normals(&ROCKET_NORMALS))
+            {
+                Ok(m) => m,
+                Err(_) => panic!("the imported rocket is a valid mesh"),
+            }
+        })
+    }
+
+    /// The rocket at animation frame `frame`: lying across the panel,
+    /// spinning about its own axis.
+    pub fn draws<'a>(meshes: &'a [Mesh<'a>; GROUPS], frame: u32) -> [Draw<'a>; GROUPS] {
+        let t = frame as f32 * 0.15;
+        let m = Mat4::rotation_z(-1.2) * Mat4::rotation_x(0.3) * Mat4::rotation_y(t);
+        core::array::from_fn(|g| {
+            Draw::new(&meshes[g])
+                .transform(m)
+                .color(ROCKET_GROUP_COLORS[g])
+        })
+    }
+
+    /// The camera: close enough that the rocket, lying across the panel,
+    /// spans most of its width.
+    pub fn camera() -> Camera {
+        let view = Mat4::look_at(
+            Vec3::new(0.0, 0.0, 1.45),
+            Vec3::default(),
+            Vec3::new(0.0, 1.0, 0.0),
+        );
+        let proj = Mat4::perspective(0.8, WIDTH as f32 / HEIGHT as f32, 0.3, 10.0);
+        match (view, proj) {
+            (Some(v), Some(p)) => Camera::new(v, p),
+            _ => panic!("the camera parameters are valid"),
+        }
+    }
+}
