@@ -46,13 +46,52 @@ pub struct Mesh<'a> {
     normals: Option<&'a [Vec3Fx]>,
     colors: Option<&'a [Rgb888]>,
     uvs: Option<&'a [UvFx]>,
-    triangles: &'a [[u16; 3]],
+    triangles: Indices<'a>,
     /// The largest magnitude of any position coordinate (raw 16.16), which
     /// bounds the vertex transform's sums once per draw.
     extent: u32,
     /// The smallest and largest coordinates of the positions (raw 16.16):
     /// the bounding box, for culling whole draws.
     bounds: [[i32; 3]; 2],
+}
+
+/// A mesh's triangles: vertex indices, `u16` (compact, up to 65,536
+/// vertices) or `u32` (for meshes with more vertices).
+#[derive(Clone, Copy, Debug)]
+pub enum Indices<'a> {
+    /// Three `u16` indices per triangle.
+    U16(&'a [[u16; 3]]),
+    /// Three `u32` indices per triangle.
+    U32(&'a [[u32; 3]]),
+}
+
+impl Indices<'_> {
+    /// Number of triangles.
+    pub fn len(&self) -> usize {
+        match self {
+            Indices::U16(t) => t.len(),
+            Indices::U32(t) => t.len(),
+        }
+    }
+
+    /// Whether there are no triangles.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// The triangles' vertex indices, in order.
+    pub fn iter(&self) -> impl Iterator<Item = [u32; 3]> + '_ {
+        (0..self.len()).map(|t| self.get(t))
+    }
+
+    /// The vertex indices of triangle `t` (which must be in range).
+    #[inline(always)]
+    pub fn get(&self, t: usize) -> [u32; 3] {
+        match self {
+            Indices::U16(tris) => tris[t].map(u32::from),
+            Indices::U32(tris) => tris[t],
+        }
+    }
 }
 
 /// Why a mesh could not be built.
@@ -63,7 +102,7 @@ pub enum MeshError {
         /// Index of the offending triangle.
         triangle: usize,
         /// The out-of-range vertex index.
-        index: u16,
+        index: u32,
         /// Number of vertices in the mesh.
         vertex_count: usize,
     },
@@ -107,15 +146,39 @@ impl core::fmt::Display for MeshError {
 }
 
 impl<'a> Mesh<'a> {
-    /// Builds a mesh from positions and triangles, checking every index.
+    /// Builds a mesh from positions and `u16` triangles, checking every
+    /// index.
     pub fn new(positions: &'a [Vec3Fx], triangles: &'a [[u16; 3]]) -> Result<Self, MeshError> {
         if positions.len() > u16::MAX as usize + 1 {
             return Err(MeshError::TooManyVertices {
                 count: positions.len(),
             });
         }
-        for (t, tri) in triangles.iter().enumerate() {
-            for &i in tri {
+        Self::with_indices(positions, Indices::U16(triangles))
+    }
+
+    /// Builds a mesh from positions and `u32` triangles (for more than
+    /// 65,536 vertices), checking every index.
+    ///
+    /// ```
+    /// use fixed::types::I16F16;
+    /// use microraster::mesh::{Mesh, MeshError};
+    /// let p = [[I16F16::ZERO; 3]; 3];
+    /// static TRIS: [[u32; 3]; 1] = [[0, 1, 2]];
+    /// assert_eq!(Mesh::new_u32(&p, &TRIS).unwrap().triangle_count(), 1);
+    /// static BAD: [[u32; 3]; 1] = [[0, 1, 70_000]];
+    /// assert_eq!(
+    ///     Mesh::new_u32(&p, &BAD).unwrap_err(),
+    ///     MeshError::IndexOutOfRange { triangle: 0, index: 70_000, vertex_count: 3 }
+    /// );
+    /// ```
+    pub fn new_u32(positions: &'a [Vec3Fx], triangles: &'a [[u32; 3]]) -> Result<Self, MeshError> {
+        Self::with_indices(positions, Indices::U32(triangles))
+    }
+
+    fn with_indices(positions: &'a [Vec3Fx], triangles: Indices<'a>) -> Result<Self, MeshError> {
+        for t in 0..triangles.len() {
+            for i in triangles.get(t) {
                 if i as usize >= positions.len() {
                     return Err(MeshError::IndexOutOfRange {
                         triangle: t,
@@ -194,7 +257,7 @@ impl<'a> Mesh<'a> {
     }
 
     /// The triangles, as vertex indices.
-    pub fn triangles(&self) -> &'a [[u16; 3]] {
+    pub fn triangles(&self) -> Indices<'a> {
         self.triangles
     }
 

@@ -55,6 +55,7 @@
 
 use crate::clip::{clip_triangle, MAX_CLIPPED_VERTICES};
 use crate::light::{DirectionalLight, LightError, LightSetup, Lighting};
+use crate::mesh::Indices;
 use crate::raster::line::{draw_line, draw_point, DepthMode, LinePoint};
 use crate::raster::scanline::Walker;
 use crate::raster::{
@@ -764,7 +765,7 @@ impl Frame<'_, '_> {
         &self,
         d: usize,
         verts: &[ScreenVertex],
-        idx: [u16; 3],
+        idx: [u32; 3],
         margin: i32,
         cache: &mut SetupCache,
         tally: &mut Tally,
@@ -810,7 +811,7 @@ impl Frame<'_, '_> {
     fn classify_clipped(
         &self,
         d: usize,
-        idx: [u16; 3],
+        idx: [u32; 3],
         any: u8,
         flat: [u8; 3],
         margin: i32,
@@ -845,7 +846,7 @@ impl Frame<'_, '_> {
     fn clipped_pieces(
         &self,
         d: usize,
-        idx: [u16; 3],
+        idx: [u32; 3],
         any: u8,
         flat: [u8; 3],
         cache: &mut SetupCache,
@@ -947,7 +948,6 @@ fn bin_pass<const TW: usize, const TH: usize, const HILBERT: bool>(
     cache: &mut SetupCache,
     tally: &mut Tally,
 ) {
-    let cols = grid.cols as usize;
     let mut t = 0usize;
     let mut vbase = 0usize;
     for (d, draw) in frame.draws.iter().enumerate() {
@@ -961,30 +961,91 @@ fn bin_pass<const TW: usize, const TH: usize, const HILBERT: bool>(
             continue;
         }
         let margin = margin(draw);
-        for &idx in draw.mesh.triangles() {
-            if let Some(r) = frame.classify(d, verts, idx, margin, cache, tally) {
-                // A visible rectangle lies inside the frame, so its
-                // coordinates are not negative.
-                let (c0, c1) = (r.x0 as usize / TW, (r.x1 as usize - 1) / TW + 1);
-                let (r0, r1) = (r.y0 as usize / TH, (r.y1 as usize - 1) / TH + 1);
-                for row in r0..r1 {
-                    if HILBERT {
-                        for col in c0..c1 {
-                            let p = grid.position(col as u32, row as u32) as usize;
-                            bins.push(p.wrapping_sub(t0), t as u16);
-                        }
-                    } else {
-                        // Tiles before the pass wrap around to indices the
-                        // pass does not hold.
-                        let first = (row * cols).wrapping_sub(t0);
-                        for col in c0..c1 {
-                            bins.push(first.wrapping_add(col), t as u16);
-                        }
+        let ctx = BinDraw {
+            frame,
+            grid,
+            t0,
+            d,
+            verts,
+            margin,
+        };
+        // The u16 loop is inlined here, per tile order; the u32 one (meshes
+        // beyond 65,536 vertices, rare) is one out-of-line copy for both.
+        match draw.mesh.triangles() {
+            Indices::U16(tris) => {
+                bin_triangles::<TW, TH, u16>(&ctx, tris, HILBERT, &mut t, bins, cache, tally)
+            }
+            Indices::U32(tris) => {
+                bin_wide::<TW, TH>(&ctx, tris, HILBERT, &mut t, bins, cache, tally)
+            }
+        }
+    }
+}
+
+/// [`bin_triangles`] for `u32` indices, out of line.
+#[inline(never)]
+fn bin_wide<const TW: usize, const TH: usize>(
+    ctx: &BinDraw<'_, '_>,
+    tris: &[[u32; 3]],
+    hilbert: bool,
+    t: &mut usize,
+    bins: &mut Bins<'_>,
+    cache: &mut SetupCache,
+    tally: &mut Tally,
+) {
+    bin_triangles::<TW, TH, u32>(ctx, tris, hilbert, t, bins, cache, tally)
+}
+
+/// What [`bin_triangles`] needs of the draw it bins.
+struct BinDraw<'a, 'f> {
+    frame: &'a Frame<'f, 'f>,
+    grid: &'a TileGrid,
+    t0: usize,
+    d: usize,
+    verts: &'a [ScreenVertex],
+    margin: i32,
+}
+
+/// The triangles `tris` of one draw, the first numbered `*t`, classified
+/// and appended to their tiles' bins (see [`bin_pass`]).
+#[inline(always)]
+fn bin_triangles<const TW: usize, const TH: usize, I: Copy + Into<u32>>(
+    ctx: &BinDraw<'_, '_>,
+    tris: &[[I; 3]],
+    hilbert: bool,
+    t: &mut usize,
+    bins: &mut Bins<'_>,
+    cache: &mut SetupCache,
+    tally: &mut Tally,
+) {
+    let cols = ctx.grid.cols as usize;
+    for &idx in tris {
+        let idx = idx.map(Into::into);
+        if let Some(r) = ctx
+            .frame
+            .classify(ctx.d, ctx.verts, idx, ctx.margin, cache, tally)
+        {
+            // A visible rectangle lies inside the frame, so its
+            // coordinates are not negative.
+            let (c0, c1) = (r.x0 as usize / TW, (r.x1 as usize - 1) / TW + 1);
+            let (r0, r1) = (r.y0 as usize / TH, (r.y1 as usize - 1) / TH + 1);
+            for row in r0..r1 {
+                if hilbert {
+                    for col in c0..c1 {
+                        let p = ctx.grid.position(col as u32, row as u32) as usize;
+                        bins.push(p.wrapping_sub(ctx.t0), *t as u16);
+                    }
+                } else {
+                    // Tiles before the pass wrap around to indices the
+                    // pass does not hold.
+                    let first = (row * cols).wrapping_sub(ctx.t0);
+                    for col in c0..c1 {
+                        bins.push(first.wrapping_add(col), *t as u16);
                     }
                 }
             }
-            t += 1;
         }
+        *t += 1;
     }
 }
 
@@ -999,7 +1060,7 @@ struct DrawCursor<'f> {
     end: usize,
     /// Index of the draw's first vertex in the vertex buffer.
     vbase: usize,
-    triangles: &'f [[u16; 3]],
+    triangles: Indices<'f>,
     verts: &'f [ScreenVertex],
     shading: Shading,
     blend: Blend,
@@ -1017,7 +1078,7 @@ impl<'f> DrawCursor<'f> {
             first: 0,
             end: 0,
             vbase: 0,
-            triangles: &[],
+            triangles: Indices::U16(&[]),
             verts: &[],
             shading: Shading::Flat,
             blend: Blend::Opaque,
@@ -1110,7 +1171,7 @@ impl Iterator for TileList<'_, '_> {
                     continue;
                 }
                 *next += 1;
-                let idx = cur.triangles[t - cur.first];
+                let idx = cur.triangles.get(t - cur.first);
                 let mut tally = Tally::default();
                 let m = margin(&frame.draws[cur.draw]);
                 let vis = frame.classify(cur.draw, cur.verts, idx, m, cache, &mut tally);
@@ -1436,7 +1497,7 @@ where
     let mut n = 0;
     for t in list {
         cur.seek(t);
-        let idx = cur.triangles[t - cur.first];
+        let idx = cur.triangles.get(t - cur.first);
         let sv = [
             &cur.verts[idx[0] as usize],
             &cur.verts[idx[1] as usize],
@@ -1525,7 +1586,7 @@ where
         for &(_, t) in &later {
             let t = t as usize;
             cur.go_to(t);
-            let idx = cur.triangles[t - cur.first];
+            let idx = cur.triangles.get(t - cur.first);
             let any = idx
                 .iter()
                 .fold(0, |a, &i| a | cur.verts[i as usize].outcode);
@@ -1552,7 +1613,7 @@ fn raster_transparent<C, F, const TW: usize, const TH: usize>(
     frame: &Frame<'_, '_>,
     cache: &mut SetupCache,
     cur: &DrawCursor<'_>,
-    idx: [u16; 3],
+    idx: [u32; 3],
     any: u8,
     found: &mut [Span; TH],
     shaders: &Shaders<'_, C, F, TW, TH>,
@@ -1624,7 +1685,7 @@ fn raster_lines<C, F, const TW: usize, const TH: usize>(
     frame: &Frame<'_, '_>,
     cache: &mut SetupCache,
     cur: &DrawCursor<'_>,
-    idx: [u16; 3],
+    idx: [u32; 3],
     any: u8,
     shaders: &Shaders<'_, C, F, TW, TH>,
 ) -> u32
@@ -1701,7 +1762,7 @@ fn raster_clipped<C, F, const TW: usize, const TH: usize>(
     frame: &Frame<'_, '_>,
     cache: &mut SetupCache,
     cur: &DrawCursor<'_>,
-    idx: [u16; 3],
+    idx: [u32; 3],
     any: u8,
     flat: [u8; 3],
     found: &mut [Span; TH],
@@ -1734,7 +1795,7 @@ fn raster_shaded<C, G, const TW: usize, const TH: usize>(
     frame: &Frame<'_, '_>,
     cache: &mut SetupCache,
     cur: &DrawCursor<'_>,
-    idx: [u16; 3],
+    idx: [u32; 3],
     any: u8,
     found: &mut [Span; TH],
     pass: ShaderPass<'_, C, G, TW, TH>,

@@ -546,7 +546,7 @@ fn malformed_meshes_are_rejected() {
         Mesh::new(&positions, &[[0, 1, 2], [0, u16::MAX, 1]]).unwrap_err(),
         MeshError::IndexOutOfRange {
             triangle: 1,
-            index: u16::MAX,
+            index: u16::MAX as u32,
             vertex_count: 3
         }
     );

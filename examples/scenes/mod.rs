@@ -401,11 +401,11 @@ impl EucDemo {
         positions.extend(cube.positions().iter().map(f));
         normals.extend(cube.normals().unwrap().iter().map(f));
         let mut indices = Vec::new();
-        for t in knot.triangles() {
-            indices.extend(t.iter().map(|&i| i as u32));
+        for t in knot.triangles().iter() {
+            indices.extend(t);
         }
-        for t in cube.triangles() {
-            indices.extend(t.iter().map(|&i| i as u32 + knot_vertices as u32));
+        for t in cube.triangles().iter() {
+            indices.extend(t.map(|i| i + knot_vertices as u32));
         }
         let n = positions.len();
         let clear = common::DEMO_CLEAR.into_storage();
