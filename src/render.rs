@@ -904,9 +904,28 @@ impl Frame<'_, '_> {
         if !self.keeps(total) {
             return Fate::Culled;
         }
+        // A polygon made very slightly concave by snapping has a reflex
+        // vertex (turning against the polygon's orientation), and a fan
+        // from another vertex would overlap itself there, shading pixels
+        // twice. Nearly convex, it is star-shaped from that vertex: fan
+        // from it, and the pieces tile the polygon exactly.
+        let n = proj.len();
+        let apex = (0..n)
+            .find(|&k| {
+                let turn = signed_area2(&[
+                    xy(&proj[(k + n - 1) % n]),
+                    xy(&proj[k]),
+                    xy(&proj[(k + 1) % n]),
+                ]);
+                turn != 0 && (turn > 0) != (total > 0)
+            })
+            .unwrap_or(0);
+        // The margin of the draw's lines and points, which may reach pixels
+        // beyond a piece's covered centres.
+        let margin = margin(draw);
         let mut fate = Fate::Rejected;
-        for k in 2..proj.len() {
-            let corners = [0, k - 1, k];
+        for k in 2..n {
+            let corners = [apex, (apex + k - 1) % n, (apex + k) % n];
             let piece = Piece {
                 sv: corners.map(|c| proj[c]),
                 w: corners.map(|c| poly[c].pos[3]),
@@ -918,7 +937,7 @@ impl Frame<'_, '_> {
                 continue;
             }
             // Flat shading keeps the original provoking vertex's colour.
-            if !meet(&covering(&v), &self.frame).is_empty() {
+            if !meet(&grow(&covering(&v), margin), &self.frame).is_empty() {
                 f(&piece, flat);
                 fate = Fate::Visible;
             }
