@@ -183,7 +183,10 @@ pub struct Config<C> {
     /// How fragment shaders' varyings are interpolated.
     pub perspective: Perspective,
     /// Whether draws wholly outside the view frustum are culled before
-    /// the vertex stage ([`crate::cull`]; the image is the same).
+    /// the vertex stage ([`crate::cull`]; the image is the same, and a
+    /// culled draw's vertices are not transformed, so one whose vertices
+    /// would leave the 16.16 range of clip space is culled rather than an
+    /// error).
     pub frustum_cull: bool,
 }
 
@@ -228,7 +231,8 @@ impl<C> Config<C> {
     }
 
     /// Enables or disables culling whole draws against the view frustum
-    /// (default on; the image is the same either way).
+    /// (default on; the image is the same either way, see
+    /// [`frustum_cull`](Self::frustum_cull)).
     pub const fn frustum_cull(mut self, on: bool) -> Self {
         self.frustum_cull = on;
         self
@@ -1537,14 +1541,14 @@ where
             } else {
                 sv[0].z.max(sv[1].z).max(sv[2].z)
             };
-            // `t < MAX_TRIANGLES`, so it fits u16. A tile with more
-            // transparent triangles than the list holds draws the rest at
-            // once, in submission order (never drops them).
-            if later.push((key, t as u16)).is_err() {
-                n += raster_transparent(
-                    tile, rect, frame, cache, &cur, idx, any, &mut found, &shaders,
-                );
+            // `t < MAX_TRIANGLES`, so it fits u16. A full list is drawn
+            // (sorted) and emptied first: a tile with more transparent
+            // triangles than the list holds sorts them in batches of
+            // `MAX_TRANSPARENT`, in submission order between batches.
+            if later.is_full() {
+                n += draw_later(tile, rect, frame, cache, &mut later, &mut found, &shaders);
             }
+            let _ = later.push((key, t as u16));
             continue;
         }
         n += if cur.shading == Shading::Shader {
@@ -1588,37 +1592,58 @@ where
             )
         };
     }
-    if !later.is_empty() {
-        // Back to front; equal keys in submission order (a stable
-        // insertion sort: a few dozen instructions of code, where the
-        // library's sort brings kilobytes, and at most 128 entries).
-        for k in 1..later.len() {
-            let e = later[k];
-            let mut i = k;
-            while i > 0 && later[i - 1].0 < e.0 {
-                later[i] = later[i - 1];
-                i -= 1;
-            }
-            later[i] = e;
-        }
-        let mut cur = DrawCursor::new(frame);
-        for &(_, t) in &later {
-            let t = t as usize;
-            cur.go_to(t);
-            let idx = cur.triangles.get(t - cur.first);
-            let any = idx
-                .iter()
-                .fold(0, |a, &i| a | cur.verts[i as usize].outcode);
-            n += raster_transparent(
-                tile, rect, frame, cache, &cur, idx, any, &mut found, &shaders,
-            );
-        }
-    }
+    n += draw_later(tile, rect, frame, cache, &mut later, &mut found, &shaders);
     n
 }
 
-/// Most transparent triangles one tile sorts back to front (4 bytes each
-/// on the stack); beyond, they are drawn in submission order.
+/// Draws the transparent triangles of `later` back to front (equal keys in
+/// submission order) and empties it.
+#[inline(never)]
+fn draw_later<'f, C, F, const TW: usize, const TH: usize>(
+    tile: &mut TileBuffer<C, TW, TH>,
+    rect: &PixelRect,
+    frame: &'f Frame<'f, 'f>,
+    cache: &mut SetupCache,
+    later: &mut heapless::Vec<(u16, u16), MAX_TRANSPARENT>,
+    found: &mut [Span; TH],
+    shaders: &Shaders<'_, C, F, TW, TH>,
+) -> u32
+where
+    C: PixelColor + From<Rgb888> + Into<Rgb888>,
+    F: FragmentShader<C>,
+{
+    if later.is_empty() {
+        return 0;
+    }
+    // A stable insertion sort: a few dozen instructions of code, where
+    // the library's sort brings kilobytes, and at most 128 entries.
+    for k in 1..later.len() {
+        let e = later[k];
+        let mut i = k;
+        while i > 0 && later[i - 1].0 < e.0 {
+            later[i] = later[i - 1];
+            i -= 1;
+        }
+        later[i] = e;
+    }
+    let mut n = 0;
+    let mut cur = DrawCursor::new(frame);
+    for &(_, t) in later.iter() {
+        let t = t as usize;
+        cur.go_to(t);
+        let idx = cur.triangles.get(t - cur.first);
+        let any = idx
+            .iter()
+            .fold(0, |a, &i| a | cur.verts[i as usize].outcode);
+        n += raster_transparent(tile, rect, frame, cache, &cur, idx, any, found, shaders);
+    }
+    later.clear();
+    n
+}
+
+/// Most transparent triangles one tile sorts back to front at once (4
+/// bytes each on the stack); a tile with more sorts them in batches of
+/// this many, in submission order between batches.
 pub const MAX_TRANSPARENT: usize = 128;
 
 /// Draws a transparent triangle of the cursor's draw through the

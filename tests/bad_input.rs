@@ -1051,3 +1051,59 @@ fn transparent_draws_blend_and_write_no_depth() {
         }
     }
 }
+
+/// More transparent triangles in a tile than its sort list holds: they are
+/// sorted in batches, so a far triangle submitted before the list filled
+/// is still drawn before a near one submitted after (any tile size).
+#[test]
+fn transparent_triangles_beyond_the_sort_list_keep_back_to_front() {
+    use microraster::render::MAX_TRANSPARENT;
+    // MAX_TRANSPARENT - 1 tiny transparent triangles next to the middle
+    // pixel (in its tile for every tile size below, not covering it), then
+    // a far red quad and a near green one over the middle.
+    let mut pos = Vec::new();
+    let mut tris: Vec<[u16; 3]> = Vec::new();
+    for k in 0..MAX_TRANSPARENT - 1 {
+        let b = pos.len() as u16;
+        let z = 0.5 - k as f32 / 1000.0;
+        pos.extend([p3(0.1, -0.1, z), p3(0.15, -0.1, z), p3(0.1, -0.05, z)]);
+        tris.push([b, b + 1, b + 2]);
+    }
+    let quad = |pos: &mut Vec<Vec3Fx>, tris: &mut Vec<[u16; 3]>, z: f32| {
+        let b = pos.len() as u16;
+        pos.extend([p3(-0.5, -0.5, z), p3(0.5, -0.5, z), p3(0.5, 0.5, z), p3(-0.5, 0.5, z)]);
+        tris.extend([[b, b + 1, b + 2], [b, b + 2, b + 3]]);
+    };
+    quad(&mut pos, &mut tris, 0.8);
+    let far_end = tris.len();
+    quad(&mut pos, &mut tris, -0.8);
+    let mut colors = vec![Rgb888::new(0, 0, 255); pos.len()];
+    for c in &mut colors[pos.len() - 8..pos.len() - 4] {
+        *c = Rgb888::new(200, 0, 0);
+    }
+    for c in &mut colors[pos.len() - 4..] {
+        *c = Rgb888::new(0, 200, 0);
+    }
+    assert_eq!(far_end + 2, tris.len());
+    let mesh = Mesh::new(&pos, &tris).unwrap().with_colors(&colors).unwrap();
+    let d = [Draw::new(&mesh).shading(Shading::Flat).blend(Blend::Alpha(200))];
+    let cam = Camera::new(Mat4::IDENTITY, Mat4::IDENTITY);
+    let scene = Scene::new(cam, &d);
+    let black = Rgb888::new(0, 0, 0);
+    let red_over_black = Blend::Alpha(200).apply([200, 0, 0], [0, 0, 0]);
+    let expect = Blend::Alpha(200).apply([0, 200, 0], red_over_black);
+    let expect = Rgb888::new(expect[0], expect[1], expect[2]);
+    macro_rules! check {
+        ($tw:literal, $th:literal) => {{
+            let mut r: Renderer<Rgb888, $tw, $th> =
+                Renderer::new(Config::new(Size::new(64, 64), black).cull(CullMode::None));
+            let mut ws: Box<Workspace<1024, 4096, 64>> = Box::new(Workspace::new());
+            let mut cap = Capture::new(Size::new(64, 64), black);
+            r.render(&mut ws, &scene, &mut cap).unwrap();
+            assert_eq!(cap.get(32, 32), expect, "{}x{} tiles", $tw, $th);
+        }};
+    }
+    check!(16, 16);
+    check!(32, 16);
+    check!(64, 64);
+}
