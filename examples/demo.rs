@@ -48,7 +48,9 @@ const HEIGHT: u32 = 240;
 type DemoRenderer = Renderer<Rgb565, 32, 32>;
 type DemoWorkspace = Workspace<2048, 4096, 80>;
 /// For `--obj`: room for 262,144 vertices (4 MiB, boxed); triangles beyond
-/// the bin pool are drawn in more binning passes.
+/// the bin pool are drawn in more binning passes. A frame holds at most
+/// 65,536 triangles (`render::MAX_TRIANGLES`): a larger model is a
+/// one-line error.
 type ModelWorkspace = Workspace<262_144, 65_535, 4096>;
 
 /// What colours the draws.

@@ -27,7 +27,8 @@ pub enum Shading {
     /// as [`Draw::edges`] styles them (by default in the vertex colours).
     Wireframe,
     /// No fill: a square of this many pixels a side at every vertex of
-    /// the triangles that survive culling.
+    /// the triangles that survive culling, for vertices between the near
+    /// and far planes and inside the guard band.
     Points(u8),
 }
 
@@ -78,9 +79,12 @@ impl Default for Edges {
 /// How a draw's fragments combine with what the tile already holds.
 ///
 /// Transparent draws (anything but [`Blend::Opaque`]) are drawn after all
-/// opaque triangles of a tile, back to front (farthest vertex depth first),
-/// depth tested but without writing depth, so they never hide each other
-/// or what is behind them. Their colour comes through the fragment-shader
+/// opaque triangles of a tile, back to front (farthest vertex depth first,
+/// in batches of [`MAX_TRANSPARENT`](crate::render::MAX_TRANSPARENT) per
+/// tile), depth tested but without writing depth, so they never hide each
+/// other or what is behind them. A draw's edges and points
+/// ([`Edges`], [`Shading::Wireframe`], [`Shading::Points`]) are always
+/// opaque: blending applies to its filled triangles. Their colour comes through the fragment-shader
 /// path: flat and Gouraud colour perspective-correct, as
 /// [`shader::Flat`](crate::shader::Flat) and
 /// [`shader::Gouraud`](crate::shader::Gouraud) give.

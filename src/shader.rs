@@ -29,7 +29,9 @@
 //! vertices 1 and 2 in the triangle itself, and every varying is
 //! `a0 + b1 (a1 - a0) + b2 (a2 - a0)`, colour included. The division is one
 //! 32-bit reciprocal after normalising `Q` to 16 significant bits, so the
-//! weights carry a relative error below 2^-15 (see [`Perspective`]).
+//! weights are within 7/65,536 of exact while `Q >= 2^15` (see
+//! [`Perspective`]; `Q` is smaller only where the triangle's `w` vary by
+//! more than 2^13, and there the weights have as many bits as `Q`).
 //! Clipped triangles carry the original triangle's barycentrics through the
 //! clipper (interpolated in clip space, where attributes are linear), so
 //! the varyings of a clipped vertex are those of the point it lies on.
@@ -62,7 +64,11 @@ use fixed::types::I16F16;
 /// true value runs along a hyperbola and the linear step misses it by at
 /// most `|Δa| (√r - 1) / (√r + 1)`, where `Δa` is the varying's change
 /// between the samples: nothing for a surface facing the camera (`r = 1`),
-/// 3.3 % of `Δa` for `r = 1.14`, 17 % for `r = 2`. `tests/perspective.rs` holds every mode to an
+/// 3.3 % of `Δa` for `r = 1.14`, 17 % for `r = 2`. Samples are counted
+/// from a span's first pixel in its tile (and its last is one), so the
+/// quasi-perspective modes can differ by a few pixels between tile sizes
+/// (never between rasterizers or tile orders); exact and affine do not.
+/// `tests/perspective.rs` holds every mode to an
 /// `f64` reference with this bound; on its floor at a grazing angle the
 /// worst pixel reaches about a third of it. Affine mode is linear over the
 /// whole triangle: textures bend and swim on surfaces seen at an angle

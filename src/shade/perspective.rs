@@ -127,7 +127,8 @@ impl<V: Varyings> PerspectiveSetup<V> {
             let base = a0[k].to_bits() as i64;
             let d1 = a1[k].to_bits() as i64 - base;
             let d2 = a2[k].to_bits() as i64 - base;
-            // |d| < 2^32, |b| <= 2^17: the sum stays below 2^50. A value
+            // |d| < 2^32, |b| < 2^20 (affine weights of a span start
+            // clamped to ±2^29, shifted by 12): the sum stays below 2^53. A value
             // outside 16.16 (weights a hair beyond the triangle) wraps,
             // never panics.
             let v = base + ((d1 * b1 as i64 + d2 * b2 as i64 + (1 << 15)) >> 16);
@@ -138,7 +139,7 @@ impl<V: Varyings> PerspectiveSetup<V> {
             let [c0, c1, c2] = self.color;
             for (k, o) in c.iter_mut().enumerate() {
                 let base = c0[k] as i32;
-                // |d| <= 255, |b| <= 2^17: below 2^25.
+                // |d| <= 255, |b| < 2^20: below 2^29.
                 *o = (base << 16)
                     + (c1[k] as i32 - base) * b1
                     + (c2[k] as i32 - base) * b2
