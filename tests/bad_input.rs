@@ -1071,7 +1071,12 @@ fn transparent_triangles_beyond_the_sort_list_keep_back_to_front() {
     }
     let quad = |pos: &mut Vec<Vec3Fx>, tris: &mut Vec<[u16; 3]>, z: f32| {
         let b = pos.len() as u16;
-        pos.extend([p3(-0.5, -0.5, z), p3(0.5, -0.5, z), p3(0.5, 0.5, z), p3(-0.5, 0.5, z)]);
+        pos.extend([
+            p3(-0.5, -0.5, z),
+            p3(0.5, -0.5, z),
+            p3(0.5, 0.5, z),
+            p3(-0.5, 0.5, z),
+        ]);
         tris.extend([[b, b + 1, b + 2], [b, b + 2, b + 3]]);
     };
     quad(&mut pos, &mut tris, 0.8);
@@ -1085,8 +1090,13 @@ fn transparent_triangles_beyond_the_sort_list_keep_back_to_front() {
         *c = Rgb888::new(0, 200, 0);
     }
     assert_eq!(far_end + 2, tris.len());
-    let mesh = Mesh::new(&pos, &tris).unwrap().with_colors(&colors).unwrap();
-    let d = [Draw::new(&mesh).shading(Shading::Flat).blend(Blend::Alpha(200))];
+    let mesh = Mesh::new(&pos, &tris)
+        .unwrap()
+        .with_colors(&colors)
+        .unwrap();
+    let d = [Draw::new(&mesh)
+        .shading(Shading::Flat)
+        .blend(Blend::Alpha(200))];
     let cam = Camera::new(Mat4::IDENTITY, Mat4::IDENTITY);
     let scene = Scene::new(cam, &d);
     let black = Rgb888::new(0, 0, 0);
