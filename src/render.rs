@@ -188,6 +188,10 @@ pub struct Config<C> {
     /// would leave the 16.16 range of clip space is culled rather than an
     /// error).
     pub frustum_cull: bool,
+    /// Whether draws are visited sorted by depth: opaque ones front to
+    /// back, then transparent ones back to front (see
+    /// [`sort_draws`](Self::sort_draws)).
+    pub sort_draws: bool,
 }
 
 impl<C> Config<C> {
@@ -205,6 +209,7 @@ impl<C> Config<C> {
             tile_order: TileOrder::RowMajor,
             perspective: Perspective::Exact,
             frustum_cull: true,
+            sort_draws: false,
         }
     }
 
@@ -235,6 +240,18 @@ impl<C> Config<C> {
     /// [`frustum_cull`](Self::frustum_cull)).
     pub const fn frustum_cull(mut self, on: bool) -> Self {
         self.frustum_cull = on;
+        self
+    }
+
+    /// Sorts the draws of each frame by the view depth of their bounding
+    /// box's centre: opaque draws front to back, so that fewer fragments
+    /// are shaded only to be covered, then transparent draws back to
+    /// front. Off by default: it changes which of two draws wins a depth
+    /// tie (the later one, under [`DepthTest::LessEqual`]), so coplanar
+    /// overlaps such as decals keep their submission order only without
+    /// it. Frames with more than [`MAX_SORTED_DRAWS`] draws are not sorted.
+    pub const fn sort_draws(mut self, on: bool) -> Self {
+        self.sort_draws = on;
         self
     }
 
@@ -661,6 +678,10 @@ struct Frame<'s, 'v> {
     eye: crate::math::Vec3,
     /// Cull draws outside the frustum ([`Config::frustum_cull`]).
     cull_draws: bool,
+    /// The order draws are visited in, when sorted
+    /// ([`Config::sort_draws`]), and the first vertex of each draw (by
+    /// draw index) in the vertex buffer; `None` for submission order.
+    order: Option<(&'s [u16], &'s [u32])>,
     vertices: &'v [ScreenVertex],
     view_proj: crate::math::Mat4,
     viewport: Viewport,
@@ -697,6 +718,21 @@ fn grow(r: &PixelRect, m: i32) -> PixelRect {
     PixelRect::new(r.x0 - m, r.y0 - m, r.x1 + m, r.y1 + m)
 }
 
+/// Most draws a frame sorts ([`Config::sort_draws`]): the visiting order
+/// and the vertex bases live on the stack, 6 bytes per draw (and 8 more
+/// while sorting).
+pub const MAX_SORTED_DRAWS: usize = 64;
+
+/// The distance in front of the eye of the centre of `draw`'s bounding
+/// box, along the view direction (`-z` in eye space).
+fn view_depth(view: &crate::math::Mat4, draw: &Draw<'_>) -> f32 {
+    let [lo, hi] = draw.mesh.bounds().map(|c| c.map(|v| v.to_num::<f32>()));
+    let c = [0, 1, 2].map(|k| 0.5 * (lo[k] + hi[k]));
+    let m = *view * draw.transform;
+    let z = m.m[0][2] * c[0] + m.m[1][2] * c[1] + m.m[2][2] * c[2] + m.m[3][2];
+    -z
+}
+
 /// How far beyond the pixel centres it covers a triangle of `draw` may
 /// draw: the lines of its edges reach the pixels holding its vertices
 /// (one pixel), its points half their size.
@@ -720,6 +756,15 @@ fn meet(a: &PixelRect, b: &PixelRect) -> PixelRect {
 }
 
 impl Frame<'_, '_> {
+    /// The draw visited `k`-th.
+    #[inline(always)]
+    fn visit(&self, k: usize) -> usize {
+        match self.order {
+            Some((order, _)) => order[k] as usize,
+            None => k,
+        }
+    }
+
     /// Whether draw `d` is culled whole against the view frustum (the same
     /// answer every time it is asked: the test is deterministic).
     fn draw_culled(&self, d: usize) -> bool {
@@ -973,8 +1018,14 @@ fn bin_pass<const TW: usize, const TH: usize, const HILBERT: bool>(
 ) {
     let mut t = 0usize;
     let mut vbase = 0usize;
-    for (d, draw) in frame.draws.iter().enumerate() {
-        let verts = &frame.vertices[vbase..vbase + draw.mesh.vertex_count()];
+    for k in 0..frame.draws.len() {
+        let d = frame.visit(k);
+        let draw = &frame.draws[d];
+        let base = match frame.order {
+            Some((_, bases)) => bases[d] as usize,
+            None => vbase,
+        };
+        let verts = &frame.vertices[base..base + draw.mesh.vertex_count()];
         vbase += verts.len();
         if frame.draw_culled(d) {
             let n = draw.mesh.triangle_count();
@@ -1077,6 +1128,10 @@ fn bin_triangles<const TW: usize, const TH: usize, I: Copy + Into<u32>>(
 struct DrawCursor<'f> {
     draws: &'f [crate::scene::Draw<'f>],
     vertices: &'f [ScreenVertex],
+    /// The visiting order and vertex bases, when draws are sorted.
+    order: Option<(&'f [u16], &'f [u32])>,
+    /// The current draw's place in the visiting order, and its index.
+    pos: usize,
     draw: usize,
     /// Global index of the draw's first triangle, and one past its last.
     first: usize,
@@ -1097,6 +1152,8 @@ impl<'f> DrawCursor<'f> {
         let mut c = Self {
             draws,
             vertices: frame.vertices,
+            order: frame.order,
+            pos: 0,
             draw: 0,
             first: 0,
             end: 0,
@@ -1113,8 +1170,19 @@ impl<'f> DrawCursor<'f> {
         c
     }
 
-    fn enter(&mut self, d: usize) {
+    /// Enters the draw visited `k`-th (with `vbase` already its first
+    /// vertex in submission order).
+    fn enter(&mut self, k: usize) {
+        let d = match self.order {
+            Some((order, bases)) => {
+                let d = order[k] as usize;
+                self.vbase = bases[d] as usize;
+                d
+            }
+            None => k,
+        };
         let draw = &self.draws[d];
+        self.pos = k;
         self.draw = d;
         self.triangles = draw.mesh.triangles();
         self.verts = &self.vertices[self.vbase..self.vbase + draw.mesh.vertex_count()];
@@ -1148,7 +1216,7 @@ impl<'f> DrawCursor<'f> {
     fn advance(&mut self) {
         self.first = self.end;
         self.vbase += self.verts.len();
-        self.enter(self.draw + 1);
+        self.enter(self.pos + 1);
     }
 }
 
@@ -1183,7 +1251,7 @@ impl Iterator for TileList<'_, '_> {
             } => loop {
                 let t = *next;
                 if t >= cur.end {
-                    if cur.draw + 1 >= cur.draws.len() {
+                    if cur.pos + 1 >= cur.draws.len() {
                         return None;
                     }
                     cur.advance();
@@ -1356,7 +1424,42 @@ where
         let grid = TileGrid::new(size.width, size.height, TW as u32, TH as u32)
             .ordered(self.config.tile_order);
         let hilbert_tiles = self.config.tile_order == TileOrder::Hilbert;
+        // The visiting order, when sorted: opaque draws front to back, then
+        // transparent ones back to front, by the view depth of their
+        // bounding box's centre; ties in submission order.
+        let mut order: heapless::Vec<u16, MAX_SORTED_DRAWS> = heapless::Vec::new();
+        let mut bases: heapless::Vec<u32, MAX_SORTED_DRAWS> = heapless::Vec::new();
+        let sorted = self.config.sort_draws && scene.draws.len() <= MAX_SORTED_DRAWS;
+        if sorted {
+            let mut keys: heapless::Vec<(bool, f32), MAX_SORTED_DRAWS> = heapless::Vec::new();
+            let mut base = 0u32;
+            for (d, draw) in scene.draws.iter().enumerate() {
+                let transparent = draw.blend != Blend::Opaque;
+                let depth = view_depth(&scene.camera.view, draw);
+                // Transparent draws sort far first: negate their depth.
+                let key = if transparent { -depth } else { depth };
+                // Capacity: at most MAX_SORTED_DRAWS draws here.
+                let _ = keys.push((transparent, key));
+                let _ = order.push(d as u16);
+                let _ = bases.push(base);
+                base += draw.mesh.vertex_count() as u32;
+            }
+            // Stable insertion sort: opaque before transparent, then by key
+            // (NaN keys, from non-finite set-ups, compare as equal).
+            let before =
+                |a: (bool, f32), b: (bool, f32)| (!a.0 && b.0) || (a.0 == b.0 && a.1 < b.1);
+            for k in 1..order.len() {
+                let e = order[k];
+                let mut i = k;
+                while i > 0 && before(keys[e as usize], keys[order[i - 1] as usize]) {
+                    order[i] = order[i - 1];
+                    i -= 1;
+                }
+                order[i] = e;
+            }
+        }
         let frame = Frame {
+            order: sorted.then_some((&order[..], &bases[..])),
             draws: scene.draws,
             lighting,
             eye,
