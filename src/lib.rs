@@ -93,6 +93,22 @@ pub mod prelude {
     pub use embedded_graphics::prelude::{Point, Size};
 }
 
+/// Helpers shared by the unit tests.
+#[cfg(test)]
+pub(crate) mod testing {
+    /// A xorshift generator, the same sequence every run: `next(m)` is the
+    /// next value modulo `m`.
+    pub(crate) fn rng() -> impl FnMut(u64) -> u64 {
+        let mut x = 0x2545_f491_4f6c_dd1du64;
+        move |m: u64| {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            x % m
+        }
+    }
+}
+
 /// The README's code examples, compiled and run as doc tests.
 #[cfg(doctest)]
 #[doc = include_str!("../README.md")]

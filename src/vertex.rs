@@ -405,13 +405,7 @@ mod tests {
     fn lambert_fast_path_matches_the_light_setup() {
         use crate::light::{DirectionalLight, Lighting};
         use embedded_graphics::pixelcolor::Rgb888;
-        let mut x = 0x2545_f491_4f6c_dd1du64;
-        let mut next = move |m: u64| {
-            x ^= x << 13;
-            x ^= x >> 7;
-            x ^= x << 17;
-            x % m
-        };
+        let mut next = crate::testing::rng();
         for _ in 0..200 {
             let mut f = || next(2001) as f32 / 1000.0 - 1.0;
             let dir = Vec3::new(f(), f(), f() + 0.01);

@@ -685,13 +685,7 @@ mod tests {
     #[test]
     fn planes_match_the_i64_evaluation() {
         use crate::raster::{scanline::spans, PixelRect};
-        let mut x = 0x2545_f491_4f6c_dd1du64;
-        let mut next = move |m: u64| {
-            x ^= x << 13;
-            x ^= x >> 7;
-            x ^= x << 17;
-            x % m
-        };
+        let mut next = crate::testing::rng();
         let (mut pixels, mut wide) = (0u64, 0u32);
         for n in 0..6_000 {
             let (range, offset) = match n % 4 {

@@ -361,13 +361,7 @@ mod tests {
 
     #[test]
     fn weights_match_the_quotient() {
-        let mut x = 0x2545_f491_4f6c_dd1du64;
-        let mut next = move |m: u64| {
-            x ^= x << 13;
-            x ^= x >> 7;
-            x ^= x << 17;
-            x % m
-        };
+        let mut next = crate::testing::rng();
         for _ in 0..200_000 {
             let bits = 1 + next(29);
             let q = 1 + next(1 << bits) as i32;
