@@ -53,6 +53,92 @@ pub struct Mesh<'a> {
     /// The smallest and largest coordinates of the positions (raw 16.16):
     /// the bounding box, for culling whole draws.
     bounds: [[i32; 3]; 2],
+    /// Spatial clusters of the triangles, for culling parts of the mesh.
+    clusters: Option<&'a [Cluster]>,
+}
+
+/// A cluster of a mesh's triangles: a run of consecutive triangles that
+/// lie close together, the run of vertices they use, and the bounding box of
+/// those vertices.
+///
+/// The clusters of a mesh ([`Mesh::with_clusters`]) tile its triangles in
+/// order: the first cluster holds the first `triangle_count` triangles, the
+/// next the following ones, and so on. The renderer tests each cluster's box
+/// against the view frustum and, when it is outside, neither transforms the
+/// cluster's vertices nor bins its triangles ([`crate::cull`]); a large
+/// static mesh (a level, a terrain) then costs what is in view.
+///
+/// The importer makes clusters (`microraster-import obj --clusters N`):
+/// each owns its vertices, so vertex ranges do not overlap. Ranges may
+/// overlap; a vertex in two visible clusters is then transformed twice.
+///
+/// ```
+/// use fixed::types::I16F16;
+/// use microraster::mesh::{Cluster, Mesh};
+/// const fn fx(v: i32) -> I16F16 { I16F16::from_bits(v << 16) }
+/// // Two triangles far apart, one cluster each.
+/// static POSITIONS: [[I16F16; 3]; 6] = [
+///     [fx(0), fx(0), fx(0)], [fx(1), fx(0), fx(0)], [fx(0), fx(1), fx(0)],
+///     [fx(9), fx(0), fx(0)], [fx(10), fx(0), fx(0)], [fx(9), fx(1), fx(0)],
+/// ];
+/// static TRIANGLES: [[u16; 3]; 2] = [[0, 1, 2], [3, 4, 5]];
+/// static CLUSTERS: [Cluster; 2] = [
+///     Cluster::new(1, 0, 3, [fx(0), fx(0), fx(0)], [fx(1), fx(1), fx(0)]),
+///     Cluster::new(1, 3, 3, [fx(9), fx(0), fx(0)], [fx(10), fx(1), fx(0)]),
+/// ];
+/// let mesh = Mesh::new(&POSITIONS, &TRIANGLES)?.with_clusters(&CLUSTERS)?;
+/// assert_eq!(mesh.clusters().map(|c| c.len()), Some(2));
+/// # Ok::<(), microraster::mesh::MeshError>(())
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Cluster {
+    triangle_count: u32,
+    first_vertex: u32,
+    vertex_count: u32,
+    min: Vec3Fx,
+    max: Vec3Fx,
+}
+
+impl Cluster {
+    /// A cluster of `triangle_count` triangles, using only the vertices
+    /// `first_vertex .. first_vertex + vertex_count`, all of which lie in
+    /// the box from `min` to `max` (checked by [`Mesh::with_clusters`]).
+    pub const fn new(
+        triangle_count: u32,
+        first_vertex: u32,
+        vertex_count: u32,
+        min: Vec3Fx,
+        max: Vec3Fx,
+    ) -> Self {
+        Self {
+            triangle_count,
+            first_vertex,
+            vertex_count,
+            min,
+            max,
+        }
+    }
+
+    /// The number of triangles.
+    pub const fn triangle_count(&self) -> u32 {
+        self.triangle_count
+    }
+
+    /// The first vertex its triangles may use.
+    pub const fn first_vertex(&self) -> u32 {
+        self.first_vertex
+    }
+
+    /// The number of vertices its triangles may use.
+    pub const fn vertex_count(&self) -> u32 {
+        self.vertex_count
+    }
+
+    /// The bounding box of its vertices: the smallest and the largest
+    /// coordinates.
+    pub const fn bounds(&self) -> [Vec3Fx; 2] {
+        [self.min, self.max]
+    }
 }
 
 /// A mesh's triangles: vertex indices, `u16` (compact, up to 65,536
@@ -120,6 +206,39 @@ pub enum MeshError {
         /// The number of positions given.
         count: usize,
     },
+    /// The clusters hold a different number of triangles from the mesh.
+    ClusterTriangles {
+        /// The sum of the clusters' triangle counts.
+        clustered: u64,
+        /// The mesh's triangles.
+        triangles: usize,
+    },
+    /// A cluster's vertex range goes past the last vertex.
+    ClusterVertices {
+        /// Index of the cluster.
+        cluster: usize,
+        /// One past the range's last vertex.
+        end: u64,
+        /// Number of vertices in the mesh.
+        vertex_count: usize,
+    },
+    /// A triangle uses a vertex outside its cluster's vertex range.
+    ClusterIndex {
+        /// Index of the cluster.
+        cluster: usize,
+        /// Index of the triangle (in the mesh).
+        triangle: usize,
+        /// The vertex index outside the cluster's range.
+        index: u32,
+    },
+    /// A vertex of a cluster lies outside the cluster's bounding box (or
+    /// the box's minimum exceeds its maximum).
+    ClusterBounds {
+        /// Index of the cluster.
+        cluster: usize,
+        /// The vertex outside the box.
+        vertex: usize,
+    },
 }
 
 impl core::fmt::Display for MeshError {
@@ -141,6 +260,33 @@ impl core::fmt::Display for MeshError {
             Self::TooManyVertices { count } => {
                 write!(f, "{count} vertices exceed the u16 index range")
             }
+            Self::ClusterTriangles {
+                clustered,
+                triangles,
+            } => write!(
+                f,
+                "the clusters hold {clustered} triangles but the mesh has {triangles}"
+            ),
+            Self::ClusterVertices {
+                cluster,
+                end,
+                vertex_count,
+            } => write!(
+                f,
+                "cluster {cluster}'s vertices end at {end}, but the mesh has {vertex_count} vertices"
+            ),
+            Self::ClusterIndex {
+                cluster,
+                triangle,
+                index,
+            } => write!(
+                f,
+                "triangle {triangle} uses vertex {index}, outside the vertex range of its cluster {cluster}"
+            ),
+            Self::ClusterBounds { cluster, vertex } => write!(
+                f,
+                "vertex {vertex} lies outside the bounding box of cluster {cluster}"
+            ),
         }
     }
 }
@@ -212,7 +358,84 @@ impl<'a> Mesh<'a> {
             triangles,
             extent,
             bounds,
+            clusters: None,
         })
+    }
+
+    /// Adds spatial clusters of the triangles ([`Cluster`]), so that the
+    /// renderer culls the parts of the mesh outside the view frustum.
+    ///
+    /// Checks that the clusters tile the triangles exactly, that each
+    /// vertex range lies within the positions, that every triangle uses
+    /// only its cluster's vertices, and that those vertices lie in the
+    /// cluster's box: culling a cluster can then never remove a visible
+    /// triangle. A run of clusters and the matching run of triangles (one
+    /// group of an imported model) make a mesh as well.
+    ///
+    /// ```
+    /// use fixed::types::I16F16;
+    /// use microraster::mesh::{Cluster, Mesh, MeshError};
+    /// let z = I16F16::ZERO;
+    /// let p = [[z; 3], [I16F16::ONE, z, z], [z, I16F16::ONE, z]];
+    /// let tris = [[0u16, 1, 2]];
+    /// // The box misses vertex 1 (at x = 1).
+    /// let tight = [Cluster::new(1, 0, 3, [z; 3], [z, I16F16::ONE, z])];
+    /// assert_eq!(
+    ///     Mesh::new(&p, &tris).unwrap().with_clusters(&tight).unwrap_err(),
+    ///     MeshError::ClusterBounds { cluster: 0, vertex: 1 }
+    /// );
+    /// ```
+    pub fn with_clusters(mut self, clusters: &'a [Cluster]) -> Result<Self, MeshError> {
+        let clustered: u64 = clusters.iter().map(|c| u64::from(c.triangle_count)).sum();
+        if clustered != self.triangles.len() as u64 {
+            return Err(MeshError::ClusterTriangles {
+                clustered,
+                triangles: self.triangles.len(),
+            });
+        }
+        let mut t = 0usize;
+        for (k, c) in clusters.iter().enumerate() {
+            let first = c.first_vertex as usize;
+            let end = u64::from(c.first_vertex) + u64::from(c.vertex_count);
+            if end > self.positions.len() as u64 {
+                return Err(MeshError::ClusterVertices {
+                    cluster: k,
+                    end,
+                    vertex_count: self.positions.len(),
+                });
+            }
+            let range = first..end as usize;
+            let (lo, hi) = (c.min, c.max);
+            if (0..3).any(|i| lo[i] > hi[i]) {
+                return Err(MeshError::ClusterBounds {
+                    cluster: k,
+                    vertex: first,
+                });
+            }
+            for (v, p) in self.positions[range.clone()].iter().enumerate() {
+                if (0..3).any(|i| p[i] < lo[i] || p[i] > hi[i]) {
+                    return Err(MeshError::ClusterBounds {
+                        cluster: k,
+                        vertex: first + v,
+                    });
+                }
+            }
+            // The counts sum to the triangle count, so this stays in range.
+            for triangle in t..t + c.triangle_count as usize {
+                for index in self.triangles.get(triangle) {
+                    if !range.contains(&(index as usize)) {
+                        return Err(MeshError::ClusterIndex {
+                            cluster: k,
+                            triangle,
+                            index,
+                        });
+                    }
+                }
+            }
+            t += c.triangle_count as usize;
+        }
+        self.clusters = Some(clusters);
+        Ok(self)
     }
 
     /// Adds per-vertex unit normals (model space), used for lighting.
@@ -256,6 +479,11 @@ impl<'a> Mesh<'a> {
         self.uvs
     }
 
+    /// The clusters, if any ([`with_clusters`](Self::with_clusters)).
+    pub fn clusters(&self) -> Option<&'a [Cluster]> {
+        self.clusters
+    }
+
     /// The triangles, as vertex indices.
     pub fn triangles(&self) -> Indices<'a> {
         self.triangles
@@ -293,5 +521,121 @@ fn check_len(what: &'static str, len: usize, expected: usize) -> Result<(), Mesh
             len,
             expected,
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn fx(v: i32) -> I16F16 {
+        I16F16::from_num(v)
+    }
+
+    fn p(x: i32, y: i32, z: i32) -> Vec3Fx {
+        [fx(x), fx(y), fx(z)]
+    }
+
+    const POS: [[i32; 3]; 6] = [
+        [0, 0, 0],
+        [1, 0, 0],
+        [0, 1, 0],
+        [5, 5, 5],
+        [6, 5, 5],
+        [5, 6, 5],
+    ];
+
+    fn positions() -> [Vec3Fx; 6] {
+        POS.map(|[x, y, z]| p(x, y, z))
+    }
+
+    #[test]
+    fn clusters_are_checked_against_triangles_vertices_and_boxes() {
+        let pos = positions();
+        let tris = [[0u16, 1, 2], [3, 4, 5], [4, 3, 5]];
+        let mesh = Mesh::new(&pos, &tris).unwrap();
+        let a = Cluster::new(1, 0, 3, p(0, 0, 0), p(1, 1, 0));
+        let b = Cluster::new(2, 3, 3, p(5, 5, 5), p(6, 6, 5));
+        let good = [a, b];
+        let m = mesh.with_clusters(&good).unwrap();
+        assert_eq!(m.clusters(), Some(&good[..]));
+        assert_eq!(mesh.clusters(), None);
+
+        let short = [a];
+        assert_eq!(
+            mesh.with_clusters(&short).unwrap_err(),
+            MeshError::ClusterTriangles {
+                clustered: 1,
+                triangles: 3
+            }
+        );
+        let huge = [a, Cluster::new(u32::MAX, 3, 3, p(5, 5, 5), p(6, 6, 5)), b];
+        assert!(matches!(
+            mesh.with_clusters(&huge).unwrap_err(),
+            MeshError::ClusterTriangles { .. }
+        ));
+        let past = [a, Cluster::new(2, 3, u32::MAX, p(5, 5, 5), p(6, 6, 5))];
+        assert_eq!(
+            mesh.with_clusters(&past).unwrap_err(),
+            MeshError::ClusterVertices {
+                cluster: 1,
+                end: 3 + u64::from(u32::MAX),
+                vertex_count: 6
+            }
+        );
+        // Triangle 0 uses vertices 0..3, outside the range 3..6.
+        let wrong_range = [Cluster::new(1, 3, 3, p(5, 5, 5), p(6, 6, 5)), b];
+        assert_eq!(
+            mesh.with_clusters(&wrong_range).unwrap_err(),
+            MeshError::ClusterIndex {
+                cluster: 0,
+                triangle: 0,
+                index: 0
+            }
+        );
+        // Vertex 4 (x = 6) sticks out of a box ending at x = 5.
+        let tight = [a, Cluster::new(2, 3, 3, p(5, 5, 5), p(5, 6, 5))];
+        assert_eq!(
+            mesh.with_clusters(&tight).unwrap_err(),
+            MeshError::ClusterBounds {
+                cluster: 1,
+                vertex: 4
+            }
+        );
+        // An inverted box, even around no vertices.
+        let inverted = [a, Cluster::new(2, 3, 0, p(6, 6, 6), p(5, 5, 5))];
+        assert_eq!(
+            mesh.with_clusters(&inverted).unwrap_err(),
+            MeshError::ClusterBounds {
+                cluster: 1,
+                vertex: 3
+            }
+        );
+        // Every error displays a sentence naming the cluster.
+        for e in [
+            mesh.with_clusters(&past).unwrap_err(),
+            mesh.with_clusters(&wrong_range).unwrap_err(),
+            mesh.with_clusters(&tight).unwrap_err(),
+        ] {
+            let mut buf = heapless::String::<128>::new();
+            core::fmt::write(&mut buf, format_args!("{e}")).unwrap();
+            assert!(buf.contains("cluster"), "{buf}");
+        }
+    }
+
+    #[test]
+    fn empty_meshes_take_empty_clusters_and_overlapping_ranges_are_allowed() {
+        let pos = positions();
+        let none: [[u16; 3]; 0] = [];
+        assert!(Mesh::new(&pos, &none).unwrap().with_clusters(&[]).is_ok());
+        let tris = [[0u16, 1, 2], [3, 4, 5]];
+        let whole = [
+            Cluster::new(1, 0, 6, p(0, 0, 0), p(6, 6, 5)),
+            Cluster::new(1, 0, 6, p(0, 0, 0), p(6, 6, 5)),
+        ];
+        assert!(Mesh::new(&pos, &tris)
+            .unwrap()
+            .with_clusters(&whole)
+            .is_ok());
     }
 }
