@@ -6,6 +6,10 @@
 //! `embedded-graphics`. Fixed-point numbers are written as their raw bits
 //! (`I16F16::from_bits(65536)` is 1.0), so nothing is rounded twice, and the
 //! same input always gives the same bytes.
+//!
+//! A model with clusters ([`ObjOptions::cluster_triangles`]) also gets
+//! `::microraster::mesh::Cluster` values, so its source compiles only in a
+//! crate that depends on microraster as well.
 
 use std::fmt::Write as _;
 use std::fs;
@@ -18,6 +22,7 @@ use crate::obj::{load_obj, unit_to_u8, Fit, Model, ObjOptions};
 
 const FX: &str = "::fixed::types::I16F16";
 const RGB888: &str = "::embedded_graphics::pixelcolor::Rgb888";
+const CLUSTER: &str = "::microraster::mesh::Cluster";
 
 /// The `SCREAMING_CASE` prefix of the generated items for `name`.
 ///
@@ -142,16 +147,21 @@ fn fixed_row(values: &[i32]) -> String {
 /// | `P_UVS` | `[[I16F16; 2]; V]` | if it has texture coordinates; `v` flipped to `1 - v` ([`Model::uvs_fixed`]) |
 /// | `P_COLORS` | `[Rgb888; V]` | if it has vertex colours |
 /// | `P_TRIANGLES` | `[[u16; 3]; T]` (or `u32`, per [`IndexWidth`](crate::IndexWidth)) | always |
+/// | `P_CLUSTERS` | `[Cluster; C]`: `Cluster::new(triangle count, first vertex, vertex count, min, max)` ([`Model::clusters`], [`Model::cluster_bounds_fixed`]) | if the model has clusters |
 /// | `P_GROUPS` | `[(&str, usize, usize); G]`: name, first triangle, triangle count | always |
 /// | `P_GROUP_COLORS` | `[Rgb888; G]`: the material's `Kd`, white without one | always |
 /// | `P_GROUP_TEXTURES` | `[Option<&str>; G]`: the material's `map_Kd` | always |
+/// | `P_GROUP_CLUSTERS` | `[(usize, usize); G]`: first cluster, cluster count | if the model has clusters |
 /// | `P_SCALE`, `P_OFFSET` | `f32`, `[f32; 3]`: position = (original + offset) × scale | always |
 /// | `P_BOUNDS_MIN`, `P_BOUNDS_MAX` | `[f32; 3]` | always |
 /// | `P_SPHERE_CENTER`, `P_SPHERE_RADIUS` | `[f32; 3]`, `f32` | always |
 ///
 /// `I16F16` and `Rgb888` are written as `::fixed::types::I16F16` and
-/// `::embedded_graphics::pixelcolor::Rgb888`. A header comment names the
-/// source file, the options, the counts and any warnings.
+/// `::embedded_graphics::pixelcolor::Rgb888`, `Cluster` as
+/// `::microraster::mesh::Cluster` (so a model with clusters needs a crate
+/// that depends on microraster). A header comment names the source file,
+/// the options, the counts and any warnings. Without clusters, nothing
+/// about them is written.
 ///
 /// ```
 /// use std::path::Path;
@@ -181,9 +191,17 @@ pub fn model_to_rust(model: &Model, name: &str) -> Result<String, ImportError> {
     } else {
         model.options.fit.name().to_string()
     };
+    let clusters = if model.options.cluster_triangles > 0 {
+        format!(
+            ", clusters of at most {} triangles",
+            model.options.cluster_triangles
+        )
+    } else {
+        String::new()
+    };
     let _ = writeln!(
         s,
-        "// Options: fit {fit}, {} indices, computed normals {}.",
+        "// Options: fit {fit}, {} indices, computed normals {}{clusters}.",
         model.options.index_width.rust_type(),
         if model.options.compute_normals {
             "on"
@@ -191,9 +209,14 @@ pub fn model_to_rust(model: &Model, name: &str) -> Result<String, ImportError> {
             "off"
         }
     );
+    let clusters = if model.clusters.is_empty() {
+        String::new()
+    } else {
+        format!(", {} clusters", model.clusters.len())
+    };
     let _ = writeln!(
         s,
-        "// {n} vertices, {} triangles, {} groups; {} degenerate triangles dropped.",
+        "// {n} vertices, {} triangles, {} groups{clusters}; {} degenerate triangles dropped.",
         model.triangles.len(),
         model.groups.len(),
         model.degenerate
@@ -262,6 +285,33 @@ pub fn model_to_rust(model: &Model, name: &str) -> Result<String, ImportError> {
     }
     s.push_str("];\n");
 
+    if !model.clusters.is_empty() {
+        let _ = writeln!(
+            s,
+            "
+/// Clusters of the triangles, for culling the parts of the mesh outside the view:
+/// `Cluster::new(triangle count, first vertex, vertex count, min, max)`. They tile
+/// `{p}_TRIANGLES` in order (each holds the next `triangle count` triangles), each one's
+/// triangles use only its vertices, and those lie in its box; see
+/// `microraster::mesh::Mesh::with_clusters`, which takes them, or a group's run of them
+/// (`{p}_GROUP_CLUSTERS`) with the group's triangles.
+pub static {p}_CLUSTERS: [{CLUSTER}; {}] = [",
+            model.clusters.len()
+        );
+        for (c, [min, max]) in model.clusters.iter().zip(model.cluster_bounds_fixed()) {
+            let _ = writeln!(
+                s,
+                "    {CLUSTER}::new({}, {}, {}, {}, {}),",
+                c.triangles.len(),
+                c.vertices.start,
+                c.vertices.len(),
+                fixed_row(&min),
+                fixed_row(&max)
+            );
+        }
+        s.push_str("];\n");
+    }
+
     let g = model.groups.len();
     let _ = writeln!(
         s,
@@ -306,6 +356,22 @@ pub fn model_to_rust(model: &Model, name: &str) -> Result<String, ImportError> {
     }
     s.push_str("];\n");
 
+    if !model.clusters.is_empty() {
+        let _ = writeln!(
+            s,
+            "\n/// Each group's clusters: (first cluster in `{p}_CLUSTERS`, cluster count).\npub static {p}_GROUP_CLUSTERS: [(usize, usize); {g}] = ["
+        );
+        for group in &model.groups {
+            let _ = writeln!(
+                s,
+                "    ({}, {}),",
+                group.clusters.start,
+                group.clusters.len()
+            );
+        }
+        s.push_str("];\n");
+    }
+
     let offset = model.offset.map(|x| x as f32);
     let _ = write!(
         s,
@@ -344,6 +410,8 @@ pub struct ModelSummary {
     pub triangles: usize,
     /// Groups written.
     pub groups: usize,
+    /// Clusters written (0 without clustering).
+    pub clusters: usize,
     /// Degenerate triangles dropped.
     pub degenerate: usize,
     /// What the fit resolved to ([`Fit::Keep`] or [`Fit::Unit`]).
@@ -366,6 +434,7 @@ impl ModelSummary {
             vertices: model.positions.len(),
             triangles: model.triangles.len(),
             groups: model.groups.len(),
+            clusters: model.clusters.len(),
             degenerate: model.degenerate,
             fit_applied: model.fit_applied,
             scale: model.scale,
@@ -393,10 +462,15 @@ impl std::fmt::Display for ModelSummary {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         write!(
             f,
-            "{} vertices, {} triangles, {} groups, scale {} (fit {})",
-            self.vertices,
-            self.triangles,
-            self.groups,
+            "{} vertices, {} triangles, {} groups",
+            self.vertices, self.triangles, self.groups
+        )?;
+        if self.clusters > 0 {
+            write!(f, ", {} clusters", self.clusters)?;
+        }
+        write!(
+            f,
+            ", scale {} (fit {})",
             self.scale,
             self.fit_applied.name()
         )?;

@@ -92,12 +92,17 @@ pub enum ErrorKind {
         /// The configured limit.
         limit: usize,
     },
-    /// More unique vertices than the chosen index width can address.
+    /// More vertices than the chosen index width can address.
     TooManyVertices {
-        /// Unique (position, texture coordinate, normal) combinations.
+        /// Unique (position, texture coordinate, normal) combinations, plus
+        /// the copies that clustering made.
         count: usize,
         /// How many the index width addresses.
         limit: usize,
+        /// How many of `count` are copies of vertices that several
+        /// clusters share ([`ObjOptions::cluster_triangles`](crate::ObjOptions::cluster_triangles));
+        /// 0 without clusters.
+        duplicated: usize,
     },
     /// The file has no face that gives a triangle with an area.
     NoTriangles {
@@ -237,10 +242,25 @@ impl fmt::Display for ErrorKind {
                 f,
                 "more than {limit} triangles after triangulation (the configured limit)"
             ),
-            Self::TooManyVertices { count, limit } => write!(
+            Self::TooManyVertices {
+                count,
+                limit,
+                duplicated: 0,
+            } => write!(
                 f,
                 "model has {count} unique vertices but u16 indices address only {limit}; \
                  use 32-bit indices (IndexWidth::U32, --u32) or split the model"
+            ),
+            Self::TooManyVertices {
+                count,
+                limit,
+                duplicated,
+            } => write!(
+                f,
+                "model has {count} vertices, {duplicated} of them copies that clustering made \
+                 of vertices shared by clusters, but u16 indices address only {limit}; \
+                 use 32-bit indices (IndexWidth::U32, --u32), larger clusters (--clusters) \
+                 or split the model"
             ),
             Self::NoTriangles { degenerate } => write!(
                 f,

@@ -7,6 +7,9 @@
 //! source it writes names `::fixed::types::I16F16` and
 //! `::embedded_graphics::pixelcolor::Rgb888`, so the crate that includes it
 //! needs `fixed` and `embedded-graphics` (as microraster users have).
+//! Only with clusters on ([`ObjOptions::cluster_triangles`], `--clusters`)
+//! does it also name `::microraster::mesh::Cluster`, and then only a crate
+//! that depends on microraster can compile it.
 //!
 //! # In a build script
 //!
@@ -33,10 +36,30 @@
 //! let mesh = Mesh::new(&SHIP_POSITIONS, &SHIP_TRIANGLES)?.with_normals(&SHIP_NORMALS)?;
 //! ```
 //!
+//! # Clusters
+//!
+//! A large model (a level, a terrain) is cheaper to draw when the renderer
+//! can skip the parts outside the view. With
+//! [`ObjOptions::with_cluster_triangles`]`(n)` (`--clusters N`) the importer
+//! splits each group's triangles in space into clusters of at most `n`,
+//! lays triangles and vertices out cluster by cluster (see
+//! [`obj`](crate::obj#clusters)), and writes `SHIP_CLUSTERS` (each
+//! cluster's triangle count, vertex run and bounding box) and
+//! `SHIP_GROUP_CLUSTERS` (each group's run of them):
+//!
+//! ```text
+//! let mesh = Mesh::new(&SHIP_POSITIONS, &SHIP_TRIANGLES)?.with_clusters(&SHIP_CLUSTERS)?;
+//! // or one mesh per group:
+//! let (first, count) = (SHIP_GROUPS[g].1, SHIP_GROUPS[g].2);
+//! let (c0, cn) = SHIP_GROUP_CLUSTERS[g];
+//! let part = Mesh::new(&SHIP_POSITIONS, &SHIP_TRIANGLES[first..first + count])?
+//!     .with_clusters(&SHIP_CLUSTERS[c0..c0 + cn])?;
+//! ```
+//!
 //! # From the command line
 //!
 //! ```text
-//! microraster-import obj MODEL.obj --out model.rs [--name NAME] [--fit auto|keep|unit] [--u32] [--no-normals]
+//! microraster-import obj MODEL.obj --out model.rs [--name NAME] [--fit auto|keep|unit] [--u32] [--no-normals] [--clusters N]
 //! microraster-import png IMAGE.png --out tex.rs [--name NAME] --format rgb565|gray8|indexed8|indexed4
 //! ```
 //!
@@ -69,6 +92,6 @@ pub use codegen::{
 pub use error::{ErrorKind, ImportError};
 pub use image::{decode_png, gray8, load_png, rgb565, Texels, Texture, TextureData, TextureFormat};
 pub use obj::{
-    load_obj, parse_obj, to_fixed, triangulate, Aabb, Fit, Group, IndexWidth, Material, Model,
-    ObjOptions, Sphere,
+    load_obj, parse_obj, to_fixed, triangulate, Aabb, ClusterRange, Fit, Group, IndexWidth,
+    Material, Model, ObjOptions, Sphere,
 };

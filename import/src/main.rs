@@ -1,9 +1,15 @@
 //! `microraster-import`: converts OBJ models and PNG images to Rust source.
 //!
 //! ```text
-//! microraster-import obj MODEL.obj --out model.rs [--name NAME] [--fit auto|keep|unit] [--u32] [--no-normals]
+//! microraster-import obj MODEL.obj --out model.rs [--name NAME] [--fit auto|keep|unit] [--u32] [--no-normals] [--clusters N]
 //! microraster-import png IMAGE.png --out tex.rs [--name NAME] --format rgb565|gray8|indexed8|indexed4
 //! ```
+//!
+//! `--clusters N` splits each group into spatial clusters of at most `N`
+//! triangles (N >= 1) and also writes `NAME_CLUSTERS` and
+//! `NAME_GROUP_CLUSTERS`, for microraster's per-cluster frustum culling
+//! (`Mesh::with_clusters`); that output needs a crate that depends on
+//! microraster.
 //!
 //! Prints a one-line summary on success (and any warnings on stderr); on
 //! failure, one `error:` line on stderr and exit status 1 (2 for a usage
@@ -19,7 +25,7 @@ use microraster_import::{
 };
 
 const USAGE: &str = "\
-usage: microraster-import obj MODEL.obj --out FILE.rs [--name NAME] [--fit auto|keep|unit] [--u32] [--no-normals]
+usage: microraster-import obj MODEL.obj --out FILE.rs [--name NAME] [--fit auto|keep|unit] [--u32] [--no-normals] [--clusters N]
        microraster-import png IMAGE.png --out FILE.rs [--name NAME] --format rgb565|gray8|indexed8|indexed4";
 
 /// A parsed command line.
@@ -66,6 +72,7 @@ fn parse_args(args: &[String]) -> Result<Command, String> {
     let mut fit = None;
     let mut u32_indices = false;
     let mut no_normals = false;
+    let mut clusters = 0;
     let mut format = None;
     let mut rest = args[1..].iter();
     while let Some(arg) = rest.next() {
@@ -87,6 +94,12 @@ fn parse_args(args: &[String]) -> Result<Command, String> {
             }
             "--u32" if kind == "obj" => u32_indices = true,
             "--no-normals" if kind == "obj" => no_normals = true,
+            "--clusters" if kind == "obj" => {
+                let v = value("--clusters")?;
+                clusters = v.parse::<usize>().ok().filter(|&n| n > 0).ok_or_else(|| {
+                    format!("bad cluster size `{v}` (expected the most triangles per cluster, at least 1)")
+                })?;
+            }
             "--format" if kind == "png" => {
                 let v = value("--format")?;
                 format = Some(TextureFormat::from_name(&v).ok_or_else(|| {
@@ -115,7 +128,8 @@ fn parse_args(args: &[String]) -> Result<Command, String> {
             } else {
                 IndexWidth::U16
             })
-            .with_compute_normals(!no_normals);
+            .with_compute_normals(!no_normals)
+            .with_cluster_triangles(clusters);
         Ok(Command::Obj {
             input,
             out,
@@ -192,7 +206,7 @@ mod tests {
     fn obj_command_with_every_option() {
         assert_eq!(
             parse_args(&args(
-                "obj m/my-ship.obj --out o.rs --fit unit --u32 --no-normals"
+                "obj m/my-ship.obj --out o.rs --fit unit --u32 --no-normals --clusters 64"
             )),
             Ok(Command::Obj {
                 input: "m/my-ship.obj".into(),
@@ -201,7 +215,8 @@ mod tests {
                 options: ObjOptions::default()
                     .with_fit(Fit::Unit)
                     .with_index_width(IndexWidth::U32)
-                    .with_compute_normals(false),
+                    .with_compute_normals(false)
+                    .with_cluster_triangles(64),
             })
         );
         assert_eq!(
@@ -247,6 +262,30 @@ mod tests {
             "unknown fit `huge` (expected auto, keep or unit)"
         );
         assert_eq!(err("obj a.obj --out"), "--out needs a value");
+        for bad in ["0", "x", "-1", "1.5", ""] {
+            assert_eq!(
+                parse_args(&[
+                    "obj".to_string(),
+                    "a.obj".to_string(),
+                    "--out".to_string(),
+                    "a.rs".to_string(),
+                    "--clusters".to_string(),
+                    bad.to_string(),
+                ])
+                .unwrap_err(),
+                format!(
+                    "bad cluster size `{bad}` (expected the most triangles per cluster, at least 1)"
+                )
+            );
+        }
+        assert_eq!(
+            err("obj a.obj --out a.rs --clusters"),
+            "--clusters needs a value"
+        );
+        assert_eq!(
+            err("png a.png --out a.rs --format gray8 --clusters 4"),
+            "unknown option `--clusters` for `png`"
+        );
         assert_eq!(
             err("obj a.obj --out a.rs --format gray8"),
             "unknown option `--format` for `obj`"

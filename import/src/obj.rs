@@ -33,6 +33,21 @@
 //! colours either for every vertex or not at all (the rules are on
 //! [`Model`]); and the bounding box and sphere of the positions after
 //! [`Fit`] has moved them into the 16.16 range.
+//!
+//! # Clusters
+//!
+//! With [`ObjOptions::cluster_triangles`] set, the model is then laid out
+//! again for microraster's per-cluster frustum culling
+//! (`microraster::mesh::Mesh::with_clusters`). Each group's triangles are
+//! split in space: the bounding box of their centroids is halved at the
+//! median along its longest axis, and the halves again, until a part has
+//! at most that many triangles; that part is a cluster ([`ClusterRange`]).
+//! Triangles are reordered within their group to follow the clusters (the
+//! file's order within a cluster, corners untouched), and each cluster gets
+//! its own run of vertices, in the order its triangles first use them: a
+//! vertex that several clusters use is copied into each, with its normal,
+//! texture coordinate and colour. Groups keep their ranges, and the model
+//! its bounding box and sphere.
 
 use std::collections::{BTreeMap, HashMap};
 use std::fs;
@@ -143,6 +158,16 @@ pub struct ObjOptions {
     pub max_triangles: usize,
     /// The most corners accepted in one face (default 256).
     pub max_face_corners: usize,
+    /// The most triangles per cluster, or 0 (the default) for no clusters.
+    ///
+    /// When it is not 0, each group's triangles are split in space into
+    /// clusters of at most this many, for per-cluster frustum culling: see
+    /// [`Model::clusters`] and [the module documentation](self#clusters).
+    /// Vertices that several clusters share are copied into each, so the
+    /// model can have more vertices than without clusters (and more than
+    /// [`index_width`](ObjOptions::index_width) addresses, an error);
+    /// smaller clusters cull more finely but copy more vertices.
+    pub cluster_triangles: usize,
 }
 
 impl Default for ObjOptions {
@@ -154,6 +179,7 @@ impl Default for ObjOptions {
             max_elements: 1 << 22,
             max_triangles: 1 << 20,
             max_face_corners: 256,
+            cluster_triangles: 0,
         }
     }
 }
@@ -199,6 +225,28 @@ impl ObjOptions {
         self.max_face_corners = max_face_corners;
         self
     }
+
+    /// Sets [`cluster_triangles`](ObjOptions::cluster_triangles): the most
+    /// triangles per cluster, 0 for no clusters.
+    ///
+    /// ```
+    /// use std::path::Path;
+    /// use microraster_import::{parse_obj, ObjOptions};
+    /// // Two quads far apart: one cluster each.
+    /// let obj = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n\
+    ///            v 9 0 0\nv 10 0 0\nv 10 1 0\nv 9 1 0\n\
+    ///            f 1 2 3 4\nf 5 6 7 8\n";
+    /// let options = ObjOptions::default().with_cluster_triangles(2);
+    /// let model = parse_obj(obj, Path::new("quads.obj"), |_| None, &options).unwrap();
+    /// assert_eq!(model.clusters.len(), 2);
+    /// assert_eq!(model.clusters[1].triangles, 2..4);
+    /// assert_eq!(model.clusters[1].vertices, 4..8);
+    /// assert_eq!(model.groups[0].clusters, 0..2);
+    /// ```
+    pub fn with_cluster_triangles(mut self, cluster_triangles: usize) -> Self {
+        self.cluster_triangles = cluster_triangles;
+        self
+    }
 }
 
 /// A material from an MTL file (or a name `usemtl` used without one).
@@ -223,6 +271,25 @@ pub struct Group {
     pub material: Option<Material>,
     /// The group's triangles: a range of [`Model::triangles`].
     pub triangles: Range<usize>,
+    /// The group's clusters: a range of [`Model::clusters`] (empty without
+    /// clusters). They hold exactly the group's triangles.
+    pub clusters: Range<usize>,
+}
+
+/// A cluster of a model's triangles ([`ObjOptions::cluster_triangles`]):
+/// consecutive triangles of one group that lie close together, and the run
+/// of vertices that they, and only they, use.
+///
+/// The clusters of a model tile its triangles in order, and their vertex
+/// runs tile its vertices in order; each has at least one triangle.
+/// [`Model::cluster_bounds_fixed`] gives their bounding boxes.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct ClusterRange {
+    /// Its triangles: a range of [`Model::triangles`], within one group's.
+    pub triangles: Range<usize>,
+    /// The vertices its triangles use: a range of [`Model::positions`] (and
+    /// of the other per-vertex arrays).
+    pub vertices: Range<usize>,
 }
 
 /// An axis-aligned bounding box.
@@ -270,6 +337,10 @@ pub struct Sphere {
 ///   `[0, 0]` (and a warning).
 /// * **colors**: present when any used `v` has a colour; the others are
 ///   white (and a warning).
+///
+/// With [`ObjOptions::cluster_triangles`] on, the triangles and vertices
+/// are laid out by [`clusters`](Model::clusters) (see
+/// [the module documentation](self#clusters)).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Model {
     /// The OBJ file's path (as given).
@@ -287,10 +358,14 @@ pub struct Model {
     /// Vertex colours, one per position, or empty.
     pub colors: Vec<[u8; 3]>,
     /// Triangles as indices into the per-vertex arrays, counter-clockwise
-    /// as in the file, group by group.
+    /// as in the file, group by group (and, with clusters, cluster by
+    /// cluster within a group).
     pub triangles: Vec<[u32; 3]>,
     /// The groups, in the order of their first triangle in the file.
     pub groups: Vec<Group>,
+    /// The clusters, in order: empty unless
+    /// [`ObjOptions::cluster_triangles`] is set.
+    pub clusters: Vec<ClusterRange>,
     /// The bounding box of [`positions`](Model::positions).
     pub bounds: Aabb,
     /// The bounding sphere of [`positions`](Model::positions).
@@ -372,6 +447,162 @@ impl Model {
     pub fn triangle_count(&self) -> usize {
         self.triangles.len()
     }
+
+    /// Each cluster's bounding box, `[min, max]` of
+    /// [`positions_fixed`](Model::positions_fixed) over its vertex run: the
+    /// generated positions' own bits, so the box holds them exactly.
+    /// A cluster without vertices (or with a run outside the positions, if
+    /// the model was changed after import) gets zeros.
+    ///
+    /// ```
+    /// use std::path::Path;
+    /// use microraster_import::{parse_obj, ObjOptions};
+    /// let obj = "v 0 0 0\nv 1 0 0\nv 0 2 0\nf 1 2 3\n";
+    /// let options = ObjOptions::default().with_cluster_triangles(8);
+    /// let model = parse_obj(obj, Path::new("t.obj"), |_| None, &options).unwrap();
+    /// assert_eq!(model.cluster_bounds_fixed(), [[[0, 0, 0], [65536, 131072, 0]]]);
+    /// ```
+    pub fn cluster_bounds_fixed(&self) -> Vec<[[i32; 3]; 2]> {
+        let fixed = self.positions_fixed();
+        self.clusters
+            .iter()
+            .map(|c| {
+                let run = fixed.get(c.vertices.clone()).unwrap_or(&[]);
+                if run.is_empty() {
+                    return [[0; 3]; 2];
+                }
+                let mut b = [[i32::MAX; 3], [i32::MIN; 3]];
+                for p in run {
+                    for k in 0..3 {
+                        b[0][k] = b[0][k].min(p[k]);
+                        b[1][k] = b[1][k].max(p[k]);
+                    }
+                }
+                b
+            })
+            .collect()
+    }
+
+    /// Lays the triangles and vertices out in clusters of at most `max`
+    /// triangles (see [the module documentation](self#clusters)).
+    ///
+    /// Expects what the parser makes: groups that tile the triangles in
+    /// order, indices in range, per-vertex arrays full or empty.
+    fn cluster(&mut self, max: usize) -> Result<(), ErrorKind> {
+        // The generated `Cluster` holds counts as u32, and a cluster has at
+        // most three vertices per triangle: this keeps both in range.
+        let max = max.clamp(1, u32::MAX as usize / 3);
+        let centroids: Vec<[f64; 3]> = self
+            .triangles
+            .iter()
+            .map(|t| {
+                let [a, b, c] = t.map(|i| self.positions[i as usize].map(f64::from));
+                std::array::from_fn(|k| (a[k] + b[k] + c[k]) / 3.0)
+            })
+            .collect();
+        // The triangles in their new order (old indices), and the clusters
+        // as ranges of it, which are also the new triangle ranges.
+        let mut order: Vec<usize> = Vec::with_capacity(self.triangles.len());
+        let mut leaves: Vec<Range<usize>> = Vec::new();
+        for g in &mut self.groups {
+            let first = leaves.len();
+            let start = order.len();
+            order.extend(g.triangles.clone());
+            split(&mut order[start..], start, &centroids, max, &mut leaves);
+            g.clusters = first..leaves.len();
+        }
+
+        let old_count = self.positions.len();
+        // Per old vertex: the last cluster that used it, and its index there.
+        let mut owner = vec![usize::MAX; old_count];
+        let mut local = vec![0u32; old_count];
+        // The old vertex of each new one.
+        let mut source: Vec<usize> = Vec::new();
+        let mut triangles = Vec::with_capacity(order.len());
+        let mut clusters = Vec::with_capacity(leaves.len());
+        for (k, leaf) in leaves.into_iter().enumerate() {
+            let first = source.len();
+            for &t in &order[leaf.clone()] {
+                triangles.push(self.triangles[t].map(|v| {
+                    let v = v as usize;
+                    if owner[v] != k {
+                        owner[v] = k;
+                        // Saturate rather than wrap: the count check below
+                        // fails first.
+                        local[v] = u32::try_from(source.len()).unwrap_or(u32::MAX);
+                        source.push(v);
+                    }
+                    local[v]
+                }));
+            }
+            clusters.push(ClusterRange {
+                triangles: leaf,
+                vertices: first..source.len(),
+            });
+        }
+        let limit = self.options.index_width.max_vertices();
+        if source.len() > limit {
+            let used = owner.iter().filter(|&&k| k != usize::MAX).count();
+            return Err(ErrorKind::TooManyVertices {
+                count: source.len(),
+                limit,
+                duplicated: source.len() - used,
+            });
+        }
+        self.positions = gather(&self.positions, &source);
+        self.normals = gather(&self.normals, &source);
+        self.uvs = gather(&self.uvs, &source);
+        self.colors = gather(&self.colors, &source);
+        self.triangles = triangles;
+        self.clusters = clusters;
+        Ok(())
+    }
+}
+
+/// Splits `triangles` (indices into `centroids`, at `offset` in the new
+/// order) at the median along the longest axis of their centroids' box,
+/// recursively, until a part has at most `max`; appends the parts' ranges
+/// to `out`, the lower half's first, so that neighbours in the list are
+/// neighbours in space. `max` must be at least 1.
+fn split(
+    triangles: &mut [usize],
+    offset: usize,
+    centroids: &[[f64; 3]],
+    max: usize,
+    out: &mut Vec<Range<usize>>,
+) {
+    if triangles.is_empty() {
+        return;
+    }
+    if triangles.len() <= max {
+        // The file's order: it is usually the modeller's strip order, and
+        // a cluster no larger than its group stays as it was.
+        triangles.sort_unstable();
+        out.push(offset..offset + triangles.len());
+        return;
+    }
+    let (lo, hi) = bounds(triangles.iter().map(|&t| centroids[t]));
+    let axis = (1..3).fold(0, |a, k| if hi[k] - lo[k] > hi[a] - lo[a] { k } else { a });
+    // The index breaks ties, so the order is total and the output the same
+    // whatever the sort algorithm.
+    triangles.sort_unstable_by(|&a, &b| {
+        centroids[a][axis]
+            .total_cmp(&centroids[b][axis])
+            .then(a.cmp(&b))
+    });
+    // At least two triangles here, so both halves have one.
+    let mid = triangles.len() / 2;
+    let (low, high) = triangles.split_at_mut(mid);
+    split(low, offset, centroids, max, out);
+    split(high, offset + mid, centroids, max, out);
+}
+
+/// `values[i]` for each `i` of `source`; empty for an absent array.
+fn gather<T: Copy>(values: &[T], source: &[usize]) -> Vec<T> {
+    if values.is_empty() {
+        return Vec::new();
+    }
+    source.iter().map(|&i| values[i]).collect()
 }
 
 /// Reads the OBJ file at `path`, and the MTL files it names (relative to its
@@ -994,6 +1225,7 @@ impl Parser<'_> {
                 name: g.name.clone(),
                 material,
                 triangles: start..triangles.len(),
+                clusters: 0..0,
             });
         }
         for name in undefined {
@@ -1004,6 +1236,7 @@ impl Parser<'_> {
             return Err(whole(ErrorKind::TooManyVertices {
                 count: corners.len(),
                 limit,
+                duplicated: 0,
             }));
         }
 
@@ -1172,7 +1405,7 @@ impl Parser<'_> {
             warnings.push(format!("ignored {count} `{}` statement(s)", clip(keyword)));
         }
 
-        Ok(Model {
+        let mut model = Model {
             source: self.path.to_path_buf(),
             options: self.options.clone(),
             fit_applied,
@@ -1182,6 +1415,7 @@ impl Parser<'_> {
             colors,
             triangles,
             groups,
+            clusters: Vec::new(),
             bounds: Aabb {
                 min: min.map(|x| x as f32),
                 max: max.map(|x| x as f32),
@@ -1195,7 +1429,14 @@ impl Parser<'_> {
             degenerate: self.degenerate,
             files: self.files,
             warnings,
-        })
+        };
+        // Last, on the final arrays: the layout changes, the data does not.
+        if self.options.cluster_triangles > 0 {
+            model
+                .cluster(self.options.cluster_triangles)
+                .map_err(whole)?;
+        }
+        Ok(model)
     }
 }
 
@@ -1392,4 +1633,40 @@ pub fn triangulate(points: &[[f64; 3]]) -> Vec<[usize; 3]> {
     }
     out.push([remaining[0], remaining[1], remaining[2]]);
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_group_without_triangles_gets_an_empty_run_of_clusters() {
+        // The parser drops empty groups; a model built by hand may have one.
+        let obj = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 5 0 0\nv 6 0 0\nv 5 1 0\n\
+                   g a\nf 1 2 3\nf 4 5 6\ng b\nf 3 2 1\n";
+        let mut model = parse_obj(obj, Path::new("e.obj"), |_| None, &ObjOptions::default())
+            .unwrap_or_else(|e| panic!("{e}"));
+        let empty = |at: usize| Group {
+            name: "empty".to_string(),
+            material: None,
+            triangles: at..at,
+            clusters: 0..0,
+        };
+        model.groups.insert(0, empty(0));
+        model.groups.insert(2, empty(2));
+        model.groups.push(empty(3));
+        model.cluster(1).unwrap_or_else(|e| panic!("{e}"));
+        let runs: Vec<Range<usize>> = model.groups.iter().map(|g| g.clusters.clone()).collect();
+        assert_eq!(runs, [0..0, 0..2, 2..2, 2..3, 3..3]);
+        let triangles: Vec<Range<usize>> =
+            model.groups.iter().map(|g| g.triangles.clone()).collect();
+        assert_eq!(triangles, [0..0, 0..2, 2..2, 2..3, 3..3]);
+        // Each cluster numbers its own copies in the order it uses them.
+        assert_eq!(model.triangles, [[0, 1, 2], [3, 4, 5], [6, 7, 8]]);
+        assert_eq!(
+            model.positions[6..],
+            [[0.0, 1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 0.0]]
+        );
+        assert_eq!(model.normals.len(), 9);
+    }
 }

@@ -134,3 +134,46 @@ fn errors_are_one_line_with_exit_status() {
     assert!(stdout(&o).starts_with("usage: microraster-import obj MODEL.obj"));
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn obj_conversion_with_clusters() {
+    let dir = temp_dir("clusters");
+    let out = dir.join("cube.rs").display().to_string();
+    let o = run(&["obj", &data("cube.obj"), "--out", &out, "--clusters", "64"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    // Both groups are smaller than 64 triangles: one cluster each, and
+    // only the vertices the groups share are copied (none on this cube).
+    assert_eq!(
+        stdout(&o),
+        format!(
+            "{} -> {out}: 24 vertices, 12 triangles, 2 groups, 2 clusters, scale 1 (fit keep)\n",
+            data("cube.obj")
+        )
+    );
+    let text = std::fs::read_to_string(&out).unwrap();
+    assert!(text.contains("// Options: fit auto (applied: keep), u16 indices, computed normals on, clusters of at most 64 triangles.\n"));
+    assert!(text.contains("pub static CUBE_CLUSTERS: [::microraster::mesh::Cluster; 2] = [\n"));
+    assert!(text.contains(
+        "pub static CUBE_GROUP_CLUSTERS: [(usize, usize); 2] = [\n    (0, 1),\n    (1, 1),\n];"
+    ));
+
+    // Not a positive number: a usage error, and nothing written.
+    let out = dir.join("bad.rs").display().to_string();
+    for bad in ["0", "x", "-3"] {
+        let o = run(&["obj", &data("cube.obj"), "--out", &out, "--clusters", bad]);
+        assert_eq!(o.status.code(), Some(2), "{bad}");
+        assert!(
+            stderr(&o).starts_with(&format!(
+                "error: bad cluster size `{bad}` (expected the most triangles per cluster, at least 1)\nusage: "
+            )),
+            "{}",
+            stderr(&o)
+        );
+        assert!(stdout(&o).is_empty());
+    }
+    let o = run(&["obj", &data("cube.obj"), "--out", &out, "--clusters"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).starts_with("error: --clusters needs a value\n"));
+    assert!(!Path::new(&out).exists());
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -356,3 +356,205 @@ fn write_atomic_skips_identical_content() {
     assert!(matches!(e.kind(), ErrorKind::Io(_)));
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+const CLUSTER: &str = "::microraster::mesh::Cluster::new";
+
+/// A `Cluster::new` as (triangle count, first vertex, vertex count, min, max).
+type ClusterArgs = (usize, usize, usize, [i32; 3], [i32; 3]);
+
+fn cluster_rows(item: &Item) -> Vec<ClusterArgs> {
+    let rows = item.value.array();
+    assert_eq!(declared_len(&item.ty), rows.len(), "{}", item.ty);
+    rows.iter()
+        .map(|c| match c.call(CLUSTER) {
+            [t, f, v, min, max] => {
+                let corner = |a: &Value| -> [i32; 3] {
+                    let a = a.array();
+                    assert_eq!(a.len(), 3);
+                    std::array::from_fn(|k| a[k].call(FX)[0].int() as i32)
+                };
+                (
+                    t.int() as usize,
+                    f.int() as usize,
+                    v.int() as usize,
+                    corner(min),
+                    corner(max),
+                )
+            }
+            other => panic!("{other:?}"),
+        })
+        .collect()
+}
+
+fn pairs(item: &Item) -> Vec<(usize, usize)> {
+    item.value
+        .array()
+        .iter()
+        .map(|p| match p {
+            Value::Tuple(t) => match &t[..] {
+                [Value::Int(a), Value::Int(b)] => (*a as usize, *b as usize),
+                other => panic!("{other:?}"),
+            },
+            other => panic!("{other:?}"),
+        })
+        .collect()
+}
+
+/// A `w` x `h` grid of quads on the x-y plane, in groups of `band` rows
+/// (each with its own material).
+fn grid(w: usize, h: usize, band: usize) -> String {
+    let mut s = String::new();
+    for y in 0..=h {
+        for x in 0..=w {
+            s += &format!("v {x} {y} {}\n", (x * y) % 3);
+        }
+    }
+    for y in 0..h {
+        if y % band == 0 {
+            s += &format!("g band{}\nusemtl m{}\n", y / band, y / band);
+        }
+        for x in 0..w {
+            let i = y * (w + 1) + x + 1;
+            s += &format!("f {i} {} {} {}\n", i + 1, i + w + 2, i + w + 1);
+        }
+    }
+    s
+}
+
+#[test]
+fn clusters_are_written_and_obey_the_mesh_rules() {
+    let cube = load_obj(
+        &data("cube.obj"),
+        &ObjOptions::default()
+            .with_fit(Fit::Unit)
+            .with_cluster_triangles(3),
+    )
+    .unwrap();
+    let grid = parse_obj(
+        &grid(30, 24, 10),
+        Path::new("grid.obj"),
+        |_| None,
+        &ObjOptions::default()
+            .with_index_width(IndexWidth::U32)
+            .with_cluster_triangles(40),
+    )
+    .unwrap();
+    for (model, name, p) in [(&cube, "cube", "CUBE"), (&grid, "grid", "GRID")] {
+        assert!(!model.clusters.is_empty());
+        common::check_clusters(model);
+        let text = model_to_rust(model, name).unwrap();
+        let items = check_round_trip(model, &text, p);
+        assert_eq!(items.len(), 15 - usize::from(model.uvs.is_empty()), "{p}");
+        assert!(text.contains(&format!(
+            "computed normals on, clusters of at most {} triangles.\n// {} vertices, {} triangles, {} groups, {} clusters; ",
+            model.options.cluster_triangles,
+            model.positions.len(),
+            model.triangles.len(),
+            model.groups.len(),
+            model.clusters.len()
+        )));
+
+        let clusters = &items[&format!("{p}_CLUSTERS")];
+        assert_eq!(clusters.kind, "static");
+        assert_eq!(
+            clusters.ty,
+            format!("[::microraster::mesh::Cluster; {}]", model.clusters.len())
+        );
+        let read = cluster_rows(clusters);
+        let expected: Vec<ClusterArgs> = model
+            .clusters
+            .iter()
+            .zip(model.cluster_bounds_fixed())
+            .map(|(c, [min, max])| {
+                (
+                    c.triangles.len(),
+                    c.vertices.start,
+                    c.vertices.len(),
+                    min,
+                    max,
+                )
+            })
+            .collect();
+        assert_eq!(read, expected);
+        let group_clusters = &items[&format!("{p}_GROUP_CLUSTERS")];
+        assert_eq!(
+            group_clusters.ty,
+            format!("[(usize, usize); {}]", model.groups.len())
+        );
+        let runs = pairs(group_clusters);
+        let expected: Vec<(usize, usize)> = model
+            .groups
+            .iter()
+            .map(|g| (g.clusters.start, g.clusters.len()))
+            .collect();
+        assert_eq!(runs, expected);
+
+        // What `Mesh::with_clusters` checks, on the arrays as written: the
+        // clusters tile the triangles, which use only their cluster's
+        // vertices, which lie in its box; and a group's run of clusters
+        // holds exactly the group's triangles.
+        let positions = fixed_rows::<3>(&items[&format!("{p}_POSITIONS")]);
+        let triangles = int_rows(&items[&format!("{p}_TRIANGLES")]);
+        let mut t = 0;
+        for &(count, first, vertices, min, max) in &read {
+            let range = first..first + vertices;
+            assert!(range.end <= positions.len());
+            assert!((0..3).all(|k| min[k] <= max[k]));
+            for q in &positions[range.clone()] {
+                assert!((0..3).all(|k| min[k] <= q[k] && q[k] <= max[k]));
+            }
+            for tri in &triangles[t..t + count] {
+                assert!(tri.iter().all(|&i| range.contains(&(i as usize))));
+            }
+            t += count;
+        }
+        assert_eq!(t, triangles.len());
+        for (g, &(c0, cn)) in model.groups.iter().zip(&runs) {
+            let held: usize = read[c0..c0 + cn].iter().map(|c| c.0).sum();
+            assert_eq!(held, g.triangles.len());
+        }
+    }
+    // Bands of 600, 600 and 240 triangles, halved down to 40 at most.
+    assert_eq!(grid.groups.len(), 3);
+    assert_eq!(grid.clusters.len(), 16 + 16 + 8);
+}
+
+#[test]
+fn without_clusters_the_output_is_what_it_was() {
+    let options = ObjOptions::default().with_fit(Fit::Keep);
+    let model = load_obj(&data("cube.obj"), &options).unwrap();
+    let text = model_to_rust(&model, "imported_cube").unwrap();
+    // The renderer's checked-in copy of this output, written before
+    // clusters existed (its own test keeps it current).
+    let checked_in = Path::new(env!("CARGO_MANIFEST_DIR")).join("../tests/data/imported_cube.rs");
+    assert_eq!(text, std::fs::read_to_string(checked_in).unwrap());
+    let zero = load_obj(&data("cube.obj"), &options.with_cluster_triangles(0)).unwrap();
+    assert_eq!(zero, model);
+    assert!(!text.contains("CLUSTERS") && !text.contains("::microraster::"));
+}
+
+#[test]
+fn the_summary_counts_clusters() {
+    let dir = temp_dir("summary-clusters");
+    let out = dir.join("cube.rs");
+    let options = ObjOptions::default().with_cluster_triangles(4);
+    let summary = obj_to_rust(data("cube.obj"), &out, "cube", &options).unwrap();
+    let model = load_obj(&data("cube.obj"), &options).unwrap();
+    assert_eq!(summary.clusters, model.clusters.len());
+    assert_eq!(
+        summary.to_string(),
+        format!(
+            "{} vertices, 12 triangles, 2 groups, {} clusters, scale 1 (fit keep)",
+            model.positions.len(),
+            model.clusters.len()
+        )
+    );
+    let text = std::fs::read_to_string(&out).unwrap();
+    assert_eq!(text, model_to_rust(&model, "cube").unwrap());
+    assert!(text.contains(&format!(
+        "pub static CUBE_CLUSTERS: [::microraster::mesh::Cluster; {}]",
+        model.clusters.len()
+    )));
+    assert!(text.contains("pub static CUBE_GROUP_CLUSTERS: [(usize, usize); 2]"));
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -1,7 +1,9 @@
 //! Fuzz-style property tests: random bytes, OBJ token soups, truncated
 //! files and damaged PNGs never panic, and every model that does come out
 //! is consistent (indices in range, arrays of matching lengths, groups
-//! covering the triangles, coordinates that fit 16.16, output that parses).
+//! covering the triangles, clusters obeying the mesh rules, coordinates
+//! that fit 16.16, output that parses). Every kind of input is also tried
+//! with clustering on.
 
 mod common;
 
@@ -43,12 +45,22 @@ fn check_model(m: &Model) {
     }
     assert!(m.scale.is_finite() && m.scale > 0.0);
     assert!(m.sphere.radius.is_finite());
+    common::check_clusters(m);
     let text = model_to_rust(m, "fuzz").unwrap();
     let items = common::parse_items(&text).unwrap_or_else(|e| panic!("{e}\n{text}"));
     assert_eq!(
         common::declared_len(&items["FUZZ_POSITIONS"].ty),
         m.positions.len()
     );
+    match items.get("FUZZ_CLUSTERS") {
+        Some(c) => assert_eq!(common::declared_len(&c.ty), m.clusters.len()),
+        None => assert!(m.clusters.is_empty()),
+    }
+}
+
+/// The defaults, with clusters of at most `max` triangles.
+fn clustered(max: usize) -> ObjOptions {
+    ObjOptions::default().with_cluster_triangles(max)
 }
 
 fn run(source: &str, mtl: Option<&str>, options: &ObjOptions) {
@@ -138,8 +150,9 @@ fn options() -> impl Strategy<Value = ObjOptions> {
         any::<bool>(),
         any::<bool>(),
         1usize..40,
+        prop::sample::select(&[0, 0, 1, 2, 3, 5, 64][..]),
     )
-        .prop_map(|(fit, wide, normals, limit)| {
+        .prop_map(|(fit, wide, normals, limit, clusters)| {
             ObjOptions::default()
                 .with_fit(fit)
                 .with_index_width(if wide {
@@ -151,6 +164,7 @@ fn options() -> impl Strategy<Value = ObjOptions> {
                 .with_max_triangles(limit)
                 .with_max_face_corners(limit.max(3))
                 .with_max_elements(limit * 2)
+                .with_cluster_triangles(clusters)
         })
 }
 
@@ -218,6 +232,7 @@ proptest! {
     fn random_bytes_never_panic(bytes in prop::collection::vec(any::<u8>(), 0..600)) {
         let text = String::from_utf8_lossy(&bytes);
         run(&text, Some(&text), &ObjOptions::default());
+        run(&text, Some(&text), &clustered(2));
     }
 
     #[test]
@@ -229,6 +244,7 @@ proptest! {
         let source = format!("v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvn 0 0 1\n{}", lines.concat());
         run(&source, Some(&mtl.concat()), &options);
         run(&source, None, &ObjOptions::default());
+        run(&source, None, &clustered(1));
     }
 
     #[test]
@@ -242,6 +258,7 @@ proptest! {
     ) {
         run(&tokens.join(" "), Some("newmtl mat\nKd 1 1 1\n"), &ObjOptions::default());
         run(&tokens.concat(), None, &ObjOptions::default());
+        run(&tokens.join(" "), None, &clustered(3));
     }
 }
 
@@ -253,15 +270,17 @@ fn truncations_of_valid_files_never_panic() {
     for file in ["cube.obj", "colored.obj", "missing_mtl.obj"] {
         let source = std::fs::read_to_string(dir.join(file)).unwrap();
         for cut in (0..=source.len()).filter(|&c| source.is_char_boundary(c)) {
-            let result = parse_obj(
-                &source[..cut],
-                Path::new(file),
-                |_| Some(mtl[..cut.min(mtl.len())].to_string()),
-                &ObjOptions::default(),
-            );
-            if let Ok(m) = result {
-                check_model(&m);
-                oks += 1;
+            for options in [ObjOptions::default(), clustered(1), clustered(4)] {
+                let result = parse_obj(
+                    &source[..cut],
+                    Path::new(file),
+                    |_| Some(mtl[..cut.min(mtl.len())].to_string()),
+                    &options,
+                );
+                if let Ok(m) = result {
+                    check_model(&m);
+                    oks += 1;
+                }
             }
         }
         // The whole file imports.

@@ -828,7 +828,8 @@ fn u16_index_limit_and_u32() {
         e.kind(),
         ErrorKind::TooManyVertices {
             count: 65_538,
-            limit: 65_536
+            limit: 65_536,
+            duplicated: 0
         }
     ));
     assert_eq!(

@@ -10,6 +10,8 @@
 
 use std::collections::BTreeMap;
 
+use microraster_import::Model;
+
 /// A parsed value.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Value {
@@ -311,4 +313,69 @@ pub fn crc32(bytes: &[u8]) -> u32 {
         }
     }
     !crc
+}
+
+/// Checks the cluster layout of `m` against every rule of
+/// `microraster::mesh::Mesh::with_clusters` and the importer's own: none
+/// without [`ObjOptions::cluster_triangles`](microraster_import::ObjOptions),
+/// otherwise 1 to that many triangles each, tiling every group's triangles
+/// in order; vertex runs that tile the vertices in order, in the order the
+/// cluster's triangles first use them; tight boxes.
+pub fn check_clusters(m: &Model) {
+    let max = m.options.cluster_triangles;
+    if max == 0 {
+        assert!(m.clusters.is_empty());
+        assert!(m.groups.iter().all(|g| g.clusters.is_empty()));
+        assert!(m.cluster_bounds_fixed().is_empty());
+        return;
+    }
+    let mut next_cluster = 0;
+    for g in &m.groups {
+        assert_eq!(g.clusters.start, next_cluster, "{g:?}");
+        assert!(g.clusters.end <= m.clusters.len(), "{g:?}");
+        let clusters = &m.clusters[g.clusters.clone()];
+        // Within the group, and (with the tiling below) all of it.
+        assert_eq!(clusters.is_empty(), g.triangles.is_empty(), "{g:?}");
+        if let (Some(first), Some(last)) = (clusters.first(), clusters.last()) {
+            assert_eq!(first.triangles.start, g.triangles.start);
+            assert_eq!(last.triangles.end, g.triangles.end);
+        }
+        next_cluster = g.clusters.end;
+    }
+    assert_eq!(next_cluster, m.clusters.len());
+
+    let fixed = m.positions_fixed();
+    let bounds = m.cluster_bounds_fixed();
+    assert_eq!(bounds.len(), m.clusters.len());
+    let (mut next_triangle, mut next_vertex) = (0, 0);
+    for (k, (c, b)) in m.clusters.iter().zip(&bounds).enumerate() {
+        assert_eq!(c.triangles.start, next_triangle, "cluster {k}");
+        assert!((1..=max).contains(&c.triangles.len()), "cluster {k}: {c:?}");
+        assert_eq!(c.vertices.start, next_vertex, "cluster {k}");
+        // Every index inside the run, new vertices numbered in first-use
+        // order, and every vertex of the run used.
+        let mut unused = c.vertices.start;
+        for t in &m.triangles[c.triangles.clone()] {
+            for &i in t {
+                let i = i as usize;
+                assert!(c.vertices.contains(&i), "cluster {k}: {t:?} {c:?}");
+                if i == unused {
+                    unused += 1;
+                } else {
+                    assert!(i < unused, "cluster {k}: {i} before {unused}");
+                }
+            }
+        }
+        assert_eq!(unused, c.vertices.end, "cluster {k}");
+        // The box is the smallest that holds the run's generated positions,
+        // so it holds them all.
+        let run = &fixed[c.vertices.clone()];
+        let lo: [i32; 3] = std::array::from_fn(|a| run.iter().map(|p| p[a]).min().unwrap());
+        let hi: [i32; 3] = std::array::from_fn(|a| run.iter().map(|p| p[a]).max().unwrap());
+        assert_eq!(*b, [lo, hi], "cluster {k}");
+        next_triangle = c.triangles.end;
+        next_vertex = c.vertices.end;
+    }
+    assert_eq!(next_triangle, m.triangles.len());
+    assert_eq!(next_vertex, m.positions.len());
 }
