@@ -21,60 +21,236 @@
 //! transformed, none of its triangles binned. The renderer would have
 //! rejected every one of its triangles anyway (all three vertices outside
 //! one half-space), so culling never changes the picture; to keep that
-//! true although the test runs in `f32` and the vertex stage in rounded
-//! 16.16, a draw is culled only when it is outside by a margin that covers
-//! both roundings (the property tests render random poses with and without
-//! culling and compare).
+//! true although the planes come from an `f32` matrix and the vertex stage
+//! computes in rounded 16.16, a box is culled only when it is outside by a
+//! margin that covers both roundings (the property tests render random
+//! poses with and without culling and compare).
+//!
+//! # Clusters
+//!
+//! A mesh with [clusters](crate::mesh::Cluster) is tested cluster by
+//! cluster after the whole draw passes: a culled cluster's vertices are not
+//! transformed and its triangles not binned. A scene may hold hundreds of
+//! clusters, and the microcontrollers this crate targets have no FPU, so
+//! the per-box test runs in integers: per draw, each plane is scaled by a
+//! power of two so that its largest coefficient lies just below `2^27` and
+//! truncated to integers, and everything the truncation, the `f32` planes
+//! and the 16.16 vertex stage can move is folded into one margin per plane
+//! (it depends only on the plane and the mesh's largest coordinate). With
+//! the box's doubled centre `lo + hi` and doubled extent `hi - lo`, in raw
+//! 16.16, a plane then costs six 32x32→64-bit multiplies and is exact in
+//! `i64`. Clusters take the box test only: it is tighter than the sphere
+//! around the box and, in integers, barely dearer than it.
 
 use crate::math::Mat4;
+use crate::mesh::{Mesh, Vec3Fx};
 use crate::scene::Draw;
 
 /// Whether `draw`, seen through `view_proj`, lies wholly outside the view
-/// frustum (with the rounding margin of the module docs). A non-finite
-/// matrix is never culled here (the vertex stage reports it).
+/// frustum (with the rounding margin of the module docs): its bounding
+/// sphere, then its bounding box. A non-finite matrix is never culled here
+/// (the vertex stage reports it).
 pub fn outside(view_proj: &Mat4, draw: &Draw<'_>) -> bool {
-    let m = *view_proj * draw.transform;
-    if !m.is_finite() {
-        return false;
+    Frustum::new(view_proj, draw).is_some_and(|f| f.excludes_mesh(draw.mesh))
+}
+
+/// One frustum plane in a draw's model space, in integers: a point with
+/// raw 16.16 coordinates `2p` (doubled) is inside when
+/// `n · 2p + d2 + margin >= 0`.
+#[derive(Clone, Copy, Debug)]
+struct Plane {
+    /// `(a, b, c)` scaled by `2^s`, truncated: `|n[k]| < 2^27`.
+    n: [i64; 3],
+    /// `|n[k]|`.
+    abs: [i64; 3],
+    /// `d` scaled by `2^(s + 17)` (raw 16.16, doubled): `|d2| < 2^44`.
+    d2: i64,
+    /// `|(a, b, c)|` scaled by `2^s`, rounded up: `< 2^28`.
+    norm: i64,
+    /// Everything the roundings can move the plane's value, in its units;
+    /// at most `2^61` (a plane that coarse never culls).
+    margin: i64,
+}
+
+/// The six planes of a view frustum in one draw's model space, ready to
+/// test boxes in integer arithmetic ([module docs](self)).
+///
+/// ```
+/// use fixed::types::I16F16;
+/// use microraster::cull::Frustum;
+/// use microraster::math::{Mat4, Vec3};
+/// use microraster::mesh::Mesh;
+/// use microraster::scene::Draw;
+/// let p = [[I16F16::ZERO; 3], [I16F16::ONE; 3]];
+/// let tris = [[0u16, 1, 1]];
+/// let mesh = Mesh::new(&p, &tris).unwrap();
+/// let view = Mat4::look_at(Vec3::new(0.0, 0.0, 5.0), Vec3::default(), Vec3::new(0.0, 1.0, 0.0)).unwrap();
+/// let vp = Mat4::perspective(1.0, 1.0, 0.5, 20.0).unwrap() * view;
+/// let frustum = Frustum::new(&vp, &Draw::new(&mesh)).unwrap();
+/// let fx = |v: i32| I16F16::from_num(v);
+/// assert!(!frustum.excludes_box(&[[fx(0); 3], [fx(1); 3]]));
+/// // Far to the right, and behind the eye.
+/// assert!(frustum.excludes_box(&[[fx(40), fx(0), fx(0)], [fx(41), fx(1), fx(1)]]));
+/// assert!(frustum.excludes_box(&[[fx(0), fx(0), fx(8)], [fx(1), fx(1), fx(9)]]));
+/// ```
+#[derive(Clone, Copy, Debug)]
+pub struct Frustum {
+    planes: [Plane; 6],
+}
+
+/// `2^e` as an `f32`, for `-126 <= e <= 127`.
+fn pow2(e: i32) -> f32 {
+    f32::from_bits(((e + 127) as u32) << 23)
+}
+
+impl Frustum {
+    /// The frustum of `view_proj` in the model space of `draw` (whose
+    /// mesh's largest coordinate sets the margin for the vertex stage's
+    /// rounding). `None` if the matrix is not finite: nothing is culled
+    /// then, and the vertex stage reports the error.
+    pub fn new(view_proj: &Mat4, draw: &Draw<'_>) -> Option<Self> {
+        let m = *view_proj * draw.transform;
+        if !m.is_finite() {
+            return None;
+        }
+        // The vertex stage's 16.16 matrix differs from this one by at most
+        // 2^-17 per element, and a transformed coordinate by at most
+        // (3 E + 2) 2^-17 with E the largest model coordinate; a plane sums
+        // two rows, so twice that.
+        let extent = draw.mesh.extent();
+        let fixed = (3.0 * (extent as f32 / 65_536.0) + 2.0) * 2.0 / 131_072.0;
+        let row = |r: usize| [m.m[0][r], m.m[1][r], m.m[2][r], m.m[3][r]];
+        let (r0, r1, r2, r3) = (row(0), row(1), row(2), row(3));
+        let plane = |r: [f32; 4], sign: f32| Plane::new(r3, r, sign, fixed, extent);
+        Some(Self {
+            planes: [
+                plane(r0, 1.0),
+                plane(r0, -1.0),
+                plane(r1, 1.0),
+                plane(r1, -1.0),
+                plane(r2, 1.0),
+                plane(r2, -1.0),
+            ],
+        })
     }
-    let [lo, hi] = draw.mesh.bounds().map(|c| c.map(|v| v.to_num::<f32>()));
-    let centre = [0, 1, 2].map(|k| 0.5 * (lo[k] + hi[k]));
-    let half = [0, 1, 2].map(|k| 0.5 * (hi[k] - lo[k]));
-    let radius2 = half[0] * half[0] + half[1] * half[1] + half[2] * half[2];
-    // The vertex stage's 16.16 matrix differs from this one by at most
-    // 2^-17 per element, and a transformed coordinate by at most
-    // (3 E + 2) 2^-17 with E the largest model coordinate; a plane sums
-    // two rows, so twice that (and a little for f32 itself).
-    let extent = draw.mesh.extent() as f32 / 65_536.0;
-    let fixed = (3.0 * extent + 2.0) * 2.0 / 131_072.0;
-    let row = |r: usize| [m.m[0][r], m.m[1][r], m.m[2][r], m.m[3][r]];
-    let (r0, r1, r2, r3) = (row(0), row(1), row(2), row(3));
-    let plane = |a: [f32; 4], b: [f32; 4], s: f32| [0, 1, 2, 3].map(|k| a[k] + s * b[k]);
-    let planes = [
-        plane(r3, r0, 1.0),
-        plane(r3, r0, -1.0),
-        plane(r3, r1, 1.0),
-        plane(r3, r1, -1.0),
-        plane(r3, r2, 1.0),
-        plane(r3, r2, -1.0),
-    ];
-    planes.iter().any(|p| {
-        let terms = [p[0] * centre[0], p[1] * centre[1], p[2] * centre[2], p[3]];
-        let dist = terms[0] + terms[1] + terms[2] + terms[3];
-        let box_r = p[0].abs() * half[0] + p[1].abs() * half[1] + p[2].abs() * half[2];
-        // f32 rounding of these sums, generously.
-        let slack = 1e-4 * (terms.iter().map(|t| t.abs()).sum::<f32>() + box_r) + fixed;
-        let limit = dist + slack;
-        if limit >= 0.0 {
-            return false;
+
+    /// Whether the whole `mesh` (the one this frustum was made for) lies
+    /// outside: its bounding box's sphere, then the box.
+    pub fn excludes_mesh(&self, mesh: &Mesh<'_>) -> bool {
+        let b = mesh.bounds();
+        self.excludes_sphere(&b) || self.excludes_box(&b)
+    }
+
+    /// Whether the box `bounds` (smallest, largest coordinates) lies
+    /// outside the frustum, beyond the margin: in centre-extent form,
+    /// outside a plane when the centre's distance is below
+    /// `-(|a| e_x + |b| e_y + |c| e_z)`.
+    #[inline]
+    pub fn excludes_box(&self, bounds: &[Vec3Fx; 2]) -> bool {
+        let (c, e) = centre_extent(bounds);
+        self.planes.iter().any(|p| {
+            let dist = p.n[0] * c[0] + p.n[1] * c[1] + p.n[2] * c[2] + p.d2;
+            let reach = p.abs[0] * e[0] + p.abs[1] * e[1] + p.abs[2] * e[2];
+            // |n| < 2^27 and |c|, e <= 2^32: |dist| < 3 2^59 + 2^44,
+            // reach < 3 2^59, margin <= 2^61, so the sum stays below 2^62.
+            dist + reach + p.margin < 0
+        })
+    }
+
+    /// Whether the sphere around the box `bounds` (its centre, its half
+    /// diagonal, rounded up) lies outside the frustum, beyond the margin.
+    /// It is never tighter than [`excludes_box`](Self::excludes_box),
+    /// only cheaper once its radius is known: the whole-draw test asks it
+    /// first.
+    pub fn excludes_sphere(&self, bounds: &[Vec3Fx; 2]) -> bool {
+        let (c, e) = centre_extent(bounds);
+        // The doubled radius, rounded up, from extents shifted to keep the
+        // squares in u64: (e >> 8) + 1 per axis over-estimates.
+        let [x, y, z] = e.map(|v| (v as u64 >> 8) + 1);
+        let radius = ((x * x + y * y + z * z).isqrt() + 1) << 8;
+        self.planes.iter().any(|p| {
+            let dist = p.n[0] * c[0] + p.n[1] * c[1] + p.n[2] * c[2] + p.d2;
+            // radius < 2^33.1 and norm < 2^27.9: the product stays below
+            // 2^61, the sum below 2^63.
+            dist + p.norm * radius as i64 + p.margin < 0
+        })
+    }
+}
+
+/// The doubled centre `lo + hi` and doubled extent `hi - lo` of a box, raw
+/// 16.16 (each below 2^33 in magnitude).
+#[inline(always)]
+fn centre_extent(bounds: &[Vec3Fx; 2]) -> ([i64; 3], [i64; 3]) {
+    let [lo, hi] = bounds.map(|p| p.map(|v| i64::from(v.to_bits())));
+    (
+        [0, 1, 2].map(|k| lo[k] + hi[k]),
+        [0, 1, 2].map(|k| (hi[k] - lo[k]).max(0)),
+    )
+}
+
+impl Plane {
+    /// The plane `r3 + sign r`, in integers, with the margin for `fixed`
+    /// (the vertex stage's error of a plane's value, in clip units) and a
+    /// mesh whose largest raw coordinate is `extent`.
+    fn new(r3: [f32; 4], r: [f32; 4], sign: f32, fixed: f32, extent: u32) -> Self {
+        let p = [0, 1, 2, 3].map(|k| r3[k] + sign * r[k]);
+        // Each sum rounds by at most 2^-24 of its operands' size (more than
+        // of its own, when they cancel); at a point within the mesh's
+        // extent E that moves the plane's value by at most
+        // 2^-24 (E (s0 + s1 + s2) + s3). Taken 32 times over, with f32's
+        // own rounding of this bound.
+        let size = [0, 1, 2, 3].map(|k| r3[k].abs() + r[k].abs());
+        let e = extent as f32 / 65_536.0;
+        let slack = fixed + (e * (size[0] + size[1] + size[2]) + size[3]) / 524_288.0;
+        let big = p.iter().fold(0.0f32, |m, v| m.max(v.abs()));
+        if !(big.is_finite() && slack.is_finite()) {
+            // Rows near f32's largest values summed past it: this plane
+            // culls nothing (and the vertex stage will not accept such a
+            // matrix anyway).
+            return Self {
+                n: [0; 3],
+                abs: [0; 3],
+                d2: 0,
+                norm: 0,
+                margin: 1 << 61,
+            };
         }
-        // The sphere first: outside when limit² > ρ² |n|² (limit < 0).
-        let n2 = p[0] * p[0] + p[1] * p[1] + p[2] * p[2];
-        if limit * limit > radius2 * n2 * 1.0001 {
-            return true;
+        // The binary exponent of the largest coefficient: scaled by 2^s it
+        // lies in [2^26, 2^27). Coarse planes (tiny coefficients) stop at
+        // s = 60 and only lose precision, which the margin covers.
+        let exp = ((big.to_bits() >> 23) & 0xff) as i32 - 127;
+        let s = if big == 0.0 {
+            0
+        } else {
+            (26 - exp).clamp(-101, 60)
+        };
+        // Two factors, so that neither leaves f32's exponent range.
+        let (lo, hi) = (pow2(s / 2), pow2(s - s / 2));
+        let n = [0, 1, 2].map(|k| (p[k] * lo * hi) as i64);
+        let d2 = ((p[3] * lo * hi) as i64) << 17;
+        let abs = n.map(i64::abs);
+        // |n| < 2^28, so the squares sum below 2^56.
+        let norm = (abs[0] * abs[0] + abs[1] * abs[1] + abs[2] * abs[2]).isqrt() + 1;
+        // Truncating n moves each coefficient by less than 1, times a
+        // doubled coordinate (below 2^33): the six terms of a box test move
+        // less than 2^36; truncating d, less than 2^17.
+        let scaled = slack * lo * hi * 131_072.0;
+        let scaled = if scaled < 4.0e18 {
+            scaled as i64
+        } else {
+            1 << 62
+        };
+        let margin = ((1i64 << 36) + (1 << 17))
+            .saturating_add(scaled)
+            .min(1 << 61);
+        Self {
+            n,
+            abs,
+            d2,
+            norm,
+            margin,
         }
-        limit < -box_r
-    })
+    }
 }
 
 #[cfg(test)]
@@ -119,5 +295,137 @@ mod tests {
         // A non-finite transform is left to the vertex stage.
         let nan = Draw::new(&mesh).transform(Mat4::translation(Vec3::new(f32::NAN, 0.0, 0.0)));
         assert!(!outside(&vp, &nan));
+    }
+
+    /// A random camera and model pose, and a box in model space.
+    fn pose(r: &mut impl FnMut(u64) -> u64) -> (Mat4, Mat4, [[f32; 3]; 2]) {
+        let mut f = |lo: f32, hi: f32| lo + (hi - lo) * (r(1 << 20) as f32 / (1 << 20) as f32);
+        let eye = Vec3::new(f(-12.0, 12.0), f(-12.0, 12.0), f(-12.0, 12.0));
+        let target = Vec3::new(f(-5.0, 5.0), f(-5.0, 5.0), f(-5.0, 5.0));
+        let view = Mat4::look_at(eye, target, Vec3::new(0.0, 1.0, 0.0)).unwrap_or(Mat4::IDENTITY);
+        let near = f(0.05, 2.0);
+        let proj = Mat4::perspective(f(0.3, 2.0), f(0.5, 2.0), near, near + f(1.0, 60.0));
+        let model = Mat4::translation(Vec3::new(f(-5.0, 5.0), f(-5.0, 5.0), f(-5.0, 5.0)))
+            * Mat4::rotation_y(f(-3.0, 3.0))
+            * Mat4::rotation_x(f(-3.0, 3.0))
+            * Mat4::scale(Vec3::new(f(0.2, 3.0), f(0.2, 3.0), f(0.2, 3.0)));
+        let c = [f(-8.0, 8.0), f(-8.0, 8.0), f(-8.0, 8.0)];
+        let e = [f(0.0, 4.0), f(0.0, 4.0), f(0.0, 4.0)];
+        let b = [
+            [0, 1, 2].map(|k| c[k] - e[k]),
+            [0, 1, 2].map(|k| c[k] + e[k]),
+        ];
+        (proj.unwrap() * view, model, b)
+    }
+
+    /// Every box the integer test excludes has all its corners (and its
+    /// centre) outside one plane as the renderer's 16.16 vertex stage
+    /// computes them, so culling it cannot change the picture; and it
+    /// excludes nearly every box that exact arithmetic finds outside.
+    #[test]
+    fn excluded_boxes_are_outside_in_the_vertex_stage_and_few_are_missed() {
+        use crate::vertex::{outcode, DrawSetup, REJECT_MASK};
+        let mut r = crate::testing::rng();
+        let (mut excluded, mut exactly_outside, mut both) = (0, 0, 0);
+        for _ in 0..3000 {
+            let (vp, model, [lo, hi]) = pose(&mut r);
+            let corner = |i: usize| {
+                [0, 1, 2].map(|k| I16F16::from_num(if i >> k & 1 == 0 { lo[k] } else { hi[k] }))
+            };
+            let mut pos = [[I16F16::ZERO; 3]; 9];
+            for (i, p) in pos.iter_mut().enumerate().take(8) {
+                *p = corner(i);
+            }
+            pos[8] = [0, 1, 2].map(|k| (pos[0][k] + pos[7][k]) / 2);
+            let tris = [[0u16, 1, 2]];
+            let mesh = Mesh::new(&pos, &tris).unwrap();
+            let draw = Draw::new(&mesh).transform(model);
+            let frustum = Frustum::new(&vp, &draw).unwrap();
+            let bounds = [pos[0], pos[7]];
+            let out = frustum.excludes_box(&bounds);
+            // The whole-draw test: the sphere never excludes what the box
+            // keeps.
+            assert!(!frustum.excludes_sphere(&bounds) || out);
+            assert_eq!(outside(&vp, &draw), out);
+            let setup = DrawSetup::new(&draw, &vp, None, Vec3::default()).unwrap();
+            let codes = (0..9).fold(0xff, |c, i| {
+                c & outcode(&setup.clip_vertex(&mesh, i).unwrap().pos)
+            });
+            if out {
+                excluded += 1;
+                assert_ne!(codes & REJECT_MASK & !crate::vertex::OUT_W, 0, "{bounds:?}");
+            }
+            // Exact (f64) planes of the f32 matrix: outside when every
+            // corner is below one plane.
+            let m = vp * model;
+            let exact = [
+                (0, 1.0),
+                (0, -1.0),
+                (1, 1.0),
+                (1, -1.0),
+                (2, 1.0),
+                (2, -1.0),
+            ]
+            .iter()
+            .any(|&(row, sign)| {
+                (0..8).all(|i| {
+                    let p = corner(i).map(|v| v.to_num::<f64>());
+                    let v = |r: usize| {
+                        (0..3).map(|k| m.m[k][r] as f64 * p[k]).sum::<f64>() + m.m[3][r] as f64
+                    };
+                    v(3) + sign * v(row) < 0.0
+                })
+            });
+            if exact {
+                exactly_outside += 1;
+                both += out as u32;
+            }
+        }
+        // About half the poses put the box outside.
+        assert!(excluded > 1000, "{excluded}");
+        assert!(
+            both * 100 >= exactly_outside * 99,
+            "{both} of {exactly_outside}"
+        );
+    }
+
+    /// Planes of any finite scale, and boxes at the ends of the 16.16
+    /// range, never overflow the integer test (debug builds would panic).
+    #[test]
+    fn extreme_planes_and_boxes_do_not_overflow() {
+        let mut r = crate::testing::rng();
+        let p = [[I16F16::MIN; 3], [I16F16::MAX; 3]];
+        let tris = [[0u16, 1, 1]];
+        let mesh = Mesh::new(&p, &tris).unwrap();
+        let exps = [-126, -60, -30, -1, 0, 1, 30, 60, 100, 127];
+        for _ in 0..2000 {
+            let mut m = Mat4::IDENTITY;
+            for c in 0..4 {
+                for row in 0..4 {
+                    let e = exps[r(exps.len() as u64) as usize];
+                    let sign = if r(2) == 0 { 1.0 } else { -1.0 };
+                    let mant = 1.0 + r(1000) as f32 / 1000.0;
+                    m.m[c][row] = if r(5) == 0 {
+                        0.0
+                    } else {
+                        sign * mant * 2f32.powi(e).min(f32::MAX / 2.0)
+                    };
+                }
+            }
+            let Some(f) = Frustum::new(&m, &Draw::new(&mesh)) else {
+                continue;
+            };
+            let pick = |r: &mut dyn FnMut(u64) -> u64| match r(3) {
+                0 => I16F16::MIN,
+                1 => I16F16::MAX,
+                _ => I16F16::from_bits(r(u32::MAX as u64) as u32 as i32),
+            };
+            let pairs = [0; 3].map(|_| (pick(&mut r), pick(&mut r)));
+            let b = [pairs.map(|(x, y)| x.min(y)), pairs.map(|(x, y)| x.max(y))];
+            let _ = f.excludes_box(&b);
+            let _ = f.excludes_sphere(&b);
+            let _ = f.excludes_box(&p);
+            let _ = f.excludes_sphere(&p);
+        }
     }
 }

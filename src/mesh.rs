@@ -68,9 +68,13 @@ pub struct Mesh<'a> {
 /// cluster's vertices nor bins its triangles ([`crate::cull`]); a large
 /// static mesh (a level, a terrain) then costs what is in view.
 ///
-/// The importer makes clusters (`microraster-import obj --clusters N`):
-/// each owns its vertices, so vertex ranges do not overlap. Ranges may
-/// overlap; a vertex in two visible clusters is then transformed twice.
+/// The importer makes clusters (`microraster-import obj --clusters N`),
+/// each with a run of vertices of its own: a vertex that several clusters
+/// use is copied into each (on a grid, clusters of 64 triangles copy about
+/// 60% more vertices). Clusters made otherwise may share vertices through
+/// overlapping ranges; a shared vertex is then transformed once per visible
+/// cluster. Culled clusters save time, not RAM: the vertex buffer still
+/// holds a slot for every vertex of the frame's meshes.
 ///
 /// ```
 /// use fixed::types::I16F16;

@@ -54,6 +54,7 @@
 //! store, and gives bit-identical vertices every time.
 
 use crate::clip::{clip_triangle, MAX_CLIPPED_VERTICES};
+use crate::cull::Frustum;
 use crate::light::{DirectionalLight, LightError, LightSetup, Lighting};
 use crate::mesh::Indices;
 use crate::raster::line::{draw_line, draw_point, DepthMode, LinePoint};
@@ -317,6 +318,43 @@ pub struct FrameStats {
     /// Draws culled whole against the view frustum (their triangles are
     /// counted in `rejected`).
     pub draws_culled: u32,
+    /// Mesh clusters culled against the view frustum, in draws that were
+    /// not culled whole (their triangles are counted in `rejected`).
+    pub clusters_culled: u32,
+    /// Vertices transformed by the vertex stage (none of culled draws and
+    /// clusters).
+    pub vertices: u32,
+}
+
+/// One line of `name=value` pairs, every field in declaration order, for
+/// logs and benchmark output:
+///
+/// ```
+/// use microraster::FrameStats;
+/// let s = FrameStats { triangles_in: 12, drawn: 6, ..FrameStats::default() };
+/// assert!(s.to_string().starts_with("triangles_in=12 culled=0 rejected=0 clipped=0 drawn=6 "));
+/// ```
+impl core::fmt::Display for FrameStats {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        write!(
+            f,
+            "triangles_in={} culled={} rejected={} clipped={} drawn={} pixels_shaded={} \
+             tiles={} bin_passes={} rescanned_tiles={} draws_culled={} clusters_culled={} \
+             vertices={}",
+            self.triangles_in,
+            self.culled,
+            self.rejected,
+            self.clipped,
+            self.drawn,
+            self.pixels_shaded,
+            self.tiles,
+            self.bin_passes,
+            self.rescanned_tiles,
+            self.draws_culled,
+            self.clusters_culled,
+            self.vertices
+        )
+    }
 }
 
 /// A stage of a frame, as reported to a [`Profiler`].
@@ -668,6 +706,7 @@ struct Tally {
     fates: [u32; 3],
     clipped: u32,
     draws_culled: u32,
+    clusters_culled: u32,
 }
 
 /// Read-only state of the frame being rendered.
@@ -765,10 +804,14 @@ impl Frame<'_, '_> {
         }
     }
 
-    /// Whether draw `d` is culled whole against the view frustum (the same
-    /// answer every time it is asked: the test is deterministic).
-    fn draw_culled(&self, d: usize) -> bool {
-        self.cull_draws && crate::cull::outside(&self.view_proj, &self.draws[d])
+    /// The view frustum in the model space of draw `d`, when culling is on
+    /// (the same answers every time it is asked: the tests are
+    /// deterministic, so binning, rescans and the vertex stage agree).
+    fn frustum(&self, d: usize) -> Option<Frustum> {
+        match self.cull_draws {
+            true => Frustum::new(&self.view_proj, &self.draws[d]),
+            false => None,
+        }
     }
 
     /// The fixed-point set-up of draw `d`, from `cache` or computed again
@@ -1003,6 +1046,25 @@ struct Piece {
     bary: [[i32; 2]; 3],
 }
 
+/// Transforms, lights and projects the vertices `range` of `mesh` into
+/// `out` (indexed like the mesh's vertices). Out of line: one copy for
+/// both callers, called once per draw or cluster.
+#[inline(never)]
+fn transform(
+    setup: &DrawSetup,
+    mesh: &crate::mesh::Mesh<'_>,
+    viewport: &Viewport,
+    range: core::ops::Range<usize>,
+    out: &mut [ScreenVertex],
+) -> Result<(), VertexError> {
+    // The range lies within the mesh (checked when the mesh was built).
+    let first = range.start;
+    for (i, sv) in out[range].iter_mut().enumerate() {
+        *sv = viewport.screen_vertex(&setup.clip_vertex(mesh, first + i)?);
+    }
+    Ok(())
+}
+
 /// One binning pass over every triangle: classifies it and appends a
 /// visible one to the bin of each tile of the pass its bounds touch. The
 /// pass holds the tiles visited `t0..`: in row-major order, or with
@@ -1027,8 +1089,9 @@ fn bin_pass<const TW: usize, const TH: usize, const HILBERT: bool>(
         };
         let verts = &frame.vertices[base..base + draw.mesh.vertex_count()];
         vbase += verts.len();
-        if frame.draw_culled(d) {
-            let n = draw.mesh.triangle_count();
+        let frustum = frame.frustum(d);
+        let n = draw.mesh.triangle_count();
+        if frustum.as_ref().is_some_and(|f| f.excludes_mesh(draw.mesh)) {
             t += n;
             tally.fates[Fate::Rejected as usize] += n as u32;
             tally.draws_culled += 1;
@@ -1043,14 +1106,36 @@ fn bin_pass<const TW: usize, const TH: usize, const HILBERT: bool>(
             verts,
             margin,
         };
-        // The u16 loop is inlined here, per tile order; the u32 one (meshes
-        // beyond 65,536 vertices, rare) is one out-of-line copy for both.
-        match draw.mesh.triangles() {
-            Indices::U16(tris) => {
-                bin_triangles::<TW, TH, u16>(&ctx, tris, HILBERT, &mut t, bins, cache, tally)
-            }
-            Indices::U32(tris) => {
-                bin_wide::<TW, TH>(&ctx, tris, HILBERT, &mut t, bins, cache, tally)
+        // The clusters in view one by one, or the whole mesh as one run.
+        let clusters = frustum.and(draw.mesh.clusters());
+        let mut first = 0;
+        for k in 0..clusters.map_or(1, |c| c.len()) {
+            let len = match (&frustum, clusters) {
+                (Some(f), Some(c)) => {
+                    let len = c[k].triangle_count() as usize;
+                    if f.excludes_box(&c[k].bounds()) {
+                        t += len;
+                        first += len;
+                        tally.fates[Fate::Rejected as usize] += len as u32;
+                        tally.clusters_culled += 1;
+                        continue;
+                    }
+                    len
+                }
+                _ => n,
+            };
+            let run = first..first + len;
+            first += len;
+            // The u16 loop is inlined here, per tile order; the u32 one
+            // (meshes beyond 65,536 vertices, rare) is one out-of-line copy
+            // for both.
+            match draw.mesh.triangles() {
+                Indices::U16(tris) => bin_triangles::<TW, TH, u16>(
+                    &ctx, &tris[run], HILBERT, &mut t, bins, cache, tally,
+                ),
+                Indices::U32(tris) => {
+                    bin_wide::<TW, TH>(&ctx, &tris[run], HILBERT, &mut t, bins, cache, tally)
+                }
             }
         }
     }
@@ -1232,6 +1317,11 @@ enum TileList<'a, 'f> {
         rect: PixelRect,
         next: usize,
         cache: SetupCache,
+        /// The current draw's frustum (when culling), the next of its
+        /// clusters, and the global index of the current cluster's end.
+        frustum: Option<Frustum>,
+        cluster: usize,
+        cluster_end: usize,
     },
 }
 
@@ -1248,6 +1338,9 @@ impl Iterator for TileList<'_, '_> {
                 rect,
                 next,
                 cache,
+                frustum,
+                cluster,
+                cluster_end,
             } => loop {
                 let t = *next;
                 if t >= cur.end {
@@ -1257,9 +1350,29 @@ impl Iterator for TileList<'_, '_> {
                     cur.advance();
                     continue;
                 }
-                if t == cur.first && frame.draw_culled(cur.draw) {
-                    *next = cur.end;
-                    continue;
+                let mesh = frame.draws[cur.draw].mesh;
+                if t == cur.first {
+                    // The same tests as binning's, in the same order.
+                    *frustum = frame.frustum(cur.draw);
+                    if frustum.as_ref().is_some_and(|f| f.excludes_mesh(mesh)) {
+                        *next = cur.end;
+                        continue;
+                    }
+                    (*cluster, *cluster_end) = (0, t);
+                }
+                if let (Some(f), Some(clusters)) = (frustum.as_ref(), mesh.clusters()) {
+                    // Enter the cluster holding t (past any empty ones).
+                    let mut skip = false;
+                    while t >= *cluster_end && *cluster < clusters.len() {
+                        let c = &clusters[*cluster];
+                        *cluster += 1;
+                        *cluster_end += c.triangle_count() as usize;
+                        skip = f.excludes_box(&c.bounds());
+                    }
+                    if skip {
+                        *next = *cluster_end;
+                        continue;
+                    }
                 }
                 *next += 1;
                 let idx = cur.triangles.get(t - cur.first);
@@ -1394,6 +1507,7 @@ where
         profiler.enter(Stage::Vertex);
         let viewport = Viewport::new(size.width, size.height);
         let mut base = 0;
+        let mut vertex_count = 0u32;
         for (di, draw) in scene.draws.iter().enumerate() {
             // The set-up checks the draw's matrix whether the draw is seen
             // or not; a draw wholly outside the frustum is then not
@@ -1401,18 +1515,32 @@ where
             // computed), and binning skips it the same way.
             let setup = DrawSetup::new(draw, &view_proj, lighting.as_ref(), eye)
                 .map_err(|error| RenderError::Draw { draw: di, error })?;
-            if self.config.frustum_cull && crate::cull::outside(&view_proj, draw) {
-                base += draw.mesh.vertex_count();
-                continue;
-            }
             let out = &mut ws.vertices[base..base + draw.mesh.vertex_count()];
-            for (i, sv) in out.iter_mut().enumerate() {
-                let cv = setup
-                    .clip_vertex(draw.mesh, i)
-                    .map_err(|error| RenderError::Draw { draw: di, error })?;
-                *sv = viewport.screen_vertex(&cv);
-            }
             base += draw.mesh.vertex_count();
+            let frustum = match self.config.frustum_cull {
+                true => Frustum::new(&view_proj, draw),
+                false => None,
+            };
+            let err = |error| RenderError::Draw { draw: di, error };
+            match (&frustum, draw.mesh.clusters()) {
+                (Some(f), _) if f.excludes_mesh(draw.mesh) => {}
+                // Only the vertices of clusters in view: the others are
+                // never read, since binning skips the same clusters.
+                (Some(f), Some(clusters)) => {
+                    for c in clusters {
+                        if !f.excludes_box(&c.bounds()) {
+                            let first = c.first_vertex() as usize;
+                            let range = first..first + c.vertex_count() as usize;
+                            vertex_count += range.len() as u32;
+                            transform(&setup, draw.mesh, &viewport, range, out).map_err(err)?;
+                        }
+                    }
+                }
+                _ => {
+                    vertex_count += out.len() as u32;
+                    transform(&setup, draw.mesh, &viewport, 0..out.len(), out).map_err(err)?;
+                }
+            }
         }
 
         let Workspace {
@@ -1472,6 +1600,7 @@ where
         };
         let mut stats = FrameStats {
             triangles_in: n_tris as u32,
+            vertices: vertex_count,
             ..FrameStats::default()
         };
         let mut cache: SetupCache = None;
@@ -1504,6 +1633,7 @@ where
                 stats.drawn = tally.fates[Fate::Visible as usize];
                 stats.clipped = tally.clipped;
                 stats.draws_culled = tally.draws_culled;
+                stats.clusters_culled = tally.clusters_culled;
             }
 
             if bins.tiles() == 0 {
@@ -1518,6 +1648,9 @@ where
                     rect,
                     next: 0,
                     cache: None,
+                    frustum: None,
+                    cluster: 0,
+                    cluster_end: 0,
                 };
                 self.draw_tile(
                     &frame,

@@ -193,3 +193,98 @@ pub fn textured_cube() -> Mesh<'static> {
         .with_uvs(&microraster::shapes::CUBE_UVS)
         .expect("the cube's coordinates match its vertices")
 }
+
+/// A rolling terrain of `n` x `n` quads (`2 n^2` triangles) over
+/// `-n/2 .. n/2` in x and z, as OBJ text: two groups (the near and far
+/// halves), so that clustering stays within groups. The heights come from
+/// integer tent waves, the same on every machine.
+pub fn terrain_obj(n: usize) -> String {
+    use std::fmt::Write;
+    let tent = |v: i64, period: i64| {
+        let m = v.rem_euclid(period);
+        (m.min(period - m)) as f32 / period as f32
+    };
+    let mut s = String::new();
+    for z in 0..=n as i64 {
+        for x in 0..=n as i64 {
+            let h = 9.0 * tent(x, 30) * tent(z, 26) + 1.5 * tent(x + 2 * z, 11) - 2.0;
+            let (px, pz) = (x as f32 - n as f32 / 2.0, z as f32 - n as f32 / 2.0);
+            let _ = writeln!(s, "v {px} {h:.4} {pz}");
+        }
+    }
+    let row = n + 1;
+    for (name, zs) in [("near", 0..n / 2), ("far", n / 2..n)] {
+        let _ = writeln!(s, "g {name}");
+        for z in zs {
+            for x in 0..n {
+                // OBJ indices are 1-based; counter-clockwise seen from
+                // above (+y).
+                let a = z * row + x + 1;
+                let (b, c, d) = (a + 1, a + row + 1, a + row);
+                let _ = writeln!(s, "f {a} {d} {c} {b}");
+            }
+        }
+    }
+    s
+}
+
+/// A model imported from OBJ text by the workspace importer, held as the
+/// 16.16 arrays its generated source would hold, with its clusters.
+pub struct ImportedModel {
+    pub positions: Vec<Vec3Fx>,
+    pub normals: Vec<Vec3Fx>,
+    pub triangles: Vec<[u16; 3]>,
+    pub clusters: Vec<microraster::mesh::Cluster>,
+}
+
+impl ImportedModel {
+    /// Imports `obj` at its own scale (`Fit::Keep`), in clusters of at
+    /// most `cluster_triangles` triangles (0: no clusters).
+    pub fn new(obj: &str, cluster_triangles: usize) -> Self {
+        use microraster_import::{parse_obj, Fit, ObjOptions};
+        let options = ObjOptions::default()
+            .with_fit(Fit::Keep)
+            .with_cluster_triangles(cluster_triangles);
+        let model = parse_obj(obj, std::path::Path::new("terrain.obj"), |_| None, &options)
+            .expect("the OBJ text imports");
+        let fx = |v: [i32; 3]| v.map(I16F16::from_bits);
+        let clusters = model
+            .clusters
+            .iter()
+            .zip(model.cluster_bounds_fixed())
+            .map(|(c, [lo, hi])| {
+                microraster::mesh::Cluster::new(
+                    c.triangles.len() as u32,
+                    c.vertices.start as u32,
+                    c.vertices.len() as u32,
+                    fx(lo),
+                    fx(hi),
+                )
+            })
+            .collect();
+        Self {
+            positions: model.positions_fixed().into_iter().map(fx).collect(),
+            normals: model.normals_fixed().into_iter().map(fx).collect(),
+            triangles: model
+                .triangles
+                .iter()
+                .map(|t| t.map(|i| i as u16))
+                .collect(),
+            clusters,
+        }
+    }
+
+    /// The mesh, without its clusters.
+    pub fn whole(&self) -> Mesh<'_> {
+        Mesh::new(&self.positions, &self.triangles)
+            .and_then(|m| m.with_normals(&self.normals))
+            .expect("the imported model is a valid mesh")
+    }
+
+    /// The mesh with its clusters.
+    pub fn clustered(&self) -> Mesh<'_> {
+        self.whole()
+            .with_clusters(&self.clusters)
+            .expect("the importer's clusters are valid")
+    }
+}
