@@ -22,6 +22,9 @@
 //!   `Workspace<2048, 4096, 80>`, into `NullSink` or into a full frame
 //!   buffer (`_hilbert` and `_auto`: with those rasterizers); and the same
 //!   frame rendered by the euc crate.
+//! * `terrain/{clusters,whole}`: a 96x96-quad terrain (18,432 triangles)
+//!   seen from on it, imported in clusters of at most 64 triangles (culled
+//!   cluster by cluster) or without clusters, into `NullSink`.
 
 #[path = "../examples/common/mod.rs"]
 mod common;
@@ -159,6 +162,20 @@ fn demo(c: &mut Criterion) {
     g.finish();
 }
 
+/// Per-cluster culling: the terrain with and without its clusters.
+fn terrain(c: &mut Criterion) {
+    let mut g = c.benchmark_group("terrain");
+    let mut r = renderer();
+    let mut ws: Box<TerrainWorkspace> = Box::default();
+    let scene = TerrainScene::new();
+    for (name, clustered) in [("clusters", true), ("whole", false)] {
+        g.bench_function(name, |b| {
+            b.iter(|| black_box(scene.render(&mut r, &mut ws, clustered, &mut NullSink)))
+        });
+    }
+    g.finish();
+}
+
 fn config() -> Criterion {
     Criterion::default()
         .sample_size(20)
@@ -169,6 +186,6 @@ fn config() -> Criterion {
 criterion_group! {
     name = benches;
     config = config();
-    targets = triangles, fill, fill_shaders, demo
+    targets = triangles, fill, fill_shaders, demo, terrain
 }
 criterion_main!(benches);

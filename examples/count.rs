@@ -12,8 +12,10 @@
 //! the euc crate), or `fill-SHADER-MODE`: the fill scene through a
 //! fragment shader, `SHADER` one of `flat`, `gouraud`, `nearest`,
 //! `bilinear` (textured) and `lit` (textured and lit), `MODE` one of
-//! `exact`, `quasi8`, `quasi16` and `affine`. `RASTERIZER` is `scanline` (default), `hilbert` or
-//! `auto`.
+//! `exact`, `quasi8`, `quasi16` and `affine`; `terrain` (a terrain of
+//! 18,432 triangles imported in clusters of 64, mostly outside the view)
+//! and `terrain-whole` (the same terrain imported without clusters).
+//! `RASTERIZER` is `scanline` (default), `hilbert` or `auto`.
 //! Every frame of a run is identical; each is rendered by the function
 //! `count::frame`, so `valgrind --tool=callgrind
 //! --toggle-collect='*count::frame*'` counts exactly N frames, all-in (scene
@@ -49,6 +51,11 @@ enum Job {
         ws: Box<DemoWorkspace>,
         shader: FillShader,
     },
+    Terrain {
+        scene: Box<TerrainScene>,
+        ws: Box<TerrainWorkspace>,
+        clustered: bool,
+    },
 }
 
 /// The fragment shaders of the `fill-*` scenes.
@@ -69,6 +76,11 @@ fn frame(job: &mut Job, r: &mut BenchRenderer) -> Option<FrameStats> {
         Job::Demo { scene, shading, ws } => Some(scene.render(r, ws, *shading, sink)),
         Job::Fill { scene, ws } => Some(scene.render(r, ws, sink)),
         Job::Copies { scene, ws } => Some(scene.render(r, ws, sink)),
+        Job::Terrain {
+            scene,
+            ws,
+            clustered,
+        } => Some(scene.render(r, ws, *clustered, sink)),
         Job::Euc(e) => {
             e.render();
             None
@@ -167,6 +179,11 @@ fn main() {
         "tri1000" => copies("1000px"),
         "tri10000" => copies("10000px"),
         "euc" => Job::Euc(Box::default()),
+        "terrain" | "terrain-whole" => Job::Terrain {
+            scene: Box::new(TerrainScene::new()),
+            ws: Box::default(),
+            clustered: name == "terrain",
+        },
         other if shaded(other).is_some() => {
             let (job, mode) = shaded(other).expect("just checked");
             perspective = mode;
@@ -176,7 +193,7 @@ fn main() {
             eprintln!(
                 "count: unknown scene {other:?} \
                  (demo, demo-flat, fill, tri4, tri32, tri100, tri1000, tri10000, euc, \
-                 fill-SHADER-MODE)"
+                 fill-SHADER-MODE, terrain, terrain-whole)"
             );
             std::process::exit(2);
         }
@@ -191,19 +208,7 @@ fn main() {
         }
     }
     match first.flatten() {
-        Some(s) => println!(
-            "scene={name} frames={n} rasterizer={raster:?} triangles_in={} culled={} rejected={} clipped={} drawn={} \
-             pixels_shaded={} tiles={} bin_passes={} rescanned_tiles={}",
-            s.triangles_in,
-            s.culled,
-            s.rejected,
-            s.clipped,
-            s.drawn,
-            s.pixels_shaded,
-            s.tiles,
-            s.bin_passes,
-            s.rescanned_tiles
-        ),
+        Some(s) => println!("scene={name} frames={n} rasterizer={raster:?} {s}"),
         None => {
             let Job::Euc(e) = &job else { unreachable!() };
             println!("scene={name} frames={n} pixels_covered={}", e.covered());

@@ -9,6 +9,8 @@
 //! * [`Copies`]: many copies of one triangle of a given pixel area,
 //!   scattered over the frame, for per-triangle costs.
 //! * [`EucDemo`]: the demo frame rendered by the `euc` crate, for comparison.
+//! * [`TerrainScene`]: a terrain of 18,432 triangles imported in clusters,
+//!   seen from on it: most of it lies outside the view.
 #![allow(dead_code)]
 
 use super::common;
@@ -29,6 +31,10 @@ pub type BenchRenderer = Renderer<Rgb565, 32, 32>;
 pub type DemoWorkspace = Workspace<2048, 4096, 80>;
 /// A workspace for the triangle-copies scenes (up to 24,000 vertices).
 pub type CopiesWorkspace = Workspace<24_000, 32_768, 80>;
+
+/// A workspace for the terrain scene (every vertex of the clustered
+/// terrain, a slot each whether culled or not).
+pub type TerrainWorkspace = Workspace<16_384, 16_384, 80>;
 
 /// A renderer with the demo's settings (back-face culling, `LessEqual`,
 /// depth writes) and the scanline rasterizer.
@@ -478,5 +484,64 @@ impl EucDemo {
             .iter()
             .filter(|&&p| p != self.clear)
             .count()
+    }
+}
+
+/// Quads per side of [`TerrainScene`]'s terrain.
+pub const TERRAIN_QUADS: usize = 96;
+/// Most triangles per cluster of [`TerrainScene`]'s terrain.
+pub const TERRAIN_CLUSTER: usize = 64;
+
+/// A terrain of 96x96 quads (18,432 triangles) imported in clusters of at
+/// most 64 triangles, seen from a point on it looking across: what lies
+/// behind and beside the view is culled cluster by cluster.
+pub struct TerrainScene {
+    model: common::ImportedModel,
+    plain: common::ImportedModel,
+}
+
+impl TerrainScene {
+    /// Imports the terrain, in clusters and without.
+    pub fn new() -> Self {
+        let obj = common::terrain_obj(TERRAIN_QUADS);
+        Self {
+            model: common::ImportedModel::new(&obj, TERRAIN_CLUSTER),
+            plain: common::ImportedModel::new(&obj, 0),
+        }
+    }
+
+    /// The camera: above the terrain's centre, looking along -z.
+    pub fn camera() -> Camera {
+        let view = Mat4::look_at(
+            Vec3::new(0.0, 5.0, 8.0),
+            Vec3::new(-6.0, 1.0, -20.0),
+            Vec3::new(0.0, 1.0, 0.0),
+        )
+        .expect("a valid view");
+        let proj = Mat4::perspective(1.0, WIDTH as f32 / HEIGHT as f32, 0.3, 60.0)
+            .expect("a valid projection");
+        Camera::new(view, proj)
+    }
+
+    /// Renders the terrain: imported in clusters, or imported without them
+    /// (the file's triangle order, no copied vertices).
+    pub fn render<S: TileSink<Rgb565>>(
+        &self,
+        r: &mut BenchRenderer,
+        ws: &mut TerrainWorkspace,
+        clustered: bool,
+        sink: &mut S,
+    ) -> FrameStats
+    where
+        S::Error: core::fmt::Debug,
+    {
+        let mesh = if clustered {
+            self.model.clustered()
+        } else {
+            self.plain.whole()
+        };
+        let draws = [Draw::new(&mesh).color(Rgb888::new(120, 200, 90))];
+        let scene = Scene::new(Self::camera(), &draws).light(common::light());
+        r.render(ws, &scene, sink).expect("the terrain renders")
     }
 }
