@@ -39,9 +39,11 @@
 //! With [`ObjOptions::cluster_triangles`] set, the model is then laid out
 //! again for microraster's per-cluster frustum culling
 //! (`microraster::mesh::Mesh::with_clusters`). Each group's triangles are
-//! split in space: the bounding box of their centroids is halved at the
-//! median along its longest axis, and the halves again, until a part has
-//! at most that many triangles; that part is a cluster ([`ClusterRange`]).
+//! split in space: sorted along the longest axis of the bounding box of
+//! their centroids and cut so that the lower part holds half the clusters
+//! needed (rounded up, each full), and the parts again, until a part has
+//! at most that many triangles; that part is a cluster ([`ClusterRange`]),
+//! and all but the last of each group are full.
 //! Triangles are reordered within their group to follow the clusters (the
 //! file's order within a cluster, corners untouched), and each cluster gets
 //! its own run of vertices, in the order its triangles first use them: a
@@ -560,10 +562,11 @@ impl Model {
 }
 
 /// Splits `triangles` (indices into `centroids`, at `offset` in the new
-/// order) at the median along the longest axis of their centroids' box,
-/// recursively, until a part has at most `max`; appends the parts' ranges
-/// to `out`, the lower half's first, so that neighbours in the list are
-/// neighbours in space. `max` must be at least 1.
+/// order) along the longest axis of their centroids' box, the lower part
+/// holding half the full clusters needed, recursively, until a part has at
+/// most `max`; appends the parts' ranges to `out`, the lower part's first,
+/// so that neighbours in the list are neighbours in space. `max` must be
+/// at least 1.
 fn split(
     triangles: &mut [usize],
     offset: usize,
@@ -590,8 +593,14 @@ fn split(
             .total_cmp(&centroids[b][axis])
             .then(a.cmp(&b))
     });
-    // At least two triangles here, so both halves have one.
-    let mid = triangles.len() / 2;
+    // Cut where the lower part holds a whole number of full clusters, half
+    // of them (rounded up): clusters come out full rather than halved
+    // below the limit (9,216 triangles in clusters of 64 make 144
+    // clusters, not 256 of 36). With k = ceil(len / max) >= 2 clusters
+    // needed, the lower part holds max ceil(k / 2) < len triangles and the
+    // upper part at least one.
+    let k = triangles.len().div_ceil(max);
+    let mid = max * k.div_ceil(2);
     let (low, high) = triangles.split_at_mut(mid);
     split(low, offset, centroids, max, out);
     split(high, offset + mid, centroids, max, out);

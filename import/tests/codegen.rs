@@ -514,9 +514,9 @@ fn clusters_are_written_and_obey_the_mesh_rules() {
             assert_eq!(held, g.triangles.len());
         }
     }
-    // Bands of 600, 600 and 240 triangles, halved down to 40 at most.
+    // Bands of 600, 600 and 240 triangles, in full clusters of 40.
     assert_eq!(grid.groups.len(), 3);
-    assert_eq!(grid.clusters.len(), 16 + 16 + 8);
+    assert_eq!(grid.clusters.len(), 15 + 15 + 6);
 }
 
 #[test]

@@ -340,6 +340,10 @@ pub fn check_clusters(m: &Model) {
             assert_eq!(first.triangles.start, g.triangles.start);
             assert_eq!(last.triangles.end, g.triangles.end);
         }
+        // Full clusters, but for the group's last.
+        for c in clusters.iter().rev().skip(1) {
+            assert_eq!(c.triangles.len(), max, "{g:?}: {c:?}");
+        }
         next_cluster = g.clusters.end;
     }
     assert_eq!(next_cluster, m.clusters.len());
