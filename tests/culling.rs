@@ -106,7 +106,7 @@ fn culling_never_changes_the_image_and_removes_what_is_out_of_view() {
         let proj = Mat4::perspective(fovy, W as f32 / H as f32, near, near + 4.0 + next() * 30.0)
             .expect("a valid projection");
         let scene = Scene::new(Camera::new(view, proj), &draws).light(light());
-        let (_, s1, s0) = with_and_without(&scene, pose);
+        let (_, s1, _) = with_and_without(&scene, pose);
         culled += s1.draws_culled;
         visible += draws.len() as u32 - s1.draws_culled;
         poses += 1;
