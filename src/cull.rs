@@ -60,13 +60,11 @@ pub fn outside(view_proj: &Mat4, draw: &Draw<'_>) -> bool {
 #[derive(Clone, Copy, Debug)]
 struct Plane {
     /// `(a, b, c)` scaled by `2^s`, truncated: `|n[k]| < 2^27`.
-    n: [i64; 3],
-    /// `|n[k]|`.
-    abs: [i64; 3],
+    n: [i32; 3],
+    /// `|(a, b, c)|` scaled by `2^s`, rounded up: `< 2^28`.
+    norm: i32,
     /// `d` scaled by `2^(s + 17)` (raw 16.16, doubled): `|d2| < 2^44`.
     d2: i64,
-    /// `|(a, b, c)|` scaled by `2^s`, rounded up: `< 2^28`.
-    norm: i64,
     /// Everything the roundings can move the plane's value, in its units;
     /// at most `2^61` (a plane that coarse never culls).
     margin: i64,
@@ -98,9 +96,30 @@ pub struct Frustum {
     planes: [Plane; 6],
 }
 
-/// `2^e` as an `f32`, for `-126 <= e <= 127`.
-fn pow2(e: i32) -> f32 {
-    f32::from_bits(((e + 127) as u32) << 23)
+/// `x 2^s`, truncated toward zero, saturated at `±2^62` (and 0 for
+/// subnormal `x`), for a finite `x`: the scaling is a shift of the
+/// mantissa's bits, where a soft-float core would multiply twice and
+/// convert.
+fn scaled(x: f32, s: i32) -> i64 {
+    let bits = x.to_bits();
+    let field = ((bits >> 23) & 0xff) as i32;
+    if field == 0 {
+        return 0;
+    }
+    let mant = i64::from((bits & 0x7f_ffff) | 0x80_0000);
+    let e = field - 150 + s;
+    let v = match e {
+        // The mantissa has 24 bits: below 2^62 up to a shift of 38.
+        39.. => 1 << 62,
+        0..=38 => mant << e,
+        -23..=-1 => mant >> -e,
+        _ => 0,
+    };
+    if bits >> 31 == 1 {
+        -v
+    } else {
+        v
+    }
 }
 
 impl Frustum {
@@ -118,7 +137,7 @@ impl Frustum {
         // (3 E + 2) 2^-17 with E the largest model coordinate; a plane sums
         // two rows, so twice that.
         let extent = draw.mesh.extent();
-        let fixed = (3.0 * (extent as f32 / 65_536.0) + 2.0) * 2.0 / 131_072.0;
+        let fixed = (3.0 * (extent as f32 * (1.0 / 65_536.0)) + 2.0) * (2.0 / 131_072.0);
         let row = |r: usize| [m.m[0][r], m.m[1][r], m.m[2][r], m.m[3][r]];
         let (r0, r1, r2, r3) = (row(0), row(1), row(2), row(3));
         let plane = |r: [f32; 4], sign: f32| Plane::new(r3, r, sign, fixed, extent);
@@ -149,8 +168,9 @@ impl Frustum {
     pub fn excludes_box(&self, bounds: &[Vec3Fx; 2]) -> bool {
         let (c, e) = centre_extent(bounds);
         self.planes.iter().any(|p| {
-            let dist = p.n[0] * c[0] + p.n[1] * c[1] + p.n[2] * c[2] + p.d2;
-            let reach = p.abs[0] * e[0] + p.abs[1] * e[1] + p.abs[2] * e[2];
+            let [a, b, cc] = p.n.map(i64::from);
+            let dist = a * c[0] + b * c[1] + cc * c[2] + p.d2;
+            let reach = a.abs() * e[0] + b.abs() * e[1] + cc.abs() * e[2];
             // |n| < 2^27 and |c|, e <= 2^32: |dist| < 3 2^59 + 2^44,
             // reach < 3 2^59, margin <= 2^61, so the sum stays below 2^62.
             dist + reach + p.margin < 0
@@ -164,15 +184,18 @@ impl Frustum {
     /// first.
     pub fn excludes_sphere(&self, bounds: &[Vec3Fx; 2]) -> bool {
         let (c, e) = centre_extent(bounds);
-        // The doubled radius, rounded up, from extents shifted to keep the
-        // squares in u64: (e >> 8) + 1 per axis over-estimates.
-        let [x, y, z] = e.map(|v| (v as u64 >> 8) + 1);
-        let radius = ((x * x + y * y + z * z).isqrt() + 1) << 8;
+        // The doubled radius, rounded up, by a 32-bit root: the extents
+        // shifted right until the largest has 15 bits, plus one each.
+        let big = e[0].max(e[1]).max(e[2]) as u64;
+        let shift = (64 - big.leading_zeros()).saturating_sub(15);
+        let [x, y, z] = e.map(|v| ((v as u64 >> shift) as u32) + 1);
+        let radius = u64::from((x * x + y * y + z * z).isqrt() + 1) << shift;
         self.planes.iter().any(|p| {
-            let dist = p.n[0] * c[0] + p.n[1] * c[1] + p.n[2] * c[2] + p.d2;
-            // radius < 2^33.1 and norm < 2^27.9: the product stays below
+            let [a, b, cc] = p.n.map(i64::from);
+            let dist = a * c[0] + b * c[1] + cc * c[2] + p.d2;
+            // radius < 2^33.2 and norm < 2^27.8: the product stays below
             // 2^61, the sum below 2^63.
-            dist + p.norm * radius as i64 + p.margin < 0
+            dist + i64::from(p.norm) * radius as i64 + p.margin < 0
         })
     }
 }
@@ -200,8 +223,8 @@ impl Plane {
         // 2^-24 (E (s0 + s1 + s2) + s3). Taken 32 times over, with f32's
         // own rounding of this bound.
         let size = [0, 1, 2, 3].map(|k| r3[k].abs() + r[k].abs());
-        let e = extent as f32 / 65_536.0;
-        let slack = fixed + (e * (size[0] + size[1] + size[2]) + size[3]) / 524_288.0;
+        let e = extent as f32 * (1.0 / 65_536.0);
+        let slack = fixed + (e * (size[0] + size[1] + size[2]) + size[3]) * (1.0 / 524_288.0);
         let big = p.iter().fold(0.0f32, |m, v| m.max(v.abs()));
         if !(big.is_finite() && slack.is_finite()) {
             // Rows near f32's largest values summed past it: this plane
@@ -209,9 +232,8 @@ impl Plane {
             // matrix anyway).
             return Self {
                 n: [0; 3],
-                abs: [0; 3],
-                d2: 0,
                 norm: 0,
+                d2: 0,
                 margin: 1 << 61,
             };
         }
@@ -224,30 +246,24 @@ impl Plane {
         } else {
             (26 - exp).clamp(-101, 60)
         };
-        // Two factors, so that neither leaves f32's exponent range.
-        let (lo, hi) = (pow2(s / 2), pow2(s - s / 2));
-        let n = [0, 1, 2].map(|k| (p[k] * lo * hi) as i64);
-        let d2 = ((p[3] * lo * hi) as i64) << 17;
-        let abs = n.map(i64::abs);
-        // |n| < 2^28, so the squares sum below 2^56.
-        let norm = (abs[0] * abs[0] + abs[1] * abs[1] + abs[2] * abs[2]).isqrt() + 1;
+        let n = [0, 1, 2].map(|k| scaled(p[k], s) as i32);
+        let d2 = scaled(p[3], s) << 17;
+        // |n| rounded up, from coefficients shifted into u32 squares (a
+        // 32-bit root is cheap on a 32-bit core): ((|n| >> 12) + 1) 2^12
+        // over-estimates each, and their squares sum below 3 2^30.
+        let [x, y, z] = n.map(|v| (v.unsigned_abs() >> 12) + 1);
+        let norm = (((x * x + y * y + z * z).isqrt() + 1) << 12) as i32;
         // Truncating n moves each coefficient by less than 1, times a
         // doubled coordinate (below 2^33): the six terms of a box test move
-        // less than 2^36; truncating d, less than 2^17.
-        let scaled = slack * lo * hi * 131_072.0;
-        let scaled = if scaled < 4.0e18 {
-            scaled as i64
-        } else {
-            1 << 62
-        };
-        let margin = ((1i64 << 36) + (1 << 17))
-            .saturating_add(scaled)
+        // less than 2^36; truncating d, less than 2^17; truncating the
+        // slack, less than 1.
+        let margin = ((1i64 << 36) + (1 << 17) + 1)
+            .saturating_add(scaled(slack, s + 17))
             .min(1 << 61);
         Self {
             n,
-            abs,
-            d2,
             norm,
+            d2,
             margin,
         }
     }
@@ -387,6 +403,34 @@ mod tests {
             both * 100 >= exactly_outside * 99,
             "{both} of {exactly_outside}"
         );
+    }
+
+    /// The bit-shift scaling truncates exactly like `f64` arithmetic.
+    #[test]
+    fn scaling_by_shifts_truncates_toward_zero() {
+        let mut r = crate::testing::rng();
+        for _ in 0..20_000 {
+            // Any bits, or moderate values that land in every shift range.
+            let x = match r(2) {
+                0 => f32::from_bits(r(1 << 32) as u32),
+                _ => {
+                    f32::from_bits((r(1 << 31) as u32 & 0x807f_ffff) | ((100 + r(56) as u32) << 23))
+                }
+            };
+            let s = r(160) as i32 - 100;
+            if !x.is_finite() {
+                continue;
+            }
+            let exact = (x as f64 * 2f64.powi(s)).trunc();
+            let want = if x.abs() < f32::MIN_POSITIVE {
+                0
+            } else if exact.abs() >= 2f64.powi(62) {
+                (1i64 << 62) * exact.signum() as i64
+            } else {
+                exact as i64
+            };
+            assert_eq!(scaled(x, s), want, "{x:e} * 2^{s}");
+        }
     }
 
     /// Planes of any finite scale, and boxes at the ends of the 16.16

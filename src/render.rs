@@ -1046,25 +1046,6 @@ struct Piece {
     bary: [[i32; 2]; 3],
 }
 
-/// Transforms, lights and projects the vertices `range` of `mesh` into
-/// `out` (indexed like the mesh's vertices). Out of line: one copy for
-/// both callers, called once per draw or cluster.
-#[inline(never)]
-fn transform(
-    setup: &DrawSetup,
-    mesh: &crate::mesh::Mesh<'_>,
-    viewport: &Viewport,
-    range: core::ops::Range<usize>,
-    out: &mut [ScreenVertex],
-) -> Result<(), VertexError> {
-    // The range lies within the mesh (checked when the mesh was built).
-    let first = range.start;
-    for (i, sv) in out[range].iter_mut().enumerate() {
-        *sv = viewport.screen_vertex(&setup.clip_vertex(mesh, first + i)?);
-    }
-    Ok(())
-}
-
 /// One binning pass over every triangle: classifies it and appends a
 /// visible one to the bin of each tile of the pass its bounds touch. The
 /// pass holds the tiles visited `t0..`: in row-major order, or with
@@ -1317,9 +1298,8 @@ enum TileList<'a, 'f> {
         rect: PixelRect,
         next: usize,
         cache: SetupCache,
-        /// The current draw's frustum (when culling), the next of its
-        /// clusters, and the global index of the current cluster's end.
-        frustum: Option<Frustum>,
+        /// The current draw's next cluster, and the global index of the
+        /// current cluster's end.
         cluster: usize,
         cluster_end: usize,
     },
@@ -1338,7 +1318,6 @@ impl Iterator for TileList<'_, '_> {
                 rect,
                 next,
                 cache,
-                frustum,
                 cluster,
                 cluster_end,
             } => loop {
@@ -1350,28 +1329,34 @@ impl Iterator for TileList<'_, '_> {
                     cur.advance();
                     continue;
                 }
+                // The same tests as binning's, in the same order. The
+                // frustum is made again where needed rather than kept here:
+                // this list is moved once per tile, and rescans are rare.
                 let mesh = frame.draws[cur.draw].mesh;
                 if t == cur.first {
-                    // The same tests as binning's, in the same order.
-                    *frustum = frame.frustum(cur.draw);
-                    if frustum.as_ref().is_some_and(|f| f.excludes_mesh(mesh)) {
+                    if frame
+                        .frustum(cur.draw)
+                        .is_some_and(|f| f.excludes_mesh(mesh))
+                    {
                         *next = cur.end;
                         continue;
                     }
                     (*cluster, *cluster_end) = (0, t);
                 }
-                if let (Some(f), Some(clusters)) = (frustum.as_ref(), mesh.clusters()) {
-                    // Enter the cluster holding t (past any empty ones).
-                    let mut skip = false;
-                    while t >= *cluster_end && *cluster < clusters.len() {
-                        let c = &clusters[*cluster];
-                        *cluster += 1;
-                        *cluster_end += c.triangle_count() as usize;
-                        skip = f.excludes_box(&c.bounds());
-                    }
-                    if skip {
-                        *next = *cluster_end;
-                        continue;
+                if let Some(clusters) = mesh.clusters().filter(|_| t >= *cluster_end) {
+                    if let Some(f) = frame.frustum(cur.draw) {
+                        // Enter the cluster holding t (past any empty ones).
+                        let mut skip = false;
+                        while t >= *cluster_end && *cluster < clusters.len() {
+                            let c = &clusters[*cluster];
+                            *cluster += 1;
+                            *cluster_end += c.triangle_count() as usize;
+                            skip = f.excludes_box(&c.bounds());
+                        }
+                        if skip {
+                            *next = *cluster_end;
+                            continue;
+                        }
                     }
                 }
                 *next += 1;
@@ -1521,24 +1506,33 @@ where
                 true => Frustum::new(&view_proj, draw),
                 false => None,
             };
-            let err = |error| RenderError::Draw { draw: di, error };
-            match (&frustum, draw.mesh.clusters()) {
-                (Some(f), _) if f.excludes_mesh(draw.mesh) => {}
-                // Only the vertices of clusters in view: the others are
-                // never read, since binning skips the same clusters.
-                (Some(f), Some(clusters)) => {
-                    for c in clusters {
-                        if !f.excludes_box(&c.bounds()) {
-                            let first = c.first_vertex() as usize;
-                            let range = first..first + c.vertex_count() as usize;
-                            vertex_count += range.len() as u32;
-                            transform(&setup, draw.mesh, &viewport, range, out).map_err(err)?;
+            if frustum.as_ref().is_some_and(|f| f.excludes_mesh(draw.mesh)) {
+                continue;
+            }
+            // The clusters in view one by one (the others' vertices are
+            // never read: binning skips the same clusters), or the whole
+            // mesh as one run; one copy of the vertex loop for both.
+            let clusters = frustum.and(draw.mesh.clusters());
+            for k in 0..clusters.map_or(1, |c| c.len()) {
+                let range = match (&frustum, clusters) {
+                    (Some(f), Some(c)) => {
+                        if f.excludes_box(&c[k].bounds()) {
+                            continue;
                         }
+                        let first = c[k].first_vertex() as usize;
+                        first..first + c[k].vertex_count() as usize
                     }
-                }
-                _ => {
-                    vertex_count += out.len() as u32;
-                    transform(&setup, draw.mesh, &viewport, 0..out.len(), out).map_err(err)?;
+                    _ => 0..out.len(),
+                };
+                vertex_count += range.len() as u32;
+                let first = range.start;
+                // The range lies within the mesh (checked when the
+                // mesh was built).
+                for (i, sv) in out[range].iter_mut().enumerate() {
+                    let cv = setup
+                        .clip_vertex(draw.mesh, first + i)
+                        .map_err(|error| RenderError::Draw { draw: di, error })?;
+                    *sv = viewport.screen_vertex(&cv);
                 }
             }
         }
@@ -1648,7 +1642,6 @@ where
                     rect,
                     next: 0,
                     cache: None,
-                    frustum: None,
                     cluster: 0,
                     cluster_end: 0,
                 };
