@@ -641,7 +641,7 @@ mod firmware {
 
         // The scenes named at build time, or all of them.
         let mut scenes = SceneId::ALL.map(Some);
-        let list = option_env!("MICRORASTER_ICOUNT_SCENES").unwrap_or_default();
+        let list = crate::icount_scenes::SCENE_LIST;
         let mut names = list.split([' ', ',']).filter(|n| !n.is_empty()).peekable();
         if names.peek().is_some() {
             scenes = [None; SceneId::ALL.len()];

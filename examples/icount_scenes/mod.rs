@@ -236,8 +236,50 @@ impl SceneId {
     }
 }
 
+/// The scenes named at build time in `MICRORASTER_ICOUNT_SCENES`
+/// (separated by spaces or commas), or `""` for all of them.
+pub const SCENE_LIST: &str = match option_env!("MICRORASTER_ICOUNT_SCENES") {
+    Some(list) => list,
+    None => "",
+};
+
+/// Whether scene `name` is built in: named in [`SCENE_LIST`], or the list
+/// is blank. A `const fn`, so that the meshes of the other scenes are never
+/// referenced and stay out of flash (all of them together do not fit the
+/// LM3S6965's 256 KiB beside the renderer).
+pub const fn built_in(name: &str) -> bool {
+    let (list, name) = (SCENE_LIST.as_bytes(), name.as_bytes());
+    let (mut i, mut blank) = (0, true);
+    const fn sep(b: u8) -> bool {
+        b == b' ' || b == b','
+    }
+    while i < list.len() {
+        if sep(list[i]) {
+            i += 1;
+            continue;
+        }
+        blank = false;
+        let mut end = i;
+        while end < list.len() && !sep(list[end]) {
+            end += 1;
+        }
+        if end - i == name.len() {
+            let mut k = 0;
+            while k < name.len() && list[i + k] == name[k] {
+                k += 1;
+            }
+            if k == name.len() {
+                return true;
+            }
+        }
+        i = end;
+    }
+    blank
+}
+
 /// The validated meshes of every scene (building a [`Mesh`] checks every
-/// index, which is set-up work, not per-frame work).
+/// index, which is set-up work, not per-frame work); the meshes of scenes
+/// not [built in](built_in) are empty.
 pub struct Meshes {
     knot: Mesh<'static>,
     cube: Mesh<'static>,
@@ -248,11 +290,19 @@ pub struct Meshes {
 impl Meshes {
     /// Validates the meshes.
     pub fn new() -> Result<Self, MeshError> {
+        // Constants, so that the branches not taken are gone at compile time.
+        const DEMO: bool = built_in("demo") || built_in("demo-flat");
+        const GRID4: bool = built_in("grid4");
+        let empty = || Mesh::new(&[], &[]);
         Ok(Self {
-            knot: KNOT.mesh()?,
+            knot: if DEMO { KNOT.mesh()? } else { empty()? },
             cube: Mesh::new(&CUBE_POSITIONS, &CUBE_TRIANGLES)?.with_normals(&CUBE_NORMALS)?,
             fill: Mesh::new(&FILL.positions, &FILL.triangles)?.with_colors(&FILL.colors)?,
-            grid: Mesh::new(&GRID.positions, &GRID.triangles)?.with_colors(&GRID.colors)?,
+            grid: if GRID4 {
+                Mesh::new(&GRID.positions, &GRID.triangles)?.with_colors(&GRID.colors)?
+            } else {
+                empty()?
+            },
         })
     }
 }
