@@ -70,8 +70,8 @@ pub struct Mesh<'a> {
 ///
 /// The importer makes clusters (`microraster-import obj --clusters N`),
 /// each with a run of vertices of its own: a vertex that several clusters
-/// use is copied into each (on a grid, clusters of 64 triangles copy about
-/// 60% more vertices). Clusters made otherwise may share vertices through
+/// use is copied into each (on the benchmark terrain, 43% more vertices in
+/// clusters of 64 triangles, 20% in clusters of 256). Clusters made otherwise may share vertices through
 /// overlapping ranges; a shared vertex is then transformed once per visible
 /// cluster. Culled clusters save time, not RAM: the vertex buffer still
 /// holds a slot for every vertex of the frame's meshes.

@@ -496,17 +496,22 @@ pub const TERRAIN_CLUSTER: usize = 64;
 /// most 64 triangles, seen from a point on it looking across: what lies
 /// behind and beside the view is culled cluster by cluster.
 pub struct TerrainScene {
-    model: common::ImportedModel,
-    plain: common::ImportedModel,
+    clustered: Mesh<'static>,
+    whole: Mesh<'static>,
 }
 
 impl TerrainScene {
-    /// Imports the terrain, in clusters and without.
+    /// Imports the terrain, in clusters and without, and builds the meshes
+    /// once (building one checks every index: set-up, not frame, work).
     pub fn new() -> Self {
         let obj = common::terrain_obj(TERRAIN_QUADS);
+        let clustered: &'static common::ImportedModel =
+            Box::leak(Box::new(common::ImportedModel::new(&obj, TERRAIN_CLUSTER)));
+        let whole: &'static common::ImportedModel =
+            Box::leak(Box::new(common::ImportedModel::new(&obj, 0)));
         Self {
-            model: common::ImportedModel::new(&obj, TERRAIN_CLUSTER),
-            plain: common::ImportedModel::new(&obj, 0),
+            clustered: clustered.clustered(),
+            whole: whole.whole(),
         }
     }
 
@@ -536,11 +541,11 @@ impl TerrainScene {
         S::Error: core::fmt::Debug,
     {
         let mesh = if clustered {
-            self.model.clustered()
+            &self.clustered
         } else {
-            self.plain.whole()
+            &self.whole
         };
-        let draws = [Draw::new(&mesh).color(Rgb888::new(120, 200, 90))];
+        let draws = [Draw::new(mesh).color(Rgb888::new(120, 200, 90))];
         let scene = Scene::new(Self::camera(), &draws).light(common::light());
         r.render(ws, &scene, sink).expect("the terrain renders")
     }
