@@ -1,9 +1,11 @@
 //! Imported assets on the renderer's side: the Rust source that
-//! `microraster-import` writes for `import/tests/data/cube.obj` is checked in
-//! (`tests/data/imported_cube.rs`, regenerated with `BLESS=1 cargo test
-//! --test import`), compiles as-is (this file `include!`s it), holds exactly
-//! the importer's data, and renders the same image as the same cube built
-//! in code.
+//! `microraster-import` writes for `import/tests/data/cube.obj`, and for
+//! `examples/assets/rocket.obj` in clusters, is checked in
+//! (`tests/data/imported_cube.rs`, `tests/data/imported_rocket_clusters.rs`,
+//! regenerated with `BLESS=1 cargo test --test import`), compiles as-is
+//! (this file `include!`s it), holds exactly the importer's data, and
+//! renders: the cube the same image as the same cube built in code, the
+//! rocket's clusters the same image with and without culling.
 
 #[path = "../examples/common/mod.rs"]
 mod common;
@@ -23,6 +25,12 @@ mod imported {
     include!("data/imported_cube.rs");
 }
 
+/// The rocket in clusters of at most 8 triangles, compiled the same way.
+#[allow(dead_code)]
+mod rocket {
+    include!("data/imported_rocket_clusters.rs");
+}
+
 fn root() -> &'static Path {
     Path::new(env!("CARGO_MANIFEST_DIR"))
 }
@@ -35,19 +43,117 @@ fn options() -> ObjOptions {
     ObjOptions::new().with_fit(Fit::Keep)
 }
 
-#[test]
-fn checked_in_source_is_what_the_importer_writes() {
-    let model = load_obj(&cube_obj(), &options()).expect("the test cube imports");
-    let source = model_to_rust(&model, "imported_cube").expect("a valid name");
-    let path = root().join("tests/data/imported_cube.rs");
+/// `source` equals the checked-in `tests/data/{name}.rs` (written with
+/// `BLESS=1`).
+fn assert_checked_in(name: &str, source: &str) {
+    let path = root().join(format!("tests/data/{name}.rs"));
     if std::env::var_os("BLESS").is_some() {
-        std::fs::write(&path, &source).unwrap();
+        std::fs::write(&path, source).unwrap();
     }
     let checked_in = std::fs::read_to_string(&path).unwrap();
     assert!(
         checked_in == source,
-        "tests/data/imported_cube.rs is stale: BLESS=1 cargo test --test import"
+        "tests/data/{name}.rs is stale: BLESS=1 cargo test --test import"
     );
+}
+
+#[test]
+fn checked_in_source_is_what_the_importer_writes() {
+    let model = load_obj(&cube_obj(), &options()).expect("the test cube imports");
+    let source = model_to_rust(&model, "imported_cube").expect("a valid name");
+    assert_checked_in("imported_cube", &source);
+}
+
+fn rocket_model() -> microraster_import::Model {
+    let options = ObjOptions::new().with_cluster_triangles(8);
+    load_obj(&root().join("examples/assets/rocket.obj"), &options).expect("the rocket imports")
+}
+
+#[test]
+fn clustered_source_is_what_the_importer_writes_and_its_clusters_hold() {
+    let model = rocket_model();
+    let source = model_to_rust(&model, "imported_rocket_clusters").expect("a valid name");
+    assert_checked_in("imported_rocket_clusters", &source);
+    assert_eq!(
+        rocket::IMPORTED_ROCKET_CLUSTERS_CLUSTERS.len(),
+        model.clusters.len()
+    );
+    assert!(
+        model.clusters.len() >= 10,
+        "{} clusters",
+        model.clusters.len()
+    );
+    // The whole model, and each group with its run of clusters, pass the
+    // mesh's cluster checks as written to flash.
+    let (p, t) = (
+        &rocket::IMPORTED_ROCKET_CLUSTERS_POSITIONS,
+        &rocket::IMPORTED_ROCKET_CLUSTERS_TRIANGLES,
+    );
+    let clusters = &rocket::IMPORTED_ROCKET_CLUSTERS_CLUSTERS;
+    Mesh::new(p, t)
+        .and_then(|m| m.with_clusters(clusters))
+        .expect("the whole rocket takes its clusters");
+    for (&(_, first, count), &(c0, cn)) in rocket::IMPORTED_ROCKET_CLUSTERS_GROUPS
+        .iter()
+        .zip(&rocket::IMPORTED_ROCKET_CLUSTERS_GROUP_CLUSTERS)
+    {
+        Mesh::new(p, &t[first..first + count])
+            .and_then(|m| m.with_clusters(&clusters[c0..c0 + cn]))
+            .expect("each group takes its clusters");
+    }
+}
+
+/// The rocket's groups as draws of their own, with their clusters, seen
+/// close up so that part of it is out of view: culling removes clusters and
+/// leaves the image as it was.
+#[test]
+fn imported_clusters_cull_without_changing_the_image() {
+    let (p, t, n) = (
+        &rocket::IMPORTED_ROCKET_CLUSTERS_POSITIONS,
+        &rocket::IMPORTED_ROCKET_CLUSTERS_TRIANGLES,
+        &rocket::IMPORTED_ROCKET_CLUSTERS_NORMALS,
+    );
+    let clusters = &rocket::IMPORTED_ROCKET_CLUSTERS_CLUSTERS;
+    let meshes: Vec<Mesh<'static>> = rocket::IMPORTED_ROCKET_CLUSTERS_GROUPS
+        .iter()
+        .zip(&rocket::IMPORTED_ROCKET_CLUSTERS_GROUP_CLUSTERS)
+        .map(|(&(_, first, count), &(c0, cn))| {
+            Mesh::new(p, &t[first..first + count])
+                .and_then(|m| m.with_normals(n))
+                .and_then(|m| m.with_clusters(&clusters[c0..c0 + cn]))
+                .unwrap()
+        })
+        .collect();
+    let draws: Vec<Draw<'_>> = meshes
+        .iter()
+        .zip(rocket::IMPORTED_ROCKET_CLUSTERS_GROUP_COLORS)
+        .map(|(m, c)| Draw::new(m).color(c).transform(Mat4::rotation_z(1.2)))
+        .collect();
+    let size = Size::new(96, 72);
+    let view = Mat4::look_at(
+        Vec3::new(0.2, 0.6, 1.1),
+        Vec3::new(0.1, 0.4, 0.0),
+        Vec3::new(0.0, 1.0, 0.0),
+    )
+    .unwrap();
+    let proj = Mat4::perspective(0.7, 96.0 / 72.0, 0.1, 10.0).unwrap();
+    let scene = Scene::new(Camera::new(view, proj), &draws).light(common::light());
+    let render = |cull: bool| {
+        let cfg = Config::new(size, common::DEMO_CLEAR).frustum_cull(cull);
+        let mut r: Renderer<Rgb565, 32, 32> = Renderer::new(cfg);
+        let mut ws: Box<Workspace<1024, 1024, 16>> = Box::default();
+        let mut cap = Capture::new(size, Rgb565::new(31, 0, 31));
+        let s = r
+            .render(&mut ws, &scene, &mut cap)
+            .expect("the rocket renders");
+        (cap, s)
+    };
+    let ((with, s1), (without, s0)) = (render(true), render(false));
+    assert!(with.pixels == without.pixels, "culling changed the image");
+    assert_eq!(s1.drawn, s0.drawn);
+    assert!(s1.drawn > 0, "{s1}");
+    assert!(s1.clusters_culled > 0, "{s1}");
+    assert!(s1.vertices < s0.vertices, "{s1} / {s0}");
 }
 
 #[test]
