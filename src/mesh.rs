@@ -71,10 +71,11 @@ pub struct Mesh<'a> {
 /// The importer makes clusters (`microraster-import obj --clusters N`),
 /// each with a run of vertices of its own: a vertex that several clusters
 /// use is copied into each (on the benchmark terrain, 43% more vertices in
-/// clusters of 64 triangles, 20% in clusters of 256). Clusters made otherwise may share vertices through
-/// overlapping ranges; a shared vertex is then transformed once per visible
-/// cluster. Culled clusters save time, not RAM: the vertex buffer still
-/// holds a slot for every vertex of the frame's meshes.
+/// clusters of 64 triangles, 20% in clusters of 256). Vertex runs must
+/// ascend without overlapping (gaps are allowed), so that the vertex stage
+/// never transforms a vertex twice. Culled clusters save time, not RAM: the
+/// vertex buffer still holds a slot for every vertex of the frame's
+/// meshes.
 ///
 /// ```
 /// use fixed::types::I16F16;
@@ -235,13 +236,26 @@ pub enum MeshError {
         /// The vertex index outside the cluster's range.
         index: u32,
     },
-    /// A vertex of a cluster lies outside the cluster's bounding box (or
-    /// the box's minimum exceeds its maximum).
+    /// A vertex of a cluster lies outside the cluster's bounding box.
     ClusterBounds {
         /// Index of the cluster.
         cluster: usize,
         /// The vertex outside the box.
         vertex: usize,
+    },
+    /// A cluster's bounding box has a minimum above its maximum.
+    ClusterBox {
+        /// Index of the cluster.
+        cluster: usize,
+    },
+    /// A cluster's vertex run starts before the previous cluster's ends.
+    ClusterOverlap {
+        /// Index of the cluster.
+        cluster: usize,
+        /// Its first vertex.
+        first_vertex: u32,
+        /// One past the previous cluster's last vertex.
+        previous_end: u64,
     },
 }
 
@@ -290,6 +304,18 @@ impl core::fmt::Display for MeshError {
             Self::ClusterBounds { cluster, vertex } => write!(
                 f,
                 "vertex {vertex} lies outside the bounding box of cluster {cluster}"
+            ),
+            Self::ClusterBox { cluster } => write!(
+                f,
+                "cluster {cluster}'s bounding box has a minimum above its maximum"
+            ),
+            Self::ClusterOverlap {
+                cluster,
+                first_vertex,
+                previous_end,
+            } => write!(
+                f,
+                "cluster {cluster}'s vertices start at {first_vertex}, before the previous cluster's end at {previous_end}"
             ),
         }
     }
@@ -369,11 +395,12 @@ impl<'a> Mesh<'a> {
     /// Adds spatial clusters of the triangles ([`Cluster`]), so that the
     /// renderer culls the parts of the mesh outside the view frustum.
     ///
-    /// Checks that the clusters tile the triangles exactly, that each
-    /// vertex range lies within the positions, that every triangle uses
-    /// only its cluster's vertices, and that those vertices lie in the
-    /// cluster's box: culling a cluster can then never remove a visible
-    /// triangle. A run of clusters and the matching run of triangles (one
+    /// Checks that the clusters tile the triangles exactly, that the vertex
+    /// ranges lie within the positions in ascending order without
+    /// overlapping, that every triangle uses only its cluster's vertices,
+    /// and that those vertices lie in the cluster's box: culling a cluster
+    /// can then never remove a visible triangle, and the vertex stage
+    /// transforms each vertex at most once. A run of clusters and the matching run of triangles (one
     /// group of an imported model) make a mesh as well.
     ///
     /// ```
@@ -398,9 +425,18 @@ impl<'a> Mesh<'a> {
             });
         }
         let mut t = 0usize;
+        let mut previous_end = 0u64;
         for (k, c) in clusters.iter().enumerate() {
             let first = c.first_vertex as usize;
             let end = u64::from(c.first_vertex) + u64::from(c.vertex_count);
+            if u64::from(c.first_vertex) < previous_end {
+                return Err(MeshError::ClusterOverlap {
+                    cluster: k,
+                    first_vertex: c.first_vertex,
+                    previous_end,
+                });
+            }
+            previous_end = end;
             if end > self.positions.len() as u64 {
                 return Err(MeshError::ClusterVertices {
                     cluster: k,
@@ -411,10 +447,7 @@ impl<'a> Mesh<'a> {
             let range = first..end as usize;
             let (lo, hi) = (c.min, c.max);
             if (0..3).any(|i| lo[i] > hi[i]) {
-                return Err(MeshError::ClusterBounds {
-                    cluster: k,
-                    vertex: first,
-                });
+                return Err(MeshError::ClusterBox { cluster: k });
             }
             for (v, p) in self.positions[range.clone()].iter().enumerate() {
                 if (0..3).any(|i| p[i] < lo[i] || p[i] > hi[i]) {
@@ -607,12 +640,23 @@ mod tests {
             }
         );
         // An inverted box, even around no vertices.
-        let inverted = [a, Cluster::new(2, 3, 0, p(6, 6, 6), p(5, 5, 5))];
+        let inverted = [a, Cluster::new(2, 6, 0, p(6, 6, 6), p(5, 5, 5))];
         assert_eq!(
             mesh.with_clusters(&inverted).unwrap_err(),
-            MeshError::ClusterBounds {
+            MeshError::ClusterBox { cluster: 1 }
+        );
+        // Vertex runs must ascend without overlapping (a descending run
+        // starts before the previous one's end too).
+        let overlap = [
+            Cluster::new(1, 0, 4, p(0, 0, 0), p(5, 5, 5)),
+            Cluster::new(2, 3, 3, p(5, 5, 5), p(6, 6, 5)),
+        ];
+        assert_eq!(
+            mesh.with_clusters(&overlap).unwrap_err(),
+            MeshError::ClusterOverlap {
                 cluster: 1,
-                vertex: 3
+                first_vertex: 3,
+                previous_end: 4
             }
         );
         // Every error displays a sentence naming the cluster.
@@ -620,6 +664,8 @@ mod tests {
             mesh.with_clusters(&past).unwrap_err(),
             mesh.with_clusters(&wrong_range).unwrap_err(),
             mesh.with_clusters(&tight).unwrap_err(),
+            mesh.with_clusters(&inverted).unwrap_err(),
+            mesh.with_clusters(&overlap).unwrap_err(),
         ] {
             let mut buf = heapless::String::<128>::new();
             core::fmt::write(&mut buf, format_args!("{e}")).unwrap();
@@ -628,18 +674,18 @@ mod tests {
     }
 
     #[test]
-    fn empty_meshes_take_empty_clusters_and_overlapping_ranges_are_allowed() {
+    fn empty_meshes_take_empty_clusters_and_runs_may_leave_gaps() {
         let pos = positions();
         let none: [[u16; 3]; 0] = [];
         assert!(Mesh::new(&pos, &none).unwrap().with_clusters(&[]).is_ok());
-        let tris = [[0u16, 1, 2], [3, 4, 5]];
-        let whole = [
-            Cluster::new(1, 0, 6, p(0, 0, 0), p(6, 6, 5)),
-            Cluster::new(1, 0, 6, p(0, 0, 0), p(6, 6, 5)),
+        // Vertices 1, 2 and 4..6 belong to no cluster; an empty cluster
+        // sits between the others.
+        let tris = [[0u16, 0, 0], [3, 3, 3]];
+        let gaps = [
+            Cluster::new(1, 0, 1, p(0, 0, 0), p(0, 0, 0)),
+            Cluster::new(0, 2, 0, p(0, 0, 0), p(0, 0, 0)),
+            Cluster::new(1, 3, 1, p(5, 5, 5), p(5, 5, 5)),
         ];
-        assert!(Mesh::new(&pos, &tris)
-            .unwrap()
-            .with_clusters(&whole)
-            .is_ok());
+        assert!(Mesh::new(&pos, &tris).unwrap().with_clusters(&gaps).is_ok());
     }
 }
