@@ -183,11 +183,13 @@ pub struct Config<C> {
     pub tile_order: TileOrder,
     /// How fragment shaders' varyings are interpolated.
     pub perspective: Perspective,
-    /// Whether draws wholly outside the view frustum are culled before
-    /// the vertex stage ([`crate::cull`]; the image is the same, and a
-    /// culled draw's vertices are not transformed, so one whose vertices
-    /// would leave the 16.16 range of clip space is culled rather than an
-    /// error).
+    /// Whether draws wholly outside the view frustum, and the
+    /// [clusters](crate::mesh::Cluster) outside it of the draws in view, are
+    /// culled before the vertex stage ([`crate::cull`]). The image is the
+    /// same. Culled vertices are not transformed, so a vertex that would
+    /// leave the 16.16 range of clip space is culled with its draw or
+    /// cluster rather than reported: with culling off the same frame may
+    /// be a [`RenderError::Draw`].
     pub frustum_cull: bool,
     /// Whether draws are visited sorted by depth: opaque ones front to
     /// back, then transparent ones back to front (see
@@ -236,8 +238,8 @@ impl<C> Config<C> {
         self
     }
 
-    /// Enables or disables culling whole draws against the view frustum
-    /// (default on; the image is the same either way, see
+    /// Enables or disables culling draws and mesh clusters against the view
+    /// frustum (default on; the image is the same either way, see
     /// [`frustum_cull`](Self::frustum_cull)).
     pub const fn frustum_cull(mut self, on: bool) -> Self {
         self.frustum_cull = on;
@@ -1094,6 +1096,9 @@ fn bin_pass<const TW: usize, const TH: usize, const HILBERT: bool>(
             let len = match (&frustum, clusters) {
                 (Some(f), Some(c)) => {
                     let len = c[k].triangle_count() as usize;
+                    if len == 0 {
+                        continue;
+                    }
                     if f.excludes_box(&c[k].bounds()) {
                         t += len;
                         first += len;
@@ -1288,21 +1293,27 @@ impl<'f> DrawCursor<'f> {
 
 /// The triangles of one tile: its bin, or, for a tile whose bin overflowed
 /// the pool, every visible triangle whose bounds touch it.
-// One per tile, on the stack: the size of the rare variant does not matter.
-#[allow(clippy::large_enum_variant)]
+// One per tile, moved by value into the tile loop: the rare variant keeps
+// its large state behind a reference.
 enum TileList<'a, 'f> {
     Bin(BinIter<'a>),
     Scan {
-        cur: DrawCursor<'f>,
         frame: &'f Frame<'f, 'f>,
         rect: PixelRect,
         next: usize,
-        cache: SetupCache,
-        /// The current draw's next cluster, and the global index of the
-        /// current cluster's end.
-        cluster: usize,
-        cluster_end: usize,
+        state: &'a mut ScanState<'f>,
     },
+}
+
+/// What a rescanned tile's walk over every triangle keeps.
+struct ScanState<'f> {
+    cur: DrawCursor<'f>,
+    cache: SetupCache,
+    /// The current draw's frustum (when culling), its next cluster, and
+    /// the global index of the current cluster's end.
+    frustum: Option<Frustum>,
+    cluster: usize,
+    cluster_end: usize,
 }
 
 impl Iterator for TileList<'_, '_> {
@@ -1313,14 +1324,18 @@ impl Iterator for TileList<'_, '_> {
         match self {
             TileList::Bin(b) => b.next(),
             TileList::Scan {
-                cur,
                 frame,
                 rect,
                 next,
-                cache,
-                cluster,
-                cluster_end,
+                state,
             } => loop {
+                let ScanState {
+                    cur,
+                    cache,
+                    frustum,
+                    cluster,
+                    cluster_end,
+                } = &mut **state;
                 let t = *next;
                 if t >= cur.end {
                     if cur.pos + 1 >= cur.draws.len() {
@@ -1329,34 +1344,28 @@ impl Iterator for TileList<'_, '_> {
                     cur.advance();
                     continue;
                 }
-                // The same tests as binning's, in the same order. The
-                // frustum is made again where needed rather than kept here:
-                // this list is moved once per tile, and rescans are rare.
+                // The same tests as binning's, in the same order.
                 let mesh = frame.draws[cur.draw].mesh;
                 if t == cur.first {
-                    if frame
-                        .frustum(cur.draw)
-                        .is_some_and(|f| f.excludes_mesh(mesh))
-                    {
+                    *frustum = frame.frustum(cur.draw);
+                    if frustum.as_ref().is_some_and(|f| f.excludes_mesh(mesh)) {
                         *next = cur.end;
                         continue;
                     }
                     (*cluster, *cluster_end) = (0, t);
                 }
-                if let Some(clusters) = mesh.clusters().filter(|_| t >= *cluster_end) {
-                    if let Some(f) = frame.frustum(cur.draw) {
-                        // Enter the cluster holding t (past any empty ones).
-                        let mut skip = false;
-                        while t >= *cluster_end && *cluster < clusters.len() {
-                            let c = &clusters[*cluster];
-                            *cluster += 1;
-                            *cluster_end += c.triangle_count() as usize;
-                            skip = f.excludes_box(&c.bounds());
-                        }
-                        if skip {
-                            *next = *cluster_end;
-                            continue;
-                        }
+                if let (Some(f), Some(clusters)) = (frustum.as_ref(), mesh.clusters()) {
+                    // Enter the cluster holding t (past any empty ones).
+                    let mut skip = false;
+                    while t >= *cluster_end && *cluster < clusters.len() {
+                        let c = &clusters[*cluster];
+                        *cluster += 1;
+                        *cluster_end += c.triangle_count() as usize;
+                        skip = f.excludes_box(&c.bounds());
+                    }
+                    if skip {
+                        *next = *cluster_end;
+                        continue;
                     }
                 }
                 *next += 1;
@@ -1516,7 +1525,8 @@ where
             for k in 0..clusters.map_or(1, |c| c.len()) {
                 let range = match (&frustum, clusters) {
                     (Some(f), Some(c)) => {
-                        if f.excludes_box(&c[k].bounds()) {
+                        // An empty cluster's vertices serve no triangle.
+                        if c[k].triangle_count() == 0 || f.excludes_box(&c[k].bounds()) {
                             continue;
                         }
                         let first = c[k].first_vertex() as usize;
@@ -1524,7 +1534,9 @@ where
                     }
                     _ => 0..out.len(),
                 };
-                vertex_count += range.len() as u32;
+                // Runs do not overlap (Mesh::with_clusters), so this counts
+                // at most the frame's vertices.
+                vertex_count = vertex_count.saturating_add(range.len() as u32);
                 let first = range.start;
                 // The range lies within the mesh (checked when the
                 // mesh was built).
@@ -1636,14 +1648,18 @@ where
                 stats.rescanned_tiles += 1;
                 let tile = grid.tile_at(t0 as u32) as usize;
                 let rect = grid.rect(tile as u32);
-                let list = TileList::Scan {
+                let mut state = ScanState {
                     cur: DrawCursor::new(&frame),
+                    cache: None,
+                    frustum: None,
+                    cluster: 0,
+                    cluster_end: 0,
+                };
+                let list = TileList::Scan {
                     frame: &frame,
                     rect,
                     next: 0,
-                    cache: None,
-                    cluster: 0,
-                    cluster_end: 0,
+                    state: &mut state,
                 };
                 self.draw_tile(
                     &frame,
