@@ -14,7 +14,9 @@
 //! those of `examples/icount_scenes/mod.rs`, rendered at 320x240 into a
 //! `NullSink`. Built with `MICRORASTER_ICOUNT_SCENES="fill grid4"` (names
 //! separated by spaces or commas) in the environment, only those scenes
-//! run.
+//! are built in and run: without the variable, every scene, which is more
+//! than the LM3S6965's flash holds (`scripts/icount.sh` builds it in
+//! parts).
 //!
 //! # What is counted, and how
 //!
@@ -346,6 +348,7 @@ mod firmware {
     // About 41 KB, built in place and never moved through the stack; the
     // 4 KB renderer lives on the stack of `measure`.
     static WORKSPACE: ConstStaticCell<BenchWorkspace> = ConstStaticCell::new(BenchWorkspace::new());
+    static TEXELS: ConstStaticCell<[u16; 32 * 32]> = ConstStaticCell::new([0; 32 * 32]);
 
     /// The board this build is for.
     #[cfg(target_abi = "eabihf")]
@@ -650,7 +653,16 @@ mod firmware {
             }
         }
 
-        let meshes = Meshes::new().map_err(Error::Mesh)?;
+        // The shader scenes' texture, in RAM (2 KiB), only when one of them
+        // is built in.
+        let texels: Option<&'static [u16]> = if crate::icount_scenes::SHADER_SCENES {
+            let t = TEXELS.take();
+            crate::icount_scenes::checker_texels(t);
+            Some(t)
+        } else {
+            None
+        };
+        let meshes = Meshes::new(texels).map_err(Error::Mesh)?;
         let ws = WORKSPACE.take();
         let mut results = [None; SceneId::ALL.len()];
         for (slot, scene) in results.iter_mut().zip(scenes.into_iter().flatten()) {

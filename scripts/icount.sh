@@ -11,14 +11,17 @@
 # it twice in QEMU and checks that both runs print the same thing, then
 # prints its tables and the firmware's flash and static RAM (llvm-size -A
 # of the linked ELF). SCENES (names separated by spaces) is passed to the
-# build as MICRORASTER_ICOUNT_SCENES; the scenes are demo, demo-flat, fill
-# and grid4 (examples/icount_scenes/mod.rs). Without SCENES, the LM3S6965
-# gets two builds (demo demo-flat fill, then grid4): its flash holds only
-# one of the two big meshes at a time.
+# build as MICRORASTER_ICOUNT_SCENES; the scenes are demo, demo-flat, fill,
+# grid4 and the fragment-shader fills fill-gouraud-exact,
+# fill-nearest-exact, fill-nearest-affine, fill-bilinear-exact and
+# fill-lit-exact (examples/icount_scenes/mod.rs). Without SCENES, the
+# LM3S6965 gets three builds (demo demo-flat fill; grid4; the shader
+# fills): its flash holds only part of the scenes at a time.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 BOARDS=${BOARDS:-lm3s6965evb mps2-an386}
+SHADER_SCENES="fill-gouraud-exact fill-nearest-exact fill-nearest-affine fill-bilinear-exact fill-lit-exact"
 SCENES=${SCENES:-}
 TARGET_DIR=${CARGO_TARGET_DIR:-target}
 OUT=$TARGET_DIR/icount
@@ -42,13 +45,13 @@ for board in $BOARDS; do
         *) echo "unknown board $board (lm3s6965evb or mps2-an386)" >&2; exit 1 ;;
     esac
     # The builds per board: every scene at once, except on the LM3S6965,
-    # whose 256 KiB of flash do not hold the demo's knot and grid4's grid
-    # together beside the renderer (a build links only the meshes of its
-    # scenes). The renderer's code is the same in every build.
+    # whose 256 KiB of flash hold neither the demo's knot and grid4's grid
+    # together beside the renderer, nor the fragment-shader renderers beside
+    # the plain one (a build links only its scenes' meshes and code).
     if [ -n "$SCENES" ]; then
         groups=("$SCENES")
     elif [ "$board" = lm3s6965evb ]; then
-        groups=("demo demo-flat fill" "grid4")
+        groups=("demo demo-flat fill" "grid4" "$SHADER_SCENES")
     else
         groups=("")
     fi

@@ -16,15 +16,26 @@
 //!   cost per small triangle (the host's `tri4` scene scatters 8,000
 //!   separate triangles, whose 24,000 vertices fit neither the LM3S6965's
 //!   RAM nor its flash).
+//! * `fill-gouraud-exact`, `fill-nearest-exact`, `fill-nearest-affine`,
+//!   `fill-bilinear-exact`, `fill-lit-exact`: the fill quads through the
+//!   `Gouraud`, `Textured` (nearest or bilinear) and `TexturedLit` fragment
+//!   shaders, with the host's 32x32 checker texture, as the host's
+//!   `fill-SHADER-MODE` scenes.
+//!
+//! A build holds only the scenes named in `MICRORASTER_ICOUNT_SCENES` (all
+//! without it): their meshes, and through [`frame`]'s constant guards,
+//! their code.
 #![allow(dead_code)]
 
 use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
 use fixed::types::I16F16;
-use microraster::mesh::{Mesh, MeshError, Vec3Fx};
+use microraster::mesh::{Mesh, MeshError, UvFx, Vec3Fx};
 use microraster::prelude::*;
+use microraster::shader::{Gouraud, Textured, TexturedLit};
 use microraster::shapes::{
     torus_knot_data, torus_knot_size, MeshData, CUBE_NORMALS, CUBE_POSITIONS, CUBE_TRIANGLES,
 };
+use microraster::texture::{Filter, Texels, Texture};
 use microraster::Profiler;
 
 #[path = "../demo_scene/mod.rs"]
@@ -97,6 +108,9 @@ pub const FILL_LAYERS: usize = 8;
 struct FillData {
     positions: [Vec3Fx; 4 * FILL_LAYERS],
     colors: [Rgb888; 4 * FILL_LAYERS],
+    /// The checker texture four times across and three times down each
+    /// quad, as the host's fill scene maps it.
+    uvs: [UvFx; 4 * FILL_LAYERS],
     triangles: [[u16; 3]; 2 * FILL_LAYERS],
 }
 
@@ -104,6 +118,7 @@ const fn fill_data() -> FillData {
     let mut d = FillData {
         positions: [[I16F16::ZERO; 3]; 4 * FILL_LAYERS],
         colors: [Rgb888::new(0, 0, 0); 4 * FILL_LAYERS],
+        uvs: [[I16F16::ZERO; 2]; 4 * FILL_LAYERS],
         triangles: [[0; 3]; 2 * FILL_LAYERS],
     };
     let (w, h) = (WIDTH as f32, HEIGHT as f32);
@@ -125,6 +140,10 @@ const fn fill_data() -> FillData {
             d.colors[b + i] = c;
             i += 1;
         }
+        d.uvs[b] = [fx(0.0), fx(3.0)];
+        d.uvs[b + 1] = [fx(4.0), fx(3.0)];
+        d.uvs[b + 2] = [fx(4.0), fx(0.0)];
+        d.uvs[b + 3] = [fx(0.0), fx(0.0)];
         let b = b as u16;
         d.triangles[2 * l] = [b, b + 1, b + 2];
         d.triangles[2 * l + 1] = [b, b + 2, b + 3];
@@ -214,11 +233,32 @@ pub enum SceneId {
     Fill,
     /// The small triangles.
     Grid4,
+    /// The fill quads through the `Gouraud` fragment shader, exact
+    /// perspective.
+    FillGouraud,
+    /// Textured, nearest texel, exact perspective.
+    FillNearest,
+    /// Textured, nearest texel, affine.
+    FillNearestAffine,
+    /// Textured, bilinear, exact perspective.
+    FillBilinear,
+    /// Textured and lit (`TexturedLit`), nearest texel, exact perspective.
+    FillLit,
 }
 
 impl SceneId {
     /// Every scene, in the order of the tables.
-    pub const ALL: [SceneId; 4] = [Self::Demo, Self::DemoFlat, Self::Fill, Self::Grid4];
+    pub const ALL: [SceneId; 9] = [
+        Self::Demo,
+        Self::DemoFlat,
+        Self::Fill,
+        Self::Grid4,
+        Self::FillGouraud,
+        Self::FillNearest,
+        Self::FillNearestAffine,
+        Self::FillBilinear,
+        Self::FillLit,
+    ];
 
     /// The scene's name, as in the host benchmarks.
     pub const fn name(self) -> &'static str {
@@ -227,12 +267,58 @@ impl SceneId {
             Self::DemoFlat => "demo-flat",
             Self::Fill => "fill",
             Self::Grid4 => "grid4",
+            Self::FillGouraud => "fill-gouraud-exact",
+            Self::FillNearest => "fill-nearest-exact",
+            Self::FillNearestAffine => "fill-nearest-affine",
+            Self::FillBilinear => "fill-bilinear-exact",
+            Self::FillLit => "fill-lit-exact",
         }
     }
 
     /// The scene called `name`.
     pub fn from_name(name: &str) -> Option<Self> {
         Self::ALL.into_iter().find(|s| s.name() == name)
+    }
+
+    /// Whether the scene is [built in](built_in): a constant per scene,
+    /// so that [`frame`] holds the code of the built-in scenes only.
+    const fn built(self) -> bool {
+        const ON: [bool; SceneId::ALL.len()] = {
+            let mut on = [false; SceneId::ALL.len()];
+            let mut i = 0;
+            while i < on.len() {
+                on[i] = built_in(SceneId::ALL[i].name());
+                i += 1;
+            }
+            on
+        };
+        ON[self as usize]
+    }
+}
+
+/// Whether any fragment-shader scene is built in (they need the texture).
+pub const SHADER_SCENES: bool = SceneId::FillGouraud.built()
+    || SceneId::FillNearest.built()
+    || SceneId::FillNearestAffine.built()
+    || SceneId::FillBilinear.built()
+    || SceneId::FillLit.built();
+
+/// The host's 32x32 checker texture (`examples/common::checker_texels`),
+/// computed at start-up (the `Rgb888` to `Rgb565` conversion is not a
+/// `const fn`) into `out`.
+pub fn checker_texels(out: &mut [u16; 32 * 32]) {
+    use embedded_graphics::prelude::IntoStorage;
+    for (i, t) in out.iter_mut().enumerate() {
+        let (x, y) = ((i % 32) as u32, (i / 32) as u32);
+        let shade = (x + y) * 96 / 64;
+        let (r, g, b) = if x == 0 || y == 0 {
+            (250, 240, 200)
+        } else if ((x / 8) + (y / 8)) % 2 == 0 {
+            (150 + shade, 70 + shade / 2, 40)
+        } else {
+            (30, 90 + shade / 2, 140 + shade)
+        };
+        *t = Rgb565::from(Rgb888::new(r as u8, g as u8, b as u8)).into_storage();
     }
 }
 
@@ -285,11 +371,14 @@ pub struct Meshes {
     cube: Mesh<'static>,
     fill: Mesh<'static>,
     grid: Mesh<'static>,
+    /// The checker texture, when a shader scene is built in.
+    texture: Option<Texture<'static>>,
 }
 
 impl Meshes {
-    /// Validates the meshes.
-    pub fn new() -> Result<Self, MeshError> {
+    /// Validates the meshes; `texels` (from [`checker_texels`]) make the
+    /// shader scenes' texture.
+    pub fn new(texels: Option<&'static [u16]>) -> Result<Self, MeshError> {
         // Constants, so that the branches not taken are gone at compile time.
         const DEMO: bool = built_in("demo") || built_in("demo-flat");
         const GRID4: bool = built_in("grid4");
@@ -297,12 +386,15 @@ impl Meshes {
         Ok(Self {
             knot: if DEMO { KNOT.mesh()? } else { empty()? },
             cube: Mesh::new(&CUBE_POSITIONS, &CUBE_TRIANGLES)?.with_normals(&CUBE_NORMALS)?,
-            fill: Mesh::new(&FILL.positions, &FILL.triangles)?.with_colors(&FILL.colors)?,
+            fill: Mesh::new(&FILL.positions, &FILL.triangles)?
+                .with_colors(&FILL.colors)?
+                .with_uvs(&FILL.uvs)?,
             grid: if GRID4 {
                 Mesh::new(&GRID.positions, &GRID.triangles)?.with_colors(&GRID.colors)?
             } else {
                 empty()?
             },
+            texture: texels.and_then(|t| Texture::new(32, 32, Texels::Rgb565(t)).ok()),
         })
     }
 }
@@ -312,6 +404,8 @@ impl Meshes {
 pub enum FrameError {
     /// The demo camera's matrices could not be built.
     Camera,
+    /// The scene is not built in, or its texture is missing.
+    NotBuilt,
     /// The renderer refused the scene.
     Render(RenderError<core::convert::Infallible>),
 }
@@ -320,6 +414,7 @@ impl core::fmt::Display for FrameError {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         match self {
             Self::Camera => write!(f, "the demo camera's matrices are degenerate"),
+            Self::NotBuilt => write!(f, "the scene is not built in (or has no texture)"),
             Self::Render(e) => write!(f, "render error: {e}"),
         }
     }
@@ -356,8 +451,19 @@ pub fn frame<P: Profiler>(
 ) -> Result<FrameStats, FrameError> {
     let sink = &mut NullSink;
     let (scene, t, width, height) = core::hint::black_box((scene, 0.0f32, WIDTH, HEIGHT));
+    // One constant per scene: the arms of scenes not built in are gone at
+    // compile time, with the renderer monomorphizations only they use.
+    const DEMO: bool = SceneId::Demo.built() || SceneId::DemoFlat.built();
+    const FILL: bool = SceneId::Fill.built();
+    const GRID4: bool = SceneId::Grid4.built();
+    const GOURAUD: bool = SceneId::FillGouraud.built();
+    const NEAREST: bool = SceneId::FillNearest.built();
+    const AFFINE: bool = SceneId::FillNearestAffine.built();
+    const BILINEAR: bool = SceneId::FillBilinear.built();
+    const LIT: bool = SceneId::FillLit.built();
+    let texture = meshes.texture.as_ref();
     let r = match scene {
-        SceneId::Demo | SceneId::DemoFlat => {
+        SceneId::Demo | SceneId::DemoFlat if DEMO => {
             let shading = if scene == SceneId::Demo {
                 Shading::Gouraud
             } else {
@@ -368,16 +474,98 @@ pub fn frame<P: Profiler>(
             let s = Scene::new(camera, &draws).light(demo_light());
             renderer.render_profiled(ws, &s, sink, profiler)
         }
-        SceneId::Fill => {
+        SceneId::Fill if FILL => {
             let draws = [Draw::new(&meshes.fill).shading(Shading::Flat)];
             let s = Scene::new(ndc_camera(), &draws);
             renderer.render_profiled(ws, &s, sink, profiler)
         }
-        SceneId::Grid4 => {
+        SceneId::Grid4 if GRID4 => {
             let draws = [Draw::new(&meshes.grid)];
             let s = Scene::new(ndc_camera(), &draws);
             renderer.render_profiled(ws, &s, sink, profiler)
         }
+        SceneId::FillGouraud if GOURAUD => {
+            let tex = texture.ok_or(FrameError::NotBuilt)?;
+            fill_shader(
+                meshes,
+                renderer,
+                ws,
+                profiler,
+                &Gouraud,
+                tex,
+                Perspective::Exact,
+            )
+        }
+        SceneId::FillNearest if NEAREST => {
+            let tex = texture.ok_or(FrameError::NotBuilt)?;
+            fill_shader(
+                meshes,
+                renderer,
+                ws,
+                profiler,
+                &Textured,
+                tex,
+                Perspective::Exact,
+            )
+        }
+        SceneId::FillNearestAffine if AFFINE => {
+            let tex = texture.ok_or(FrameError::NotBuilt)?;
+            fill_shader(
+                meshes,
+                renderer,
+                ws,
+                profiler,
+                &Textured,
+                tex,
+                Perspective::Affine,
+            )
+        }
+        SceneId::FillBilinear if BILINEAR => {
+            let tex = texture
+                .ok_or(FrameError::NotBuilt)?
+                .filter(Filter::Bilinear);
+            fill_shader(
+                meshes,
+                renderer,
+                ws,
+                profiler,
+                &Textured,
+                &tex,
+                Perspective::Exact,
+            )
+        }
+        SceneId::FillLit if LIT => {
+            let tex = texture.ok_or(FrameError::NotBuilt)?;
+            fill_shader(
+                meshes,
+                renderer,
+                ws,
+                profiler,
+                &TexturedLit,
+                tex,
+                Perspective::Exact,
+            )
+        }
+        _ => return Err(FrameError::NotBuilt),
     };
     r.map_err(FrameError::Render)
+}
+
+/// The fill quads through fragment shader `shader`, sampling `texture`,
+/// with perspective `mode`: the host's `fill-SHADER-MODE` scenes.
+fn fill_shader<P: Profiler, F: FragmentShader<Rgb565>>(
+    meshes: &Meshes,
+    renderer: &mut BenchRenderer,
+    ws: &mut BenchWorkspace,
+    profiler: &mut P,
+    shader: &F,
+    texture: &Texture<'_>,
+    mode: Perspective,
+) -> Result<FrameStats, RenderError<core::convert::Infallible>> {
+    renderer.config_mut().perspective = mode;
+    let draws = [Draw::new(&meshes.fill)
+        .shading(Shading::Shader)
+        .texture(texture)];
+    let s = Scene::new(ndc_camera(), &draws).shader(shader);
+    renderer.render_profiled(ws, &s, &mut NullSink, profiler)
 }
