@@ -9,6 +9,8 @@ use microraster::shapes::{
     torus_knot, torus_knot_size, CUBE_NORMALS, CUBE_POSITIONS, CUBE_TRIANGLES,
 };
 
+#[path = "../checker/mod.rs"]
+mod checker;
 #[path = "../demo_scene/mod.rs"]
 mod demo_scene;
 // Each example or test that includes this file uses a different subset.
@@ -146,24 +148,9 @@ pub fn clipped_draws<'a>(
 /// cool, shaded by a diagonal gradient, with a bright border one texel wide
 /// so that every repeat's edge shows.
 pub fn checker_texels(size: u32) -> Vec<u16> {
-    let mut out = Vec::with_capacity((size * size) as usize);
-    for y in 0..size {
-        for x in 0..size {
-            let shade = (x + y) * 96 / (2 * size.max(1));
-            let (r, g, b) = if x == 0 || y == 0 {
-                (250, 240, 200)
-            } else if ((x / 8) + (y / 8)) % 2 == 0 {
-                (150 + shade, 70 + shade / 2, 40)
-            } else {
-                (30, 90 + shade / 2, 140 + shade)
-            };
-            let c = embedded_graphics::pixelcolor::Rgb565::from(
-                embedded_graphics::pixelcolor::Rgb888::new(r as u8, g as u8, b as u8),
-            );
-            out.push(embedded_graphics::prelude::IntoStorage::into_storage(c));
-        }
-    }
-    out
+    (0..size * size)
+        .map(|i| checker::checker_texel(i % size, i / size, size))
+        .collect()
 }
 
 /// Texture coordinates for the demo knot: `u_repeats` along the knot and

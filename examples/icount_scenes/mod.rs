@@ -38,6 +38,8 @@ use microraster::shapes::{
 use microraster::texture::{Filter, Texels, Texture};
 use microraster::Profiler;
 
+#[path = "../checker/mod.rs"]
+mod checker;
 #[path = "../demo_scene/mod.rs"]
 mod demo_scene;
 
@@ -307,18 +309,8 @@ pub const SHADER_SCENES: bool = SceneId::FillGouraud.built()
 /// computed at start-up (the `Rgb888` to `Rgb565` conversion is not a
 /// `const fn`) into `out`.
 pub fn checker_texels(out: &mut [u16; 32 * 32]) {
-    use embedded_graphics::prelude::IntoStorage;
-    for (i, t) in out.iter_mut().enumerate() {
-        let (x, y) = ((i % 32) as u32, (i / 32) as u32);
-        let shade = (x + y) * 96 / 64;
-        let (r, g, b) = if x == 0 || y == 0 {
-            (250, 240, 200)
-        } else if ((x / 8) + (y / 8)) % 2 == 0 {
-            (150 + shade, 70 + shade / 2, 40)
-        } else {
-            (30, 90 + shade / 2, 140 + shade)
-        };
-        *t = Rgb565::from(Rgb888::new(r as u8, g as u8, b as u8)).into_storage();
+    for (i, t) in (0u32..).zip(out.iter_mut()) {
+        *t = checker::checker_texel(i % 32, i / 32, 32);
     }
 }
 
@@ -461,7 +453,7 @@ pub fn frame<P: Profiler>(
     const AFFINE: bool = SceneId::FillNearestAffine.built();
     const BILINEAR: bool = SceneId::FillBilinear.built();
     const LIT: bool = SceneId::FillLit.built();
-    let texture = meshes.texture.as_ref();
+    const EXACT: Perspective = Perspective::Exact;
     let r = match scene {
         SceneId::Demo | SceneId::DemoFlat if DEMO => {
             let shading = if scene == SceneId::Demo {
@@ -485,65 +477,59 @@ pub fn frame<P: Profiler>(
             renderer.render_profiled(ws, &s, sink, profiler)
         }
         SceneId::FillGouraud if GOURAUD => {
-            let tex = texture.ok_or(FrameError::NotBuilt)?;
-            fill_shader(
+            return fill_shader(
                 meshes,
                 renderer,
                 ws,
                 profiler,
                 &Gouraud,
-                tex,
-                Perspective::Exact,
+                Filter::Nearest,
+                EXACT,
             )
         }
         SceneId::FillNearest if NEAREST => {
-            let tex = texture.ok_or(FrameError::NotBuilt)?;
-            fill_shader(
+            return fill_shader(
                 meshes,
                 renderer,
                 ws,
                 profiler,
                 &Textured,
-                tex,
-                Perspective::Exact,
+                Filter::Nearest,
+                EXACT,
             )
         }
         SceneId::FillNearestAffine if AFFINE => {
-            let tex = texture.ok_or(FrameError::NotBuilt)?;
-            fill_shader(
+            let mode = Perspective::Affine;
+            return fill_shader(
                 meshes,
                 renderer,
                 ws,
                 profiler,
                 &Textured,
-                tex,
-                Perspective::Affine,
-            )
+                Filter::Nearest,
+                mode,
+            );
         }
         SceneId::FillBilinear if BILINEAR => {
-            let tex = texture
-                .ok_or(FrameError::NotBuilt)?
-                .filter(Filter::Bilinear);
-            fill_shader(
+            return fill_shader(
                 meshes,
                 renderer,
                 ws,
                 profiler,
                 &Textured,
-                &tex,
-                Perspective::Exact,
+                Filter::Bilinear,
+                EXACT,
             )
         }
         SceneId::FillLit if LIT => {
-            let tex = texture.ok_or(FrameError::NotBuilt)?;
-            fill_shader(
+            return fill_shader(
                 meshes,
                 renderer,
                 ws,
                 profiler,
                 &TexturedLit,
-                tex,
-                Perspective::Exact,
+                Filter::Nearest,
+                EXACT,
             )
         }
         _ => return Err(FrameError::NotBuilt),
@@ -551,21 +537,25 @@ pub fn frame<P: Profiler>(
     r.map_err(FrameError::Render)
 }
 
-/// The fill quads through fragment shader `shader`, sampling `texture`,
-/// with perspective `mode`: the host's `fill-SHADER-MODE` scenes.
+/// The fill quads through fragment shader `shader`, sampling the checker
+/// texture with `filter`, with perspective `mode`: the host's
+/// `fill-SHADER-MODE` scenes.
 fn fill_shader<P: Profiler, F: FragmentShader<Rgb565>>(
     meshes: &Meshes,
     renderer: &mut BenchRenderer,
     ws: &mut BenchWorkspace,
     profiler: &mut P,
     shader: &F,
-    texture: &Texture<'_>,
+    filter: Filter,
     mode: Perspective,
-) -> Result<FrameStats, RenderError<core::convert::Infallible>> {
+) -> Result<FrameStats, FrameError> {
+    let texture = meshes.texture.ok_or(FrameError::NotBuilt)?.filter(filter);
     renderer.config_mut().perspective = mode;
     let draws = [Draw::new(&meshes.fill)
         .shading(Shading::Shader)
-        .texture(texture)];
+        .texture(&texture)];
     let s = Scene::new(ndc_camera(), &draws).shader(shader);
-    renderer.render_profiled(ws, &s, &mut NullSink, profiler)
+    renderer
+        .render_profiled(ws, &s, &mut NullSink, profiler)
+        .map_err(FrameError::Render)
 }
