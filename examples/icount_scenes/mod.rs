@@ -454,6 +454,13 @@ pub fn frame<P: Profiler>(
     const BILINEAR: bool = SceneId::FillBilinear.built();
     const LIT: bool = SceneId::FillLit.built();
     const EXACT: Perspective = Perspective::Exact;
+    const AFFINE_MODE: Perspective = Perspective::Affine;
+    // A shader fill: the frame's result, returned from its arm.
+    macro_rules! fill {
+        ($shader:expr, $filter:expr, $mode:expr) => {
+            return fill_shader(meshes, renderer, ws, profiler, $shader, $filter, $mode)
+        };
+    }
     let r = match scene {
         SceneId::Demo | SceneId::DemoFlat if DEMO => {
             let shading = if scene == SceneId::Demo {
@@ -476,62 +483,11 @@ pub fn frame<P: Profiler>(
             let s = Scene::new(ndc_camera(), &draws);
             renderer.render_profiled(ws, &s, sink, profiler)
         }
-        SceneId::FillGouraud if GOURAUD => {
-            return fill_shader(
-                meshes,
-                renderer,
-                ws,
-                profiler,
-                &Gouraud,
-                Filter::Nearest,
-                EXACT,
-            )
-        }
-        SceneId::FillNearest if NEAREST => {
-            return fill_shader(
-                meshes,
-                renderer,
-                ws,
-                profiler,
-                &Textured,
-                Filter::Nearest,
-                EXACT,
-            )
-        }
-        SceneId::FillNearestAffine if AFFINE => {
-            let mode = Perspective::Affine;
-            return fill_shader(
-                meshes,
-                renderer,
-                ws,
-                profiler,
-                &Textured,
-                Filter::Nearest,
-                mode,
-            );
-        }
-        SceneId::FillBilinear if BILINEAR => {
-            return fill_shader(
-                meshes,
-                renderer,
-                ws,
-                profiler,
-                &Textured,
-                Filter::Bilinear,
-                EXACT,
-            )
-        }
-        SceneId::FillLit if LIT => {
-            return fill_shader(
-                meshes,
-                renderer,
-                ws,
-                profiler,
-                &TexturedLit,
-                Filter::Nearest,
-                EXACT,
-            )
-        }
+        SceneId::FillGouraud if GOURAUD => fill!(&Gouraud, Filter::Nearest, EXACT),
+        SceneId::FillNearest if NEAREST => fill!(&Textured, Filter::Nearest, EXACT),
+        SceneId::FillNearestAffine if AFFINE => fill!(&Textured, Filter::Nearest, AFFINE_MODE),
+        SceneId::FillBilinear if BILINEAR => fill!(&Textured, Filter::Bilinear, EXACT),
+        SceneId::FillLit if LIT => fill!(&TexturedLit, Filter::Nearest, EXACT),
         _ => return Err(FrameError::NotBuilt),
     };
     r.map_err(FrameError::Render)
