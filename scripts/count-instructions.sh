@@ -90,14 +90,14 @@ for scene in $SCENES; do
 done
 
 phases=0
-if command -v python3 >/dev/null && command -v addr2line >/dev/null; then phases=1; fi
+if command -v python3 >/dev/null && command -v callgrind_annotate >/dev/null; then phases=1; fi
 for scene in $SCENES; do
     echo
     echo "== $scene: $(cat "$OUT/$scene.stdout")"
     split_functions "$N" "$TOP" "$OUT/$scene.out"
     if [ "$phases" = 1 ] && [ "$scene" != euc ]; then
         echo
-        python3 scripts/callgrind-phases.py "$OUT/$scene.out" "$BIN" "$N" src/render.rs
+        python3 scripts/callgrind-phases.py "$OUT/$scene.out" "$N"
     fi
 done
 

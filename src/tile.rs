@@ -8,6 +8,7 @@
 
 use crate::raster::hilbert::{cell_at_rank, rank_in_grid};
 use crate::raster::PixelRect;
+use embedded_graphics::primitives::Rectangle;
 
 /// The order in which a frame's tiles are rendered and streamed.
 ///
@@ -76,13 +77,16 @@ impl<C: Copy, const W: usize, const H: usize> TileBuffer<C, W, H> {
         self.depth.get(y).and_then(|r| r.get(x)).copied()
     }
 
-    /// A view of the top-left `w x h` pixels for a sink.
-    pub(crate) fn view(&self, w: usize, h: usize) -> TileView<'_, C> {
+    /// The finished pixels of the tile that covers `area` of the frame
+    /// (as [`Frame::render_next`](crate::render::Frame::render_next)
+    /// returns it): the buffer's top-left `area.size` pixels, clamped to
+    /// the buffer.
+    pub fn view(&self, area: &Rectangle) -> TileView<'_, C> {
         TileView {
             pixels: self.color.as_flattened(),
             stride: W,
-            width: w,
-            height: h,
+            width: (area.size.width as usize).min(W),
+            height: (area.size.height as usize).min(H),
         }
     }
 }

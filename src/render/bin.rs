@@ -1,0 +1,265 @@
+//! Bins: per tile, a chain of fixed-size chunks of triangle indices.
+
+/// Slots per chunk of the bin pool: `CHUNK - 1` triangle indices and the
+/// index of the tile's next chunk. Small, because a tile wastes half a
+/// chunk on average and a chunk an eighth of its slots on the link.
+pub const CHUNK: usize = 8;
+
+/// The tail of a tile that has no chunk yet. `EMPTY % CHUNK == CHUNK - 1`,
+/// so it reads as a full chunk and the tile's first entry allocates one.
+const EMPTY: u16 = u16::MAX;
+/// The end of the free-chunk list.
+const NO_CHUNK: u16 = u16::MAX;
+const _: () = assert!(CHUNK.is_power_of_two() && CHUNK >= 2 && EMPTY as usize % CHUNK == CHUNK - 1);
+
+/// The slot of chunk `c` that links to the next chunk.
+#[inline(always)]
+fn link(c: u16) -> usize {
+    c as usize * CHUNK + CHUNK - 1
+}
+
+/// The bins of a frame: the pool and the per-tile tables, which every pass
+/// of the frame uses in turn ([`pass`](Self::pass)), and how many tiles
+/// the current pass holds.
+pub(super) struct Bins<'w> {
+    pool: &'w mut [u16],
+    heads: &'w mut [u16],
+    tails: &'w mut [u16],
+    held: usize,
+}
+
+impl<'w> Bins<'w> {
+    /// Bins over `pool`, for passes of at most `heads.len()` tiles
+    /// (`tails` as long), holding no tile until a pass is binned.
+    pub(super) fn new(pool: &'w mut [u16], heads: &'w mut [u16], tails: &'w mut [u16]) -> Self {
+        Self {
+            pool,
+            heads,
+            tails,
+            held: 0,
+        }
+    }
+
+    /// Empties the pool and calls `bin` to fill it for a pass of `tiles`
+    /// tiles (at most as many as the tile tables hold); afterwards the
+    /// bins hold the tiles the pass kept.
+    pub(super) fn pass(&mut self, tiles: usize, bin: impl FnOnce(&mut Pass<'_>)) {
+        let n = tiles.min(self.tails.len());
+        let mut pass = Pass::new(self.pool, &mut self.heads[..n], &mut self.tails[..n]);
+        bin(&mut pass);
+        self.held = pass.tiles();
+    }
+
+    /// The number of tiles the last pass holds.
+    pub(super) fn tiles(&self) -> usize {
+        self.held
+    }
+
+    /// The triangles of tile `k` of the last pass, in submission order.
+    pub(super) fn iter(&self, k: usize) -> BinIter<'_> {
+        let tail = if k < self.held { self.tails[k] } else { EMPTY };
+        let (pos, end) = if tail == EMPTY {
+            (0, 0)
+        } else {
+            (self.heads[k] as usize * CHUNK, tail as usize)
+        };
+        BinIter {
+            pool: self.pool,
+            pos,
+            end,
+        }
+    }
+}
+
+/// The bins of one pass being filled: per tile, a chain of chunks of the
+/// pool holding triangle indices in submission order.
+pub(super) struct Pass<'p> {
+    pool: &'p mut [u16],
+    heads: &'p mut [u16],
+    /// Per tile the pass still holds (a prefix of the pass's tiles: the
+    /// pass gives up tiles from its end when the pool runs dry), the slot
+    /// its next entry goes to.
+    tails: &'p mut [u16],
+    /// Chunks `fresh..chunks` have never been used.
+    fresh: u16,
+    chunks: u16,
+    /// Chunks given back, linked through their last slot.
+    free: u16,
+}
+
+impl<'p> Pass<'p> {
+    fn new(pool: &'p mut [u16], heads: &'p mut [u16], tails: &'p mut [u16]) -> Self {
+        tails.fill(EMPTY);
+        Self {
+            // At most 65,535 / CHUNK chunks: every slot index fits `u16`
+            // below `EMPTY`.
+            chunks: (pool.len() / CHUNK) as u16,
+            pool,
+            heads,
+            tails,
+            fresh: 0,
+            free: NO_CHUNK,
+        }
+    }
+
+    /// The number of tiles the pass holds.
+    pub(super) fn tiles(&self) -> usize {
+        self.tails.len()
+    }
+
+    /// Appends triangle `t` to the bin of tile `k` of the pass, unless the
+    /// pass does not hold that tile.
+    #[inline(always)]
+    pub(super) fn push(&mut self, k: usize, t: u16) {
+        let Some(&tail) = self.tails.get(k) else {
+            return;
+        };
+        let mut slot = tail as usize;
+        if slot % CHUNK == CHUNK - 1 {
+            match self.grow(k) {
+                Some(s) => slot = s,
+                None => return,
+            }
+        }
+        self.pool[slot] = t;
+        self.tails[k] = slot as u16 + 1;
+    }
+
+    /// Links a new chunk to tile `k`, whose chunk is full (or which has
+    /// none), and returns the chunk's first slot. When the pool is
+    /// exhausted, the pass gives up its last tile, whose chunks go back to
+    /// the pool, until a chunk is found; `None` when tile `k` itself had to
+    /// go.
+    #[cold]
+    #[inline(never)]
+    fn grow(&mut self, k: usize) -> Option<usize> {
+        loop {
+            if let Some(c) = self.alloc() {
+                let tail = self.tails[k];
+                if tail == EMPTY {
+                    self.heads[k] = c;
+                } else {
+                    self.pool[tail as usize] = c;
+                }
+                return Some(c as usize * CHUNK);
+            }
+            // `k` is held, so there is a last tile.
+            let last = self.tails.len() - 1;
+            self.release(last);
+            let tails = core::mem::take(&mut self.tails);
+            self.tails = &mut tails[..last];
+            if last == k {
+                return None;
+            }
+        }
+    }
+
+    fn alloc(&mut self) -> Option<u16> {
+        if self.fresh < self.chunks {
+            self.fresh += 1;
+            Some(self.fresh - 1)
+        } else if self.free != NO_CHUNK {
+            let c = self.free;
+            self.free = self.pool[link(c)];
+            Some(c)
+        } else {
+            None
+        }
+    }
+
+    /// Gives the chunks of tile `k` back to the pool.
+    fn release(&mut self, k: usize) {
+        let tail = self.tails[k];
+        if tail == EMPTY {
+            return;
+        }
+        let mut c = self.heads[k];
+        loop {
+            // The chunk holding the tail is the last; its link slot holds
+            // no link.
+            let last = tail as usize / CHUNK == c as usize;
+            let next = self.pool[link(c)];
+            self.pool[link(c)] = self.free;
+            self.free = c;
+            if last {
+                break;
+            }
+            c = next;
+        }
+        self.tails[k] = EMPTY;
+    }
+}
+
+/// The triangle indices of one bin.
+pub(super) struct BinIter<'a> {
+    pub(super) pool: &'a [u16],
+    pub(super) pos: usize,
+    pub(super) end: usize,
+}
+
+impl Iterator for BinIter<'_> {
+    type Item = usize;
+
+    #[inline(always)]
+    fn next(&mut self) -> Option<usize> {
+        if self.pos == self.end {
+            return None;
+        }
+        if self.pos % CHUNK == CHUNK - 1 {
+            self.pos = self.pool[self.pos] as usize * CHUNK;
+        }
+        let t = self.pool[self.pos];
+        self.pos += 1;
+        Some(t as usize)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Bins against a plain list per tile: random appends into pools of
+    /// every small size. A tile the pass still holds at the end must hold
+    /// exactly its triangles, in order; the tiles given up are the last.
+    #[test]
+    fn bins_keep_every_held_tile_complete_and_in_order() {
+        let mut x = 0x9e37_79b9_7f4a_7c15u64;
+        let mut next = move |m: usize| {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            (x % m as u64) as usize
+        };
+        let mut gave_up = 0;
+        for round in 0..3_000 {
+            let tiles = 1 + next(12);
+            let pool_len = 1 + next(if round % 2 == 0 { 40 } else { 400 });
+            let mut pool = [0u16; 400];
+            let (mut heads, mut tails) = ([0u16; 12], [0u16; 12]);
+            let mut bins = Bins::new(&mut pool[..pool_len], &mut heads, &mut tails);
+            let mut expected: [heapless::Vec<u16, 256>; 12] = Default::default();
+            bins.pass(tiles, |pass| {
+                for t in 0..next(200) as u16 {
+                    // A triangle touches one to four consecutive tiles,
+                    // some beyond the pass.
+                    let first = next(tiles + 2);
+                    for k in first..first + 1 + next(4) {
+                        pass.push(k, t);
+                        if let Some(e) = expected.get_mut(k).filter(|_| k < tiles) {
+                            e.push(t).unwrap();
+                        }
+                    }
+                }
+            });
+            let held = bins.tiles();
+            gave_up += (held < tiles) as u32;
+            for (k, e) in expected.iter().enumerate().take(held) {
+                assert!(
+                    bins.iter(k).map(|t| t as u16).eq(e.iter().copied()),
+                    "round {round} tile {k}"
+                );
+            }
+        }
+        assert!(gave_up > 100, "the test should exhaust pools: {gave_up}");
+    }
+}

@@ -1,0 +1,170 @@
+//! One binning pass: every triangle classified once and appended to its tiles' bins.
+
+use super::bin::Pass;
+use super::state::{margin, DrawOrder, FrameState, SetupCache};
+use crate::mesh::Indices;
+use crate::tile::TileGrid;
+use crate::vertex::ScreenVertex;
+
+/// How one submitted triangle turned out.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Fate {
+    Rejected,
+    Culled,
+    Visible,
+}
+
+/// How many triangles of a pass met each fate.
+#[derive(Clone, Copy, Debug, Default)]
+pub(super) struct Tally {
+    pub(super) fates: [u32; 3],
+    pub(super) clipped: u32,
+    pub(super) draws_culled: u32,
+    pub(super) clusters_culled: u32,
+}
+
+/// One binning pass over every triangle: classifies it and appends a
+/// visible one to the bin of each tile of the pass its bounds touch. The
+/// pass holds the tiles visited `t0..`: in row-major order, or with
+/// `HILBERT` along the Hilbert curve over the tile grid.
+#[inline(always)]
+pub(super) fn bin_pass<const TW: usize, const TH: usize, const HILBERT: bool>(
+    frame: &FrameState<'_>,
+    grid: &TileGrid,
+    t0: usize,
+    bins: &mut Pass<'_>,
+    cache: &mut SetupCache,
+    tally: &mut Tally,
+) {
+    let mut t = 0usize;
+    let mut vbase = 0usize;
+    for k in 0..frame.draws.len() {
+        let d = frame.visit(k);
+        let draw = &frame.draws[d];
+        let base = match frame.order.as_ref().map(DrawOrder::slices) {
+            Some((_, bases)) => bases[d] as usize,
+            None => vbase,
+        };
+        let verts = &frame.vertices[base..base + draw.mesh.vertex_count()];
+        vbase += verts.len();
+        let frustum = frame.frustum(d);
+        let n = draw.mesh.triangle_count();
+        if frustum.as_ref().is_some_and(|f| f.excludes_mesh(draw.mesh)) {
+            t += n;
+            tally.fates[Fate::Rejected as usize] += n as u32;
+            tally.draws_culled += 1;
+            continue;
+        }
+        let margin = margin(draw);
+        let ctx = BinDraw {
+            frame,
+            grid,
+            t0,
+            d,
+            verts,
+            margin,
+        };
+        // The clusters in view one by one, or the whole mesh as one run.
+        let clusters = frustum.and(draw.mesh.clusters());
+        let mut first = 0;
+        for k in 0..clusters.map_or(1, |c| c.len()) {
+            let len = match (&frustum, clusters) {
+                (Some(f), Some(c)) => {
+                    let len = c[k].triangle_count() as usize;
+                    if len == 0 {
+                        continue;
+                    }
+                    if f.excludes_box(&c[k].bounds()) {
+                        t += len;
+                        first += len;
+                        tally.fates[Fate::Rejected as usize] += len as u32;
+                        tally.clusters_culled += 1;
+                        continue;
+                    }
+                    len
+                }
+                _ => n,
+            };
+            let run = first..first + len;
+            first += len;
+            // The u16 loop is inlined here, per tile order; the u32 one
+            // (meshes beyond 65,536 vertices, rare) is one out-of-line copy
+            // for both.
+            match draw.mesh.triangles() {
+                Indices::U16(tris) => bin_triangles::<TW, TH, u16>(
+                    &ctx, &tris[run], HILBERT, &mut t, bins, cache, tally,
+                ),
+                Indices::U32(tris) => {
+                    bin_wide::<TW, TH>(&ctx, &tris[run], HILBERT, &mut t, bins, cache, tally)
+                }
+            }
+        }
+    }
+}
+
+/// [`bin_triangles`] for `u32` indices, out of line.
+#[inline(never)]
+pub(super) fn bin_wide<const TW: usize, const TH: usize>(
+    ctx: &BinDraw<'_, '_>,
+    tris: &[[u32; 3]],
+    hilbert: bool,
+    t: &mut usize,
+    bins: &mut Pass<'_>,
+    cache: &mut SetupCache,
+    tally: &mut Tally,
+) {
+    bin_triangles::<TW, TH, u32>(ctx, tris, hilbert, t, bins, cache, tally)
+}
+
+/// What [`bin_triangles`] needs of the draw it bins.
+pub(super) struct BinDraw<'a, 'f> {
+    pub(super) frame: &'a FrameState<'f>,
+    pub(super) grid: &'a TileGrid,
+    pub(super) t0: usize,
+    pub(super) d: usize,
+    pub(super) verts: &'a [ScreenVertex],
+    pub(super) margin: i32,
+}
+
+/// The triangles `tris` of one draw, the first numbered `*t`, classified
+/// and appended to their tiles' bins (see [`bin_pass`]).
+#[inline(always)]
+pub(super) fn bin_triangles<const TW: usize, const TH: usize, I: Copy + Into<u32>>(
+    ctx: &BinDraw<'_, '_>,
+    tris: &[[I; 3]],
+    hilbert: bool,
+    t: &mut usize,
+    bins: &mut Pass<'_>,
+    cache: &mut SetupCache,
+    tally: &mut Tally,
+) {
+    let cols = ctx.grid.cols as usize;
+    for &idx in tris {
+        let idx = idx.map(Into::into);
+        if let Some(r) = ctx
+            .frame
+            .classify(ctx.d, ctx.verts, idx, ctx.margin, cache, tally)
+        {
+            // A visible rectangle lies inside the frame, so its
+            // coordinates are not negative.
+            let (c0, c1) = (r.x0 as usize / TW, (r.x1 as usize - 1) / TW + 1);
+            let (r0, r1) = (r.y0 as usize / TH, (r.y1 as usize - 1) / TH + 1);
+            for row in r0..r1 {
+                if hilbert {
+                    for col in c0..c1 {
+                        let p = ctx.grid.position(col as u32, row as u32) as usize;
+                        bins.push(p.wrapping_sub(ctx.t0), *t as u16);
+                    }
+                } else {
+                    // Tiles before the pass wrap around to indices the
+                    // pass does not hold.
+                    let first = (row * cols).wrapping_sub(ctx.t0);
+                    for col in c0..c1 {
+                        bins.push(first.wrapping_add(col), *t as u16);
+                    }
+                }
+            }
+        }
+        *t += 1;
+    }
+}

@@ -1,0 +1,159 @@
+//! Triangles that must be clipped: classified and drawn through their clipped pieces.
+
+use super::binning::{Fate, Tally};
+use super::state::{covering, grow, margin, meet, FrameState, SetupCache};
+use crate::clip::{clip_triangle, MAX_CLIPPED_VERTICES};
+use crate::raster::{signed_area2, PixelRect, SubPoint};
+use crate::vertex::ScreenVertex;
+
+impl FrameState<'_> {
+    /// [`classify`](Self::classify) for a triangle that must be clipped:
+    /// the bounds of all its visible pieces.
+    #[cold]
+    #[inline(never)]
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn classify_clipped(
+        &self,
+        d: usize,
+        idx: [u32; 3],
+        any: u8,
+        flat: [u8; 3],
+        margin: i32,
+        cache: &mut SetupCache,
+        tally: &mut Tally,
+    ) -> Option<PixelRect> {
+        let mut r = PixelRect::new(i32::MAX, i32::MAX, i32::MIN, i32::MIN);
+        let fate = self.clipped_pieces(d, idx, any, flat, cache, &mut |piece, _| {
+            let sv = &piece.sv;
+            let b = covering(&[
+                SubPoint::new(sv[0].x, sv[0].y),
+                SubPoint::new(sv[1].x, sv[1].y),
+                SubPoint::new(sv[2].x, sv[2].y),
+            ]);
+            r = PixelRect::new(
+                r.x0.min(b.x0),
+                r.y0.min(b.y0),
+                r.x1.max(b.x1),
+                r.y1.max(b.y1),
+            );
+        });
+        tally.clipped += 1;
+        tally.fates[fate as usize] += 1;
+        (fate == Fate::Visible).then(|| meet(&grow(&r, margin), &self.frame))
+    }
+
+    /// Clips triangle `idx` of draw `d` (outcodes or-ed to `any`) and
+    /// calls `f` with every piece of the fan that faces the right way and
+    /// may touch the frame, and the flat colour `flat` of the triangle's
+    /// provoking vertex.
+    #[inline(never)]
+    pub(super) fn clipped_pieces(
+        &self,
+        d: usize,
+        idx: [u32; 3],
+        any: u8,
+        flat: [u8; 3],
+        cache: &mut SetupCache,
+        // Dynamic: the clipper is rare, and one copy of it serves every
+        // monomorphized span loop.
+        f: &mut dyn FnMut(&Piece, [u8; 3]),
+    ) -> Fate {
+        let draw = &self.draws[d];
+        // Transform the three vertices again and clip.
+        let Some(setup) = self.setup(d, cache) else {
+            return Fate::Rejected;
+        };
+        let mut tri = [crate::vertex::ClipVertex::default(); 3];
+        for (k, cv) in tri.iter_mut().enumerate() {
+            match setup.clip_vertex(draw.mesh, idx[k] as usize) {
+                Ok(v) => *cv = v,
+                Err(_) => return Fate::Rejected,
+            }
+        }
+        let poly = clip_triangle(&tri, any);
+        if poly.len() < 3 {
+            return Fate::Rejected;
+        }
+        let project = |k: usize| -> ScreenVertex {
+            let (p, z) = self.viewport.project(&poly[k].pos);
+            let c = poly[k].color;
+            ScreenVertex {
+                x: p.x,
+                y: p.y,
+                z,
+                outcode: 0,
+                color: [
+                    c[0].clamp(0, 255) as u8,
+                    c[1].clamp(0, 255) as u8,
+                    c[2].clamp(0, 255) as u8,
+                ],
+            }
+        };
+        // Project once. Snapping to the sub-pixel grid can make the
+        // polygon very slightly concave, so facing is decided once, from the
+        // whole polygon's area, and fan pieces of the other sign (slivers
+        // of round-off) are dropped rather than culled one by one: a
+        // back-facing polygon never leaks a piece, and no pixel is shaded
+        // twice.
+        let mut proj: heapless::Vec<ScreenVertex, MAX_CLIPPED_VERTICES> = heapless::Vec::new();
+        for k in 0..poly.len() {
+            // Cannot fail: `poly` has the same capacity.
+            let _ = proj.push(project(k));
+        }
+        let xy = |v: &ScreenVertex| SubPoint::new(v.x, v.y);
+        let mut total = 0i64;
+        for k in 2..proj.len() {
+            total += signed_area2(&[xy(&proj[0]), xy(&proj[k - 1]), xy(&proj[k])]);
+        }
+        if !self.keeps(total) {
+            return Fate::Culled;
+        }
+        // A polygon made very slightly concave by snapping has a reflex
+        // vertex (turning against the polygon's orientation), and a fan
+        // from another vertex would overlap itself there, shading pixels
+        // twice. Nearly convex, it is star-shaped from that vertex: fan
+        // from it, and the pieces tile the polygon exactly.
+        let n = proj.len();
+        let apex = (0..n)
+            .find(|&k| {
+                let turn = signed_area2(&[
+                    xy(&proj[(k + n - 1) % n]),
+                    xy(&proj[k]),
+                    xy(&proj[(k + 1) % n]),
+                ]);
+                turn != 0 && (turn > 0) != (total > 0)
+            })
+            .unwrap_or(0);
+        // The margin of the draw's lines and points, which may reach pixels
+        // beyond a piece's covered centres.
+        let margin = margin(draw);
+        let mut fate = Fate::Rejected;
+        for k in 2..n {
+            let corners = [apex, (apex + k - 1) % n, (apex + k) % n];
+            let piece = Piece {
+                sv: corners.map(|c| proj[c]),
+                w: corners.map(|c| poly[c].pos[3]),
+                bary: corners.map(|c| poly[c].bary),
+            };
+            let v = piece.sv.map(|v| xy(&v));
+            let area2 = signed_area2(&v);
+            if area2 == 0 || (area2 > 0) != (total > 0) {
+                continue;
+            }
+            // Flat shading keeps the original provoking vertex's colour.
+            if !meet(&grow(&covering(&v), margin), &self.frame).is_empty() {
+                f(&piece, flat);
+                fate = Fate::Visible;
+            }
+        }
+        fate
+    }
+}
+
+/// A piece of a clipped triangle: its projected corners, their clip-space
+/// `w` and their places in the original triangle.
+pub(super) struct Piece {
+    pub(super) sv: [ScreenVertex; 3],
+    pub(super) w: [i32; 3],
+    pub(super) bary: [[i32; 2]; 3],
+}

@@ -1,0 +1,210 @@
+//! Walking the draws along global triangle indices, and the triangle list of one tile.
+
+use super::bin::BinIter;
+use super::binning::Tally;
+use super::state::{margin, meet, DrawOrder, FrameState, SetupCache};
+use crate::cull::Frustum;
+use crate::mesh::Indices;
+use crate::raster::PixelRect;
+use crate::scene::{Blend, Shading};
+use crate::vertex::ScreenVertex;
+
+/// Walks the draws alongside increasing global triangle indices, with the
+/// slices of the current draw at hand.
+pub(super) struct DrawCursor<'f> {
+    pub(super) draws: &'f [crate::scene::Draw<'f>],
+    pub(super) vertices: &'f [ScreenVertex],
+    /// The visiting order and vertex bases, when draws are sorted.
+    pub(super) order: Option<(&'f [u16], &'f [u32])>,
+    /// The current draw's place in the visiting order, and its index.
+    pub(super) pos: usize,
+    pub(super) draw: usize,
+    /// Global index of the draw's first triangle, and one past its last.
+    pub(super) first: usize,
+    pub(super) end: usize,
+    /// Index of the draw's first vertex in the vertex buffer.
+    pub(super) vbase: usize,
+    pub(super) triangles: Indices<'f>,
+    pub(super) verts: &'f [ScreenVertex],
+    pub(super) shading: Shading,
+    pub(super) blend: Blend,
+    /// The draw has edges or points to draw.
+    pub(super) lines: bool,
+}
+
+impl<'f> DrawCursor<'f> {
+    pub(super) fn new(frame: &'f FrameState<'f>) -> Self {
+        let draws = frame.draws;
+        let mut c = Self {
+            draws,
+            vertices: frame.vertices,
+            order: frame.order.as_ref().map(DrawOrder::slices),
+            pos: 0,
+            draw: 0,
+            first: 0,
+            end: 0,
+            vbase: 0,
+            triangles: Indices::U16(&[]),
+            verts: &[],
+            shading: Shading::Flat,
+            blend: Blend::Opaque,
+            lines: false,
+        };
+        if !draws.is_empty() {
+            c.enter(0);
+        }
+        c
+    }
+
+    /// Enters the draw visited `k`-th (with `vbase` already its first
+    /// vertex in submission order).
+    pub(super) fn enter(&mut self, k: usize) {
+        let d = match self.order {
+            Some((order, bases)) => {
+                let d = order[k] as usize;
+                self.vbase = bases[d] as usize;
+                d
+            }
+            None => k,
+        };
+        let draw = &self.draws[d];
+        self.pos = k;
+        self.draw = d;
+        self.triangles = draw.mesh.triangles();
+        self.verts = &self.vertices[self.vbase..self.vbase + draw.mesh.vertex_count()];
+        self.end = self.first + self.triangles.len();
+        self.shading = draw.shading;
+        self.blend = draw.blend;
+        self.lines = margin(draw) != 0;
+    }
+
+    /// Moves to the draw holding global triangle `t`, which must not lie
+    /// before the current draw.
+    #[inline(always)]
+    pub(super) fn seek(&mut self, t: usize) {
+        while t >= self.end {
+            self.advance();
+        }
+    }
+
+    /// Moves to the draw holding global triangle `t`, before or after the
+    /// current draw.
+    pub(super) fn go_to(&mut self, t: usize) {
+        if t < self.first {
+            self.first = 0;
+            self.vbase = 0;
+            self.enter(0);
+        }
+        self.seek(t);
+    }
+
+    #[inline(never)]
+    pub(super) fn advance(&mut self) {
+        self.first = self.end;
+        self.vbase += self.verts.len();
+        self.enter(self.pos + 1);
+    }
+}
+
+/// The triangles of one tile: its bin, or, for a tile whose bin overflowed
+/// the pool, every visible triangle whose bounds touch it.
+// One per tile, moved by value into the tile loop: the rare variant keeps
+// its large state behind a reference.
+pub(super) enum TileList<'a, 'f> {
+    Bin(BinIter<'a>),
+    Scan {
+        frame: &'f FrameState<'f>,
+        rect: PixelRect,
+        next: usize,
+        state: &'a mut ScanState<'f>,
+    },
+}
+
+/// What a rescanned tile's walk over every triangle keeps.
+pub(super) struct ScanState<'f> {
+    pub(super) cur: DrawCursor<'f>,
+    pub(super) cache: SetupCache,
+    /// The current draw's frustum (when culling), its next cluster, and
+    /// the global index of the current cluster's end.
+    pub(super) frustum: Option<Frustum>,
+    pub(super) cluster: usize,
+    pub(super) cluster_end: usize,
+}
+
+impl<'f> ScanState<'f> {
+    /// The state of a scan from the frame's first triangle.
+    pub(super) fn new(frame: &'f FrameState<'f>) -> Self {
+        Self {
+            cur: DrawCursor::new(frame),
+            cache: None,
+            frustum: None,
+            cluster: 0,
+            cluster_end: 0,
+        }
+    }
+}
+
+impl Iterator for TileList<'_, '_> {
+    type Item = usize;
+
+    #[inline(always)]
+    fn next(&mut self) -> Option<usize> {
+        match self {
+            TileList::Bin(b) => b.next(),
+            TileList::Scan {
+                frame,
+                rect,
+                next,
+                state,
+            } => loop {
+                let ScanState {
+                    cur,
+                    cache,
+                    frustum,
+                    cluster,
+                    cluster_end,
+                } = &mut **state;
+                let t = *next;
+                if t >= cur.end {
+                    if cur.pos + 1 >= cur.draws.len() {
+                        return None;
+                    }
+                    cur.advance();
+                    continue;
+                }
+                // The same tests as binning's, in the same order.
+                let mesh = frame.draws[cur.draw].mesh;
+                if t == cur.first {
+                    *frustum = frame.frustum(cur.draw);
+                    if frustum.as_ref().is_some_and(|f| f.excludes_mesh(mesh)) {
+                        *next = cur.end;
+                        continue;
+                    }
+                    (*cluster, *cluster_end) = (0, t);
+                }
+                if let (Some(f), Some(clusters)) = (frustum.as_ref(), mesh.clusters()) {
+                    // Enter the cluster holding t (past any empty ones).
+                    let mut skip = false;
+                    while t >= *cluster_end && *cluster < clusters.len() {
+                        let c = &clusters[*cluster];
+                        *cluster += 1;
+                        *cluster_end += c.triangle_count() as usize;
+                        skip = f.excludes_box(&c.bounds());
+                    }
+                    if skip {
+                        *next = *cluster_end;
+                        continue;
+                    }
+                }
+                *next += 1;
+                let idx = cur.triangles.get(t - cur.first);
+                let mut tally = Tally::default();
+                let m = margin(&frame.draws[cur.draw]);
+                let vis = frame.classify(cur.draw, cur.verts, idx, m, cache, &mut tally);
+                if vis.is_some_and(|r| !meet(&r, rect).is_empty()) {
+                    return Some(t);
+                }
+            },
+        }
+    }
+}

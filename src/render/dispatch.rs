@@ -1,0 +1,111 @@
+//! Which span loop shades a triangle: chosen once per tile from the configuration.
+
+use super::fill::{shade, shade_custom};
+use super::Config;
+use crate::raster::{PixelRect, Rasterizer, Span};
+use crate::scene::Blend;
+use crate::shade::perspective::{Output, ShaderTriangle};
+use crate::shade::DepthFn;
+use crate::shader::{self, FragmentShader};
+use crate::texture::Texture;
+use crate::tile::TileBuffer;
+use crate::vertex::ScreenVertex;
+use embedded_graphics::pixelcolor::{PixelColor, Rgb888};
+
+/// The second phase of a triangle's drawing, as monomorphized for the
+/// frame's depth test and writes: the only code that depends on them, so
+/// the tile loop exists once per colour and tile size.
+pub(super) type ShadeFn<C, const TW: usize, const TH: usize> =
+    fn(&mut TileBuffer<C, TW, TH>, &PixelRect, [&ScreenVertex; 3], [u8; 3], &[Span]) -> u32;
+
+/// The second phase for a fragment shader `G`: one function per shader
+/// and colour type (the depth test is decided at run time there).
+pub(super) type CustomFn<C, G, const TW: usize, const TH: usize> = fn(
+    &mut TileBuffer<C, TW, TH>,
+    &PixelRect,
+    &ShaderTriangle<'_, <G as FragmentShader<C>>::Varyings>,
+    &[Span],
+    &G,
+    Option<&Texture<'_>>,
+    Output,
+) -> u32;
+
+/// How a frame draws a triangle: its rasterizer and its shading
+/// functions: Gouraud, flat, the fragment shader's, and for transparent
+/// draws flat and Gouraud through the fragment-shader path.
+pub(super) struct Shaders<
+    's,
+    C: From<Rgb888>,
+    F: FragmentShader<C>,
+    const TW: usize,
+    const TH: usize,
+> {
+    pub(super) raster: Rasterizer,
+    pub(super) out: Output,
+    pub(super) gouraud: ShadeFn<C, TW, TH>,
+    pub(super) flat: ShadeFn<C, TW, TH>,
+    pub(super) custom: CustomFn<C, F, TW, TH>,
+    pub(super) flat_t: CustomFn<C, shader::Flat, TW, TH>,
+    pub(super) gouraud_t: CustomFn<C, shader::Gouraud, TW, TH>,
+    pub(super) shader: Option<&'s F>,
+}
+
+impl<'s, C, F, const TW: usize, const TH: usize> Shaders<'s, C, F, TW, TH>
+where
+    C: PixelColor + From<Rgb888> + Into<Rgb888>,
+    F: FragmentShader<C>,
+{
+    pub(super) fn new<D: DepthFn, const WRITE: bool>(
+        cfg: &Config<C>,
+        shader: Option<&'s F>,
+    ) -> Self {
+        Self {
+            raster: cfg.rasterizer,
+            out: Output {
+                mode: cfg.perspective,
+                blend: Blend::Opaque,
+                test: cfg.depth_test,
+                write: WRITE,
+            },
+            gouraud: shade::<C, D, WRITE, true, TW, TH>,
+            flat: shade::<C, D, WRITE, false, TW, TH>,
+            custom: shade_custom::<C, F, TW, TH>,
+            flat_t: shade_custom::<C, shader::Flat, TW, TH>,
+            gouraud_t: shade_custom::<C, shader::Gouraud, TW, TH>,
+            shader,
+        }
+    }
+
+    /// A pass through fragment shader `g` with its function `shade`.
+    pub(super) fn pass<'g, G: FragmentShader<C>>(
+        &self,
+        g: &'g G,
+        shade: CustomFn<C, G, TW, TH>,
+        blend: Blend,
+    ) -> ShaderPass<'g, C, G, TW, TH> {
+        let mut out = self.out;
+        out.blend = blend;
+        ShaderPass {
+            shader: g,
+            shade,
+            raster: self.raster,
+            out,
+        }
+    }
+}
+
+/// Everything the fragment-shader path needs to draw a triangle.
+pub(super) struct ShaderPass<'g, C, G: FragmentShader<C>, const TW: usize, const TH: usize> {
+    pub(super) shader: &'g G,
+    pub(super) shade: CustomFn<C, G, TW, TH>,
+    pub(super) raster: Rasterizer,
+    pub(super) out: Output,
+}
+
+impl<'g, C, G: FragmentShader<C>, const TW: usize, const TH: usize> ShaderPass<'g, C, G, TW, TH> {
+    /// The pass with its output changed by `f`.
+    pub(super) fn with(mut self, f: impl FnOnce(Output) -> Output) -> Self {
+        self.out = f(self.out);
+        self
+    }
+}

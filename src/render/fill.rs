@@ -1,0 +1,221 @@
+//! A triangle in a tile: its spans found, then shaded.
+
+use super::dispatch::{ShaderPass, Shaders};
+use crate::raster::scanline::Walker;
+use crate::raster::{hilbert, PixelRect, Rasterizer, Span, SubPoint};
+use crate::shade::perspective::{span_shader, Output, PerspectiveSetup, ShaderTriangle};
+use crate::shade::{span_flat, span_gouraud, Corners, DepthFn, SpanPos, TriangleSetup};
+use crate::shader::{FragmentShader, Perspective};
+use crate::texture::Texture;
+use crate::tile::TileBuffer;
+use crate::vertex::ScreenVertex;
+use embedded_graphics::pixelcolor::{PixelColor, Rgb888};
+
+/// Finds the spans of triangle `v` in the tile with `raster`: the first
+/// phase of [`fill`] and [`fill_shaded`].
+#[inline(always)]
+pub(super) fn find(
+    v: &[SubPoint; 3],
+    rect: &PixelRect,
+    found: &mut [Span],
+    raster: Rasterizer,
+) -> usize {
+    match raster {
+        Rasterizer::Scanline => find_spans(v, rect, found),
+        Rasterizer::Hilbert => hilbert::find_spans(v, *rect, found),
+        Rasterizer::Auto => match whole_tile(v, rect, found) {
+            Some(n) => n,
+            None => find_spans(v, rect, found),
+        },
+    }
+}
+
+/// Where a triangle is drawn: the tile, its place in the frame, the
+/// spans of the triangle being drawn (at most one per tile row) and the
+/// frame's span loops.
+pub(super) struct Target<'j, C, F: FragmentShader<C>, const TW: usize, const TH: usize>
+where
+    C: From<Rgb888>,
+{
+    pub(super) tile: &'j mut TileBuffer<C, TW, TH>,
+    pub(super) rect: &'j PixelRect,
+    pub(super) found: [Span; TH],
+    pub(super) shaders: &'j Shaders<'j, C, F, TW, TH>,
+}
+
+/// Draws one triangle into the tile, Gouraud or flat shaded (`flat` is the
+/// colour of flat shading) by `shaders`.
+///
+/// Two phases: the scanline rasterizer first walks the edges and records
+/// the triangle's spans in the tile in `found` (at most one per row), then,
+/// if there is any, the attribute planes are set up and the spans shaded,
+/// both out of line. Each loop then keeps only its own state in
+/// registers (the edge walk its two edges, the shading its planes), and a
+/// triangle that merely grazes the tile's bounds costs no set-up.
+#[inline(always)]
+pub(super) fn fill<C, F, const TW: usize, const TH: usize>(
+    to: &mut Target<'_, C, F, TW, TH>,
+    sv: [&ScreenVertex; 3],
+    flat: [u8; 3],
+    gouraud: bool,
+) -> u32
+where
+    C: PixelColor + From<Rgb888> + Into<Rgb888>,
+    F: FragmentShader<C>,
+{
+    let v = sv.map(|v| SubPoint::new(v.x, v.y));
+    let count = find(&v, to.rect, &mut to.found, to.shaders.raster);
+    if count == 0 {
+        return 0;
+    }
+    let shade = if gouraud {
+        to.shaders.gouraud
+    } else {
+        to.shaders.flat
+    };
+    shade(to.tile, to.rect, sv, flat, &to.found[..count])
+}
+
+/// [`fill`] for a triangle coloured by a fragment shader.
+#[inline(always)]
+pub(super) fn fill_shaded<C, F, G, const TW: usize, const TH: usize>(
+    to: &mut Target<'_, C, F, TW, TH>,
+    tri: &ShaderTriangle<'_, G::Varyings>,
+    texture: Option<&Texture<'_>>,
+    pass: &ShaderPass<'_, C, G, TW, TH>,
+) -> u32
+where
+    C: PixelColor + From<Rgb888> + Into<Rgb888>,
+    F: FragmentShader<C>,
+    G: FragmentShader<C>,
+{
+    let v = tri.corners.0.map(|v| SubPoint::new(v.x, v.y));
+    let count = find(&v, to.rect, &mut to.found, pass.raster);
+    if count == 0 {
+        return 0;
+    }
+    (pass.shade)(
+        to.tile,
+        to.rect,
+        tri,
+        &to.found[..count],
+        pass.shader,
+        texture,
+        pass.out,
+    )
+}
+
+/// The first phase of [`fill`] with the scanline rasterizer: records the
+/// spans of triangle `v` in the tile `rect` in `found`, and returns how
+/// many (the Hilbert rasterizer finds the same spans). Out of line, so that
+/// the edge walk has the registers to itself.
+#[inline(never)]
+pub(super) fn find_spans(v: &[SubPoint; 3], rect: &PixelRect, found: &mut [Span]) -> usize {
+    // The walk stays inside `rect`, at most as many rows as `found` holds
+    // (TH), so one call records every span.
+    match Walker::new(v, *rect) {
+        Some(mut walker) => walker.walk(found),
+        None => 0,
+    }
+}
+
+/// For [`Rasterizer::Auto`]: when triangle `v`'s bounds hold the whole
+/// tile `rect` and the Hilbert rasterizer's block test finds every pixel
+/// centre of the tile covered, records one full span per row and returns
+/// how many; otherwise `None` (the scanline walk then finds the spans).
+#[inline(never)]
+pub(super) fn whole_tile(v: &[SubPoint; 3], rect: &PixelRect, found: &mut [Span]) -> Option<usize> {
+    let b = PixelRect::covering(v);
+    let holds = b.x0 <= rect.x0 && b.y0 <= rect.y0 && b.x1 >= rect.x1 && b.y1 >= rect.y1;
+    if !holds || !hilbert::covers_rect(v, rect) {
+        return None;
+    }
+    let rows = (rect.y1 - rect.y0) as usize;
+    for (r, s) in found[..rows].iter_mut().enumerate() {
+        *s = Span {
+            j: rect.y0 + r as i32,
+            x0: rect.x0,
+            x1: rect.x1,
+        };
+    }
+    Some(rows)
+}
+
+/// The second phase of [`fill`]: sets up the attribute planes of the
+/// triangle `sv` and shades its spans `found`. In a function of its own so
+/// that its loops get the registers to themselves, and with the set-up
+/// inlined so that the planes are computed where the span loop reads them.
+#[inline(never)]
+pub(super) fn shade<
+    C,
+    D: DepthFn,
+    const WRITE: bool,
+    const GOURAUD: bool,
+    const TW: usize,
+    const TH: usize,
+>(
+    tile: &mut TileBuffer<C, TW, TH>,
+    rect: &PixelRect,
+    sv: [&ScreenVertex; 3],
+    flat: [u8; 3],
+    found: &[Span],
+) -> u32
+where
+    C: PixelColor + From<Rgb888> + Into<Rgb888>,
+{
+    let corners = &Corners(sv);
+    let setup = &TriangleSetup::new(corners, GOURAUD);
+    let flat = C::from(Rgb888::new(flat[0], flat[1], flat[2]));
+    each_span(tile, rect, found, |color, depth, sp| {
+        if GOURAUD {
+            span_gouraud::<C, D, WRITE>(setup, corners, color, depth, sp)
+        } else {
+            span_flat::<C, D, WRITE>(setup, corners, flat, color, depth, sp)
+        }
+    })
+}
+
+/// Calls `shade` with the tile's colour and depth rows and the place of
+/// each span of `found`, and adds up the fragments it wrote.
+#[inline(always)]
+fn each_span<C, const TW: usize, const TH: usize>(
+    tile: &mut TileBuffer<C, TW, TH>,
+    rect: &PixelRect,
+    found: &[Span],
+    mut shade: impl FnMut(&mut [C], &mut [u16], SpanPos) -> u32,
+) -> u32 {
+    let mut n = 0;
+    for &Span { j, x0, x1 } in found {
+        let row = (j - rect.y0) as usize;
+        let sp = SpanPos {
+            ox: rect.x0,
+            j,
+            x0,
+            x1,
+        };
+        n += shade(&mut tile.color[row][..], &mut tile.depth[row][..], sp);
+    }
+    n
+}
+
+/// The second phase of [`fill_shaded`]: the perspective set-up of the
+/// triangle and its spans shaded through the fragment shader.
+#[inline(never)]
+pub(super) fn shade_custom<C, F, const TW: usize, const TH: usize>(
+    tile: &mut TileBuffer<C, TW, TH>,
+    rect: &PixelRect,
+    tri: &ShaderTriangle<'_, F::Varyings>,
+    found: &[Span],
+    shader: &F,
+    texture: Option<&Texture<'_>>,
+    out: Output,
+) -> u32
+where
+    C: PixelColor + From<Rgb888> + Into<Rgb888>,
+    F: FragmentShader<C>,
+{
+    let setup = &PerspectiveSetup::new(tri, out.mode == Perspective::Affine);
+    each_span(tile, rect, found, |color, depth, sp| {
+        span_shader::<C, F>(setup, &tri.corners, shader, texture, out, color, depth, sp)
+    })
+}

@@ -1,0 +1,234 @@
+//! Tiles on demand: a frame is begun once (checks and the vertex stage),
+//! then rendered one tile at a time, in visiting order, into tile buffers
+//! the caller owns.
+//!
+//! Binning happens inside [`Frame::render_next`], one pass at a time: a
+//! pass bins the longest run of tiles the workspace's pool holds, and its
+//! tiles are then handed out one by one before the next pass is binned.
+//! What a tile reads is the frame's state (`FrameState`: the draws, the
+//! vertex buffer, the matrices), which never changes after
+//! [`Renderer::begin`](super::Renderer::begin), and its own bin, which
+//! does not change while the pass lasts: only a small cache of the last
+//! draw's fixed-point set-up and the statistics are written. A second core
+//! could therefore draw other tiles of the same pass from the same state.
+
+use super::bin::Bins;
+use super::binning::{bin_pass, Fate, Tally};
+use super::cursor::{ScanState, TileList};
+use super::dispatch::Shaders;
+use super::state::{DrawOrder, FrameState, SetupCache};
+use super::tile_loop::raster_tile;
+use super::{vertex_stage, Config, FrameStats, Profiler, RenderError, Stage, Workspace};
+use crate::raster::PixelRect;
+use crate::scene::Scene;
+use crate::shade::{DAlways, DEqual, DGreater, DGreaterEqual, DLess, DLessEqual, DepthTest};
+use crate::shader::FragmentShader;
+use crate::sink::rectangle;
+use crate::tile::{TileBuffer, TileGrid, TileOrder};
+use embedded_graphics::pixelcolor::{PixelColor, Rgb888};
+use embedded_graphics::primitives::Rectangle;
+
+/// A frame being rendered tile by tile: made by
+/// [`Renderer::begin`](super::Renderer::begin), drawn by
+/// [`render_next`](Self::render_next).
+///
+/// It borrows the workspace and the scene until it is dropped.
+pub struct Frame<'a, C, F, const TW: usize, const TH: usize> {
+    config: Config<C>,
+    state: FrameState<'a>,
+    shader: Option<&'a F>,
+    grid: TileGrid,
+    bins: Bins<'a>,
+    /// The current pass: its first tile (visiting position), how many
+    /// tiles it holds, and the next of them to draw.
+    t0: usize,
+    len: usize,
+    next: usize,
+    /// The current pass is tile `t0` alone, whose bin overflowed the pool:
+    /// it is drawn by scanning every triangle against it.
+    rescan: bool,
+    cache: SetupCache,
+    stats: FrameStats,
+}
+
+impl<'a, C, F, const TW: usize, const TH: usize> Frame<'a, C, F, TW, TH>
+where
+    C: PixelColor + From<Rgb888> + Into<Rgb888>,
+    F: FragmentShader<C>,
+{
+    /// [`Renderer::begin`](super::Renderer::begin), telling `profiler`
+    /// when the vertex stage starts.
+    pub(super) fn begin_profiled<P: Profiler, const V: usize, const B: usize, const T: usize>(
+        config: Config<C>,
+        ws: &'a mut Workspace<V, B, T>,
+        scene: &'a Scene<'a, F>,
+        profiler: &mut P,
+    ) -> Result<Self, RenderError> {
+        let Workspace {
+            vertices,
+            bins,
+            heads,
+            tails,
+        } = ws;
+        let done = vertex_stage::run(&config, scene, &mut vertices[..], profiler)?;
+        let size = config.size;
+        let grid =
+            TileGrid::new(size.width, size.height, TW as u32, TH as u32).ordered(config.tile_order);
+        let order = match config.sort_draws {
+            true => DrawOrder::new(&scene.camera.view, scene.draws),
+            false => None,
+        };
+        let state = FrameState {
+            order,
+            draws: scene.draws,
+            light: scene.light,
+            lighting: scene.lighting,
+            eye: done.eye,
+            vertices: &vertices[..done.vertices],
+            view_proj: done.view_proj,
+            viewport: done.viewport,
+            cull: config.cull,
+            cull_draws: config.frustum_cull,
+            frame: PixelRect::new(0, 0, size.width as i32, size.height as i32),
+        };
+        Ok(Self {
+            config,
+            state,
+            shader: scene.shader,
+            grid,
+            bins: Bins::new(&mut bins[..], &mut heads[..], &mut tails[..]),
+            t0: 0,
+            len: 0,
+            next: 0,
+            rescan: false,
+            cache: None,
+            stats: FrameStats {
+                triangles_in: done.triangles as u32,
+                vertices: done.transformed,
+                ..FrameStats::default()
+            },
+        })
+    }
+
+    /// Renders the next tile into `tile` and returns the part of the
+    /// frame it covers (the tile's top-left `width x height` pixels hold
+    /// it: see [`TileBuffer::view`]), or `None` when every tile has been
+    /// rendered.
+    pub fn render_next(&mut self, tile: &mut TileBuffer<C, TW, TH>) -> Option<Rectangle> {
+        self.render_next_profiled(tile, &mut ())
+    }
+
+    /// [`render_next`](Self::render_next), telling `profiler` when
+    /// binning and rasterization start.
+    pub fn render_next_profiled<P: Profiler>(
+        &mut self,
+        tile: &mut TileBuffer<C, TW, TH>,
+        profiler: &mut P,
+    ) -> Option<Rectangle> {
+        if self.next == self.len {
+            let t0 = self.t0 + self.len;
+            if t0 >= self.grid.count() as usize {
+                return None;
+            }
+            profiler.enter(Stage::Binning);
+            self.bin(t0);
+        }
+        let k = self.next;
+        self.next += 1;
+        let t = self.grid.tile_at((self.t0 + k) as u32);
+        let rect = self.grid.rect(t);
+        let (w, h) = ((rect.x1 - rect.x0) as usize, (rect.y1 - rect.y0) as usize);
+        profiler.enter(Stage::Raster);
+        let cfg = &self.config;
+        tile.clear(w, h, cfg.clear_color, cfg.clear_depth);
+        let state = &self.state;
+        let mut scan;
+        let list = if self.rescan {
+            scan = ScanState::new(state);
+            TileList::Scan {
+                frame: state,
+                rect,
+                next: 0,
+                state: &mut scan,
+            }
+        } else {
+            TileList::Bin(self.bins.iter(k))
+        };
+        macro_rules! go {
+            ($d:ty) => {
+                if cfg.depth_write {
+                    Shaders::new::<$d, true>(cfg, self.shader)
+                } else {
+                    Shaders::new::<$d, false>(cfg, self.shader)
+                }
+            };
+        }
+        let shaders = match cfg.depth_test {
+            DepthTest::Never => None,
+            DepthTest::Always => Some(go!(DAlways)),
+            DepthTest::Less => Some(go!(DLess)),
+            DepthTest::LessEqual => Some(go!(DLessEqual)),
+            DepthTest::Equal => Some(go!(DEqual)),
+            DepthTest::GreaterEqual => Some(go!(DGreaterEqual)),
+            DepthTest::Greater => Some(go!(DGreater)),
+        };
+        let shaded = match shaders {
+            Some(shaders) => raster_tile(tile, &rect, state, &mut self.cache, list, shaders),
+            None => 0,
+        };
+        self.stats.pixels_shaded += shaded;
+        self.stats.tiles += 1;
+        Some(rectangle(&rect))
+    }
+
+    /// Bins the pass starting at tile `t0` (visiting position): the
+    /// longest run of tiles the pool holds, or tile `t0` alone to be
+    /// rescanned.
+    fn bin(&mut self, t0: usize) {
+        let n_tiles = self.grid.count() as usize;
+        let first_pass = self.stats.bin_passes == 0;
+        self.stats.bin_passes += 1;
+        let mut tally = Tally::default();
+        // Monomorphized per tile order, so the row-major loop keeps its
+        // shape.
+        let (state, grid, cache) = (&self.state, &self.grid, &mut self.cache);
+        let hilbert = self.config.tile_order == TileOrder::Hilbert;
+        self.bins.pass(n_tiles - t0, |bins| {
+            if hilbert {
+                bin_pass::<TW, TH, true>(state, grid, t0, bins, cache, &mut tally);
+            } else {
+                bin_pass::<TW, TH, false>(state, grid, t0, bins, cache, &mut tally);
+            }
+        });
+        if first_pass {
+            let s = &mut self.stats;
+            s.rejected = tally.fates[Fate::Rejected as usize];
+            s.culled = tally.fates[Fate::Culled as usize];
+            s.drawn = tally.fates[Fate::Visible as usize];
+            s.clipped = tally.clipped;
+            s.draws_culled = tally.draws_culled;
+            s.clusters_culled = tally.clusters_culled;
+        }
+        self.t0 = t0;
+        self.next = 0;
+        self.rescan = self.bins.tiles() == 0;
+        if self.rescan {
+            // Tile t0 alone overflows the pool: scan every triangle
+            // against it.
+            self.stats.rescanned_tiles += 1;
+            self.len = 1;
+        } else {
+            self.len = self.bins.tiles();
+        }
+    }
+
+    /// What the frame did so far: after the last tile, the whole frame.
+    pub fn stats(&self) -> FrameStats {
+        self.stats
+    }
+
+    /// The number of tiles of the frame.
+    pub fn tile_count(&self) -> usize {
+        self.grid.count() as usize
+    }
+}

@@ -1,0 +1,254 @@
+//! The read-only state of a frame being rendered, and triangle classification.
+
+use super::binning::{Fate, Tally};
+use super::vertex_stage::with_lighting;
+use crate::cull::Frustum;
+use crate::light::Lighting;
+use crate::raster::{first_centre_at_or_after, signed_area2, PixelRect, SubPoint};
+
+use crate::scene::{Blend, CullMode, Draw, Light, Shading};
+use crate::vertex::{DrawSetup, ScreenVertex, Viewport, MUST_CLIP, REJECT_MASK};
+
+/// The state of a frame that every tile reads and none changes: the
+/// draws, the vertex buffer the vertex stage filled, the matrices and the
+/// settings the tile loop needs.
+pub(super) struct FrameState<'a> {
+    pub(super) draws: &'a [Draw<'a>],
+    /// The scene's one light and its lighting ([`with_lighting`] makes
+    /// the frame's lighting of them).
+    pub(super) light: Option<Light>,
+    pub(super) lighting: Option<&'a Lighting<'a>>,
+    /// The camera's position, world space.
+    pub(super) eye: crate::math::Vec3,
+    /// Cull draws outside the frustum ([`Config::frustum_cull`]).
+    pub(super) cull_draws: bool,
+    /// The order draws are visited in, when sorted
+    /// ([`Config::sort_draws`]); `None` for submission order.
+    pub(super) order: Option<DrawOrder>,
+    pub(super) vertices: &'a [ScreenVertex],
+    pub(super) view_proj: crate::math::Mat4,
+    pub(super) viewport: Viewport,
+    pub(super) cull: CullMode,
+    pub(super) frame: PixelRect,
+}
+
+/// The order draws are visited in when sorted ([`Config::sort_draws`]),
+/// and the first vertex of each draw (by draw index) in the vertex
+/// buffer: 6 bytes per draw.
+pub(super) struct DrawOrder {
+    order: heapless::Vec<u16, MAX_SORTED_DRAWS>,
+    bases: heapless::Vec<u32, MAX_SORTED_DRAWS>,
+}
+
+impl DrawOrder {
+    /// Opaque draws front to back, then transparent ones back to front,
+    /// by the view depth of their bounding box's centre; ties in
+    /// submission order. `None` when there are more than
+    /// [`MAX_SORTED_DRAWS`] draws.
+    pub(super) fn new(view: &crate::math::Mat4, draws: &[Draw<'_>]) -> Option<Self> {
+        if draws.len() > MAX_SORTED_DRAWS {
+            return None;
+        }
+        let mut s = Self {
+            order: heapless::Vec::new(),
+            bases: heapless::Vec::new(),
+        };
+        let mut keys: heapless::Vec<(bool, f32), MAX_SORTED_DRAWS> = heapless::Vec::new();
+        let mut base = 0u32;
+        for (d, draw) in draws.iter().enumerate() {
+            let transparent = draw.blend != Blend::Opaque;
+            let depth = view_depth(view, draw);
+            // Transparent draws sort far first: negate their depth.
+            let key = if transparent { -depth } else { depth };
+            // Capacity: at most MAX_SORTED_DRAWS draws here.
+            let _ = keys.push((transparent, key));
+            let _ = s.order.push(d as u16);
+            let _ = s.bases.push(base);
+            base += draw.mesh.vertex_count() as u32;
+        }
+        // Stable insertion sort: opaque before transparent, then by key
+        // (NaN keys, from non-finite set-ups, compare as equal).
+        let before = |a: (bool, f32), b: (bool, f32)| (!a.0 && b.0) || (a.0 == b.0 && a.1 < b.1);
+        let order = &mut s.order;
+        for k in 1..order.len() {
+            let e = order[k];
+            let mut i = k;
+            while i > 0 && before(keys[e as usize], keys[order[i - 1] as usize]) {
+                order[i] = order[i - 1];
+                i -= 1;
+            }
+            order[i] = e;
+        }
+        Some(s)
+    }
+
+    /// The visiting order (draw indices) and each draw's first vertex.
+    pub(super) fn slices(&self) -> (&[u16], &[u32]) {
+        (&self.order, &self.bases)
+    }
+}
+
+/// The fixed-point set-up of the last draw a clipped triangle needed.
+pub(super) type SetupCache = Option<(usize, DrawSetup)>;
+
+/// The pixels whose centres may be covered by a triangle with these
+/// vertices: [`PixelRect::covering`], inlined into the binning loop.
+#[inline(always)]
+pub(super) fn covering(v: &[SubPoint; 3]) -> PixelRect {
+    let (xmin, xmax) = (
+        v[0].x.min(v[1].x).min(v[2].x),
+        v[0].x.max(v[1].x).max(v[2].x),
+    );
+    let (ymin, ymax) = (
+        v[0].y.min(v[1].y).min(v[2].y),
+        v[0].y.max(v[1].y).max(v[2].y),
+    );
+    PixelRect::new(
+        first_centre_at_or_after(xmin),
+        first_centre_at_or_after(ymin),
+        first_centre_at_or_after(xmax) + 1,
+        first_centre_at_or_after(ymax) + 1,
+    )
+}
+
+/// `r` grown by `m` pixels on every side.
+#[inline(always)]
+pub(super) fn grow(r: &PixelRect, m: i32) -> PixelRect {
+    PixelRect::new(r.x0 - m, r.y0 - m, r.x1 + m, r.y1 + m)
+}
+
+/// Most draws a frame sorts ([`Config::sort_draws`](super::Config::sort_draws)): the visiting order
+/// and the vertex bases live in the [`Frame`](super::Frame), 6 bytes per draw (and 8
+/// more on the stack while sorting).
+pub const MAX_SORTED_DRAWS: usize = 64;
+
+/// The distance in front of the eye of the centre of `draw`'s bounding
+/// box, along the view direction (`-z` in eye space).
+pub(super) fn view_depth(view: &crate::math::Mat4, draw: &Draw<'_>) -> f32 {
+    let [lo, hi] = draw.mesh.bounds().map(|c| c.map(|v| v.to_num::<f32>()));
+    let c = [0, 1, 2].map(|k| 0.5 * (lo[k] + hi[k]));
+    let m = *view * draw.transform;
+    let z = m.m[0][2] * c[0] + m.m[1][2] * c[1] + m.m[2][2] * c[2] + m.m[3][2];
+    -z
+}
+
+/// How far beyond the pixel centres it covers a triangle of `draw` may
+/// draw: the lines of its edges reach the pixels holding its vertices
+/// (one pixel), its points half their size.
+pub(super) fn margin(draw: &Draw<'_>) -> i32 {
+    match (draw.shading, draw.edges) {
+        (Shading::Points(size), _) => size as i32 / 2 + 1,
+        (Shading::Wireframe, _) | (_, Some(_)) => 1,
+        _ => 0,
+    }
+}
+
+/// [`PixelRect::intersect`], inlined.
+#[inline(always)]
+pub(super) fn meet(a: &PixelRect, b: &PixelRect) -> PixelRect {
+    PixelRect::new(
+        a.x0.max(b.x0),
+        a.y0.max(b.y0),
+        a.x1.min(b.x1),
+        a.y1.min(b.y1),
+    )
+}
+
+impl FrameState<'_> {
+    /// The draw visited `k`-th.
+    #[inline(always)]
+    pub(super) fn visit(&self, k: usize) -> usize {
+        match &self.order {
+            Some(o) => o.order[k] as usize,
+            None => k,
+        }
+    }
+
+    /// The view frustum in the model space of draw `d`, when culling is on
+    /// (the same answers every time it is asked: the tests are
+    /// deterministic, so binning, rescans and the vertex stage agree).
+    pub(super) fn frustum(&self, d: usize) -> Option<Frustum> {
+        match self.cull_draws {
+            true => Frustum::new(&self.view_proj, &self.draws[d]),
+            false => None,
+        }
+    }
+
+    /// The fixed-point set-up of draw `d`, from `cache` or computed again
+    /// (and cached). `None` cannot happen: the vertex stage accepted the
+    /// draw, and the set-up is deterministic.
+    #[inline(never)]
+    pub(super) fn setup(&self, d: usize, cache: &mut SetupCache) -> Option<DrawSetup> {
+        match cache {
+            Some((c, s)) if *c == d => Some(*s),
+            _ => {
+                let s = with_lighting(self.light.as_ref(), self.lighting, |lighting| {
+                    DrawSetup::new(&self.draws[d], &self.view_proj, lighting, self.eye)
+                })
+                .ok()?;
+                *cache = Some((d, s));
+                Some(s)
+            }
+        }
+    }
+
+    /// Whether a triangle or polygon of twice signed screen area `area2`
+    /// survives culling: never with zero area, otherwise by the cull mode.
+    #[inline(always)]
+    pub(super) fn keeps(&self, area2: i64) -> bool {
+        match self.cull {
+            CullMode::None => area2 != 0,
+            // Negative area is counter-clockwise in NDC: the front face.
+            CullMode::Back => area2 < 0,
+            CullMode::Front => area2 > 0,
+        }
+    }
+
+    /// Classifies triangle `idx` of draw `d`, whose vertices are `verts`:
+    /// counts its fate in `tally` and, if it is visible, returns the pixels
+    /// it may cover. The common case (no clipping) reads only the three
+    /// screen vertices; a rejected or culled triangle costs a few dozen
+    /// instructions.
+    #[inline(always)]
+    pub(super) fn classify(
+        &self,
+        d: usize,
+        verts: &[ScreenVertex],
+        idx: [u32; 3],
+        margin: i32,
+        cache: &mut SetupCache,
+        tally: &mut Tally,
+    ) -> Option<PixelRect> {
+        let sv = [
+            &verts[idx[0] as usize],
+            &verts[idx[1] as usize],
+            &verts[idx[2] as usize],
+        ];
+        let and = sv[0].outcode & sv[1].outcode & sv[2].outcode;
+        let any = sv[0].outcode | sv[1].outcode | sv[2].outcode;
+        let fate = if and & REJECT_MASK != 0 {
+            Fate::Rejected
+        } else if any & MUST_CLIP != 0 {
+            return self.classify_clipped(d, idx, any, sv[0].color, margin, cache, tally);
+        } else {
+            let v = [
+                SubPoint::new(sv[0].x, sv[0].y),
+                SubPoint::new(sv[1].x, sv[1].y),
+                SubPoint::new(sv[2].x, sv[2].y),
+            ];
+            let area2 = signed_area2(&v);
+            if !self.keeps(area2) {
+                Fate::Culled
+            } else {
+                let rect = meet(&grow(&covering(&v), margin), &self.frame);
+                if !rect.is_empty() {
+                    tally.fates[Fate::Visible as usize] += 1;
+                    return Some(rect);
+                }
+                Fate::Rejected
+            }
+        };
+        tally.fates[fate as usize] += 1;
+        None
+    }
+}

@@ -1,0 +1,366 @@
+//! The tile loop: each triangle of a tile fetched and sent down its path.
+
+use super::cursor::{DrawCursor, TileList};
+use super::dispatch::{ShaderPass, Shaders};
+use super::fill::{fill, fill_shaded, Target};
+use super::state::{FrameState, SetupCache};
+use crate::raster::line::{draw_line, draw_point, DepthMode, LinePoint};
+use crate::raster::{PixelRect, Span, SubPoint};
+use crate::scene::{Blend, Shading};
+use crate::shade::perspective::{Output, ShaderTriangle};
+use crate::shade::Corners;
+use crate::shader::{self, FragmentShader, Varyings, VertexInput};
+use crate::tile::TileBuffer;
+use crate::vertex::{ScreenVertex, BARY_ONE, MUST_CLIP};
+use embedded_graphics::pixelcolor::{PixelColor, Rgb888};
+use fixed::types::I16F16;
+
+/// Rasterizes the triangles of `list` into the tile: fetches each one's
+/// vertices from the vertex buffer (or clips it again) and draws it with
+/// [`fill`], shading with `shaders`.
+#[inline(never)]
+pub(super) fn raster_tile<'f, C, F, const TW: usize, const TH: usize>(
+    tile: &mut TileBuffer<C, TW, TH>,
+    rect: &PixelRect,
+    frame: &'f FrameState<'f>,
+    cache: &mut SetupCache,
+    list: TileList<'_, 'f>,
+    shaders: Shaders<'_, C, F, TW, TH>,
+) -> u32
+where
+    C: PixelColor + From<Rgb888> + Into<Rgb888>,
+    F: FragmentShader<C>,
+{
+    let mut cur = DrawCursor::new(frame);
+    let job = &mut TileJob {
+        frame,
+        cache,
+        to: Target {
+            tile,
+            rect,
+            // The spans of one triangle, reused by all of the tile's
+            // triangles: `TH` of 12 bytes on the stack.
+            found: [Span::default(); TH],
+            shaders: &shaders,
+        },
+    };
+    // Transparent triangles, drawn after the opaque ones: (depth key,
+    // triangle), 4 bytes each on the stack.
+    let mut later: heapless::Vec<(u16, u16), MAX_TRANSPARENT> = heapless::Vec::new();
+    let mut n = 0;
+    for t in list {
+        cur.seek(t);
+        let idx = cur.triangles.get(t - cur.first);
+        let sv = [
+            &cur.verts[idx[0] as usize],
+            &cur.verts[idx[1] as usize],
+            &cur.verts[idx[2] as usize],
+        ];
+        let any = sv[0].outcode | sv[1].outcode | sv[2].outcode;
+        if cur.lines {
+            n += job.lines(&cur, idx, any);
+            if matches!(cur.shading, Shading::Wireframe | Shading::Points(_)) {
+                continue;
+            }
+        }
+        if cur.blend != Blend::Opaque {
+            // Farthest vertex first; a clipped triangle (whose depths the
+            // vertex buffer does not hold) reaches the near plane: last.
+            let key = if any & MUST_CLIP != 0 {
+                0
+            } else {
+                sv[0].z.max(sv[1].z).max(sv[2].z)
+            };
+            // `t < MAX_TRIANGLES`, so it fits u16. A full list is drawn
+            // (sorted) and emptied first: a tile with more transparent
+            // triangles than the list holds sorts them in batches of
+            // `MAX_TRANSPARENT`, in submission order between batches.
+            if later.is_full() {
+                n += job.draw_later(&mut later);
+            }
+            let _ = later.push((key, t as u16));
+            continue;
+        }
+        n += if cur.shading == Shading::Shader {
+            match shaders.shader {
+                Some(s) => job.shaded(
+                    &cur,
+                    idx,
+                    any,
+                    shaders.pass(s, shaders.custom, Blend::Opaque),
+                ),
+                // `render` checked that shader draws have a shader.
+                None => 0,
+            }
+        } else if any & MUST_CLIP != 0 {
+            job.clipped(&cur, idx, any, sv[0].color)
+        } else {
+            fill(
+                &mut job.to,
+                sv,
+                sv[0].color,
+                cur.shading == Shading::Gouraud,
+            )
+        };
+    }
+    n += job.draw_later(&mut later);
+    n
+}
+
+/// One tile being drawn, and what drawing a triangle into it needs.
+struct TileJob<'j, 'f, C, F: FragmentShader<C>, const TW: usize, const TH: usize>
+where
+    C: PixelColor + From<Rgb888>,
+{
+    frame: &'f FrameState<'f>,
+    /// The last draw's fixed-point set-up, for clipped and shaded triangles.
+    cache: &'j mut SetupCache,
+    /// Where the triangles go.
+    to: Target<'j, C, F, TW, TH>,
+}
+
+impl<C, F, const TW: usize, const TH: usize> TileJob<'_, '_, C, F, TW, TH>
+where
+    C: PixelColor + From<Rgb888> + Into<Rgb888>,
+    F: FragmentShader<C>,
+{
+    /// Draws the transparent triangles of `later` back to front (equal keys in
+    /// submission order) and empties it.
+    #[inline(never)]
+    fn draw_later(&mut self, later: &mut heapless::Vec<(u16, u16), MAX_TRANSPARENT>) -> u32 {
+        if later.is_empty() {
+            return 0;
+        }
+        // A stable insertion sort: a few dozen instructions of code, where
+        // the library's sort brings kilobytes, and at most 128 entries.
+        for k in 1..later.len() {
+            let e = later[k];
+            let mut i = k;
+            while i > 0 && later[i - 1].0 < e.0 {
+                later[i] = later[i - 1];
+                i -= 1;
+            }
+            later[i] = e;
+        }
+        let mut n = 0;
+        let mut cur = DrawCursor::new(self.frame);
+        for &(_, t) in later.iter() {
+            let t = t as usize;
+            cur.go_to(t);
+            let idx = cur.triangles.get(t - cur.first);
+            let any = idx
+                .iter()
+                .fold(0, |a, &i| a | cur.verts[i as usize].outcode);
+            n += self.transparent(&cur, idx, any);
+        }
+        later.clear();
+        n
+    }
+
+    /// Draws a transparent triangle of the cursor's draw through the
+    /// fragment-shader path: the scene's shader, or the flat or Gouraud
+    /// colour, blended, depth tested and never writing depth.
+    #[inline(never)]
+    fn transparent(&mut self, cur: &DrawCursor<'_>, idx: [u32; 3], any: u8) -> u32 {
+        let blend = cur.blend;
+        let no_write = |mut out: Output| {
+            out.write = false;
+            out.blend = blend;
+            out
+        };
+        let shaders = self.to.shaders;
+        match cur.shading {
+            Shading::Shader => match shaders.shader {
+                Some(s) => self.shaded(
+                    cur,
+                    idx,
+                    any,
+                    shaders.pass(s, shaders.custom, blend).with(no_write),
+                ),
+                None => 0,
+            },
+            Shading::Flat => self.shaded(
+                cur,
+                idx,
+                any,
+                shaders
+                    .pass(&shader::Flat, shaders.flat_t, blend)
+                    .with(no_write),
+            ),
+            Shading::Gouraud => self.shaded(
+                cur,
+                idx,
+                any,
+                shaders
+                    .pass(&shader::Gouraud, shaders.gouraud_t, blend)
+                    .with(no_write),
+            ),
+            // Never deferred: they have no fill.
+            Shading::Wireframe | Shading::Points(_) => 0,
+        }
+    }
+
+    /// Draws the lines or points of triangle `idx` of the cursor's draw: its
+    /// three edges (or, for a clipped triangle, the parts of them that survive
+    /// clipping), or a point at each vertex in front of the near plane.
+    #[inline(never)]
+    fn lines(&mut self, cur: &DrawCursor<'_>, idx: [u32; 3], any: u8) -> u32 {
+        let (frame, to) = (self.frame, &mut self.to);
+        let (tile, rect) = (&mut *to.tile, to.rect);
+        let draw = &frame.draws[cur.draw];
+        let sv = idx.map(|i| &cur.verts[i as usize]);
+        let mode = DepthMode {
+            test: to.shaders.out.test,
+            write: to.shaders.out.write,
+        };
+        let mut n = 0;
+        if let Shading::Points(size) = draw.shading {
+            for v in sv {
+                if v.outcode & MUST_CLIP == 0 {
+                    let p = LinePoint::new(SubPoint::new(v.x, v.y), v.z, v.color);
+                    n += draw_point(tile, rect, mode, &p, size as u32);
+                }
+            }
+            return n;
+        }
+        let style = draw.edges.unwrap_or_default();
+        let end = |v: &ScreenVertex| {
+            let color = match style.color {
+                Some(c) => {
+                    use embedded_graphics::prelude::RgbColor;
+                    [c.r(), c.g(), c.b()]
+                }
+                None => v.color,
+            };
+            LinePoint::new(SubPoint::new(v.x, v.y), v.z, color)
+        };
+        let interpolate = style.color.is_none();
+        if any & MUST_CLIP == 0 {
+            for k in 0..3 {
+                let (a, b) = (end(sv[k]), end(sv[(k + 1) % 3]));
+                n += draw_line(tile, rect, mode, &a, &b, interpolate, style.depth_bias);
+            }
+            return n;
+        }
+        let flat = sv[0].color;
+        frame.clipped_pieces(cur.draw, idx, any, flat, self.cache, &mut |piece, _| {
+            // Only the sides lying on the triangle's own edges: where both
+            // ends have the same zero weight (clipping interpolates the
+            // weights, and zero between zeros stays exactly zero).
+            let w = piece.bary.map(|[b1, b2]| {
+                [
+                    BARY_ONE as i64 - b1 as i64 - b2 as i64,
+                    b1 as i64,
+                    b2 as i64,
+                ]
+            });
+            for k in 0..3 {
+                let k2 = (k + 1) % 3;
+                if (0..3).any(|c| w[k][c] == 0 && w[k2][c] == 0) {
+                    let (a, b) = (end(&piece.sv[k]), end(&piece.sv[k2]));
+                    n += draw_line(tile, rect, mode, &a, &b, interpolate, style.depth_bias);
+                }
+            }
+        });
+        n
+    }
+
+    /// Clips triangle `idx` of the cursor's draw again and rasterizes its
+    /// pieces.
+    #[cold]
+    #[inline(never)]
+    fn clipped(&mut self, cur: &DrawCursor<'_>, idx: [u32; 3], any: u8, flat: [u8; 3]) -> u32 {
+        let mut n = 0;
+        let gouraud = cur.shading == Shading::Gouraud;
+        let to = &mut self.to;
+        let frame = self.frame;
+        frame.clipped_pieces(cur.draw, idx, any, flat, self.cache, &mut |piece, flat| {
+            let sv = &piece.sv;
+            let sv = [&sv[0], &sv[1], &sv[2]];
+            n += fill(to, sv, flat, gouraud);
+        });
+        n
+    }
+
+    /// Draws triangle `idx` of the cursor's draw, a [`Shading::Shader`] draw,
+    /// through the frame's fragment shader: its varyings from the shader's
+    /// vertex function and its `w` from the draw's transform, both evaluated
+    /// again (the vertex buffer keeps neither), or, for a triangle that must
+    /// be clipped, its pieces with varyings interpolated at their corners.
+    #[inline(never)]
+    fn shaded<G: FragmentShader<C>>(
+        &mut self,
+        cur: &DrawCursor<'_>,
+        idx: [u32; 3],
+        any: u8,
+        pass: ShaderPass<'_, C, G, TW, TH>,
+    ) -> u32 {
+        let shader = pass.shader;
+        let frame = self.frame;
+        let draw = &frame.draws[cur.draw];
+        let mesh = draw.mesh;
+        let var = idx.map(|i| {
+            shader.vertex(&VertexInput {
+                draw: cur.draw,
+                index: i as usize,
+                mesh,
+            })
+        });
+        let sv = [
+            &cur.verts[idx[0] as usize],
+            &cur.verts[idx[1] as usize],
+            &cur.verts[idx[2] as usize],
+        ];
+        let flat = sv[0].color;
+        if any & MUST_CLIP != 0 {
+            let mut n = 0;
+            let to = &mut self.to;
+            frame.clipped_pieces(cur.draw, idx, any, flat, self.cache, &mut |piece, _| {
+                let mut pv = piece.sv;
+                // Flat colour stays the provoking vertex's, as on other paths.
+                pv[0].color = if G::INTERPOLATE_COLOR {
+                    pv[0].color
+                } else {
+                    flat
+                };
+                let tri = ShaderTriangle {
+                    corners: Corners([&pv[0], &pv[1], &pv[2]]),
+                    w: piece.w,
+                    var: piece.bary.map(|b| lerp_varyings(&var, b)),
+                };
+                n += fill_shaded(to, &tri, draw.texture, &pass);
+            });
+            return n;
+        }
+        let Some(setup) = frame.setup(cur.draw, self.cache) else {
+            return 0;
+        };
+        let tri = ShaderTriangle {
+            corners: Corners(sv),
+            w: idx.map(|i| setup.clip_w(mesh, i as usize)),
+            var,
+        };
+        fill_shaded(&mut self.to, &tri, draw.texture, &pass)
+    }
+}
+
+/// Most transparent triangles one tile sorts back to front at once (4
+/// bytes each on the stack); a tile with more sorts them in batches of
+/// this many, in submission order between batches.
+pub const MAX_TRANSPARENT: usize = 128;
+
+/// The varyings at barycentric weights `b` (of vertices 1 and 2,
+/// [`BARY_ONE`] being 1) of a triangle whose vertices have `var`,
+/// rounded to nearest.
+pub(super) fn lerp_varyings<V: Varyings>(var: &[V; 3], b: [i32; 2]) -> V {
+    let mut out = V::zeroed();
+    let [a0, a1, a2] = [var[0].as_slice(), var[1].as_slice(), var[2].as_slice()];
+    for (k, o) in out.as_mut_slice().iter_mut().enumerate() {
+        let base = a0[k].to_bits() as i128;
+        let d1 = a1[k].to_bits() as i128 - base;
+        let d2 = a2[k].to_bits() as i128 - base;
+        let sum = d1 * b[0] as i128 + d2 * b[1] as i128 + (BARY_ONE as i128 >> 1);
+        *o = I16F16::from_bits((base + (sum >> 30)) as i32);
+    }
+    out
+}

@@ -1,0 +1,184 @@
+//! What begins a frame: the scene checked, then every vertex transformed,
+//! lit and projected once into the workspace's vertex buffer.
+
+use super::{Config, Profiler, RenderError, Stage, MAX_LIGHTS, MAX_TRIANGLES};
+use crate::cull::Frustum;
+use crate::light::{DirectionalLight, LightError, LightSetup, Lighting};
+use crate::math::{Mat4, Vec3};
+use crate::scene::{Light, Scene, Shading};
+use crate::shader::FragmentShader;
+use crate::vertex::{DrawSetup, ScreenVertex, Viewport, MAX_VIEWPORT};
+use embedded_graphics::pixelcolor::PixelColor;
+
+/// What the vertex stage found, for the rest of the frame.
+pub(super) struct Transformed {
+    pub(super) view_proj: Mat4,
+    pub(super) eye: Vec3,
+    pub(super) viewport: Viewport,
+    /// Vertices of the frame's draws: the first `vertices` of the buffer.
+    pub(super) vertices: usize,
+    /// Triangles of the frame's draws.
+    pub(super) triangles: usize,
+    /// Vertices actually transformed (none of culled draws and clusters).
+    pub(super) transformed: u32,
+}
+
+/// The frame's lighting, passed to `f`: the scene's lighting, or its one
+/// light as a lighting of one directional light, or none. Built on the
+/// stack each time it is needed (once per frame and per draw set-up), so
+/// that a frame borrows nothing but the scene.
+pub(super) fn with_lighting<R>(
+    light: Option<&Light>,
+    lighting: Option<&Lighting<'_>>,
+    f: impl FnOnce(Option<&Lighting<'_>>) -> R,
+) -> R {
+    let one = light.map(|l| [DirectionalLight::new(l.direction, l.color)]);
+    let simple = match (light, &one) {
+        (Some(l), Some(one)) => Some(Lighting::new(l.ambient).directional(one)),
+        _ => None,
+    };
+    f(lighting.or(simple.as_ref()))
+}
+
+/// Checks `scene` against `config` and the vertex buffer's capacity, then
+/// runs the vertex stage into `vertices`. Every error of a frame is found
+/// here.
+pub(super) fn run<C, F, P>(
+    config: &Config<C>,
+    scene: &Scene<'_, F>,
+    vertices: &mut [ScreenVertex],
+    profiler: &mut P,
+) -> Result<Transformed, RenderError>
+where
+    C: PixelColor,
+    F: FragmentShader<C>,
+    P: Profiler,
+{
+    let size = config.size;
+    if size.width == 0 || size.height == 0 {
+        return Err(RenderError::ZeroViewport);
+    }
+    if size.width > MAX_VIEWPORT || size.height > MAX_VIEWPORT {
+        return Err(RenderError::ViewportTooLarge { size });
+    }
+    let view_proj = scene.camera.projection * scene.camera.view;
+    if !view_proj.is_finite() || view_proj.to_fixed().is_none() {
+        return Err(RenderError::BadCamera);
+    }
+    let eye = scene.camera.eye();
+    // The lights are checked once here (with an identity model matrix), so
+    // that per draw only the draw's own matrix can fail.
+    with_lighting(
+        scene.light.as_ref(),
+        scene.lighting,
+        |lighting| match lighting {
+            Some(l) => LightSetup::<MAX_LIGHTS>::new(l, &Mat4::IDENTITY, eye)
+                .map(|_| ())
+                .map_err(|e| match e {
+                    LightError::BadMatrix => RenderError::BadCamera,
+                    e => RenderError::Light(e),
+                }),
+            None => Ok(()),
+        },
+    )?;
+
+    // Capacities first, so nothing is half done.
+    let needed: usize = scene.draws.iter().map(|d| d.mesh.vertex_count()).sum();
+    if needed > vertices.len() {
+        return Err(RenderError::VertexCapacity {
+            needed,
+            capacity: vertices.len(),
+        });
+    }
+    let triangles: usize = scene.draws.iter().map(|d| d.mesh.triangle_count()).sum();
+    if triangles > MAX_TRIANGLES {
+        return Err(RenderError::TooManyTriangles { count: triangles });
+    }
+    for (draw, d) in scene.draws.iter().enumerate() {
+        if d.shading == Shading::Shader {
+            let shader = scene.shader.ok_or(RenderError::MissingShader { draw })?;
+            shader
+                .check(d)
+                .map_err(|error| RenderError::Shader { draw, error })?;
+        }
+    }
+
+    profiler.enter(Stage::Vertex);
+    let viewport = Viewport::new(size.width, size.height);
+    let transformed = with_lighting(scene.light.as_ref(), scene.lighting, |lighting| {
+        transform(
+            config, scene, &view_proj, lighting, eye, &viewport, vertices,
+        )
+    })?;
+    Ok(Transformed {
+        view_proj,
+        eye,
+        viewport,
+        vertices: needed,
+        triangles,
+        transformed,
+    })
+}
+
+/// The vertex stage: every vertex of every draw in view (or of every
+/// cluster in view) to a [`ScreenVertex`]; returns how many.
+#[inline(never)]
+fn transform<C, F>(
+    config: &Config<C>,
+    scene: &Scene<'_, F>,
+    view_proj: &Mat4,
+    lighting: Option<&Lighting<'_>>,
+    eye: Vec3,
+    viewport: &Viewport,
+    vertices: &mut [ScreenVertex],
+) -> Result<u32, RenderError> {
+    let mut base = 0;
+    let mut count = 0u32;
+    for (di, draw) in scene.draws.iter().enumerate() {
+        // The set-up checks the draw's matrix whether the draw is seen
+        // or not; a draw wholly outside the frustum is then not
+        // transformed (its vertices cannot overflow what is never
+        // computed), and binning skips it the same way.
+        let setup = DrawSetup::new(draw, view_proj, lighting, eye)
+            .map_err(|error| RenderError::Draw { draw: di, error })?;
+        let out = &mut vertices[base..base + draw.mesh.vertex_count()];
+        base += draw.mesh.vertex_count();
+        let frustum = match config.frustum_cull {
+            true => Frustum::new(view_proj, draw),
+            false => None,
+        };
+        if frustum.as_ref().is_some_and(|f| f.excludes_mesh(draw.mesh)) {
+            continue;
+        }
+        // The clusters in view one by one (the others' vertices are
+        // never read: binning skips the same clusters), or the whole
+        // mesh as one run; one copy of the vertex loop for both.
+        let clusters = frustum.and(draw.mesh.clusters());
+        for k in 0..clusters.map_or(1, |c| c.len()) {
+            let range = match (&frustum, clusters) {
+                (Some(f), Some(c)) => {
+                    // An empty cluster's vertices serve no triangle.
+                    if c[k].triangle_count() == 0 || f.excludes_box(&c[k].bounds()) {
+                        continue;
+                    }
+                    let first = c[k].first_vertex() as usize;
+                    first..first + c[k].vertex_count() as usize
+                }
+                _ => 0..out.len(),
+            };
+            // Runs do not overlap (Mesh::with_clusters), so this counts
+            // at most the frame's vertices.
+            count = count.saturating_add(range.len() as u32);
+            let first = range.start;
+            // The range lies within the mesh (checked when the
+            // mesh was built).
+            for (i, sv) in out[range].iter_mut().enumerate() {
+                let cv = setup
+                    .clip_vertex(draw.mesh, first + i)
+                    .map_err(|error| RenderError::Draw { draw: di, error })?;
+                *sv = viewport.screen_vertex(&cv);
+            }
+        }
+    }
+    Ok(count)
+}

@@ -1,0 +1,69 @@
+//! The per-frame memory of the renderer: the vertex buffer and the bins.
+
+use crate::vertex::ScreenVertex;
+
+/// Most triangles one frame can hold: bins store `u16` indices.
+pub const MAX_TRIANGLES: usize = 1 << 16;
+
+/// The per-frame memory of the renderer, sized at compile time.
+///
+/// * `VERTICES`: capacity of the vertex buffer, 16 bytes each; at least the
+///   total vertex count of all draws of a frame.
+/// * `BIN_ENTRIES`: the bin pool, 2 bytes each (at most 65,535), used in
+///   chunks of [`CHUNK`](super::CHUNK). A frame needs about (visible triangles) x (1 +
+///   average extra tiles touched) x 8/7, plus half a chunk per tile; less
+///   still renders correctly, in more passes.
+/// * `TILES`: tiles binned per pass, 4 bytes each; the number of tiles of
+///   the frame for a single pass.
+///
+/// It is large: put it in a `static` (for example with
+/// `cortex_m::singleton!` or `static_cell`) on a microcontroller, or `Box`
+/// it on a host.
+#[derive(Clone, Debug)]
+pub struct Workspace<const VERTICES: usize, const BIN_ENTRIES: usize, const TILES: usize> {
+    pub(super) vertices: [ScreenVertex; VERTICES],
+    pub(super) bins: [u16; BIN_ENTRIES],
+    /// Per tile of the current pass: its first chunk.
+    pub(super) heads: [u16; TILES],
+    /// Per tile of the current pass: the slot its next entry goes to, or
+    /// [`EMPTY`].
+    pub(super) tails: [u16; TILES],
+}
+
+impl<const V: usize, const B: usize, const T: usize> Default for Workspace<V, B, T> {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl<const V: usize, const B: usize, const T: usize> Workspace<V, B, T> {
+    const VALID: () = assert!(
+        B <= u16::MAX as usize && B > 0 && T > 0,
+        "BIN_ENTRIES must be 1..=65535 and TILES at least 1"
+    );
+
+    /// An empty workspace (usable in a `static`).
+    pub const fn new() -> Self {
+        #[allow(clippy::let_unit_value)]
+        let () = Self::VALID;
+        Self {
+            vertices: [ScreenVertex {
+                x: 0,
+                y: 0,
+                z: 0,
+                outcode: 0,
+                color: [0; 3],
+            }; V],
+            bins: [0; B],
+            // All zeros, so that a `static` workspace lives in `.bss` and
+            // costs no flash (each pass sets the tails up anyway).
+            heads: [0; T],
+            tails: [0; T],
+        }
+    }
+
+    /// The vertices of the last frame's vertex stage.
+    pub fn vertices(&self) -> &[ScreenVertex] {
+        &self.vertices
+    }
+}
