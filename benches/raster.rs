@@ -25,6 +25,8 @@
 //! * `terrain/{clusters,whole}`: a 96x96-quad terrain (18,432 triangles)
 //!   seen from on it, imported in clusters of at most 64 triangles (culled
 //!   cluster by cluster) or without clusters, into `NullSink`.
+//! * `rock/gouraud`: a 3,920-triangle displaced geodesic sphere, the
+//!   small triangles of a scanned or modelled mesh (Gouraud, 320x240).
 
 #[path = "../examples/common/mod.rs"]
 mod common;
@@ -162,6 +164,18 @@ fn demo(c: &mut Criterion) {
     g.finish();
 }
 
+/// The small-triangle mesh: a 3,920-triangle rock, Gouraud.
+fn rock(c: &mut Criterion) {
+    let mut g = c.benchmark_group("rock");
+    let scene = RockScene::new();
+    let mut r = renderer();
+    let mut ws: Box<RockWorkspace> = Box::default();
+    g.bench_function("gouraud", |b| {
+        b.iter(|| scene.render(&mut r, &mut ws, &mut NullSink))
+    });
+    g.finish();
+}
+
 /// Per-cluster culling: the terrain with and without its clusters.
 fn terrain(c: &mut Criterion) {
     let mut g = c.benchmark_group("terrain");
@@ -186,6 +200,6 @@ fn config() -> Criterion {
 criterion_group! {
     name = benches;
     config = config();
-    targets = triangles, fill, fill_shaders, demo, terrain
+    targets = triangles, fill, fill_shaders, demo, terrain, rock
 }
 criterion_main!(benches);

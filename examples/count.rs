@@ -56,6 +56,10 @@ enum Job {
         ws: Box<TerrainWorkspace>,
         clustered: bool,
     },
+    Rock {
+        scene: RockScene,
+        ws: Box<RockWorkspace>,
+    },
 }
 
 /// The fragment shaders of the `fill-*` scenes.
@@ -81,6 +85,7 @@ fn frame(job: &mut Job, r: &mut BenchRenderer) -> Option<FrameStats> {
             ws,
             clustered,
         } => Some(scene.render(r, ws, *clustered, sink)),
+        Job::Rock { scene, ws } => Some(scene.render(r, ws, sink)),
         Job::Euc(e) => {
             e.render();
             None
@@ -184,6 +189,10 @@ fn main() {
             ws: Box::default(),
             clustered: name == "terrain",
         },
+        "rock" => Job::Rock {
+            scene: RockScene::new(),
+            ws: Box::default(),
+        },
         other if shaded(other).is_some() => {
             let (job, mode) = shaded(other).expect("just checked");
             perspective = mode;
@@ -193,7 +202,7 @@ fn main() {
             eprintln!(
                 "count: unknown scene {other:?} \
                  (demo, demo-flat, fill, tri4, tri32, tri100, tri1000, tri10000, euc, \
-                 fill-SHADER-MODE, terrain, terrain-whole)"
+                 fill-SHADER-MODE, terrain, terrain-whole, rock)"
             );
             std::process::exit(2);
         }
