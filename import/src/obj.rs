@@ -20,8 +20,9 @@
 //!   same group and material are merged into one range even when the file
 //!   interleaves them.
 //! * `#` starts a comment (anywhere on a line, so names cannot contain `#`).
-//!   A line ending in `\` continues on the next. CRLF line endings, tabs and
-//!   trailing whitespace are fine. Other statements (`s`, `l`, `p`, `vp`,
+//!   A line ending in `\` continues on the next. CRLF line endings, tabs,
+//!   trailing whitespace and a leading UTF-8 byte-order mark (in OBJ and
+//!   MTL files) are fine. Other statements (`s`, `l`, `p`, `vp`,
 //!   curves and surfaces, ...) are ignored and counted in
 //!   [`Model::warnings`].
 //!
@@ -680,6 +681,9 @@ struct Lines<'a> {
 
 impl<'a> Lines<'a> {
     fn new(source: &'a str) -> Self {
+        // Editors on Windows save UTF-8 with a byte-order mark; left in, it
+        // would glue onto the first keyword and that statement be ignored.
+        let source = source.strip_prefix('\u{FEFF}').unwrap_or(source);
         Self {
             physical: source.split('\n').enumerate(),
         }

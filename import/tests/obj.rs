@@ -547,6 +547,41 @@ fn crlf_tabs_comments_trailing_space_and_continuations() {
 }
 
 #[test]
+fn a_leading_byte_order_mark_is_skipped() {
+    // Editors on Windows often save with a UTF-8 BOM. Read as part of the
+    // first keyword, it turned the first `v` into an ignored statement and
+    // shifted every index after it.
+    let src = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf -4 -3 -1 -2\n";
+    let with_bom = parse(&format!("\u{FEFF}{src}"));
+    assert_eq!(with_bom, parse(src));
+    assert_eq!(with_bom.positions.len(), 4);
+    assert!(with_bom.warnings.is_empty(), "{:?}", with_bom.warnings);
+    // Only at the very start: anywhere else it is not whitespace.
+    let e = parse_err("v 0 0 0\nv 1 0 \u{FEFF}0\n");
+    assert_eq!(e.line(), Some(2));
+
+    // The files on disk, an MTL with a BOM too.
+    let dir = std::env::temp_dir().join(format!("mri-bom-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let bom = "\u{FEFF}";
+    std::fs::write(
+        dir.join("b.obj"),
+        format!("{bom}v 0 0 0\nmtllib b.mtl\nusemtl red\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"),
+    )
+    .unwrap();
+    std::fs::write(dir.join("b.mtl"), format!("{bom}newmtl red\nKd 1 0 0\n")).unwrap();
+    let m = load_obj(&dir.join("b.obj"), &ObjOptions::default()).unwrap();
+    assert_eq!(
+        m.positions,
+        [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]
+    );
+    let red = m.groups[0].material.as_ref().unwrap();
+    assert_eq!(red.diffuse, [1.0, 0.0, 0.0]);
+    assert!(m.warnings.is_empty(), "{:?}", m.warnings);
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
 fn unknown_statements_are_counted() {
     let m = parse(&format!(
         "{TRIANGLE}s 1\nl 1 2\np 1\nvp 0.5\ns off\ncstype bezier\nf 1 2 3\n"
