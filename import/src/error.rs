@@ -9,7 +9,10 @@ use std::path::{Path, PathBuf};
 /// line of that file, the 1-based line number. [`Display`](fmt::Display)
 /// writes it on one line, as `path:line: reason` (or `path: reason` when no
 /// single line is to blame), the form compilers use, so editors can jump to
-/// it.
+/// it. What it quotes of a file (a token, a name, a path that the file
+/// gave) is shown with control characters escaped (`\u{0}`, `\t`, ...),
+/// so that a NUL byte or a terminal escape sequence is seen rather than
+/// hidden or obeyed; the [`ErrorKind`] keeps the text as written.
 ///
 /// ```
 /// use std::path::Path;
@@ -174,7 +177,8 @@ impl ImportError {
 
 impl fmt::Display for ImportError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{}", self.path.display())?;
+        // The path can come from the file itself (an MTL named by `mtllib`).
+        write!(f, "{}", escape_controls(&self.path.display().to_string()))?;
         if let Some(line) = self.line {
             write!(f, ":{line}")?;
         }
@@ -191,6 +195,23 @@ impl std::error::Error for ImportError {
     }
 }
 
+/// `s` fit to quote in a message: control characters, and the invisible
+/// byte-order mark, become `\t`, `\n`, `\r` or `\u{..}` escapes. A NUL
+/// byte in a number would otherwise vanish on a terminal (`0\u{0}5` shown
+/// as `05`), and an escape sequence act on it. The escapes hold no control
+/// characters, so escaping twice changes nothing.
+pub(crate) fn escape_controls(s: &str) -> String {
+    let mut out = String::with_capacity(s.len());
+    for c in s.chars() {
+        match c {
+            '\t' | '\n' | '\r' => out.extend(c.escape_default()),
+            c if c.is_control() || c == '\u{FEFF}' => out.extend(c.escape_unicode()),
+            c => out.push(c),
+        }
+    }
+    out
+}
+
 fn plural(n: usize, one: &str, many: &str) -> String {
     if n == 1 {
         format!("{n} {one}")
@@ -204,10 +225,19 @@ impl fmt::Display for ErrorKind {
         match self {
             Self::Io(e) => write!(f, "{e}"),
             Self::Malformed { statement, message } => {
-                write!(f, "malformed `{statement}` statement: {message}")
+                write!(
+                    f,
+                    "malformed `{}` statement: {}",
+                    escape_controls(statement),
+                    escape_controls(message)
+                )
             }
             Self::NonFinite { token } => {
-                write!(f, "number `{token}` is not finite (NaN, infinite or beyond f32)")
+                write!(
+                    f,
+                    "number `{}` is not finite (NaN, infinite or beyond f32)",
+                    escape_controls(token)
+                )
             }
             Self::IndexOutOfRange {
                 element,
@@ -230,7 +260,9 @@ impl fmt::Display for ErrorKind {
             }
             Self::MixedFaceForms { first, other } => write!(
                 f,
-                "face mixes corner forms `{first}` and `{other}` (all corners need the same v/vt/vn parts)"
+                "face mixes corner forms `{}` and `{}` (all corners need the same v/vt/vn parts)",
+                escape_controls(first),
+                escape_controls(other)
             ),
             Self::TooManyCorners { count, limit } => {
                 write!(f, "face has {count} corners, more than the limit of {limit}")
@@ -282,7 +314,7 @@ impl fmt::Display for ErrorKind {
                 "name `{}` is not an identifier (ASCII letters, digits and `_`, not starting with a digit)",
                 name.escape_debug()
             ),
-            Self::Png { message } => write!(f, "PNG: {message}"),
+            Self::Png { message } => write!(f, "PNG: {}", escape_controls(message)),
             Self::ImageSize { width, height } => write!(
                 f,
                 "image is {width}x{height}; it needs at least one pixel and at most {} pixels",

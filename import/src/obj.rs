@@ -58,7 +58,7 @@ use std::io;
 use std::ops::Range;
 use std::path::{Path, PathBuf};
 
-use crate::error::{ErrorKind, ImportError};
+use crate::error::{escape_controls, ErrorKind, ImportError};
 
 /// How positions are fitted into 16.16 fixed point (range ±32768,
 /// resolution 1/65536).
@@ -1115,7 +1115,8 @@ impl Parser<'_> {
             match loader(&name)? {
                 Some((path, text)) => self.mtl(&path, &text)?,
                 None => self.warnings.push(format!(
-                    "material library `{name}` not found; its materials are white"
+                    "material library `{}` not found; its materials are white",
+                    escape_controls(&name)
                 )),
             }
         }
@@ -1157,7 +1158,7 @@ impl Parser<'_> {
                     else {
                         self.warnings.push(format!(
                             "{}:{line}: `{keyword}` before any `newmtl` ignored",
-                            path.display()
+                            escape_controls(&path.display().to_string())
                         ));
                         continue;
                     };
@@ -1173,7 +1174,7 @@ impl Parser<'_> {
                     } else if matches!(args.first(), Some(&"spectral") | Some(&"xyz")) {
                         self.warnings.push(format!(
                             "{}:{line}: `Kd {}` is not supported; the colour stays white",
-                            path.display(),
+                            escape_controls(&path.display().to_string()),
                             args[0]
                         ));
                     } else {
@@ -1242,7 +1243,10 @@ impl Parser<'_> {
             });
         }
         for name in undefined {
-            warnings.push(format!("material `{name}` is not defined; it is white"));
+            warnings.push(format!(
+                "material `{}` is not defined; it is white",
+                escape_controls(&name)
+            ));
         }
         let limit = self.options.index_width.max_vertices();
         if corners.len() > limit {
@@ -1415,7 +1419,10 @@ impl Parser<'_> {
             ));
         }
         for (keyword, count) in &self.ignored {
-            warnings.push(format!("ignored {count} `{}` statement(s)", clip(keyword)));
+            warnings.push(format!(
+                "ignored {count} `{}` statement(s)",
+                escape_controls(&clip(keyword))
+            ));
         }
 
         let mut model = Model {

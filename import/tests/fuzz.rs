@@ -71,12 +71,19 @@ fn run(source: &str, mtl: Option<&str>, options: &ObjOptions) {
         options,
     );
     match result {
-        Ok(m) => check_model(&m),
+        Ok(m) => {
+            check_model(&m);
+            for w in &m.warnings {
+                assert!(!w.contains(char::is_control), "{w:?}");
+            }
+        }
         Err(e) => {
-            // One line, naming the file: the OBJ or an MTL beside it.
+            // One line, naming the file: the OBJ or an MTL beside it, and
+            // whatever of the file it quotes shown with control characters
+            // escaped.
             let s = e.to_string();
             assert!(s.starts_with(&format!("{}", e.path().display())), "{s}");
-            assert!(!s.contains('\n'), "{s:?}");
+            assert!(!s.contains(char::is_control), "{s:?}");
         }
     }
 }
@@ -251,7 +258,7 @@ proptest! {
     fn free_token_soups_never_panic(
         tokens in prop::collection::vec(
             prop::sample::select(
-                [KEYWORDS, ARGS, &[" ", "\n", "\r\n", "\t", "\\\n", "#", "\r"]].concat()
+                [KEYWORDS, ARGS, &[" ", "\n", "\r\n", "\t", "\\\n", "#", "\r", "\u{0}", "\u{1b}", "\u{7f}"]].concat()
             ),
             0..120,
         ),

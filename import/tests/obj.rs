@@ -922,6 +922,55 @@ fn every_error_with_its_line_and_message() {
     }
 }
 
+#[test]
+fn control_characters_in_quoted_content_are_escaped() {
+    // A NUL inside a number showed as `found `0`` on a terminal.
+    let d = ObjOptions::default();
+    let cases: &[(&str, usize, &str)] = &[
+        ("v 1 2 0\u{0}5\n", 1, "malformed `v` statement: expected a number, found `0\\u{0}5`"),
+        ("v 1 2 \u{FEFF}3\n", 1, "malformed `v` statement: expected a number, found `\\u{feff}3`"),
+        ("vt 0\u{1b}[31m\n", 1, "malformed `vt` statement: expected a number, found `0\\u{1b}[31m`"),
+        ("v 0 0 0\nf 1 1 1\u{7}\n", 2, "malformed `f` statement: bad index `1\\u{7}` in corner `1\\u{7}` (expected v, v/vt, v//vn or v/vt/vn)"),
+        ("v 0 0 0\nf 1/\u{0} 1 1\n", 2, "malformed `f` statement: bad index `\\u{0}` in corner `1/\\u{0}` (expected v, v/vt, v//vn or v/vt/vn)"),
+    ];
+    for &(source, line, message) in cases {
+        let (got_line, got) = error_of(source, &d);
+        assert_eq!(got_line, Some(line), "{source:?}");
+        assert_eq!(got, format!("test.obj:{line}: {message}"), "{source:?}");
+    }
+    // The error keeps what was written; only its display escapes it.
+    let e = parse_err("v 1 2 0\u{0}5\n");
+    assert!(
+        matches!(e.kind(), ErrorKind::Malformed { message, .. } if message.contains("0\u{0}5")),
+        "{e:?}"
+    );
+    // Paths (an MTL's name comes from the OBJ) and MTL content too.
+    let e = parse_obj(
+        "mtllib a\u{1}.mtl\nv 0 0 0\n",
+        Path::new("dir/t.obj"),
+        |_| Some("newmtl a\nKd 1 \u{0} 1\n".to_string()),
+        &d,
+    )
+    .unwrap_err();
+    assert_eq!(
+        e.to_string(),
+        "dir/a\\u{1}.mtl:2: malformed `Kd` statement: expected a number, found `\\u{0}`"
+    );
+    // Warnings quote the file as well: unknown keywords, library and
+    // material names.
+    let m = parse(&format!(
+        "{TRIANGLE}x\u{0}y 1\nmtllib m\u{8}.mtl\nusemtl \u{1b}c\nf 1 2 3\n"
+    ));
+    assert_eq!(
+        m.warnings,
+        [
+            "material library `m\\u{8}.mtl` not found; its materials are white",
+            "material `\\u{1b}c` is not defined; it is white",
+            "ignored 1 `x\\u{0}y` statement(s)",
+        ]
+    );
+}
+
 const TRIANGLE_F_TWO: &str = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2\n";
 
 #[test]
