@@ -265,7 +265,11 @@ impl fmt::Display for ErrorKind {
                 escape_controls(other)
             ),
             Self::TooManyCorners { count, limit } => {
-                write!(f, "face has {count} corners, more than the limit of {limit}")
+                write!(
+                    f,
+                    "face has {count} corners, more than the limit of {limit}; \
+                     raise it with ObjOptions::with_max_face_corners (--max-face-corners N)"
+                )
             }
             Self::TooManyElements { element, limit } => {
                 write!(f, "more than {limit} {element} statements (the configured limit)")

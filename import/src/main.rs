@@ -1,7 +1,7 @@
 //! `microraster-import`: converts OBJ models and PNG images to Rust source.
 //!
 //! ```text
-//! microraster-import obj MODEL.obj --out model.rs [--name NAME] [--fit auto|keep|unit] [--u32] [--no-normals] [--clusters N]
+//! microraster-import obj MODEL.obj --out model.rs [--name NAME] [--fit auto|keep|unit] [--u32] [--no-normals] [--clusters N] [--max-face-corners N]
 //! microraster-import png IMAGE.png --out tex.rs [--name NAME] --format rgb565|gray8|indexed8|indexed4
 //! ```
 //!
@@ -10,6 +10,10 @@
 //! `NAME_GROUP_CLUSTERS`, for microraster's per-cluster frustum culling
 //! (`Mesh::with_clusters`); that output needs a crate that depends on
 //! microraster.
+//!
+//! `--max-face-corners N` (N >= 3, default 256) accepts faces of up to `N`
+//! corners; a face of more is an error. Faces above 256 corners are
+//! triangulated as a fan around their first corner, not ear-clipped.
 //!
 //! Prints a one-line summary on success (and any warnings on stderr); on
 //! failure, one `error:` line on stderr and exit status 1 (2 for a usage
@@ -25,7 +29,7 @@ use microraster_import::{
 };
 
 const USAGE: &str = "\
-usage: microraster-import obj MODEL.obj --out FILE.rs [--name NAME] [--fit auto|keep|unit] [--u32] [--no-normals] [--clusters N]
+usage: microraster-import obj MODEL.obj --out FILE.rs [--name NAME] [--fit auto|keep|unit] [--u32] [--no-normals] [--clusters N] [--max-face-corners N]
        microraster-import png IMAGE.png --out FILE.rs [--name NAME] --format rgb565|gray8|indexed8|indexed4";
 
 /// A parsed command line.
@@ -73,6 +77,7 @@ fn parse_args(args: &[String]) -> Result<Command, String> {
     let mut u32_indices = false;
     let mut no_normals = false;
     let mut clusters = 0;
+    let mut max_face_corners = None;
     let mut format = None;
     let mut rest = args[1..].iter();
     while let Some(arg) = rest.next() {
@@ -100,6 +105,15 @@ fn parse_args(args: &[String]) -> Result<Command, String> {
                     format!("bad cluster size `{v}` (expected the most triangles per cluster, at least 1)")
                 })?;
             }
+            "--max-face-corners" if kind == "obj" => {
+                let v = value("--max-face-corners")?;
+                let n = v.parse::<usize>().ok().filter(|&n| n >= 3).ok_or_else(|| {
+                    format!(
+                        "bad corner limit `{v}` (expected the most corners per face, at least 3)"
+                    )
+                })?;
+                max_face_corners = Some(n);
+            }
             "--format" if kind == "png" => {
                 let v = value("--format")?;
                 format = Some(TextureFormat::from_name(&v).ok_or_else(|| {
@@ -121,7 +135,11 @@ fn parse_args(args: &[String]) -> Result<Command, String> {
     let out = out.ok_or_else(|| "missing --out FILE.rs".to_string())?;
     let name = name.unwrap_or_else(|| default_name(&input));
     if kind == "obj" {
-        let options = ObjOptions::default()
+        let mut options = ObjOptions::default();
+        if let Some(n) = max_face_corners {
+            options = options.with_max_face_corners(n);
+        }
+        let options = options
             .with_fit(fit.unwrap_or_default())
             .with_index_width(if u32_indices {
                 IndexWidth::U32
@@ -206,7 +224,7 @@ mod tests {
     fn obj_command_with_every_option() {
         assert_eq!(
             parse_args(&args(
-                "obj m/my-ship.obj --out o.rs --fit unit --u32 --no-normals --clusters 64"
+                "obj m/my-ship.obj --out o.rs --fit unit --u32 --no-normals --clusters 64 --max-face-corners 1000"
             )),
             Ok(Command::Obj {
                 input: "m/my-ship.obj".into(),
@@ -216,7 +234,8 @@ mod tests {
                     .with_fit(Fit::Unit)
                     .with_index_width(IndexWidth::U32)
                     .with_compute_normals(false)
-                    .with_cluster_triangles(64),
+                    .with_cluster_triangles(64)
+                    .with_max_face_corners(1000),
             })
         );
         assert_eq!(
@@ -278,6 +297,18 @@ mod tests {
                 )
             );
         }
+        for bad in ["2", "x", "-4"] {
+            assert_eq!(
+                err(&format!("obj a.obj --out a.rs --max-face-corners {bad}")),
+                format!(
+                    "bad corner limit `{bad}` (expected the most corners per face, at least 3)"
+                )
+            );
+        }
+        assert_eq!(
+            err("png a.png --out a.rs --format gray8 --max-face-corners 9"),
+            "unknown option `--max-face-corners` for `png`"
+        );
         assert_eq!(
             err("obj a.obj --out a.rs --clusters"),
             "--clusters needs a value"

@@ -11,7 +11,9 @@
 //!   face), with 1-based or negative (relative) indices that refer to
 //!   elements defined *before* the face. Polygons with more than three
 //!   corners are triangulated by ear clipping in the polygon's dominant
-//!   plane (see [`triangulate`]).
+//!   plane (see [`triangulate`]). A face of more than
+//!   [`ObjOptions::max_face_corners`] (default 256) is an error; with the
+//!   limit raised, faces above 256 corners become a fan.
 //! * `o` and `g` start a group; faces before either go into the group
 //!   `default`. `usemtl` sets the material of the faces that follow, and
 //!   `mtllib` loads material libraries (`newmtl`, `Kd`, `map_Kd`).
@@ -159,7 +161,12 @@ pub struct ObjOptions {
     /// The most triangles accepted, after triangulation (default
     /// 1,048,576).
     pub max_triangles: usize,
-    /// The most corners accepted in one face (default 256).
+    /// The most corners accepted in one face (default 256); a face of more
+    /// is an error ([`ErrorKind::TooManyCorners`]). Raised above
+    /// [`EAR_CLIPPING_MAX_CORNERS`] (256), it lets larger faces in, and
+    /// those are fan-triangulated around their first corner (ear clipping
+    /// costs up to the cube of the corner count), which is right for
+    /// convex faces only.
     pub max_face_corners: usize,
     /// The most triangles per cluster, or 0 (the default) for no clusters.
     ///

@@ -1,6 +1,8 @@
 //! The `microraster-import` command: output files, summary lines, one-line
 //! errors and exit codes.
 
+mod common;
+
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
@@ -175,5 +177,36 @@ fn obj_conversion_with_clusters() {
     assert_eq!(o.status.code(), Some(2));
     assert!(stderr(&o).starts_with("error: --clusters needs a value\n"));
     assert!(!Path::new(&out).exists());
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn faces_above_the_corner_limit_need_the_option() {
+    // A convex 300-gon: more corners than the default limit of 256.
+    let dir = temp_dir("corners");
+    let obj = dir.join("disc.obj");
+    std::fs::write(&obj, common::regular_polygon_obj(300)).unwrap();
+    let (obj, out) = (
+        obj.display().to_string(),
+        dir.join("disc.rs").display().to_string(),
+    );
+    let o = run(&["obj", &obj, "--out", &out]);
+    assert_eq!(o.status.code(), Some(1));
+    assert_eq!(
+        stderr(&o),
+        format!(
+            "error: {obj}:301: face has 300 corners, more than the limit of 256; \
+             raise it with ObjOptions::with_max_face_corners (--max-face-corners N)\n"
+        )
+    );
+    assert!(!Path::new(&out).exists());
+    // Allowed, it becomes a fan of 298 triangles.
+    let o = run(&["obj", &obj, "--out", &out, "--max-face-corners", "300"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        stdout(&o).contains(": 300 vertices, 298 triangles, 1 groups,"),
+        "{}",
+        stdout(&o)
+    );
     std::fs::remove_dir_all(&dir).unwrap();
 }

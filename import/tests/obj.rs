@@ -1,6 +1,8 @@
 //! OBJ/MTL parsing: every face form, triangulation, groups, materials,
 //! normals, de-duplication, fitting, and every error with its line.
 
+mod common;
+
 use std::path::{Path, PathBuf};
 
 use microraster_import::{
@@ -998,7 +1000,9 @@ fn limits_are_errors_not_allocations() {
         error_of(&format!("{TRIANGLE}f 1 2 3 1 2\n"), &opts),
         (
             Some(4),
-            "test.obj:4: face has 5 corners, more than the limit of 4".to_string()
+            "test.obj:4: face has 5 corners, more than the limit of 4; \
+             raise it with ObjOptions::with_max_face_corners (--max-face-corners N)"
+                .to_string()
         )
     );
     assert_eq!(
@@ -1022,16 +1026,19 @@ fn limits_are_errors_not_allocations() {
 #[test]
 fn large_polygons_fall_back_to_a_fan() {
     // A convex 300-gon (more than ear clipping takes): still 298 triangles.
-    let mut src = String::new();
-    for k in 0..300 {
-        let a = k as f64 * std::f64::consts::TAU / 300.0;
-        src += &format!("v {} {} 0\n", a.cos(), a.sin());
-    }
-    src += "f";
-    for k in 1..=300 {
-        src += &format!(" {k}");
-    }
+    let src = common::regular_polygon_obj(300);
     let m = parse_with(&src, &ObjOptions::default().with_max_face_corners(300)).unwrap();
     assert_eq!(m.triangles.len(), 298);
     assert!(all_facing(&m, [0.0, 0.0, 1.0]));
+    // Only once the limit is raised: by default such a face is an error
+    // that says how to allow it.
+    let e = parse_with(&src, &ObjOptions::default()).unwrap_err();
+    assert!(matches!(
+        e.kind(),
+        ErrorKind::TooManyCorners {
+            count: 300,
+            limit: 256
+        }
+    ));
+    assert!(e.to_string().contains("--max-face-corners"), "{e}");
 }

@@ -383,3 +383,18 @@ pub fn check_clusters(m: &Model) {
     assert_eq!(next_triangle, m.triangles.len());
     assert_eq!(next_vertex, m.positions.len());
 }
+
+/// An OBJ file of one face: a regular, convex polygon of `n` corners on the
+/// unit circle in the z = 0 plane, counter-clockwise.
+pub fn regular_polygon_obj(n: usize) -> String {
+    let mut src = String::new();
+    for k in 0..n {
+        let a = k as f64 * std::f64::consts::TAU / n as f64;
+        src += &format!("v {} {} 0\n", a.cos(), a.sin());
+    }
+    src += "f";
+    for k in 1..=n {
+        src += &format!(" {k}");
+    }
+    src + "\n"
+}
