@@ -59,7 +59,7 @@
 //! # From the command line
 //!
 //! ```text
-//! microraster-import obj MODEL.obj --out model.rs [--name NAME] [--fit auto|keep|unit] [--u32] [--no-normals] [--clusters N] [--max-face-corners N]
+//! microraster-import obj MODEL.obj --out model.rs [--name NAME] [--fit auto|keep|unit] [--u32] [--no-normals] [--clusters N] [--max-face-corners N] [--allow-outside-files]
 //! microraster-import png IMAGE.png --out tex.rs [--name NAME] --format rgb565|gray8|indexed8|indexed4
 //! ```
 //!
@@ -84,6 +84,7 @@ pub mod codegen;
 pub mod error;
 pub mod image;
 pub mod obj;
+pub mod paths;
 
 pub use codegen::{
     model_to_rust, obj_to_rust, png_to_rust, rust_prefix, sanitize_name, texture_to_rust,

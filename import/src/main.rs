@@ -1,7 +1,7 @@
 //! `microraster-import`: converts OBJ models and PNG images to Rust source.
 //!
 //! ```text
-//! microraster-import obj MODEL.obj --out model.rs [--name NAME] [--fit auto|keep|unit] [--u32] [--no-normals] [--clusters N] [--max-face-corners N]
+//! microraster-import obj MODEL.obj --out model.rs [--name NAME] [--fit auto|keep|unit] [--u32] [--no-normals] [--clusters N] [--max-face-corners N] [--allow-outside-files]
 //! microraster-import png IMAGE.png --out tex.rs [--name NAME] --format rgb565|gray8|indexed8|indexed4
 //! ```
 //!
@@ -14,6 +14,10 @@
 //! `--max-face-corners N` (N >= 3, default 256) accepts faces of up to `N`
 //! corners; a face of more is an error. Faces above 256 corners are
 //! triangulated as a fan around their first corner, not ear-clipped.
+//!
+//! `--allow-outside-files` lets the model name material libraries and
+//! textures outside its folder (by `..` or an absolute path), which are
+//! otherwise refused with a warning.
 //!
 //! Prints a one-line summary on success (and any warnings on stderr); on
 //! failure, one `error:` line on stderr and exit status 1 (2 for a usage
@@ -29,7 +33,7 @@ use microraster_import::{
 };
 
 const USAGE: &str = "\
-usage: microraster-import obj MODEL.obj --out FILE.rs [--name NAME] [--fit auto|keep|unit] [--u32] [--no-normals] [--clusters N] [--max-face-corners N]
+usage: microraster-import obj MODEL.obj --out FILE.rs [--name NAME] [--fit auto|keep|unit] [--u32] [--no-normals] [--clusters N] [--max-face-corners N] [--allow-outside-files]
        microraster-import png IMAGE.png --out FILE.rs [--name NAME] --format rgb565|gray8|indexed8|indexed4";
 
 /// A parsed command line.
@@ -78,6 +82,7 @@ fn parse_args(args: &[String]) -> Result<Command, String> {
     let mut no_normals = false;
     let mut clusters = 0;
     let mut max_face_corners = None;
+    let mut outside_files = false;
     let mut format = None;
     let mut rest = args[1..].iter();
     while let Some(arg) = rest.next() {
@@ -98,6 +103,7 @@ fn parse_args(args: &[String]) -> Result<Command, String> {
                     })?);
             }
             "--u32" if kind == "obj" => u32_indices = true,
+            "--allow-outside-files" if kind == "obj" => outside_files = true,
             "--no-normals" if kind == "obj" => no_normals = true,
             "--clusters" if kind == "obj" => {
                 let v = value("--clusters")?;
@@ -147,7 +153,8 @@ fn parse_args(args: &[String]) -> Result<Command, String> {
                 IndexWidth::U16
             })
             .with_compute_normals(!no_normals)
-            .with_cluster_triangles(clusters);
+            .with_cluster_triangles(clusters)
+            .with_outside_files(outside_files);
         Ok(Command::Obj {
             input,
             out,
@@ -224,7 +231,7 @@ mod tests {
     fn obj_command_with_every_option() {
         assert_eq!(
             parse_args(&args(
-                "obj m/my-ship.obj --out o.rs --fit unit --u32 --no-normals --clusters 64 --max-face-corners 1000"
+                "obj m/my-ship.obj --out o.rs --fit unit --u32 --no-normals --clusters 64 --max-face-corners 1000 --allow-outside-files"
             )),
             Ok(Command::Obj {
                 input: "m/my-ship.obj".into(),
@@ -235,7 +242,8 @@ mod tests {
                     .with_index_width(IndexWidth::U32)
                     .with_compute_normals(false)
                     .with_cluster_triangles(64)
-                    .with_max_face_corners(1000),
+                    .with_max_face_corners(1000)
+                    .with_outside_files(true),
             })
         );
         assert_eq!(

@@ -17,6 +17,10 @@
 //! * `o` and `g` start a group; faces before either go into the group
 //!   `default`. `usemtl` sets the material of the faces that follow, and
 //!   `mtllib` loads material libraries (`newmtl`, `Kd`, `map_Kd`).
+//!   Material libraries and textures are looked for in the OBJ file's
+//!   folder; a name that leaves it (`..`, absolute) is refused with a
+//!   warning unless [`ObjOptions::outside_files`] allows it
+//!   ([`crate::paths`]).
 //!   A group's faces with different materials become separate [`Group`]s of
 //!   the same name; groups with no triangle are dropped, and faces of the
 //!   same group and material are merged into one range even when the file
@@ -61,6 +65,7 @@ use std::ops::Range;
 use std::path::{Path, PathBuf};
 
 use crate::error::{escape_controls, ErrorKind, ImportError};
+use crate::paths;
 
 /// How positions are fitted into 16.16 fixed point (range ±32768,
 /// resolution 1/65536).
@@ -178,6 +183,15 @@ pub struct ObjOptions {
     /// [`index_width`](ObjOptions::index_width) addresses, an error);
     /// smaller clusters cull more finely but copy more vertices.
     pub cluster_triangles: usize,
+    /// Read material libraries and keep texture names that lie outside the
+    /// OBJ file's folder (default `false`).
+    ///
+    /// A name with `..` that climbs out of the folder, or an absolute one
+    /// (`/etc/passwd`, `C:\\x.mtl`), is otherwise refused with a warning:
+    /// the library is not read, the texture name is dropped. A model from
+    /// elsewhere cannot make the importer read, or the firmware build use,
+    /// files beside it then. See [`crate::paths`].
+    pub outside_files: bool,
 }
 
 impl Default for ObjOptions {
@@ -190,6 +204,7 @@ impl Default for ObjOptions {
             max_triangles: 1 << 20,
             max_face_corners: 256,
             cluster_triangles: 0,
+            outside_files: false,
         }
     }
 }
@@ -257,6 +272,13 @@ impl ObjOptions {
         self.cluster_triangles = cluster_triangles;
         self
     }
+
+    /// Sets [`outside_files`](ObjOptions::outside_files): whether files
+    /// outside the OBJ file's folder may be named.
+    pub fn with_outside_files(mut self, outside_files: bool) -> Self {
+        self.outside_files = outside_files;
+        self
+    }
 }
 
 /// A material from an MTL file (or a name `usemtl` used without one).
@@ -268,7 +290,9 @@ pub struct Material {
     /// material is not defined).
     pub diffuse: [f32; 3],
     /// The diffuse texture's file name (`map_Kd`), as written (relative to
-    /// the MTL file), without its options.
+    /// the MTL file), without its options. A name outside the OBJ file's
+    /// folder is dropped with a warning unless
+    /// [`ObjOptions::outside_files`] allows it.
     pub texture: Option<String>,
 }
 
@@ -623,7 +647,9 @@ fn gather<T: Copy>(values: &[T], source: &[usize]) -> Vec<T> {
 }
 
 /// Reads the OBJ file at `path`, and the MTL files it names (relative to its
-/// directory; a missing one is a warning, an unreadable one an error).
+/// directory; a missing one is a warning, an unreadable one an error, one
+/// outside the directory refused with a warning unless
+/// [`ObjOptions::outside_files`] allows it: see [`crate::paths`]).
 ///
 /// Bytes that are not UTF-8 are replaced (OBJ is ASCII; this only affects
 /// names).
@@ -647,6 +673,9 @@ pub fn load_obj(path: &Path, options: &ObjOptions) -> Result<Model, ImportError>
 /// `path` is only used in errors, warnings and [`Model::source`], and to
 /// name MTL files: `mtl_loader` gets each `mtllib` file name as written and
 /// returns the file's text, or `None` if there is no such file (a warning).
+/// A name outside the folder of `path` (see [`crate::paths`]) is not passed
+/// to it, but refused with a warning, unless [`ObjOptions::outside_files`]
+/// allows it.
 ///
 /// ```
 /// use std::path::Path;
@@ -928,7 +957,7 @@ impl Parser<'_> {
                 self.material = (!name.is_empty()).then_some(name);
                 Ok(())
             }
-            "mtllib" => return self.mtllib(&args, loader),
+            "mtllib" => return self.mtllib(line, &args, loader),
             other => {
                 let n = self.ignored.len();
                 match self.ignored.get_mut(other) {
@@ -1104,7 +1133,18 @@ impl Parser<'_> {
         Ok(())
     }
 
-    fn mtllib(&mut self, args: &[&str], loader: &mut Loader<'_>) -> Result<(), ImportError> {
+    /// Whether the file `name`, written in a file in `folder` (relative to
+    /// the OBJ's folder), may be used (see [`crate::paths`]).
+    fn may_use(&self, folder: &str, name: &str) -> bool {
+        self.options.outside_files || !paths::leaves_folder(folder, name)
+    }
+
+    fn mtllib(
+        &mut self,
+        line: usize,
+        args: &[&str],
+        loader: &mut Loader<'_>,
+    ) -> Result<(), ImportError> {
         if args.is_empty() {
             return Ok(());
         }
@@ -1113,14 +1153,28 @@ impl Parser<'_> {
         let names: Vec<String> = if args.len() == 1 {
             vec![whole]
         } else {
-            match loader(&whole)? {
-                Some((path, text)) => return self.mtl(&path, &text),
+            let found = if self.may_use("", &whole) {
+                loader(&whole)?
+            } else {
+                None
+            };
+            match found {
+                Some((path, text)) => return self.mtl(&path, &whole, &text),
                 None => args.iter().map(|s| s.to_string()).collect(),
             }
         };
         for name in names {
+            if !self.may_use("", &name) {
+                self.warnings.push(format!(
+                    "{}:{line}: material library `{}` {}; not read",
+                    escape_controls(&self.path.display().to_string()),
+                    escape_controls(&name),
+                    paths::REFUSED
+                ));
+                continue;
+            }
             match loader(&name)? {
-                Some((path, text)) => self.mtl(&path, &text)?,
+                Some((path, text)) => self.mtl(&path, &name, &text)?,
                 None => self.warnings.push(format!(
                     "material library `{}` not found; its materials are white",
                     escape_controls(&name)
@@ -1130,7 +1184,10 @@ impl Parser<'_> {
         Ok(())
     }
 
-    fn mtl(&mut self, path: &Path, text: &str) -> Result<(), ImportError> {
+    /// Reads the MTL text of the file `path`, named `name` in the OBJ.
+    fn mtl(&mut self, path: &Path, name: &str, text: &str) -> Result<(), ImportError> {
+        // Textures are named relative to the MTL file.
+        let folder = paths::folder_of(name);
         if !self.files.iter().any(|f| f == path) {
             self.files.push(path.to_path_buf());
         }
@@ -1177,7 +1234,18 @@ impl Parser<'_> {
                                 "expected a file name".to_string(),
                             )));
                         }
-                        material.texture = Some(name);
+                        // `self.may_use` would borrow all of `self`,
+                        // `material` included.
+                        if self.options.outside_files || !paths::leaves_folder(folder, &name) {
+                            material.texture = Some(name);
+                        } else {
+                            self.warnings.push(format!(
+                                "{}:{line}: texture `{}` {}; dropped",
+                                escape_controls(&path.display().to_string()),
+                                escape_controls(&name),
+                                paths::REFUSED
+                            ));
+                        }
                     } else if matches!(args.first(), Some(&"spectral") | Some(&"xyz")) {
                         self.warnings.push(format!(
                             "{}:{line}: `Kd {}` is not supported; the colour stays white",

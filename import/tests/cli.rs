@@ -210,3 +210,35 @@ fn faces_above_the_corner_limit_need_the_option() {
     );
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+#[test]
+fn material_libraries_outside_the_folder_need_the_option() {
+    let dir = temp_dir("outside");
+    std::fs::create_dir_all(dir.join("model")).unwrap();
+    let obj = dir.join("model/t.obj").display().to_string();
+    std::fs::write(
+        &obj,
+        "mtllib ../up.mtl\nusemtl g\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n",
+    )
+    .unwrap();
+    std::fs::write(dir.join("up.mtl"), "newmtl g\nKd 0 1 0\n").unwrap();
+    let out = dir.join("t.rs").display().to_string();
+    let o = run(&["obj", &obj, "--out", &out]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        stderr(&o).starts_with(&format!(
+            "warning: {obj}:1: material library `../up.mtl` is outside the model's folder; \
+             allow it with ObjOptions::with_outside_files (--allow-outside-files); not read\n"
+        )),
+        "{}",
+        stderr(&o)
+    );
+    let text = std::fs::read_to_string(&out).unwrap();
+    assert!(text.contains("::embedded_graphics::pixelcolor::Rgb888::new(255, 255, 255),"));
+    let o = run(&["obj", &obj, "--out", &out, "--allow-outside-files"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stderr(&o).is_empty(), "{}", stderr(&o));
+    let text = std::fs::read_to_string(&out).unwrap();
+    assert!(text.contains("::embedded_graphics::pixelcolor::Rgb888::new(0, 255, 0),"));
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -515,6 +515,125 @@ fn load_obj_from_a_temporary_directory() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
+const OUTSIDE: &str = "is outside the model's folder; \
+                       allow it with ObjOptions::with_outside_files (--allow-outside-files)";
+
+#[test]
+fn material_libraries_outside_the_models_folder_are_refused() {
+    let allowed = ObjOptions::default().with_outside_files(true);
+    for name in [
+        "../../../../etc/passwd",
+        "/etc/passwd",
+        "sub/../../m.mtl",
+        "..\\m.mtl",
+        "C:\\m.mtl",
+    ] {
+        let obj = format!("mtllib {name}\nusemtl red\n{TRIANGLE}f 1 2 3\n");
+        let import = |options: &ObjOptions| {
+            let mut asked = Vec::new();
+            let loader = |n: &str| {
+                asked.push(n.to_string());
+                Some("newmtl red\nKd 1 0 0\n".to_string())
+            };
+            let m = parse_obj(&obj, Path::new("m/t.obj"), loader, options)
+                .unwrap_or_else(|e| panic!("{e}"));
+            (m, asked)
+        };
+        let (m, asked) = import(&ObjOptions::default());
+        assert!(asked.is_empty(), "{name}: {asked:?}");
+        assert_eq!(m.files, [PathBuf::from("m/t.obj")], "{name}");
+        assert_eq!(
+            m.warnings,
+            [
+                format!("m/t.obj:1: material library `{name}` {OUTSIDE}; not read"),
+                "material `red` is not defined; it is white".to_string(),
+            ]
+        );
+        // Allowed, it is read as before.
+        let (m, asked) = import(&allowed);
+        assert_eq!(asked, [name], "{name}");
+        assert_eq!(
+            m.groups[0].material.as_ref().unwrap().diffuse,
+            [1.0, 0.0, 0.0]
+        );
+        assert!(m.warnings.is_empty(), "{:?}", m.warnings);
+    }
+    // `..` that stays inside is fine.
+    let mut asked = Vec::new();
+    parse_obj(
+        &format!("mtllib sub/../a.mtl ./b.mtl\n{TRIANGLE}f 1 2 3\n"),
+        Path::new("t.obj"),
+        |n| {
+            asked.push(n.to_string());
+            None
+        },
+        &ObjOptions::default(),
+    )
+    .unwrap();
+    assert_eq!(asked, ["sub/../a.mtl ./b.mtl", "sub/../a.mtl", "./b.mtl"]);
+}
+
+#[test]
+fn textures_outside_the_models_folder_are_refused() {
+    let obj = format!("mtllib mats/m.mtl\nusemtl a\n{TRIANGLE}f 1 2 3\nusemtl b\nf 3 2 1\n");
+    let mtl = "newmtl a\nmap_Kd -s 1 1 1 ../tex/a.png\nnewmtl b\nmap_Kd ../../b.png\n";
+    let load = |options: &ObjOptions| {
+        parse_obj(&obj, Path::new("t.obj"), |_| Some(mtl.to_string()), options).unwrap()
+    };
+    let textures = |m: &Model| -> Vec<Option<String>> {
+        m.groups
+            .iter()
+            .map(|g| g.material.as_ref().unwrap().texture.clone())
+            .collect()
+    };
+    // `mats/../tex/a.png` is inside, `mats/../../b.png` is not.
+    let m = load(&ObjOptions::default());
+    assert_eq!(textures(&m), [Some("../tex/a.png".to_string()), None]);
+    assert_eq!(
+        m.warnings,
+        [format!(
+            "mats/m.mtl:4: texture `../../b.png` {OUTSIDE}; dropped"
+        )]
+    );
+    let m = load(&ObjOptions::default().with_outside_files(true));
+    assert_eq!(
+        textures(&m),
+        [
+            Some("../tex/a.png".to_string()),
+            Some("../../b.png".to_string())
+        ]
+    );
+    assert!(m.warnings.is_empty(), "{:?}", m.warnings);
+}
+
+#[test]
+fn load_obj_reads_a_library_outside_its_folder_only_when_allowed() {
+    let dir = std::env::temp_dir().join(format!("mri-outside-{}", std::process::id()));
+    std::fs::create_dir_all(dir.join("model")).unwrap();
+    let obj = dir.join("model/t.obj");
+    std::fs::write(
+        &obj,
+        format!("mtllib ../up.mtl\nusemtl g\n{TRIANGLE}f 1 2 3\n"),
+    )
+    .unwrap();
+    std::fs::write(dir.join("up.mtl"), "newmtl g\nKd 0 1 0\n").unwrap();
+    let m = load_obj(&obj, &ObjOptions::default()).unwrap();
+    assert_eq!(m.files.len(), 1);
+    assert_eq!(m.groups[0].material.as_ref().unwrap().diffuse, [1.0; 3]);
+    assert!(
+        m.warnings[0].contains("`../up.mtl` is outside"),
+        "{:?}",
+        m.warnings
+    );
+    let m = load_obj(&obj, &ObjOptions::default().with_outside_files(true)).unwrap();
+    assert_eq!(m.files, [obj.clone(), dir.join("model/../up.mtl")]);
+    assert_eq!(
+        m.groups[0].material.as_ref().unwrap().diffuse,
+        [0.0, 1.0, 0.0]
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
 #[test]
 fn unreadable_obj_is_an_io_error_naming_it() {
     let path = data("does_not_exist.obj");
