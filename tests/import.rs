@@ -5,7 +5,8 @@
 //! regenerated with `BLESS=1 cargo test --test import`), compiles as-is
 //! (this file `include!`s it), holds exactly the importer's data, and
 //! renders: the cube the same image as the same cube built in code, the
-//! rocket's clusters the same image with and without culling.
+//! rocket's clusters the same image with and without culling; and its
+//! count constants size a workspace exactly.
 
 #[path = "../examples/common/mod.rs"]
 mod common;
@@ -267,4 +268,79 @@ fn imported_cube_renders_like_the_cube_built_in_code() {
             "{raster:?}: imported and hand-built cubes differ"
         );
     }
+}
+
+/// `meshes` as one draw each, turned like the rocket above, into `ws`.
+fn render_draws<const V: usize>(
+    meshes: &[Mesh<'_>],
+    ws: &mut Workspace<V, 1024, 16>,
+) -> Result<Capture<Rgb565>, RenderError<core::convert::Infallible>> {
+    let size = Size::new(96, 72);
+    let draws: Vec<Draw<'_>> = meshes
+        .iter()
+        .map(|m| Draw::new(m).transform(Mat4::rotation_z(1.2)))
+        .collect();
+    let scene = Scene::new(common::camera(size.width, size.height), &draws).light(common::light());
+    let mut r: Renderer<Rgb565, 32, 32> = Renderer::new(Config::new(size, common::DEMO_CLEAR));
+    let mut cap = Capture::new(size, Rgb565::new(31, 0, 31));
+    r.render(ws, &scene, &mut cap).map(|_| cap)
+}
+
+/// The counts that the generated source gives as constants size a
+/// firmware's workspace: the rocket's groups, each its own draw on the
+/// prefix of the vertex arrays that its triangles use, need exactly
+/// `_GROUP_DRAWS_VERTEX_COUNT` vertices, and one fewer is refused; they
+/// show what draws on the whole arrays show.
+#[test]
+fn generated_counts_size_the_workspace() {
+    use rocket::*;
+    const VERTICES: usize = IMPORTED_ROCKET_CLUSTERS_GROUP_DRAWS_VERTEX_COUNT;
+    const ALL: usize = IMPORTED_ROCKET_CLUSTERS_VERTEX_COUNT;
+    let (p, t, n) = (
+        &IMPORTED_ROCKET_CLUSTERS_POSITIONS,
+        &IMPORTED_ROCKET_CLUSTERS_TRIANGLES,
+        &IMPORTED_ROCKET_CLUSTERS_NORMALS,
+    );
+    assert_eq!(
+        (ALL, IMPORTED_ROCKET_CLUSTERS_TRIANGLE_COUNT),
+        (p.len(), t.len())
+    );
+    let clusters = &IMPORTED_ROCKET_CLUSTERS_CLUSTERS;
+    let groups = |prefix: bool| -> Vec<Mesh<'static>> {
+        (0..IMPORTED_ROCKET_CLUSTERS_GROUPS.len())
+            .map(|g| {
+                let (_, first, count) = IMPORTED_ROCKET_CLUSTERS_GROUPS[g];
+                assert_eq!(count, IMPORTED_ROCKET_CLUSTERS_GROUP_TRIANGLE_COUNTS[g]);
+                let (c0, cn) = IMPORTED_ROCKET_CLUSTERS_GROUP_CLUSTERS[g];
+                let v = if prefix {
+                    IMPORTED_ROCKET_CLUSTERS_GROUP_VERTEX_COUNTS[g]
+                } else {
+                    ALL
+                };
+                Mesh::new(&p[..v], &t[first..first + count])
+                    .and_then(|m| m.with_normals(&n[..v]))
+                    .and_then(|m| m.with_clusters(&clusters[c0..c0 + cn]))
+                    .expect("a group's prefix holds its vertices")
+            })
+            .collect()
+    };
+    let prefix = groups(true);
+    assert!(VERTICES < prefix.len() * ALL, "the prefixes save vertices");
+    let mut ws: Box<Workspace<VERTICES, 1024, 16>> = Box::default();
+    let image = render_draws(&prefix, &mut ws).expect("the workspace holds every group");
+    let mut large: Box<Workspace<{ 4 * ALL }, 1024, 16>> = Box::default();
+    let whole = render_draws(&groups(false), &mut large).expect("4 groups of all vertices");
+    let lit = image.pixels.iter().filter(|&&c| c != common::DEMO_CLEAR);
+    assert!(lit.count() > 100, "the rocket is in view");
+    assert!(image.pixels == whole.pixels, "prefix draws differ");
+    let mut small: Box<Workspace<{ VERTICES - 1 }, 1024, 16>> = Box::default();
+    assert!(matches!(
+        render_draws(&prefix, &mut small),
+        Err(RenderError::VertexCapacity { needed, capacity })
+            if needed == VERTICES && capacity == VERTICES - 1
+    ));
+    // The whole model as one draw needs `_VERTEX_COUNT`.
+    let one = Mesh::new(p, t).and_then(|m| m.with_normals(n)).unwrap();
+    let mut exact: Box<Workspace<ALL, 1024, 16>> = Box::default();
+    render_draws(&[one], &mut exact).expect("one draw of every vertex");
 }

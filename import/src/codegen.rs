@@ -142,6 +142,10 @@ fn fixed_row(values: &[i32]) -> String {
 ///
 /// | item | type | present |
 /// |---|---|---|
+/// | `P_VERTEX_COUNT`, `P_TRIANGLE_COUNT` | `const usize`: V and T | always |
+/// | `P_GROUP_TRIANGLE_COUNTS` | `const [usize; G]`: each group's triangle count | always |
+/// | `P_GROUP_VERTEX_COUNTS` | `const [usize; G]`: each group's vertex count as a draw of its own, one more than the largest index its triangles use | always |
+/// | `P_GROUP_DRAWS_VERTEX_COUNT` | `const usize`: the sum of `P_GROUP_VERTEX_COUNTS` | always |
 /// | `P_POSITIONS` | `[[I16F16; 3]; V]` | always |
 /// | `P_NORMALS` | `[[I16F16; 3]; V]` | if the model has normals |
 /// | `P_UVS` | `[[I16F16; 2]; V]` | if it has texture coordinates; `v` flipped to `1 - v` ([`Model::uvs_fixed`]) |
@@ -162,6 +166,14 @@ fn fixed_row(values: &[i32]) -> String {
 /// that depends on microraster). A header comment names the source file,
 /// the options, the counts and any warnings. Without clusters, nothing
 /// about them is written.
+///
+/// The counts are constants so that a firmware can size microraster's
+/// `Workspace<VERTICES, ..>` with them, which holds the vertex arrays of
+/// every draw of a frame: `P_VERTEX_COUNT` for the whole model as one
+/// draw, `P_GROUP_DRAWS_VERTEX_COUNT` for each group as a draw of its own
+/// on the prefix `P_POSITIONS[..P_GROUP_VERTEX_COUNTS[g]]` (and the same
+/// prefix of the other per-vertex arrays), which holds every vertex the
+/// group's triangles use.
 ///
 /// ```
 /// use std::path::Path;
@@ -228,6 +240,8 @@ pub fn model_to_rust(model: &Model, name: &str) -> Result<String, ImportError> {
     for w in &model.warnings {
         let _ = writeln!(s, "// Warning: {}", comment_text(w));
     }
+
+    write_counts(&mut s, &p, model);
 
     let _ = writeln!(
         s,
@@ -397,6 +411,56 @@ pub const {p}_SPHERE_RADIUS: f32 = {};
         f32_literal(model.sphere.radius),
     );
     Ok(s)
+}
+
+/// For each group, how many vertices a draw of it alone needs: one more
+/// than the largest index its triangles use, so that it can be drawn on
+/// that prefix of the vertex arrays (the renderer's workspace holds every
+/// vertex of a draw's arrays, used or not). 0 for a group without
+/// triangles.
+fn group_vertex_counts(model: &Model) -> Vec<usize> {
+    model
+        .groups
+        .iter()
+        .map(|g| {
+            let top = model.triangles.get(g.triangles.clone()).unwrap_or(&[]);
+            top.iter().flatten().max().map_or(0, |&i| i as usize + 1)
+        })
+        .collect()
+}
+
+/// The counts a firmware sizes its renderer's `Workspace` with, as
+/// constants (a `static`'s length cannot be read in a const context).
+fn write_counts(s: &mut String, p: &str, model: &Model) {
+    let per_group = group_vertex_counts(model);
+    let list = |counts: &mut dyn Iterator<Item = usize>| {
+        counts.map(|c| c.to_string()).collect::<Vec<_>>().join(", ")
+    };
+    let g = model.groups.len();
+    let _ = write!(
+        s,
+        "
+/// Vertices of `{p}_POSITIONS` (and of the other per-vertex arrays): the
+/// `VERTICES` a renderer workspace needs to draw the whole model at once.
+pub const {p}_VERTEX_COUNT: usize = {};
+/// Triangles of `{p}_TRIANGLES`.
+pub const {p}_TRIANGLE_COUNT: usize = {};
+/// Each group's triangle count (as in `{p}_GROUPS`).
+pub const {p}_GROUP_TRIANGLE_COUNTS: [usize; {g}] = [{}];
+/// Each group's vertex count as a draw of its own: its triangles use only the first
+/// `{p}_GROUP_VERTEX_COUNTS[g]` vertices, so its mesh can take that prefix of the
+/// per-vertex arrays, and the workspace needs that many vertices for it.
+pub const {p}_GROUP_VERTEX_COUNTS: [usize; {g}] = [{}];
+/// The sum of `{p}_GROUP_VERTEX_COUNTS`: the `VERTICES` a workspace needs to draw
+/// every group once, each as a draw of its own.
+pub const {p}_GROUP_DRAWS_VERTEX_COUNT: usize = {};
+",
+        model.positions.len(),
+        model.triangles.len(),
+        list(&mut model.groups.iter().map(|g| g.triangles.len())),
+        list(&mut per_group.iter().copied()),
+        per_group.iter().sum::<usize>(),
+    );
 }
 
 /// What [`obj_to_rust`] did.

@@ -36,6 +36,22 @@
 //! let mesh = Mesh::new(&SHIP_POSITIONS, &SHIP_TRIANGLES)?.with_normals(&SHIP_NORMALS)?;
 //! ```
 //!
+//! # Sizing the workspace
+//!
+//! microraster's `Workspace<VERTICES, ..>` holds the vertex arrays of every
+//! draw of a frame. The generated source gives the counts as constants
+//! (see [`model_to_rust`]), so a firmware sizes it at compile time:
+//!
+//! ```text
+//! // The whole model as one draw:
+//! static WS: ConstStaticCell<Workspace<SHIP_VERTEX_COUNT, 2048, 64>> = ConstStaticCell::new(Workspace::new());
+//! // Or each group as a draw of its own, on the prefix of the arrays it uses:
+//! static WS: ConstStaticCell<Workspace<SHIP_GROUP_DRAWS_VERTEX_COUNT, 2048, 64>> = ConstStaticCell::new(Workspace::new());
+//! let (_, first, count) = SHIP_GROUPS[g];
+//! let v = SHIP_GROUP_VERTEX_COUNTS[g];
+//! let part = Mesh::new(&SHIP_POSITIONS[..v], &SHIP_TRIANGLES[first..first + count])?;
+//! ```
+//!
 //! # Clusters
 //!
 //! A large model (a level, a terrain) is cheaper to draw when the renderer

@@ -168,6 +168,42 @@ fn check_round_trip(model: &Model, text: &str, p: &str) -> BTreeMap<String, Item
         .collect();
     assert_eq!(textures, expected);
 
+    // The counts that size a renderer's workspace, as constants.
+    let count = |name: &str| {
+        let item = get(name);
+        assert_eq!((item.kind.as_str(), item.ty.as_str()), ("const", "usize"));
+        item.value.int() as usize
+    };
+    let counts = |name: &str| -> Vec<usize> {
+        let item = get(name);
+        assert_eq!(item.kind, "const");
+        assert_eq!(item.ty, format!("[usize; {}]", model.groups.len()));
+        item.value
+            .array()
+            .iter()
+            .map(|v| v.int() as usize)
+            .collect()
+    };
+    assert_eq!(count("VERTEX_COUNT"), model.positions.len());
+    assert_eq!(count("TRIANGLE_COUNT"), model.triangles.len());
+    let group_triangles: Vec<usize> = model.groups.iter().map(|g| g.triangles.len()).collect();
+    assert_eq!(counts("GROUP_TRIANGLE_COUNTS"), group_triangles);
+    // A group's draw takes the prefix of the vertex arrays up to the
+    // largest index its triangles use, as written.
+    let written = int_rows(get("TRIANGLES"));
+    let group_vertices: Vec<usize> = read
+        .iter()
+        .map(|&(_, first, n)| {
+            let top = written[first..first + n].iter().flatten().max();
+            top.map_or(0, |&i| i as usize + 1)
+        })
+        .collect();
+    assert_eq!(counts("GROUP_VERTEX_COUNTS"), group_vertices);
+    assert_eq!(
+        count("GROUP_DRAWS_VERTEX_COUNT"),
+        group_vertices.iter().sum::<usize>()
+    );
+
     assert_eq!(f32s(get("SCALE")), [model.scale as f32]);
     assert_eq!(get("SCALE").kind, "const");
     assert_eq!(f32s(get("OFFSET")), model.offset.map(|x| x as f32));
@@ -190,7 +226,7 @@ fn cube_round_trip() {
     assert!(items.contains_key("TEXTURED_CUBE_UVS"));
     assert!(items.contains_key("TEXTURED_CUBE_NORMALS"));
     assert!(!items.contains_key("TEXTURED_CUBE_COLORS"));
-    assert_eq!(items.len(), 13);
+    assert_eq!(items.len(), 18);
     // Unit fit of [-1, 1]^3: radius √3, so 1 becomes 1/√3 = 37837.23/65536.
     assert_eq!(
         fixed_rows::<3>(&items["TEXTURED_CUBE_POSITIONS"])[0],
@@ -444,7 +480,7 @@ fn clusters_are_written_and_obey_the_mesh_rules() {
         common::check_clusters(model);
         let text = model_to_rust(model, name).unwrap();
         let items = check_round_trip(model, &text, p);
-        assert_eq!(items.len(), 15 - usize::from(model.uvs.is_empty()), "{p}");
+        assert_eq!(items.len(), 20 - usize::from(model.uvs.is_empty()), "{p}");
         assert!(text.contains(&format!(
             "computed normals on, clusters of at most {} triangles.\n// {} vertices, {} triangles, {} groups, {} clusters; ",
             model.options.cluster_triangles,

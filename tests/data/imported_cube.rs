@@ -5,6 +5,21 @@
 // Positions are (original + IMPORTED_CUBE_OFFSET) * IMPORTED_CUBE_SCALE, so original = position / IMPORTED_CUBE_SCALE - IMPORTED_CUBE_OFFSET.
 // Warning: ignored 1 `s` statement(s)
 
+/// Vertices of `IMPORTED_CUBE_POSITIONS` (and of the other per-vertex arrays): the
+/// `VERTICES` a renderer workspace needs to draw the whole model at once.
+pub const IMPORTED_CUBE_VERTEX_COUNT: usize = 24;
+/// Triangles of `IMPORTED_CUBE_TRIANGLES`.
+pub const IMPORTED_CUBE_TRIANGLE_COUNT: usize = 12;
+/// Each group's triangle count (as in `IMPORTED_CUBE_GROUPS`).
+pub const IMPORTED_CUBE_GROUP_TRIANGLE_COUNTS: [usize; 2] = [8, 4];
+/// Each group's vertex count as a draw of its own: its triangles use only the first
+/// `IMPORTED_CUBE_GROUP_VERTEX_COUNTS[g]` vertices, so its mesh can take that prefix of the
+/// per-vertex arrays, and the workspace needs that many vertices for it.
+pub const IMPORTED_CUBE_GROUP_VERTEX_COUNTS: [usize; 2] = [16, 24];
+/// The sum of `IMPORTED_CUBE_GROUP_VERTEX_COUNTS`: the `VERTICES` a workspace needs to draw
+/// every group once, each as a draw of its own.
+pub const IMPORTED_CUBE_GROUP_DRAWS_VERTEX_COUNT: usize = 40;
+
 /// Vertex positions, model space, 16.16 fixed point.
 pub static IMPORTED_CUBE_POSITIONS: [[::fixed::types::I16F16; 3]; 24] = [
     [::fixed::types::I16F16::from_bits(-65536), ::fixed::types::I16F16::from_bits(-65536), ::fixed::types::I16F16::from_bits(-65536)],

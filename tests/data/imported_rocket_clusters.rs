@@ -5,6 +5,21 @@
 // Positions are (original + IMPORTED_ROCKET_CLUSTERS_OFFSET) * IMPORTED_ROCKET_CLUSTERS_SCALE, so original = position / IMPORTED_ROCKET_CLUSTERS_SCALE - IMPORTED_ROCKET_CLUSTERS_OFFSET.
 // Warning: 50 vertices have no `vt`; their texture coordinates are (0, 0)
 
+/// Vertices of `IMPORTED_ROCKET_CLUSTERS_POSITIONS` (and of the other per-vertex arrays): the
+/// `VERTICES` a renderer workspace needs to draw the whole model at once.
+pub const IMPORTED_ROCKET_CLUSTERS_VERTEX_COUNT: usize = 173;
+/// Triangles of `IMPORTED_ROCKET_CLUSTERS_TRIANGLES`.
+pub const IMPORTED_ROCKET_CLUSTERS_TRIANGLE_COUNT: usize = 132;
+/// Each group's triangle count (as in `IMPORTED_ROCKET_CLUSTERS_GROUPS`).
+pub const IMPORTED_ROCKET_CLUSTERS_GROUP_TRIANGLE_COUNTS: [usize; 4] = [72, 12, 36, 12];
+/// Each group's vertex count as a draw of its own: its triangles use only the first
+/// `IMPORTED_ROCKET_CLUSTERS_GROUP_VERTEX_COUNTS[g]` vertices, so its mesh can take that prefix of the
+/// per-vertex arrays, and the workspace needs that many vertices for it.
+pub const IMPORTED_ROCKET_CLUSTERS_GROUP_VERTEX_COUNTS: [usize; 4] = [104, 120, 161, 173];
+/// The sum of `IMPORTED_ROCKET_CLUSTERS_GROUP_VERTEX_COUNTS`: the `VERTICES` a workspace needs to draw
+/// every group once, each as a draw of its own.
+pub const IMPORTED_ROCKET_CLUSTERS_GROUP_DRAWS_VERTEX_COUNT: usize = 558;
+
 /// Vertex positions, model space, 16.16 fixed point.
 pub static IMPORTED_ROCKET_CLUSTERS_POSITIONS: [[::fixed::types::I16F16; 3]; 173] = [
     [::fixed::types::I16F16::from_bits(11469), ::fixed::types::I16F16::from_bits(-65536), ::fixed::types::I16F16::from_bits(-19865)],
