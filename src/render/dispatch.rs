@@ -5,7 +5,7 @@ use super::Config;
 use crate::raster::{PixelRect, Rasterizer, Span};
 use crate::scene::Blend;
 use crate::shade::perspective::{Output, ShaderTriangle};
-use crate::shade::DepthFn;
+use crate::shade::{DepthFn, DepthTest};
 use crate::shader::{self, FragmentShader};
 use crate::texture::Texture;
 use crate::tile::TileBuffer;
@@ -13,10 +13,17 @@ use crate::vertex::ScreenVertex;
 use embedded_graphics::pixelcolor::{PixelColor, Rgb888};
 
 /// The second phase of a triangle's drawing, as monomorphized for the
-/// frame's depth test and writes: the only code that depends on them, so
-/// the tile loop exists once per colour and tile size.
-pub(super) type ShadeFn<C, const TW: usize, const TH: usize> =
-    fn(&mut TileBuffer<C, TW, TH>, &PixelRect, [&ScreenVertex; 3], [u8; 3], &[Span]) -> u32;
+/// frame's depth writes and for `LessEqual` or any other depth test (see
+/// [`DepthFn`]): the only code that depends on them, so the tile loop
+/// exists once per colour and tile size.
+pub(super) type ShadeFn<C, const TW: usize, const TH: usize> = fn(
+    &mut TileBuffer<C, TW, TH>,
+    &PixelRect,
+    [&ScreenVertex; 3],
+    [u8; 3],
+    &[Span],
+    DepthTest,
+) -> u32;
 
 /// The second phase for a fragment shader `G`: one function per shader
 /// and colour type (the depth test is decided at run time there).

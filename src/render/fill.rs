@@ -4,7 +4,7 @@ use super::dispatch::{ShaderPass, Shaders};
 use crate::raster::scanline::Walker;
 use crate::raster::{hilbert, PixelRect, Rasterizer, Span, SubPoint};
 use crate::shade::perspective::{span_shader, Output, PerspectiveSetup, ShaderTriangle};
-use crate::shade::{span_flat, span_gouraud, Corners, DepthFn, SpanPos, TriangleSetup};
+use crate::shade::{span_flat, span_gouraud, Corners, DepthFn, DepthTest, SpanPos, TriangleSetup};
 use crate::shader::{FragmentShader, Perspective};
 use crate::texture::Texture;
 use crate::tile::TileBuffer;
@@ -73,7 +73,14 @@ where
     } else {
         to.shaders.flat
     };
-    shade(to.tile, to.rect, sv, flat, &to.found[..count])
+    shade(
+        to.tile,
+        to.rect,
+        sv,
+        flat,
+        &to.found[..count],
+        to.shaders.out.test,
+    )
 }
 
 /// [`fill`] for a triangle coloured by a fragment shader.
@@ -159,18 +166,20 @@ pub(super) fn shade<
     sv: [&ScreenVertex; 3],
     flat: [u8; 3],
     found: &[Span],
+    test: DepthTest,
 ) -> u32
 where
     C: PixelColor + From<Rgb888> + Into<Rgb888>,
 {
+    let dt = D::new(test);
     let corners = &Corners(sv);
     let setup = &TriangleSetup::new(corners, GOURAUD);
     let flat = C::from(Rgb888::new(flat[0], flat[1], flat[2]));
     each_span(tile, rect, found, |color, depth, sp| {
         if GOURAUD {
-            span_gouraud::<C, D, WRITE>(setup, corners, color, depth, sp)
+            span_gouraud::<C, D, WRITE>(dt, setup, corners, color, depth, sp)
         } else {
-            span_flat::<C, D, WRITE>(setup, corners, flat, color, depth, sp)
+            span_flat::<C, D, WRITE>(dt, setup, corners, flat, color, depth, sp)
         }
     })
 }

@@ -21,7 +21,7 @@ use super::tile_loop::raster_tile;
 use super::{vertex_stage, Config, FrameStats, Profiler, RenderError, Stage, Workspace};
 use crate::raster::PixelRect;
 use crate::scene::Scene;
-use crate::shade::{DAlways, DEqual, DGreater, DGreaterEqual, DLess, DLessEqual, DepthTest};
+use crate::shade::{DLessEqual, DepthTest};
 use crate::shader::FragmentShader;
 use crate::sink::rectangle;
 use crate::tile::{TileBuffer, TileGrid, TileOrder};
@@ -154,23 +154,14 @@ where
         } else {
             TileList::Bin(self.bins.iter(k))
         };
-        macro_rules! go {
-            ($d:ty) => {
-                if cfg.depth_write {
-                    Shaders::new::<$d, true>(cfg, self.shader)
-                } else {
-                    Shaders::new::<$d, false>(cfg, self.shader)
-                }
-            };
-        }
-        let shaders = match cfg.depth_test {
-            DepthTest::Never => None,
-            DepthTest::Always => Some(go!(DAlways)),
-            DepthTest::Less => Some(go!(DLess)),
-            DepthTest::LessEqual => Some(go!(DLessEqual)),
-            DepthTest::Equal => Some(go!(DEqual)),
-            DepthTest::GreaterEqual => Some(go!(DGreaterEqual)),
-            DepthTest::Greater => Some(go!(DGreater)),
+        // LessEqual with writes, the default, has span loops of its own;
+        // every other comparison shares one set (see `DepthFn`).
+        let shader = self.shader;
+        let shaders = match (cfg.depth_test, cfg.depth_write) {
+            (DepthTest::Never, _) => None,
+            (DepthTest::LessEqual, true) => Some(Shaders::new::<DLessEqual, true>(cfg, shader)),
+            (_, true) => Some(Shaders::new::<DepthTest, true>(cfg, shader)),
+            (_, false) => Some(Shaders::new::<DepthTest, false>(cfg, shader)),
         };
         let shaded = match shaders {
             Some(shaders) => raster_tile(tile, &rect, state, &mut self.cache, list, shaders),

@@ -85,38 +85,60 @@ impl DepthTest {
     }
 }
 
-/// A depth comparison, monomorphized into the span loop.
-pub(crate) trait DepthFn {
+/// A depth comparison in the span loop: [`DLessEqual`], the default,
+/// compiled into its own loops, or any [`DepthTest`] decided per pixel (one
+/// more loop for all the others, rather than a copy of every loop per
+/// comparison: each copy costs kilobytes of flash).
+pub(crate) trait DepthFn: Copy {
+    /// The comparison for `test` (a type that is one comparison ignores it).
+    fn new(test: DepthTest) -> Self;
     /// Whether a fragment at depth `new` passes against the stored `old`.
-    fn pass(new: u16, old: u16) -> bool;
+    fn pass(self, new: u16, old: u16) -> bool;
     /// The depth to store after testing `new` against `old` with depth
     /// writes on: `if pass(new, old) { new } else { old }`, written as the
     /// min, max or plain value it always equals, so the span loops need no
     /// branch or conditional store.
-    fn merge(new: u16, old: u16) -> u16;
+    fn merge(self, new: u16, old: u16) -> u16;
 }
 
-macro_rules! depth_fn {
-    ($name:ident, |$n:ident, $o:ident| $e:expr, |$mn:ident, $mo:ident| $m:expr) => {
-        pub(crate) struct $name;
-        impl DepthFn for $name {
-            #[inline(always)]
-            fn pass($n: u16, $o: u16) -> bool {
-                $e
-            }
-            #[inline(always)]
-            fn merge($mn: u16, $mo: u16) -> u16 {
-                $m
-            }
-        }
-    };
+/// `LessEqual`, the default comparison, known at compile time.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct DLessEqual;
+
+impl DepthFn for DLessEqual {
+    #[inline(always)]
+    fn new(_: DepthTest) -> Self {
+        Self
+    }
+    #[inline(always)]
+    fn pass(self, n: u16, o: u16) -> bool {
+        n <= o
+    }
+    #[inline(always)]
+    fn merge(self, n: u16, o: u16) -> u16 {
+        n.min(o)
+    }
 }
-depth_fn!(DAlways, |_n, _o| true, |n, _o| n);
-depth_fn!(DLess, |n, o| n < o, |n, o| n.min(o));
-depth_fn!(DLessEqual, |n, o| n <= o, |n, o| n.min(o));
-depth_fn!(DEqual, |n, o| n == o, |_n, o| o);
-depth_fn!(DGreaterEqual, |n, o| n >= o, |n, o| n.max(o));
-depth_fn!(DGreater, |n, o| n > o, |n, o| n.max(o));
+
+impl DepthFn for DepthTest {
+    #[inline(always)]
+    fn new(test: DepthTest) -> Self {
+        test
+    }
+    #[inline(always)]
+    fn pass(self, n: u16, o: u16) -> bool {
+        self.passes(n, o)
+    }
+    #[inline(always)]
+    fn merge(self, n: u16, o: u16) -> u16 {
+        match self {
+            DepthTest::Always => n,
+            DepthTest::Less | DepthTest::LessEqual => n.min(o),
+            DepthTest::GreaterEqual | DepthTest::Greater => n.max(o),
+            DepthTest::Equal | DepthTest::Never => o,
+        }
+    }
+}
 
 /// One interpolated attribute, with `frac` fraction bits: its value at the
 /// centre of pixel `(i, j)` is `gx i + gy j + k`.
@@ -451,6 +473,7 @@ const VECTOR_LOOPS: bool = cfg!(any(
 /// number of fragments written.
 #[inline(always)]
 pub(crate) fn span_flat<C: Copy, D: DepthFn, const WRITE: bool>(
+    dt: D,
     s: &TriangleSetup,
     t: &Corners<'_>,
     flat: C,
@@ -466,12 +489,12 @@ pub(crate) fn span_flat<C: Copy, D: DepthFn, const WRITE: bool>(
     let (a, b) = ((x0 - ox) as usize, (x1 - ox) as usize);
     let (color, depth) = (&mut color[a..b], &mut depth[a..b]);
     if VECTOR_LOOPS && color.len() >= SHORT_SPAN {
-        return flat_run::<C, D, WRITE>(flat, color, depth, z, gz);
+        return flat_run::<C, D, WRITE>(dt, flat, color, depth, z, gz);
     }
     let mut n = 0;
     for (c, d) in color.iter_mut().zip(depth.iter_mut()) {
         let zz = depth16(z);
-        if D::pass(zz, *d) {
+        if dt.pass(zz, *d) {
             if WRITE {
                 *d = zz;
             }
@@ -486,6 +509,7 @@ pub(crate) fn span_flat<C: Copy, D: DepthFn, const WRITE: bool>(
 /// The branch-free loop of [`span_flat`].
 #[inline(never)]
 fn flat_run<C: Copy, D: DepthFn, const WRITE: bool>(
+    dt: D,
     flat: C,
     color: &mut [C],
     depth: &mut [u16],
@@ -499,9 +523,9 @@ fn flat_run<C: Copy, D: DepthFn, const WRITE: bool>(
     for (c, d) in color.iter_mut().zip(depth.iter_mut()) {
         let zz = depth16(z);
         let old = *d;
-        let pass = D::pass(zz, old);
+        let pass = dt.pass(zz, old);
         if WRITE {
-            *d = D::merge(zz, old);
+            *d = dt.merge(zz, old);
         }
         *c = if pass { flat } else { *c };
         n += pass as u16;
@@ -513,6 +537,7 @@ fn flat_run<C: Copy, D: DepthFn, const WRITE: bool>(
 /// Like [`span_flat`], with colour interpolated per pixel.
 #[inline(always)]
 pub(crate) fn span_gouraud<C: Copy + From<Rgb888>, D: DepthFn, const WRITE: bool>(
+    dt: D,
     s: &TriangleSetup,
     t: &Corners<'_>,
     color: &mut [C],
@@ -529,6 +554,7 @@ pub(crate) fn span_gouraud<C: Copy + From<Rgb888>, D: DepthFn, const WRITE: bool
     let (mut z, mut r, mut g, mut b) = (z, r, g, b);
     if VECTOR_LOOPS && color.len() >= SHORT_SPAN {
         return gouraud_run::<C, D, WRITE>(
+            dt,
             color,
             depth,
             [z, r as u32, g as u32, b as u32],
@@ -538,7 +564,7 @@ pub(crate) fn span_gouraud<C: Copy + From<Rgb888>, D: DepthFn, const WRITE: bool
     let mut n = 0;
     for (c, d) in color.iter_mut().zip(depth.iter_mut()) {
         let zz = depth16(z);
-        if D::pass(zz, *d) {
+        if dt.pass(zz, *d) {
             if WRITE {
                 *d = zz;
             }
@@ -561,6 +587,7 @@ pub(crate) fn span_gouraud<C: Copy + From<Rgb888>, D: DepthFn, const WRITE: bool
 /// depth (as in [`span_flat`]), red, green and blue.
 #[inline(never)]
 fn gouraud_run<C: Copy + From<Rgb888>, D: DepthFn, const WRITE: bool>(
+    dt: D,
     color: &mut [C],
     depth: &mut [u16],
     start: [u32; 4],
@@ -573,9 +600,9 @@ fn gouraud_run<C: Copy + From<Rgb888>, D: DepthFn, const WRITE: bool>(
     for (c, d) in color.iter_mut().zip(depth.iter_mut()) {
         let zz = depth16(z);
         let old = *d;
-        let pass = D::pass(zz, old);
+        let pass = dt.pass(zz, old);
         if WRITE {
-            *d = D::merge(zz, old);
+            *d = dt.merge(zz, old);
         }
         let shaded = C::from(Rgb888::new(
             (r >> C_FRAC) as u8,
@@ -596,24 +623,36 @@ fn gouraud_run<C: Copy + From<Rgb888>, D: DepthFn, const WRITE: bool>(
 mod tests {
     use super::*;
 
-    fn merge_matches_pass<D: DepthFn>() {
+    fn merge_matches_pass<D: DepthFn + core::fmt::Debug>(d: D) {
         let values = [0u16, 1, 2, 1000, 32_767, 32_768, 65_534, 65_535];
         for &n in &values {
             for &o in &values {
-                let expected = if D::pass(n, o) { n } else { o };
-                assert_eq!(D::merge(n, o), expected, "new {n}, old {o}");
+                let expected = if d.pass(n, o) { n } else { o };
+                assert_eq!(d.merge(n, o), expected, "{d:?}: new {n}, old {o}");
             }
         }
     }
 
     #[test]
     fn depth_merge_is_the_written_depth() {
-        merge_matches_pass::<DAlways>();
-        merge_matches_pass::<DLess>();
-        merge_matches_pass::<DLessEqual>();
-        merge_matches_pass::<DEqual>();
-        merge_matches_pass::<DGreaterEqual>();
-        merge_matches_pass::<DGreater>();
+        merge_matches_pass(DLessEqual);
+        for test in [
+            DepthTest::Always,
+            DepthTest::Less,
+            DepthTest::LessEqual,
+            DepthTest::Equal,
+            DepthTest::GreaterEqual,
+            DepthTest::Greater,
+            DepthTest::Never,
+        ] {
+            merge_matches_pass(test);
+            // The comparison is the one the test names.
+            assert_eq!(DepthTest::new(test), test);
+        }
+        // LessEqual compiled in agrees with LessEqual decided per pixel.
+        for (n, o) in [(0, 0), (1, 0), (0, 1), (65_535, 65_534)] {
+            assert_eq!(DLessEqual.pass(n, o), DepthTest::LessEqual.pass(n, o));
+        }
     }
 
     #[test]
