@@ -74,7 +74,7 @@ pub mod tile;
 pub mod vertex;
 
 pub use raster::Rasterizer;
-pub use render::{Config, FrameStats, Profiler, RenderError, Renderer, Stage, Workspace};
+pub use render::{Config, Features, FrameStats, Profiler, RenderError, Renderer, Stage, Workspace};
 pub use shade::DepthTest;
 pub use sink::{NullSink, TileSink};
 pub use tile::{TileBuffer, TileOrder, TileView};

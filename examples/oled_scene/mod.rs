@@ -7,6 +7,7 @@ use embedded_graphics::pixelcolor::{Gray4, Rgb888};
 use fixed::types::I16F16;
 use microraster::mesh::Vec3Fx;
 use microraster::prelude::*;
+use microraster::render::Triangles;
 use microraster::shapes::{torus_knot, torus_knot_size};
 
 /// Panel size.
@@ -24,8 +25,10 @@ pub const VERTICES: usize = torus_knot_size(SEGMENTS, SIDES).0;
 pub const TRIANGLES: usize = torus_knot_size(SEGMENTS, SIDES).1;
 
 /// 32x32 tiles: the panel is 4 x 2 tiles, and every tile starts on an even
-/// column as the SSD0323's two-pixels-per-byte columns need.
-pub type OledRenderer = Renderer<Gray4, 32, 32>;
+/// column as the SSD0323's two-pixels-per-byte columns need. The firmware
+/// draws flat and Gouraud triangles only, and links nothing else
+/// ([`Triangles`]).
+pub type OledRenderer = Renderer<Gray4, 32, 32, Triangles>;
 /// Room for the knot and all 8 tiles in one binning pass.
 pub type OledWorkspace = Workspace<VERTICES, 1536, 8>;
 

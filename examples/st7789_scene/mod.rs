@@ -8,6 +8,7 @@ use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
 use fixed::types::I16F16;
 use microraster::mesh::Vec3Fx;
 use microraster::prelude::*;
+use microraster::render::Triangles;
 use microraster::shapes::{
     torus_knot, torus_knot_size, CUBE_NORMALS, CUBE_POSITIONS, CUBE_TRIANGLES,
 };
@@ -39,8 +40,9 @@ pub const SCENE_VERTICES: usize = KNOT_VERTICES + CUBE_POSITIONS.len();
 /// in more passes).
 pub const BIN_ENTRIES: usize = 2048;
 
-/// Rgb565 in 32x32 tiles.
-pub type PicoRenderer = Renderer<Rgb565, TILE, TILE>;
+/// Rgb565 in 32x32 tiles, flat and Gouraud triangles only
+/// ([`Triangles`]: nothing else is linked).
+pub type PicoRenderer = Renderer<Rgb565, TILE, TILE, Triangles>;
 /// The whole scene and all 64 tiles in one binning pass.
 pub type PicoWorkspace = Workspace<SCENE_VERTICES, BIN_ENTRIES, TILES>;
 

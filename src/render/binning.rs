@@ -2,6 +2,7 @@
 
 use super::bin::Pass;
 use super::state::{margin, DrawOrder, FrameState, SetupCache};
+use super::Features;
 use crate::mesh::Indices;
 use crate::tile::TileGrid;
 use crate::vertex::ScreenVertex;
@@ -28,7 +29,7 @@ pub(super) struct Tally {
 /// pass holds the tiles visited `t0..`: in row-major order, or with
 /// `HILBERT` along the Hilbert curve over the tile grid.
 #[inline(always)]
-pub(super) fn bin_pass<const TW: usize, const TH: usize, const HILBERT: bool>(
+pub(super) fn bin_pass<const TW: usize, const TH: usize, const HILBERT: bool, P: Features>(
     frame: &FrameState<'_>,
     grid: &TileGrid,
     t0: usize,
@@ -47,7 +48,7 @@ pub(super) fn bin_pass<const TW: usize, const TH: usize, const HILBERT: bool>(
         };
         let verts = &frame.vertices[base..base + draw.mesh.vertex_count()];
         vbase += verts.len();
-        let frustum = frame.frustum(d);
+        let frustum = frame.frustum::<P>(d);
         let n = draw.mesh.triangle_count();
         if frustum.as_ref().is_some_and(|f| f.excludes_mesh(draw.mesh)) {
             t += n;

@@ -3,6 +3,7 @@
 use super::bin::BinIter;
 use super::binning::Tally;
 use super::state::{margin, meet, DrawOrder, FrameState, SetupCache};
+use super::Features;
 use crate::cull::Frustum;
 use crate::mesh::Indices;
 use crate::raster::PixelRect;
@@ -110,18 +111,18 @@ impl<'f> DrawCursor<'f> {
 /// the pool, every visible triangle whose bounds touch it.
 // One per tile, moved by value into the tile loop: the rare variant keeps
 // its large state behind a reference.
-pub(super) enum TileList<'a, 'f> {
+pub(super) enum TileList<'a, 'f, P> {
     Bin(BinIter<'a>),
     Scan {
         frame: &'f FrameState<'f>,
         rect: PixelRect,
         next: usize,
-        state: &'a mut ScanState<'f>,
+        state: &'a mut ScanState<'f, P>,
     },
 }
 
 /// What a rescanned tile's walk over every triangle keeps.
-pub(super) struct ScanState<'f> {
+pub(super) struct ScanState<'f, P> {
     pub(super) cur: DrawCursor<'f>,
     pub(super) cache: SetupCache,
     /// The current draw's frustum (when culling), its next cluster, and
@@ -129,9 +130,11 @@ pub(super) struct ScanState<'f> {
     pub(super) frustum: Option<Frustum>,
     pub(super) cluster: usize,
     pub(super) cluster_end: usize,
+    /// The renderer's features, which say whether to cull.
+    features: core::marker::PhantomData<P>,
 }
 
-impl<'f> ScanState<'f> {
+impl<'f, P> ScanState<'f, P> {
     /// The state of a scan from the frame's first triangle.
     pub(super) fn new(frame: &'f FrameState<'f>) -> Self {
         Self {
@@ -140,11 +143,12 @@ impl<'f> ScanState<'f> {
             frustum: None,
             cluster: 0,
             cluster_end: 0,
+            features: core::marker::PhantomData,
         }
     }
 }
 
-impl Iterator for TileList<'_, '_> {
+impl<P: Features> Iterator for TileList<'_, '_, P> {
     type Item = usize;
 
     #[inline(always)]
@@ -163,6 +167,7 @@ impl Iterator for TileList<'_, '_> {
                     frustum,
                     cluster,
                     cluster_end,
+                    ..
                 } = &mut **state;
                 let t = *next;
                 if t >= cur.end {
@@ -175,7 +180,7 @@ impl Iterator for TileList<'_, '_> {
                 // The same tests as binning's, in the same order.
                 let mesh = frame.draws[cur.draw].mesh;
                 if t == cur.first {
-                    *frustum = frame.frustum(cur.draw);
+                    *frustum = frame.frustum::<P>(cur.draw);
                     if frustum.as_ref().is_some_and(|f| f.excludes_mesh(mesh)) {
                         *next = cur.end;
                         continue;

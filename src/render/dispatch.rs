@@ -1,8 +1,9 @@
 //! Which span loop shades a triangle: chosen once per tile from the configuration.
 
-use super::fill::{shade, shade_custom};
+use super::fill::{finder, shade, shade_custom, FindFn};
 use super::Config;
-use crate::raster::{PixelRect, Rasterizer, Span};
+use super::Features;
+use crate::raster::{PixelRect, Span};
 use crate::scene::Blend;
 use crate::shade::perspective::{Output, ShaderTriangle};
 use crate::shade::{DepthFn, DepthTest};
@@ -47,7 +48,7 @@ pub(super) struct Shaders<
     const TW: usize,
     const TH: usize,
 > {
-    pub(super) raster: Rasterizer,
+    pub(super) find: FindFn,
     pub(super) out: Output,
     pub(super) gouraud: ShadeFn<C, TW, TH>,
     pub(super) flat: ShadeFn<C, TW, TH>,
@@ -62,12 +63,15 @@ where
     C: PixelColor + From<Rgb888> + Into<Rgb888>,
     F: FragmentShader<C>,
 {
-    pub(super) fn new<D: DepthFn, const WRITE: bool>(
+    /// The functions of a frame drawn with depth comparison `D`, depth
+    /// writes `WRITE` and the paths `P` links: those of the other paths
+    /// are never taken, so that they are not linked.
+    pub(super) fn new<D: DepthFn, const WRITE: bool, P: Features>(
         cfg: &Config<C>,
         shader: Option<&'s F>,
     ) -> Self {
         Self {
-            raster: cfg.rasterizer,
+            find: finder::<P>(cfg.rasterizer),
             out: Output {
                 mode: cfg.perspective,
                 blend: Blend::Opaque,
@@ -76,9 +80,21 @@ where
             },
             gouraud: shade::<C, D, WRITE, true, TW, TH>,
             flat: shade::<C, D, WRITE, false, TW, TH>,
-            custom: shade_custom::<C, F, TW, TH>,
-            flat_t: shade_custom::<C, shader::Flat, TW, TH>,
-            gouraud_t: shade_custom::<C, shader::Gouraud, TW, TH>,
+            custom: if P::SHADERS {
+                shade_custom::<C, F, TW, TH>
+            } else {
+                shade_none::<C, F, TW, TH>
+            },
+            flat_t: if P::BLEND {
+                shade_custom::<C, shader::Flat, TW, TH>
+            } else {
+                shade_none::<C, shader::Flat, TW, TH>
+            },
+            gouraud_t: if P::BLEND {
+                shade_custom::<C, shader::Gouraud, TW, TH>
+            } else {
+                shade_none::<C, shader::Gouraud, TW, TH>
+            },
             shader,
         }
     }
@@ -95,7 +111,7 @@ where
         ShaderPass {
             shader: g,
             shade,
-            raster: self.raster,
+            find: self.find,
             out,
         }
     }
@@ -105,7 +121,7 @@ where
 pub(super) struct ShaderPass<'g, C, G: FragmentShader<C>, const TW: usize, const TH: usize> {
     pub(super) shader: &'g G,
     pub(super) shade: CustomFn<C, G, TW, TH>,
-    pub(super) raster: Rasterizer,
+    pub(super) find: FindFn,
     pub(super) out: Output,
 }
 
@@ -115,4 +131,20 @@ impl<'g, C, G: FragmentShader<C>, const TW: usize, const TH: usize> ShaderPass<'
         self.out = f(self.out);
         self
     }
+}
+
+/// The fragment-shader function of a path the renderer does not link
+/// ([`Features`]): never called, since the scene was refused or the path
+/// is not taken, and it draws nothing.
+#[allow(clippy::too_many_arguments)]
+fn shade_none<C, G: FragmentShader<C>, const TW: usize, const TH: usize>(
+    _: &mut TileBuffer<C, TW, TH>,
+    _: &PixelRect,
+    _: &ShaderTriangle<'_, G::Varyings>,
+    _: &[Span],
+    _: &G,
+    _: Option<&Texture<'_>>,
+    _: Output,
+) -> u32 {
+    0
 }

@@ -54,6 +54,14 @@ pub enum RenderError<E = core::convert::Infallible> {
         /// What is missing.
         error: ShaderError,
     },
+    /// The scene or the configuration asks for a path that the renderer's
+    /// [`Features`](super::Features) leave out.
+    Unsupported {
+        /// The draw that asks for it, or `None` for the configuration.
+        draw: Option<usize>,
+        /// The path.
+        path: super::Path,
+    },
     /// The sink failed; tiles before it were delivered.
     Sink(E),
 }
@@ -92,6 +100,12 @@ impl<E: core::fmt::Debug> core::fmt::Display for RenderError<E> {
                 "draw {draw} uses Shading::Shader but the scene has no shader"
             ),
             Self::Shader { draw, error } => write!(f, "draw {draw}: {error}"),
+            Self::Unsupported { draw, path } => {
+                if let Some(d) = draw {
+                    write!(f, "draw {d}: ")?;
+                }
+                write!(f, "{path} are not linked into this renderer (its Features)")
+            }
             Self::Sink(e) => write!(f, "the sink failed: {e:?}"),
         }
     }
@@ -114,6 +128,7 @@ impl RenderError {
             Self::TooManyTriangles { count } => RenderError::TooManyTriangles { count },
             Self::MissingShader { draw } => RenderError::MissingShader { draw },
             Self::Shader { draw, error } => RenderError::Shader { draw, error },
+            Self::Unsupported { draw, path } => RenderError::Unsupported { draw, path },
             Self::Sink(never) => match never {},
         }
     }

@@ -1,6 +1,7 @@
 //! A triangle in a tile: its spans found, then shaded.
 
 use super::dispatch::{ShaderPass, Shaders};
+use super::Features;
 use crate::raster::scanline::Walker;
 use crate::raster::{hilbert, PixelRect, Rasterizer, Span, SubPoint};
 use crate::shade::perspective::{span_shader, Output, PerspectiveSetup, ShaderTriangle};
@@ -11,22 +12,31 @@ use crate::tile::TileBuffer;
 use crate::vertex::ScreenVertex;
 use embedded_graphics::pixelcolor::{PixelColor, Rgb888};
 
-/// Finds the spans of triangle `v` in the tile with `raster`: the first
-/// phase of [`fill`] and [`fill_shaded`].
-#[inline(always)]
-pub(super) fn find(
-    v: &[SubPoint; 3],
-    rect: &PixelRect,
-    found: &mut [Span],
-    raster: Rasterizer,
-) -> usize {
+/// The first phase of [`fill`] and [`fill_shaded`]: records the spans of
+/// a triangle in the tile and returns how many.
+pub(super) type FindFn = fn(&[SubPoint; 3], &PixelRect, &mut [Span]) -> usize;
+
+/// The first phase for `raster`, of the rasterizers `P` links (the
+/// scanline one when it links no other: the same spans).
+pub(super) fn finder<P: Features>(raster: Rasterizer) -> FindFn {
     match raster {
-        Rasterizer::Scanline => find_spans(v, rect, found),
-        Rasterizer::Hilbert => hilbert::find_spans(v, *rect, found),
-        Rasterizer::Auto => match whole_tile(v, rect, found) {
-            Some(n) => n,
-            None => find_spans(v, rect, found),
-        },
+        Rasterizer::Hilbert if P::HILBERT => find_hilbert,
+        Rasterizer::Auto if P::HILBERT => find_auto,
+        _ => find_spans,
+    }
+}
+
+/// [`hilbert::find_spans`] as a [`FindFn`].
+fn find_hilbert(v: &[SubPoint; 3], rect: &PixelRect, found: &mut [Span]) -> usize {
+    hilbert::find_spans(v, *rect, found)
+}
+
+/// [`Rasterizer::Auto`]: the whole tile at once when the triangle covers
+/// it, the scanline walk otherwise.
+fn find_auto(v: &[SubPoint; 3], rect: &PixelRect, found: &mut [Span]) -> usize {
+    match whole_tile(v, rect, found) {
+        Some(n) => n,
+        None => find_spans(v, rect, found),
     }
 }
 
@@ -64,7 +74,7 @@ where
     F: FragmentShader<C>,
 {
     let v = sv.map(|v| SubPoint::new(v.x, v.y));
-    let count = find(&v, to.rect, &mut to.found, to.shaders.raster);
+    let count = (to.shaders.find)(&v, to.rect, &mut to.found);
     if count == 0 {
         return 0;
     }
@@ -97,7 +107,7 @@ where
     G: FragmentShader<C>,
 {
     let v = tri.corners.0.map(|v| SubPoint::new(v.x, v.y));
-    let count = find(&v, to.rect, &mut to.found, pass.raster);
+    let count = (pass.find)(&v, to.rect, &mut to.found);
     if count == 0 {
         return 0;
     }
@@ -117,7 +127,7 @@ where
 /// many (the Hilbert rasterizer finds the same spans). Out of line, so that
 /// the edge walk has the registers to itself.
 #[inline(never)]
-pub(super) fn find_spans(v: &[SubPoint; 3], rect: &PixelRect, found: &mut [Span]) -> usize {
+fn find_spans(v: &[SubPoint; 3], rect: &PixelRect, found: &mut [Span]) -> usize {
     // The walk stays inside `rect`, at most as many rows as `found` holds
     // (TH), so one call records every span.
     match Walker::new(v, *rect) {
@@ -131,7 +141,7 @@ pub(super) fn find_spans(v: &[SubPoint; 3], rect: &PixelRect, found: &mut [Span]
 /// centre of the tile covered, records one full span per row and returns
 /// how many; otherwise `None` (the scanline walk then finds the spans).
 #[inline(never)]
-pub(super) fn whole_tile(v: &[SubPoint; 3], rect: &PixelRect, found: &mut [Span]) -> Option<usize> {
+fn whole_tile(v: &[SubPoint; 3], rect: &PixelRect, found: &mut [Span]) -> Option<usize> {
     let b = PixelRect::covering(v);
     let holds = b.x0 <= rect.x0 && b.y0 <= rect.y0 && b.x1 >= rect.x1 && b.y1 >= rect.y1;
     if !holds || !hilbert::covers_rect(v, rect) {

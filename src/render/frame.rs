@@ -18,7 +18,7 @@ use super::cursor::{ScanState, TileList};
 use super::dispatch::Shaders;
 use super::state::{DrawOrder, FrameState, SetupCache};
 use super::tile_loop::raster_tile;
-use super::{vertex_stage, Config, FrameStats, Profiler, RenderError, Stage, Workspace};
+use super::{vertex_stage, Config, Features, FrameStats, Profiler, RenderError, Stage, Workspace};
 use crate::raster::PixelRect;
 use crate::scene::Scene;
 use crate::shade::{DLessEqual, DepthTest};
@@ -33,7 +33,7 @@ use embedded_graphics::primitives::Rectangle;
 /// [`render_next`](Self::render_next).
 ///
 /// It borrows the workspace and the scene until it is dropped.
-pub struct Frame<'a, C, F, const TW: usize, const TH: usize> {
+pub struct Frame<'a, C, F, const TW: usize, const TH: usize, P = super::All> {
     config: Config<C>,
     state: FrameState<'a>,
     shader: Option<&'a F>,
@@ -49,20 +49,22 @@ pub struct Frame<'a, C, F, const TW: usize, const TH: usize> {
     rescan: bool,
     cache: SetupCache,
     stats: FrameStats,
+    features: core::marker::PhantomData<P>,
 }
 
-impl<'a, C, F, const TW: usize, const TH: usize> Frame<'a, C, F, TW, TH>
+impl<'a, C, F, const TW: usize, const TH: usize, P> Frame<'a, C, F, TW, TH, P>
 where
     C: PixelColor + From<Rgb888> + Into<Rgb888>,
     F: FragmentShader<C>,
+    P: Features,
 {
     /// [`Renderer::begin`](super::Renderer::begin), telling `profiler`
     /// when the vertex stage starts.
-    pub(super) fn begin_profiled<P: Profiler, const V: usize, const B: usize, const T: usize>(
+    pub(super) fn begin_profiled<Q: Profiler, const V: usize, const B: usize, const T: usize>(
         config: Config<C>,
         ws: &'a mut Workspace<V, B, T>,
         scene: &'a Scene<'a, F>,
-        profiler: &mut P,
+        profiler: &mut Q,
     ) -> Result<Self, RenderError> {
         let Workspace {
             vertices,
@@ -70,11 +72,12 @@ where
             heads,
             tails,
         } = ws;
-        let done = vertex_stage::run(&config, scene, &mut vertices[..], profiler)?;
+        let done = vertex_stage::run::<C, F, P, Q>(&config, scene, &mut vertices[..], profiler)?;
         let size = config.size;
         let grid =
             TileGrid::new(size.width, size.height, TW as u32, TH as u32).ordered(config.tile_order);
-        let order = match config.sort_draws {
+        // `run` refused the setting if P leaves sorting out.
+        let order = match P::SORT && config.sort_draws {
             true => DrawOrder::new(&scene.camera.view, scene.draws),
             false => None,
         };
@@ -88,7 +91,7 @@ where
             view_proj: done.view_proj,
             viewport: done.viewport,
             cull: config.cull,
-            cull_draws: config.frustum_cull,
+            cull_draws: P::CULL && config.frustum_cull,
             frame: PixelRect::new(0, 0, size.width as i32, size.height as i32),
         };
         Ok(Self {
@@ -107,6 +110,7 @@ where
                 vertices: done.transformed,
                 ..FrameStats::default()
             },
+            features: core::marker::PhantomData,
         })
     }
 
@@ -120,10 +124,10 @@ where
 
     /// [`render_next`](Self::render_next), telling `profiler` when
     /// binning and rasterization start.
-    pub fn render_next_profiled<P: Profiler>(
+    pub fn render_next_profiled<Q: Profiler>(
         &mut self,
         tile: &mut TileBuffer<C, TW, TH>,
-        profiler: &mut P,
+        profiler: &mut Q,
     ) -> Option<Rectangle> {
         if self.next == self.len {
             let t0 = self.t0 + self.len;
@@ -159,12 +163,16 @@ where
         let shader = self.shader;
         let shaders = match (cfg.depth_test, cfg.depth_write) {
             (DepthTest::Never, _) => None,
-            (DepthTest::LessEqual, true) => Some(Shaders::new::<DLessEqual, true>(cfg, shader)),
-            (_, true) => Some(Shaders::new::<DepthTest, true>(cfg, shader)),
-            (_, false) => Some(Shaders::new::<DepthTest, false>(cfg, shader)),
+            (DepthTest::LessEqual, true) => Some(Shaders::new::<DLessEqual, true, P>(cfg, shader)),
+            // Refused by `begin`.
+            _ if !P::DEPTH_TESTS => None,
+            (_, true) => Some(Shaders::new::<DepthTest, true, P>(cfg, shader)),
+            (_, false) => Some(Shaders::new::<DepthTest, false, P>(cfg, shader)),
         };
         let shaded = match shaders {
-            Some(shaders) => raster_tile(tile, &rect, state, &mut self.cache, list, shaders),
+            Some(shaders) => {
+                raster_tile::<C, F, P, TW, TH>(tile, &rect, state, &mut self.cache, list, shaders)
+            }
             None => 0,
         };
         self.stats.pixels_shaded += shaded;
@@ -186,9 +194,9 @@ where
         let hilbert = self.config.tile_order == TileOrder::Hilbert;
         self.bins.pass(n_tiles - t0, |bins| {
             if hilbert {
-                bin_pass::<TW, TH, true>(state, grid, t0, bins, cache, &mut tally);
+                bin_pass::<TW, TH, true, P>(state, grid, t0, bins, cache, &mut tally);
             } else {
-                bin_pass::<TW, TH, false>(state, grid, t0, bins, cache, &mut tally);
+                bin_pass::<TW, TH, false, P>(state, grid, t0, bins, cache, &mut tally);
             }
         });
         if first_pass {

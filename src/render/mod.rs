@@ -77,6 +77,7 @@ mod config;
 mod cursor;
 mod dispatch;
 mod error;
+mod features;
 mod fill;
 mod frame;
 mod state;
@@ -89,6 +90,7 @@ pub use crate::vertex::MAX_LIGHTS;
 pub use bin::CHUNK;
 pub use config::Config;
 pub use error::RenderError;
+pub use features::{All, Features, Path, Triangles};
 pub use frame::Frame;
 pub use state::MAX_SORTED_DRAWS;
 pub use stats::{FrameStats, Profiler, Stage};
@@ -102,7 +104,8 @@ use crate::tile::TileBuffer;
 use embedded_graphics::pixelcolor::{PixelColor, Rgb888};
 
 /// The tiled renderer: a tile buffer of `TW x TH` pixels of colour `C`
-/// plus its settings.
+/// plus its settings, linking the optional paths of `P` ([`All`] unless
+/// named; see [`Features`]).
 ///
 /// ```
 /// use microraster::prelude::*;
@@ -116,20 +119,23 @@ use embedded_graphics::pixelcolor::{PixelColor, Rgb888};
 /// let stats = renderer.render(&mut workspace, &Scene::new(camera, &[]), &mut display).unwrap();
 /// assert_eq!(stats.tiles, 1);
 /// ```
-pub struct Renderer<C, const TW: usize, const TH: usize> {
+pub struct Renderer<C, const TW: usize, const TH: usize, P = All> {
     tile: TileBuffer<C, TW, TH>,
     config: Config<C>,
+    features: core::marker::PhantomData<P>,
 }
 
-impl<C, const TW: usize, const TH: usize> Renderer<C, TW, TH>
+impl<C, const TW: usize, const TH: usize, P> Renderer<C, TW, TH, P>
 where
     C: PixelColor + From<Rgb888> + Into<Rgb888>,
+    P: Features,
 {
     /// A renderer with the given settings.
     pub fn new(config: Config<C>) -> Self {
         Self {
             tile: TileBuffer::new(config.clear_color),
             config,
+            features: core::marker::PhantomData,
         }
     }
 
@@ -172,19 +178,19 @@ where
 
     /// [`render`](Self::render), telling `profiler` when each [`Stage`]
     /// starts.
-    pub fn render_profiled<S, P, F, const V: usize, const B: usize, const T: usize>(
+    pub fn render_profiled<S, Q, F, const V: usize, const B: usize, const T: usize>(
         &mut self,
         ws: &mut Workspace<V, B, T>,
         scene: &Scene<'_, F>,
         sink: &mut S,
-        profiler: &mut P,
+        profiler: &mut Q,
     ) -> Result<FrameStats, RenderError<S::Error>>
     where
         S: TileSink<C>,
-        P: Profiler,
+        Q: Profiler,
         F: FragmentShader<C>,
     {
-        let mut frame = Frame::begin_profiled(self.config, ws, scene, profiler)
+        let mut frame = Frame::<C, F, TW, TH, P>::begin_profiled(self.config, ws, scene, profiler)
             .map_err(RenderError::for_sink)?;
         while let Some(area) = frame.render_next_profiled(&mut self.tile, profiler) {
             profiler.enter(Stage::Sink);
@@ -235,7 +241,7 @@ where
         &self,
         ws: &'a mut Workspace<V, B, T>,
         scene: &'a Scene<'a, F>,
-    ) -> Result<Frame<'a, C, F, TW, TH>, RenderError>
+    ) -> Result<Frame<'a, C, F, TW, TH, P>, RenderError>
     where
         F: FragmentShader<C>,
     {

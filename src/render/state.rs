@@ -2,6 +2,7 @@
 
 use super::binning::{Fate, Tally};
 use super::vertex_stage::with_lighting;
+use super::Features;
 use crate::cull::Frustum;
 use crate::light::Lighting;
 use crate::raster::{first_centre_at_or_after, signed_area2, PixelRect, SubPoint};
@@ -167,8 +168,9 @@ impl FrameState<'_> {
     /// The view frustum in the model space of draw `d`, when culling is on
     /// (the same answers every time it is asked: the tests are
     /// deterministic, so binning, rescans and the vertex stage agree).
-    pub(super) fn frustum(&self, d: usize) -> Option<Frustum> {
-        match self.cull_draws {
+    pub(super) fn frustum<P: Features>(&self, d: usize) -> Option<Frustum> {
+        // Known at compile time without culling: no frustum code linked.
+        match P::CULL && self.cull_draws {
             true => Frustum::new(&self.view_proj, &self.draws[d]),
             false => None,
         }

@@ -4,6 +4,7 @@ use super::cursor::{DrawCursor, TileList};
 use super::dispatch::{ShaderPass, Shaders};
 use super::fill::{fill, fill_shaded, Target};
 use super::state::{FrameState, SetupCache};
+use super::Features;
 use crate::raster::line::{draw_line, draw_point, DepthMode, LinePoint};
 use crate::raster::{PixelRect, Span, SubPoint};
 use crate::scene::{Blend, Shading};
@@ -19,17 +20,18 @@ use fixed::types::I16F16;
 /// vertices from the vertex buffer (or clips it again) and draws it with
 /// [`fill`], shading with `shaders`.
 #[inline(never)]
-pub(super) fn raster_tile<'f, C, F, const TW: usize, const TH: usize>(
+pub(super) fn raster_tile<'f, C, F, P, const TW: usize, const TH: usize>(
     tile: &mut TileBuffer<C, TW, TH>,
     rect: &PixelRect,
     frame: &'f FrameState<'f>,
     cache: &mut SetupCache,
-    list: TileList<'_, 'f>,
+    list: TileList<'_, 'f, P>,
     shaders: Shaders<'_, C, F, TW, TH>,
 ) -> u32
 where
     C: PixelColor + From<Rgb888> + Into<Rgb888>,
     F: FragmentShader<C>,
+    P: Features,
 {
     let mut cur = DrawCursor::new(frame);
     let job = &mut TileJob {
@@ -57,13 +59,13 @@ where
             &cur.verts[idx[2] as usize],
         ];
         let any = sv[0].outcode | sv[1].outcode | sv[2].outcode;
-        if cur.lines {
+        if P::LINES && cur.lines {
             n += job.lines(&cur, idx, any);
             if matches!(cur.shading, Shading::Wireframe | Shading::Points(_)) {
                 continue;
             }
         }
-        if cur.blend != Blend::Opaque {
+        if P::BLEND && cur.blend != Blend::Opaque {
             // Farthest vertex first; a clipped triangle (whose depths the
             // vertex buffer does not hold) reaches the near plane: last.
             let key = if any & MUST_CLIP != 0 {
@@ -81,7 +83,7 @@ where
             let _ = later.push((key, t as u16));
             continue;
         }
-        n += if cur.shading == Shading::Shader {
+        n += if P::SHADERS && cur.shading == Shading::Shader {
             match shaders.shader {
                 Some(s) => job.shaded(
                     &cur,
@@ -103,7 +105,9 @@ where
             )
         };
     }
-    n += job.draw_later(&mut later);
+    if P::BLEND {
+        n += job.draw_later(&mut later);
+    }
     n
 }
 

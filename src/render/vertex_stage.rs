@@ -1,11 +1,12 @@
 //! What begins a frame: the scene checked, then every vertex transformed,
 //! lit and projected once into the workspace's vertex buffer.
 
-use super::{Config, Profiler, RenderError, Stage, MAX_LIGHTS, MAX_TRIANGLES};
+use super::{Config, Features, Path, Profiler, RenderError, Stage, MAX_LIGHTS, MAX_TRIANGLES};
 use crate::cull::Frustum;
 use crate::light::{DirectionalLight, LightError, LightSetup, Lighting};
 use crate::math::{Mat4, Vec3};
-use crate::scene::{Light, Scene, Shading};
+use crate::scene::{Blend, Light, Scene, Shading};
+use crate::shade::DepthTest;
 use crate::shader::FragmentShader;
 use crate::vertex::{DrawSetup, ScreenVertex, Viewport, MAX_VIEWPORT};
 use embedded_graphics::pixelcolor::PixelColor;
@@ -43,16 +44,17 @@ pub(super) fn with_lighting<R>(
 /// Checks `scene` against `config` and the vertex buffer's capacity, then
 /// runs the vertex stage into `vertices`. Every error of a frame is found
 /// here.
-pub(super) fn run<C, F, P>(
+pub(super) fn run<C, F, P, Q>(
     config: &Config<C>,
     scene: &Scene<'_, F>,
     vertices: &mut [ScreenVertex],
-    profiler: &mut P,
+    profiler: &mut Q,
 ) -> Result<Transformed, RenderError>
 where
     C: PixelColor,
     F: FragmentShader<C>,
-    P: Profiler,
+    P: Features,
+    Q: Profiler,
 {
     let size = config.size;
     if size.width == 0 || size.height == 0 {
@@ -94,7 +96,34 @@ where
     if triangles > MAX_TRIANGLES {
         return Err(RenderError::TooManyTriangles { count: triangles });
     }
+    let default_depth = matches!(
+        (config.depth_test, config.depth_write),
+        (DepthTest::LessEqual, true) | (DepthTest::Never, _)
+    );
+    for (asked, linked, path) in [
+        (config.sort_draws, P::SORT, Path::Sort),
+        (!default_depth, P::DEPTH_TESTS, Path::DepthTests),
+    ] {
+        if asked && !linked {
+            return Err(RenderError::Unsupported { draw: None, path });
+        }
+    }
     for (draw, d) in scene.draws.iter().enumerate() {
+        let unsupported = |path| RenderError::Unsupported {
+            draw: Some(draw),
+            path,
+        };
+        let lines =
+            matches!(d.shading, Shading::Wireframe | Shading::Points(_)) || d.edges.is_some();
+        if lines && !P::LINES {
+            return Err(unsupported(Path::Lines));
+        }
+        if d.blend != Blend::Opaque && !P::BLEND {
+            return Err(unsupported(Path::Blend));
+        }
+        if d.shading == Shading::Shader && !P::SHADERS {
+            return Err(unsupported(Path::Shaders));
+        }
         if d.shading == Shading::Shader {
             let shader = scene.shader.ok_or(RenderError::MissingShader { draw })?;
             shader
@@ -106,9 +135,8 @@ where
     profiler.enter(Stage::Vertex);
     let viewport = Viewport::new(size.width, size.height);
     let transformed = with_lighting(scene.light.as_ref(), scene.lighting, |lighting| {
-        transform(
-            config, scene, &view_proj, lighting, eye, &viewport, vertices,
-        )
+        let cull = P::CULL && config.frustum_cull;
+        transform(cull, scene, &view_proj, lighting, eye, &viewport, vertices)
     })?;
     Ok(Transformed {
         view_proj,
@@ -123,8 +151,8 @@ where
 /// The vertex stage: every vertex of every draw in view (or of every
 /// cluster in view) to a [`ScreenVertex`]; returns how many.
 #[inline(never)]
-fn transform<C, F>(
-    config: &Config<C>,
+fn transform<F>(
+    cull: bool,
     scene: &Scene<'_, F>,
     view_proj: &Mat4,
     lighting: Option<&Lighting<'_>>,
@@ -143,7 +171,7 @@ fn transform<C, F>(
             .map_err(|error| RenderError::Draw { draw: di, error })?;
         let out = &mut vertices[base..base + draw.mesh.vertex_count()];
         base += draw.mesh.vertex_count();
-        let frustum = match config.frustum_cull {
+        let frustum = match cull {
             true => Frustum::new(view_proj, draw),
             false => None,
         };

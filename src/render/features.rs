@@ -1,0 +1,118 @@
+//! Which optional paths a renderer links ([`Features`]).
+
+/// Which optional paths a renderer links: chosen by a type, so that a
+/// firmware pays in flash only for what it draws.
+///
+/// Everything a scene or a [`Config`](super::Config) selects at run time
+/// (a rasterizer, fragment shaders, lines, blending, culling, sorting) has
+/// to be linked into a firmware that might select it. A [`Features`] type
+/// says at compile time which of them a [`Renderer`](super::Renderer)
+/// supports; the code of the others is never reached, and the optimiser
+/// leaves it out. [`All`] (the default) supports everything;
+/// [`Triangles`] only flat and Gouraud triangles; a firmware can name its
+/// own set.
+///
+/// A scene that asks for a path its renderer does not link is refused by
+/// [`Renderer::begin`](super::Renderer::begin) with
+/// [`RenderError::Unsupported`](super::RenderError::Unsupported), except
+/// for the two paths that only change the speed, never the picture: the
+/// Hilbert rasterizer (the scanline rasterizer draws instead) and frustum
+/// culling (nothing is culled).
+///
+/// ```
+/// use microraster::prelude::*;
+/// use microraster::render::Features;
+/// use embedded_graphics::pixelcolor::{Rgb565, RgbColor};
+///
+/// /// Triangles and wireframe overlays, culled against the frustum.
+/// struct Overlays;
+/// impl Features for Overlays {
+///     // Every path is in unless left out.
+///     const HILBERT: bool = false;
+///     const SHADERS: bool = false;
+///     const BLEND: bool = false;
+///     const SORT: bool = false;
+/// }
+/// let renderer: Renderer<Rgb565, 32, 32, Overlays> =
+///     Renderer::new(Config::new(Size::new(320, 240), Rgb565::BLACK));
+/// ```
+pub trait Features {
+    /// The Hilbert-order rasterizer, for [`Rasterizer::Hilbert`] and
+    /// [`Rasterizer::Auto`](crate::Rasterizer::Auto); without it they draw
+    /// with the scanline rasterizer (the same image).
+    ///
+    /// [`Rasterizer::Hilbert`]: crate::Rasterizer::Hilbert
+    const HILBERT: bool = true;
+    /// Fragment shaders: draws with
+    /// [`Shading::Shader`](crate::scene::Shading::Shader).
+    const SHADERS: bool = true;
+    /// Lines and points: [`Shading::Wireframe`](crate::scene::Shading::Wireframe),
+    /// [`Shading::Points`](crate::scene::Shading::Points) and
+    /// [`Draw::edges`](crate::scene::Draw::edges).
+    const LINES: bool = true;
+    /// Transparent draws: a [`Blend`](crate::scene::Blend) other than
+    /// `Opaque`.
+    const BLEND: bool = true;
+    /// Culling draws and mesh clusters against the view frustum
+    /// ([`Config::frustum_cull`](super::Config::frustum_cull)); without it
+    /// nothing is culled (the same image).
+    const CULL: bool = true;
+    /// Visiting draws sorted by depth
+    /// ([`Config::sort_draws`](super::Config::sort_draws)).
+    const SORT: bool = true;
+    /// Depth comparisons other than [`DepthTest::LessEqual`] with depth
+    /// writes, the default (see
+    /// [`Config::depth_test`](super::Config::depth_test)).
+    ///
+    /// [`DepthTest::LessEqual`]: crate::DepthTest::LessEqual
+    const DEPTH_TESTS: bool = true;
+}
+
+/// Every path (the default).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct All;
+
+impl Features for All {}
+
+/// Flat and Gouraud triangles only, with the scanline rasterizer, the
+/// default depth test and no frustum culling: the smallest firmware.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Triangles;
+
+impl Features for Triangles {
+    const HILBERT: bool = false;
+    const SHADERS: bool = false;
+    const LINES: bool = false;
+    const BLEND: bool = false;
+    const CULL: bool = false;
+    const SORT: bool = false;
+    const DEPTH_TESTS: bool = false;
+}
+
+/// A path a [`Features`] type can leave out, named in
+/// [`RenderError::Unsupported`](super::RenderError::Unsupported).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Path {
+    /// [`Features::SHADERS`].
+    Shaders,
+    /// [`Features::LINES`].
+    Lines,
+    /// [`Features::BLEND`].
+    Blend,
+    /// [`Features::SORT`].
+    Sort,
+    /// [`Features::DEPTH_TESTS`].
+    DepthTests,
+}
+
+impl core::fmt::Display for Path {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str(match self {
+            Path::Shaders => "fragment shaders",
+            Path::Lines => "lines and points",
+            Path::Blend => "blending",
+            Path::Sort => "sorted draws",
+            Path::DepthTests => "depth tests other than LessEqual with writes",
+        })
+    }
+}

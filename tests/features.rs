@@ -1,0 +1,129 @@
+//! Features: a renderer that links fewer paths draws what it supports
+//! exactly as the full one does, and refuses, with a typed error, a scene
+//! that needs a path it left out.
+
+#[path = "../examples/common/mod.rs"]
+mod common;
+mod support;
+
+use common::*;
+use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
+use microraster::prelude::*;
+use microraster::render::{All, Features, Path, Triangles};
+use microraster::shader::Gouraud;
+use support::Capture;
+
+const SIZE: Size = Size::new(160, 120);
+
+/// Triangles plus lines and culling, as a firmware might choose.
+struct Lines;
+impl Features for Lines {
+    const HILBERT: bool = false;
+    const SHADERS: bool = false;
+    const BLEND: bool = false;
+    const SORT: bool = false;
+}
+
+fn render<P: Features, F: FragmentShader<Rgb565>>(
+    scene: &Scene<'_, F>,
+    config: Config<Rgb565>,
+) -> Result<(Vec<Rgb565>, FrameStats), RenderError<core::convert::Infallible>> {
+    let mut r: Renderer<Rgb565, 32, 32, P> = Renderer::new(config);
+    let mut ws: Box<Workspace<2048, 8192, 64>> = Box::new(Workspace::new());
+    let mut cap = Capture::new(SIZE, Rgb565::new(31, 0, 31));
+    let stats = r.render(&mut ws, scene, &mut cap)?;
+    Ok((cap.pixels, stats))
+}
+
+#[test]
+fn fewer_paths_draw_the_same_triangles() {
+    let assets = DemoAssets::new();
+    let (knot, cube) = (assets.knot(), cube());
+    let d = draws(&knot, &cube, 0.4, Shading::Gouraud);
+    let scene = Scene::new(camera(SIZE.width, SIZE.height), &d).light(light());
+    let config = Config::new(SIZE, Rgb565::new(1, 2, 3));
+    let (all, stats) = render::<All, _>(&scene, config).unwrap();
+    assert!(stats.pixels_shaded > 3000, "{stats:?}");
+    // The Hilbert and Auto rasterizers and frustum culling only change the
+    // speed: without them the scanline rasterizer draws, nothing is culled.
+    for raster in [Rasterizer::Scanline, Rasterizer::Hilbert, Rasterizer::Auto] {
+        let config = config.rasterizer(raster);
+        let (small, s) = render::<Triangles, _>(&scene, config).unwrap();
+        assert!(small == all, "{raster:?}: the same image");
+        assert_eq!(s.pixels_shaded, stats.pixels_shaded);
+        assert_eq!((s.draws_culled, s.clusters_culled), (0, 0));
+    }
+    // Other depth tests, and no depth writes, where they are linked.
+    for (test, write) in [
+        (DepthTest::Less, true),
+        (DepthTest::GreaterEqual, true),
+        (DepthTest::Always, false),
+        (DepthTest::LessEqual, false),
+    ] {
+        let config = config.depth_test(test).depth_write(write);
+        let (a, _) = render::<All, _>(&scene, config).unwrap();
+        let (l, _) = render::<Lines, _>(&scene, config).unwrap();
+        assert!(a == l, "{test:?} write {write}");
+        assert_eq!(
+            render::<Triangles, _>(&scene, config).unwrap_err(),
+            RenderError::Unsupported {
+                draw: None,
+                path: Path::DepthTests
+            }
+        );
+    }
+}
+
+#[test]
+fn a_path_left_out_is_a_typed_error() {
+    let cube = cube();
+    let config = Config::new(SIZE, Rgb565::new(1, 2, 3));
+    let cam = camera(SIZE.width, SIZE.height);
+    let base = Draw::new(&cube).transform(Mat4::translation(Vec3::new(0.0, 0.0, -1.0)));
+    let cases = [
+        (base.shading(Shading::Wireframe), Path::Lines),
+        (base.shading(Shading::Points(2)), Path::Lines),
+        (base.edges(Edges::default()), Path::Lines),
+        (base.blend(Blend::Alpha(128)), Path::Blend),
+        (base.shading(Shading::Shader), Path::Shaders),
+    ];
+    for (draw, path) in cases {
+        // The draw is the second one: the error names it.
+        let d = [base, draw];
+        let scene = Scene::new(cam, &d).shader(&Gouraud);
+        let err = render::<Triangles, _>(&scene, config).unwrap_err();
+        assert_eq!(
+            err,
+            RenderError::Unsupported {
+                draw: Some(1),
+                path
+            }
+        );
+        assert!(err.to_string().starts_with("draw 1: "), "{err}");
+        // The full renderer draws it.
+        render::<All, _>(&scene, config).unwrap();
+    }
+    let d = [base];
+    let scene = Scene::new(cam, &d);
+    assert_eq!(
+        render::<Triangles, _>(&scene, config.sort_draws(true)).unwrap_err(),
+        RenderError::Unsupported {
+            draw: None,
+            path: Path::Sort
+        }
+    );
+}
+
+#[test]
+fn a_firmwares_own_set_draws_its_lines_like_the_full_renderer() {
+    let assets = DemoAssets::new();
+    let (knot, cube) = (assets.knot(), cube());
+    let mut d = draws(&knot, &cube, 1.1, Shading::Gouraud);
+    d[1] = d[1].edges(Edges::new(Rgb888::new(255, 255, 255)));
+    let scene = Scene::new(camera(SIZE.width, SIZE.height), &d).light(light());
+    let config = Config::new(SIZE, Rgb565::new(1, 2, 3));
+    let (all, _) = render::<All, _>(&scene, config).unwrap();
+    let (lines, _) = render::<Lines, _>(&scene, config).unwrap();
+    assert!(all == lines);
+    assert!(render::<Triangles, _>(&scene, config).is_err());
+}
