@@ -4,12 +4,15 @@
 //! (`screendump`) and requires it to equal, pixel for pixel, the same scene
 //! rendered on the host in Gray4. Fixed point makes the two agree.
 //!
-//! Without `qemu-system-arm` the test fails and says how to install it;
-//! `MICRORASTER_SKIP_QEMU=1` turns that into a loud skip.
+//! Without `qemu-system-arm` or the `thumbv7m-none-eabi` target the test
+//! is skipped with a line saying how to install them, or fails in CI
+//! (`tests/support/host.rs`).
 
 #[path = "../examples/oled_scene/mod.rs"]
 mod oled_scene;
 mod support;
+
+use support::host;
 
 use embedded_graphics::pixelcolor::{Gray4, GrayColor};
 use microraster::prelude::*;
@@ -20,15 +23,6 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::sync::mpsc;
 use std::time::{Duration, Instant};
-
-fn qemu_available() -> bool {
-    Command::new("qemu-system-arm")
-        .arg("--version")
-        .stdout(Stdio::null())
-        .stderr(Stdio::null())
-        .status()
-        .is_ok_and(|s| s.success())
-}
 
 /// Builds the firmware so that it stops after one frame.
 fn build_firmware() -> PathBuf {
@@ -151,17 +145,9 @@ fn host_frame() -> Vec<u8> {
 
 #[test]
 fn oled_firmware_in_qemu_matches_host_render() {
-    if !qemu_available() {
-        if std::env::var_os("MICRORASTER_SKIP_QEMU").is_some_and(|v| v == "1") {
-            eprintln!(
-                "\n*** SKIPPED: qemu-system-arm is not installed (MICRORASTER_SKIP_QEMU=1) ***\n"
-            );
-            return;
-        }
-        panic!(
-            "qemu-system-arm is not installed: apt-get install qemu-system-arm \
-             (or set MICRORASTER_SKIP_QEMU=1 to skip this test)"
-        );
+    let needs = [host::QEMU_ARM, host::Need::Target("thumbv7m-none-eabi")];
+    if !host::require("qemu_oled", &needs) {
+        return;
     }
     let elf = build_firmware();
     let dir = std::env::temp_dir().join(format!("microraster-qemu-{}", std::process::id()));

@@ -1,6 +1,8 @@
 //! Test support: a capturing draw target and PNG golden-image comparison.
 #![allow(dead_code)]
 
+pub mod host;
+
 use embedded_graphics::pixelcolor::{PixelColor, Rgb888, RgbColor};
 use embedded_graphics::prelude::*;
 use std::path::{Path, PathBuf};
