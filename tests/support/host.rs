@@ -12,6 +12,7 @@
 //! tested) without uninstalling anything that other builds on the machine
 //! are using.
 
+use std::io::Write;
 use std::path::PathBuf;
 use std::process::{Command, Stdio};
 
@@ -93,9 +94,11 @@ pub fn require(test: &str, needs: &[Need<'_>]) -> bool {
     match verdict(test, &missing, in_ci()) {
         Verdict::Run => true,
         Verdict::Skip(line) => {
-            // The test harness captures stdout, not stderr: this shows in
-            // `cargo test`'s output whether the test passes or not.
-            eprintln!("\n{line}\n");
+            // Straight to the stderr handle: the test harness captures
+            // `eprintln!` (and shows it only for failures), not this, so
+            // the line shows in `cargo test`'s output though the test
+            // passes.
+            let _ = writeln!(std::io::stderr(), "\n{line}\n");
             false
         }
         Verdict::Fail(message) => panic!("{message}"),
