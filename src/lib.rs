@@ -73,24 +73,40 @@ pub mod texture;
 pub mod tile;
 pub mod vertex;
 
+// The versions of the two crates in the library's signatures, so that a
+// program names exactly these (`microraster::fixed::types::I16F16`,
+// `microraster::embedded_graphics::pixelcolor::Rgb565`) and cannot pick
+// another, incompatible version of either.
+pub use embedded_graphics;
+pub use fixed;
+
 pub use raster::Rasterizer;
 pub use render::{Config, Features, FrameStats, Profiler, RenderError, Renderer, Stage, Workspace};
 pub use shade::DepthTest;
 pub use sink::{NullSink, TileSink};
 pub use tile::{TileBuffer, TileOrder, TileView};
 
-/// The types most programs need.
+/// The types most programs need: the scene, the renderer, lighting,
+/// textures, the fragment-shader interface with the built-in shaders, and
+/// what a [`TileSink`] implementation names.
 pub mod prelude {
+    pub use crate::light::{DirectionalLight, Lighting, Material, PointLight};
     pub use crate::math::{Mat4, Vec3};
     pub use crate::mesh::{Mesh, MeshError};
     pub use crate::raster::Rasterizer;
     pub use crate::render::{Config, FrameStats, RenderError, Renderer, Workspace};
     pub use crate::scene::{Blend, Camera, CullMode, Draw, Edges, Light, Scene, Shading};
     pub use crate::shade::DepthTest;
-    pub use crate::shader::{FragmentShader, Perspective};
+    pub use crate::shader::{
+        DepthShade, Dithered, Flat, Fragment, FragmentShader, Gouraud, Normals, Perspective,
+        Textured, TexturedLit, VertexInput,
+    };
     pub use crate::sink::{NullSink, TileSink};
-    pub use crate::tile::TileOrder;
+    pub use crate::texture::{Filter, Texels, Texture};
+    pub use crate::tile::{TileOrder, TileView};
+    pub use embedded_graphics::pixelcolor::PixelColor;
     pub use embedded_graphics::prelude::{Point, Size};
+    pub use embedded_graphics::primitives::Rectangle;
 }
 
 /// Helpers shared by the unit tests.
