@@ -1,7 +1,7 @@
 //! Puts the right board's memory map where cortex-m-rt's `link.x` finds it,
 //! for the firmware examples. `link.x` says `INCLUDE memory.x`; the board's
 //! map is copied to `$OUT_DIR/memory.x`, which is put on the linker's search
-//! path, according to the target:
+//! path of this package's examples only, according to the target:
 //!
 //! | target                  | board                        | map                   |
 //! |-------------------------|------------------------------|-----------------------|
@@ -14,6 +14,12 @@
 //! target. `.cargo/config.toml` therefore links the other two boards through
 //! `scripts/lld-in-out-dir.sh`, which runs lld from `memory/`. Host, RISC-V
 //! and library-only builds ignore all of this.
+//!
+//! `cargo:rustc-link-arg-examples=-L...`, not `cargo:rustc-link-search`: a
+//! search path reaches the link of every firmware that depends on
+//! microraster, where the LM3S6965's map would be found before a board
+//! crate's own `memory.x` later in the search order, and the firmware
+//! would silently link for the wrong chip (tests/dependent_memory_map.rs).
 //!
 //! With the `assets` feature it also converts `examples/assets/rocket.obj`
 //! (and its materials) into `$OUT_DIR/rocket.rs`, `static` arrays that the
@@ -57,6 +63,6 @@ fn main() {
         let out = PathBuf::from(env::var_os("OUT_DIR").expect("cargo sets OUT_DIR"));
         fs::copy(map, out.join("memory.x"))
             .unwrap_or_else(|e| panic!("copying {map} to OUT_DIR/memory.x: {e}"));
-        println!("cargo:rustc-link-search={}", out.display());
+        println!("cargo:rustc-link-arg-examples=-L{}", out.display());
     }
 }
