@@ -83,7 +83,7 @@ pub use fixed;
 pub use raster::Rasterizer;
 pub use render::{Config, Features, FrameStats, Profiler, RenderError, Renderer, Stage, Workspace};
 pub use shade::DepthTest;
-pub use sink::{NullSink, TileSink};
+pub use sink::{FrameBuffer, FrameBufferError, NullSink, TileSink};
 pub use tile::{TileBuffer, TileOrder, TileView};
 
 /// The types most programs need: the scene, the renderer, lighting,
@@ -101,7 +101,7 @@ pub mod prelude {
         DepthShade, Dithered, Flat, Fragment, FragmentShader, Gouraud, Normals, Perspective,
         Textured, TexturedLit, VertexInput,
     };
-    pub use crate::sink::{NullSink, TileSink};
+    pub use crate::sink::{FrameBuffer, FrameBufferError, NullSink, TileSink};
     pub use crate::texture::{Filter, Texels, Texture};
     pub use crate::tile::{TileOrder, TileView};
     pub use embedded_graphics::pixelcolor::PixelColor;

@@ -5,7 +5,12 @@
 //! `fill_contiguous` call per tile, so any e-g display driver (mipidsi,
 //! ssd1306, the simulator, …) works unchanged. A driver that wants the raw
 //! bytes, for example to start a DMA transfer per tile, implements
-//! [`TileSink`] directly and reads [`TileView::rows`].
+//! [`TileSink`] directly and reads [`TileView::rows`]. [`FrameBuffer`]
+//! places the tiles into a whole frame in the caller's memory.
+
+mod framebuffer;
+
+pub use framebuffer::{FrameBuffer, FrameBufferError};
 
 use crate::tile::TileView;
 use embedded_graphics::draw_target::DrawTarget;
