@@ -31,7 +31,6 @@ mod common;
 
 use common::*;
 use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
-use embedded_graphics_simulator::{OutputSettingsBuilder, SimulatorDisplay};
 use fixed::types::I16F16;
 use microraster::light::{DirectionalLight, Lighting, Material, PointLight};
 use microraster::mesh::Vec3Fx;
@@ -312,7 +311,9 @@ fn demo(args: &Args, texture: &Texture<'_>) {
             let lit = (look == Look::TexturedLit).then_some(&lighting);
             #[cfg(feature = "window")]
             {
-                use embedded_graphics_simulator::{SimulatorEvent, Window};
+                use embedded_graphics_simulator::{
+                    OutputSettingsBuilder, SimulatorDisplay, SimulatorEvent, Window,
+                };
                 let mut display = SimulatorDisplay::<Rgb565>::new(Size::new(WIDTH, HEIGHT));
                 let mut window = Window::new(
                     "microraster demo",
@@ -348,7 +349,9 @@ fn demo(args: &Args, texture: &Texture<'_>) {
                     let t = f as f32 * core::f32::consts::TAU / frames.max(1) as f32 / 3.0;
                     let d = scene_at(t);
                     let scene = light_up(Scene::new(camera(WIDTH, HEIGHT), &d).shader(shader), lit);
-                    let (s, display) = render_png(self.renderer, self.workspace, &scene);
+                    let path = out.join(format!("frame_{f:03}.png"));
+                    let s = render_png(self.renderer, self.workspace, &scene, &path)
+                        .unwrap_or_else(|e| fail(e));
                     println!(
                         "{f:5} {:8} {:6} {:8} {:7} {:5} {:7} {:5} {:6}",
                         s.triangles_in,
@@ -360,7 +363,6 @@ fn demo(args: &Args, texture: &Texture<'_>) {
                         s.tiles,
                         s.bin_passes
                     );
-                    save(&display, &out.join(format!("frame_{f:03}.png")));
                 }
                 println!("wrote {frames} frames to {}", out.display());
             }
@@ -384,29 +386,6 @@ fn light_up<'a, S>(scene: Scene<'a, S>, lighting: Option<&'a Lighting<'a>>) -> S
     match lighting {
         Some(l) => scene.lighting(l),
         None => scene.light(light()),
-    }
-}
-
-/// Renders `scene` into a fresh simulator display.
-fn render_png<S, const V: usize, const B: usize, const T: usize>(
-    renderer: &mut DemoRenderer,
-    workspace: &mut Workspace<V, B, T>,
-    scene: &Scene<'_, S>,
-) -> (FrameStats, SimulatorDisplay<Rgb565>)
-where
-    S: FragmentShader<Rgb565>,
-{
-    let mut display = SimulatorDisplay::<Rgb565>::new(renderer.config().size);
-    match renderer.render(workspace, scene, &mut display) {
-        Ok(s) => (s, display),
-        Err(e) => fail(e),
-    }
-}
-
-fn save(display: &SimulatorDisplay<Rgb565>, path: &std::path::Path) {
-    let settings = OutputSettingsBuilder::new().build();
-    if let Err(e) = display.to_rgb_output_image(&settings).save_png(path) {
-        fail(format!("cannot write {}: {e}", path.display()));
     }
 }
 
@@ -584,25 +563,27 @@ fn render_model(args: &Args, path: &std::path::Path, texture: &Texture<'_>) {
             .perspective(args.perspective),
     );
     let mut workspace: Box<ModelWorkspace> = Box::default();
+    let out = args
+        .out
+        .clone()
+        .unwrap_or_else(|| PathBuf::from("model.png"));
     struct One<'a> {
         draws: &'a [Draw<'a>],
         camera: Camera,
         light: Light,
         renderer: &'a mut DemoRenderer,
         workspace: &'a mut ModelWorkspace,
+        out: &'a std::path::Path,
     }
-    impl ShaderUser<(FrameStats, SimulatorDisplay<Rgb565>)> for One<'_> {
-        fn call<S: FragmentShader<Rgb565>>(
-            self,
-            shader: &S,
-        ) -> (FrameStats, SimulatorDisplay<Rgb565>) {
+    impl ShaderUser<FrameStats> for One<'_> {
+        fn call<S: FragmentShader<Rgb565>>(self, shader: &S) -> FrameStats {
             let scene = Scene::new(self.camera, self.draws)
                 .light(self.light)
                 .shader(shader);
-            render_png(self.renderer, self.workspace, &scene)
+            render_png(self.renderer, self.workspace, &scene, self.out).unwrap_or_else(|e| fail(e))
         }
     }
-    let (stats, display) = with_shader(
+    let stats = with_shader(
         args.look,
         One {
             draws: &draws,
@@ -610,13 +591,9 @@ fn render_model(args: &Args, path: &std::path::Path, texture: &Texture<'_>) {
             light,
             renderer: &mut renderer,
             workspace: &mut workspace,
+            out: &out,
         },
     );
-    let out = args
-        .out
-        .clone()
-        .unwrap_or_else(|| PathBuf::from("model.png"));
-    save(&display, &out);
     println!(
         "{}: {} triangles in {} draw(s), scale {:.4}; {} drawn, {} pixels; wrote {}",
         path.display(),

@@ -9,6 +9,11 @@ use microraster::shapes::{
     torus_knot, torus_knot_size, CUBE_NORMALS, CUBE_POSITIONS, CUBE_TRIANGLES,
 };
 
+mod png_file;
+// Each example or test that includes this file uses a different subset.
+#[allow(unused_imports)]
+pub use png_file::{render_png, write_png};
+
 #[path = "../checker/mod.rs"]
 mod checker;
 #[path = "../demo_scene/mod.rs"]
