@@ -14,6 +14,7 @@
 mod common;
 mod scenes;
 
+use common::write_png;
 use embedded_graphics::mono_font::{ascii::FONT_6X10, MonoTextStyle};
 use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
 use embedded_graphics::prelude::*;
@@ -195,23 +196,8 @@ fn main() {
         let _ = Text::new(name, Point::new(RIGHT + 52, ly + 3), text).draw(&mut c);
     }
 
-    let file = std::fs::File::create(&out).unwrap_or_else(|e| {
-        eprintln!("raster_plot: {}: {e}", out.display());
-        std::process::exit(1);
-    });
-    let mut enc = png::Encoder::new(std::io::BufWriter::new(file), W, H);
-    enc.set_color(png::ColorType::Rgb);
-    enc.set_depth(png::BitDepth::Eight);
-    let bytes: Vec<u8> = c
-        .pixels
-        .iter()
-        .flat_map(|p| [p.r(), p.g(), p.b()])
-        .collect();
-    let written = enc
-        .write_header()
-        .and_then(|mut w| w.write_image_data(&bytes));
-    if let Err(e) = written {
-        eprintln!("raster_plot: {}: {e}", out.display());
+    if let Err(e) = write_png(&out, Size::new(W, H), &c.pixels) {
+        eprintln!("raster_plot: {e}");
         std::process::exit(1);
     }
     eprintln!("raster_plot: wrote {}", out.display());
