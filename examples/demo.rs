@@ -28,8 +28,11 @@
 //! gives a one-line error and exit status 1.
 
 mod common;
+#[path = "demo_args/mod.rs"]
+mod demo_args;
 
 use common::*;
+use demo_args::{Args, Look, HEIGHT, WIDTH};
 use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
 use fixed::types::I16F16;
 use microraster::light::{DirectionalLight, Lighting, Material, PointLight};
@@ -38,9 +41,6 @@ use microraster::prelude::*;
 use microraster::shader::{DepthShade, Normals, Textured, TexturedLit};
 use microraster::texture::{Filter, Texels, Texture};
 use std::path::PathBuf;
-
-const WIDTH: u32 = 320;
-const HEIGHT: u32 = 240;
 
 /// The configuration of the RAM budget: 32x32 tiles, room for the whole
 /// demo scene and every tile of a 320x240 frame in one binning pass.
@@ -52,141 +52,13 @@ type DemoWorkspace = Workspace<2048, 4096, 80>;
 /// one-line error.
 type ModelWorkspace = Workspace<262_144, 65_535, 4096>;
 
-/// What colours the draws.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Look {
-    Flat,
-    Gouraud,
-    Textured,
-    TexturedLit,
-    Depth,
-    Normals,
-    Wireframe,
-    Points,
-}
-
-impl Look {
-    fn parse(name: &str) -> Option<Self> {
-        Some(match name {
-            "flat" => Look::Flat,
-            "gouraud" => Look::Gouraud,
-            "textured" => Look::Textured,
-            "textured-lit" => Look::TexturedLit,
-            "depth" => Look::Depth,
-            "normals" => Look::Normals,
-            "wireframe" => Look::Wireframe,
-            "points" => Look::Points,
-            _ => return None,
-        })
-    }
-
-    fn shading(self) -> Shading {
-        match self {
-            Look::Flat => Shading::Flat,
-            Look::Gouraud => Shading::Gouraud,
-            Look::Wireframe => Shading::Wireframe,
-            Look::Points => Shading::Points(2),
-            _ => Shading::Shader,
-        }
-    }
-
-    fn textured(self) -> bool {
-        matches!(self, Look::Textured | Look::TexturedLit)
-    }
-}
-
-struct Args {
-    frames: usize,
-    out: Option<PathBuf>,
-    look: Look,
-    perspective: Perspective,
-    raster: Rasterizer,
-    tile_order: TileOrder,
-    obj: Option<PathBuf>,
-    size: Size,
-    yaw: f32,
-    texture: Option<PathBuf>,
-}
-
-fn parse_args() -> Result<Args, String> {
-    let mut args = Args {
-        frames: 8,
-        out: None,
-        look: Look::Gouraud,
-        perspective: Perspective::Exact,
-        raster: Rasterizer::Scanline,
-        tile_order: TileOrder::RowMajor,
-        obj: None,
-        size: Size::new(WIDTH, HEIGHT),
-        yaw: 30.0,
-        texture: None,
-    };
-    let mut it = std::env::args().skip(1);
-    while let Some(a) = it.next() {
-        match a.as_str() {
-            "--frames" => {
-                args.frames = it
-                    .next()
-                    .and_then(|v| v.parse().ok())
-                    .ok_or("--frames needs a number")?
-            }
-            "--out" => args.out = Some(it.next().ok_or("--out needs a path")?.into()),
-            "--flat" => args.look = Look::Flat,
-            "--shader" => {
-                args.look = it.next().as_deref().and_then(Look::parse).ok_or(
-                    "--shader needs flat, gouraud, textured, textured-lit, depth, normals, wireframe or points",
-                )?
-            }
-            "--perspective" => {
-                args.perspective = match it.next().as_deref() {
-                    Some("exact") => Perspective::Exact,
-                    Some("quasi8") => Perspective::Quasi8,
-                    Some("quasi16") => Perspective::Quasi16,
-                    Some("affine") => Perspective::Affine,
-                    _ => return Err("--perspective needs exact, quasi8, quasi16 or affine".into()),
-                }
-            }
-            "--hilbert" => args.raster = Rasterizer::Hilbert,
-            "--raster" => {
-                args.raster = match it.next().as_deref() {
-                    Some("scanline") => Rasterizer::Scanline,
-                    Some("hilbert") => Rasterizer::Hilbert,
-                    Some("auto") => Rasterizer::Auto,
-                    _ => return Err("--raster needs scanline, hilbert or auto".into()),
-                }
-            }
-            "--hilbert-tiles" => args.tile_order = TileOrder::Hilbert,
-            "--obj" => args.obj = Some(it.next().ok_or("--obj needs a file")?.into()),
-            "--texture" => args.texture = Some(it.next().ok_or("--texture needs a PNG file")?.into()),
-            "--yaw" => {
-                args.yaw = it
-                    .next()
-                    .and_then(|v| v.parse::<f32>().ok())
-                    .filter(|v| v.is_finite())
-                    .ok_or("--yaw needs an angle in degrees")?
-            }
-            "--size" => {
-                let v = it.next().ok_or("--size needs WxH")?;
-                let (w, h) = v
-                    .split_once('x')
-                    .and_then(|(w, h)| Some((w.parse::<u32>().ok()?, h.parse::<u32>().ok()?)))
-                    .filter(|&(w, h)| (1..=4096).contains(&w) && (1..=4096).contains(&h))
-                    .ok_or(format!("--size needs WxH, each 1 to 4096, not {v:?}"))?;
-                args.size = Size::new(w, h);
-            }
-            other => return Err(format!("unknown argument {other:?}")),
-        }
-    }
-    Ok(args)
-}
-
 fn fail(message: impl std::fmt::Display) -> ! {
     eprintln!("demo: {message}");
     std::process::exit(1);
 }
 
 fn main() {
-    let args = match parse_args() {
+    let args = match demo_args::parse(std::env::args().skip(1)) {
         Ok(a) => a,
         Err(e) => {
             eprintln!("demo: {e}");
