@@ -2,13 +2,14 @@
 //! into the embedded-graphics simulator; or any OBJ model, rendered once
 //! into a PNG.
 //!
-//! Headless by default: writes PNG frames to `target/demo/` and prints the
-//! statistics of every frame. With `--features window` it opens the live
-//! simulator window instead (needs SDL2).
+//! Headless by default: writes PNG frames to the repository's
+//! `target/demo/` and prints the statistics of every frame. With
+//! `--features window` it opens the live simulator window instead (needs
+//! SDL2). `--help` lists the options (`examples/demo_args/mod.rs`):
 //!
 //! ```text
-//! cargo run --release --example demo [-- --frames N --out DIR]
-//!     [--shader flat|gouraud|textured|textured-lit|depth|normals|wireframe|points]
+//! cargo run --release --example demo [-- --frames N --out-dir DIR]
+//!     [--size WxH] [--shader flat|gouraud|textured|textured-lit|depth|normals|wireframe|points]
 //!     [--perspective exact|quasi8|quasi16|affine]
 //!     [--hilbert | --raster scanline|hilbert|auto] [--hilbert-tiles]
 //!
@@ -16,23 +17,26 @@
 //!     [--size WxH] [--yaw DEG] [--shader ...] [--texture IMAGE.png]
 //! ```
 //!
-//! `--hilbert` (or `--raster hilbert`) renders with the Hilbert-order
-//! rasterizer, `--hilbert-tiles` visits the tiles along the Hilbert curve;
-//! both give the same images as the defaults. `--flat` is `--shader flat`.
-//! The textured shaders use a procedural checker texture unless
-//! `--texture` names a PNG.
+//! The animation's frames go into a directory (`--out-dir`), a model's
+//! picture into a file (`--out`, default `target/demo/MODEL.png`); a flag
+//! that does not apply is refused. `--hilbert` (or `--raster hilbert`)
+//! renders with the Hilbert-order rasterizer, `--hilbert-tiles` visits the
+//! tiles along the Hilbert curve; both give the same images as the
+//! defaults. `--flat` is `--shader flat`. The textured shaders use a
+//! procedural checker texture unless `--texture` names a PNG.
 //!
 //! With `--obj`, the model is recentred and scaled by the importer, framed
 //! from its bounding sphere, turned by `--yaw` degrees about the vertical
-//! and lit; the picture goes to `--out` (default `model.png`). A bad file
-//! gives a one-line error and exit status 1.
+//! and lit; the importer's warnings are shown. A bad file gives a one-line
+//! error and exit status 1; a bad argument, one naming the flag and exit
+//! status 2.
 
 mod common;
 #[path = "demo_args/mod.rs"]
 mod demo_args;
 
 use common::*;
-use demo_args::{Args, Look, HEIGHT, WIDTH};
+use demo_args::{Args, Look, Mode, Parsed};
 use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
 use fixed::types::I16F16;
 use microraster::light::{DirectionalLight, Lighting, Material, PointLight};
@@ -40,7 +44,7 @@ use microraster::mesh::Vec3Fx;
 use microraster::prelude::*;
 use microraster::shader::{DepthShade, Normals, Textured, TexturedLit};
 use microraster::texture::{Filter, Texels, Texture};
-use std::path::PathBuf;
+use std::path::Path;
 
 /// The configuration of the RAM budget: 32x32 tiles, room for the whole
 /// demo scene and every tile of a 320x240 frame in one binning pass.
@@ -59,7 +63,11 @@ fn fail(message: impl std::fmt::Display) -> ! {
 
 fn main() {
     let args = match demo_args::parse(std::env::args().skip(1)) {
-        Ok(a) => a,
+        Ok(Parsed::Run(a)) => a,
+        Ok(Parsed::Help) => {
+            print!("{}", demo_args::USAGE);
+            return;
+        }
         Err(e) => {
             eprintln!("demo: {e}");
             std::process::exit(2);
@@ -69,10 +77,11 @@ fn main() {
     // checker.
     let (tex_size, texels) = match &args.texture {
         Some(path) => {
-            let image = microraster_import::load_png(path).unwrap_or_else(|e| fail(e));
+            let image = microraster_import::load_png(path)
+                .unwrap_or_else(|e| fail(format!("--texture: {e}")));
             let data = image
                 .convert(microraster_import::TextureFormat::Rgb565)
-                .unwrap_or_else(|e| fail(e));
+                .unwrap_or_else(|e| fail(format!("--texture: {e}")));
             let microraster_import::Texels::U16(t) = data.texels else {
                 fail("the importer gave no Rgb565 texels")
             };
@@ -81,21 +90,21 @@ fn main() {
         None => ((32, 32), checker_texels(32)),
     };
     let texture = Texture::new(tex_size.0, tex_size.1, Texels::Rgb565(&texels))
-        .unwrap_or_else(|e| fail(e))
+        .unwrap_or_else(|e| fail(format!("--texture: {e}")))
         .filter(Filter::Bilinear);
-    match &args.obj {
+    match &args.mode {
         // The model's workspace is megabytes: built on a thread whose
         // stack holds it on its way into the box.
-        Some(path) => std::thread::scope(|s| {
+        Mode::Model { obj, out, yaw } => std::thread::scope(|s| {
             let job = std::thread::Builder::new()
                 .stack_size(64 << 20)
-                .spawn_scoped(s, || render_model(&args, path, &texture))
+                .spawn_scoped(s, || render_model(&args, obj, out, *yaw, &texture))
                 .unwrap_or_else(|e| fail(format!("cannot start the renderer thread: {e}")));
             if job.join().is_err() {
                 std::process::exit(1);
             }
         }),
-        None => demo(&args, &texture),
+        Mode::Animation { frames, out_dir } => demo(&args, *frames, out_dir, &texture),
     }
 }
 
@@ -116,7 +125,7 @@ trait ShaderUser<R> {
 }
 
 /// The rotating knot and cube.
-fn demo(args: &Args, texture: &Texture<'_>) {
+fn demo(args: &Args, frames: usize, out_dir: &Path, texture: &Texture<'_>) {
     let assets = DemoAssets::new();
     let knot_uvs = knot_uvs(6.0, 1.0);
     let knot = assets.knot();
@@ -126,7 +135,7 @@ fn demo(args: &Args, texture: &Texture<'_>) {
         knot
     };
     let cube = textured_cube();
-    let size = Size::new(WIDTH, HEIGHT);
+    let size = args.size;
     let mut renderer = DemoRenderer::new(
         Config::new(size, DEMO_CLEAR)
             .rasterizer(args.raster)
@@ -144,6 +153,8 @@ fn demo(args: &Args, texture: &Texture<'_>) {
     );
     struct Frames<'a> {
         args: &'a Args,
+        frames: usize,
+        out_dir: &'a Path,
         knot: &'a Mesh<'a>,
         cube: &'a Mesh<'a>,
         texture: &'a Texture<'a>,
@@ -153,6 +164,7 @@ fn demo(args: &Args, texture: &Texture<'_>) {
     impl ShaderUser<()> for Frames<'_> {
         fn call<S: FragmentShader<Rgb565>>(self, shader: &S) {
             let look = self.args.look;
+            let size = self.args.size;
             // Textured and lit: white surfaces (the texture gives the
             // colour), shiny, under a sun and a warm lamp.
             let sun = [DirectionalLight::new(
@@ -186,7 +198,10 @@ fn demo(args: &Args, texture: &Texture<'_>) {
                 use embedded_graphics_simulator::{
                     OutputSettingsBuilder, SimulatorDisplay, SimulatorEvent, Window,
                 };
-                let mut display = SimulatorDisplay::<Rgb565>::new(Size::new(WIDTH, HEIGHT));
+                // The window shows frames until it is closed: no count,
+                // no files (as --help says).
+                let _ = (self.frames, self.out_dir);
+                let mut display = SimulatorDisplay::<Rgb565>::new(self.args.size);
                 let mut window = Window::new(
                     "microraster demo",
                     &OutputSettingsBuilder::new().scale(2).build(),
@@ -194,7 +209,10 @@ fn demo(args: &Args, texture: &Texture<'_>) {
                 let mut t = 0.0f32;
                 loop {
                     let d = scene_at(t);
-                    let scene = light_up(Scene::new(camera(WIDTH, HEIGHT), &d).shader(shader), lit);
+                    let scene = light_up(
+                        Scene::new(camera(size.width, size.height), &d).shader(shader),
+                        lit,
+                    );
                     self.renderer
                         .render(self.workspace, &scene, &mut display)
                         .expect("demo scene renders");
@@ -207,20 +225,18 @@ fn demo(args: &Args, texture: &Texture<'_>) {
             }
             #[cfg(not(feature = "window"))]
             {
-                let out = self
-                    .args
-                    .out
-                    .clone()
-                    .unwrap_or_else(|| PathBuf::from("target/demo"));
-                if let Err(e) = std::fs::create_dir_all(&out) {
-                    fail(format!("cannot create {}: {e}", out.display()));
+                let (out, frames) = (self.out_dir, self.frames);
+                if let Err(e) = std::fs::create_dir_all(out) {
+                    fail(format!("--out-dir: cannot create {}: {e}", out.display()));
                 }
-                let frames = self.args.frames;
                 println!("frame  tris_in culled rejected clipped drawn  pixels tiles passes");
                 for f in 0..frames {
                     let t = f as f32 * core::f32::consts::TAU / frames.max(1) as f32 / 3.0;
                     let d = scene_at(t);
-                    let scene = light_up(Scene::new(camera(WIDTH, HEIGHT), &d).shader(shader), lit);
+                    let scene = light_up(
+                        Scene::new(camera(size.width, size.height), &d).shader(shader),
+                        lit,
+                    );
                     let path = out.join(format!("frame_{f:03}.png"));
                     let s = render_png(self.renderer, self.workspace, &scene, &path)
                         .unwrap_or_else(|e| fail(e));
@@ -244,6 +260,8 @@ fn demo(args: &Args, texture: &Texture<'_>) {
         args.look,
         Frames {
             args,
+            frames,
+            out_dir,
             knot: &knot,
             cube: &cube,
             texture,
@@ -366,9 +384,15 @@ impl ModelPieces {
 }
 
 /// `--obj`: one frame of the model into a PNG.
-fn render_model(args: &Args, path: &std::path::Path, texture: &Texture<'_>) {
+fn render_model(args: &Args, path: &Path, out: &Path, yaw: f32, texture: &Texture<'_>) {
     let options = microraster_import::ObjOptions::new().with_fit(microraster_import::Fit::Unit);
-    let model = microraster_import::load_obj(path, &options).unwrap_or_else(|e| fail(e));
+    let model = microraster_import::load_obj(path, &options)
+        .unwrap_or_else(|e| fail(format!("--obj: {e}")));
+    // What the importer skipped or guessed (unsupported statements,
+    // missing materials) shows in the picture: say so.
+    for warning in &model.warnings {
+        eprintln!("demo: --obj: warning: {warning}");
+    }
     if model.triangles.is_empty() {
         fail(format!("{}: no triangles", path.display()));
     }
@@ -384,7 +408,7 @@ fn render_model(args: &Args, path: &std::path::Path, texture: &Texture<'_>) {
             args.look
         ));
     }
-    let yaw = Mat4::rotation_y(args.yaw.to_radians());
+    let yaw = Mat4::rotation_y(yaw.to_radians());
     let draws: Vec<Draw<'_>> = meshes
         .iter()
         .map(|(m, color)| {
@@ -435,17 +459,13 @@ fn render_model(args: &Args, path: &std::path::Path, texture: &Texture<'_>) {
             .perspective(args.perspective),
     );
     let mut workspace: Box<ModelWorkspace> = Box::default();
-    let out = args
-        .out
-        .clone()
-        .unwrap_or_else(|| PathBuf::from("model.png"));
     struct One<'a> {
         draws: &'a [Draw<'a>],
         camera: Camera,
         light: Light,
         renderer: &'a mut DemoRenderer,
         workspace: &'a mut ModelWorkspace,
-        out: &'a std::path::Path,
+        out: &'a Path,
     }
     impl ShaderUser<FrameStats> for One<'_> {
         fn call<S: FragmentShader<Rgb565>>(self, shader: &S) -> FrameStats {
@@ -463,7 +483,7 @@ fn render_model(args: &Args, path: &std::path::Path, texture: &Texture<'_>) {
             light,
             renderer: &mut renderer,
             workspace: &mut workspace,
-            out: &out,
+            out,
         },
     );
     println!(
