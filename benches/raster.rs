@@ -34,6 +34,7 @@ mod common;
 mod scenes;
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
+use embedded_graphics::pixelcolor::{Rgb565, RgbColor};
 use microraster::prelude::*;
 use scenes::*;
 use std::hint::black_box;
@@ -147,7 +148,10 @@ fn demo(c: &mut Criterion) {
             b.iter(|| black_box(scene.render(&mut r, &mut ws, Shading::Gouraud, &mut NullSink)))
         });
     }
-    let mut fb = FrameBuffer::new();
+    // A sink that keeps the whole frame, like a display's frame buffer:
+    // the library's, over a 320x240 Rgb565 array.
+    let mut pixels = vec![Rgb565::BLACK; (WIDTH * HEIGHT) as usize];
+    let mut fb = FrameBuffer::new(&mut pixels, Size::new(WIDTH, HEIGHT)).expect("sized to match");
     g.bench_function("microraster_gouraud_framebuffer", |b| {
         b.iter(|| black_box(scene.render(&mut r, &mut ws, Shading::Gouraud, &mut fb)))
     });

@@ -299,45 +299,6 @@ pub const TRIANGLE_SIZES: [(&str, f32, usize); 5] = [
     ("10000px", 10_000.0, 100),
 ];
 
-/// A sink that keeps the whole frame, like a display's frame buffer: every
-/// tile is copied into a 320x240 `Rgb565` array.
-pub struct FrameBuffer {
-    /// The pixels, row-major.
-    pub pixels: Vec<Rgb565>,
-}
-
-impl Default for FrameBuffer {
-    fn default() -> Self {
-        Self::new()
-    }
-}
-
-impl FrameBuffer {
-    /// A black frame.
-    pub fn new() -> Self {
-        Self {
-            pixels: vec![Rgb565::BLACK; (WIDTH * HEIGHT) as usize],
-        }
-    }
-}
-
-impl TileSink<Rgb565> for FrameBuffer {
-    type Error = core::convert::Infallible;
-
-    fn write_tile(
-        &mut self,
-        area: &embedded_graphics::primitives::Rectangle,
-        tile: &microraster::TileView<'_, Rgb565>,
-    ) -> Result<(), Self::Error> {
-        let (x0, y0) = (area.top_left.x as usize, area.top_left.y as usize);
-        for (dy, row) in tile.rows().enumerate() {
-            let start = (y0 + dy) * WIDTH as usize + x0;
-            self.pixels[start..start + row.len()].copy_from_slice(row);
-        }
-        Ok(())
-    }
-}
-
 /// The demo frame rendered by [`euc`] 0.5: the same meshes, transforms,
 /// camera, light and size; per-vertex (Lambert) colour interpolated over
 /// the triangle, an `f32` depth buffer with a less-or-equal test, back
