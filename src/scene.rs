@@ -7,7 +7,6 @@
 use crate::light::{Lighting, Material};
 use crate::math::{Mat4, Vec3};
 use crate::mesh::Mesh;
-use crate::shader::NoShader;
 use crate::texture::Texture;
 use embedded_graphics::pixelcolor::Rgb888;
 
@@ -275,6 +274,14 @@ impl<'a> Draw<'a> {
         self
     }
 }
+
+/// The shader of a scene that has none. [`Shading::Shader`] draws are an
+/// error without a shader
+/// ([`RenderError::MissingShader`](crate::render::RenderError::MissingShader)).
+/// It implements [`FragmentShader`](crate::shader::FragmentShader) for
+/// every colour, drawing nothing.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct NoShader;
 
 /// Everything one frame draws.
 ///

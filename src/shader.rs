@@ -254,13 +254,9 @@ pub trait FragmentShader<C> {
     fn fragment(&self, f: &Fragment<'_, Self::Varyings>) -> Option<C>;
 }
 
-/// The shader of a scene that has none. [`Shading::Shader`] draws are an
-/// error without a shader ([`RenderError::MissingShader`]).
-///
-/// [`Shading::Shader`]: crate::scene::Shading::Shader
-/// [`RenderError::MissingShader`]: crate::render::RenderError::MissingShader
-#[derive(Clone, Copy, Debug, Default)]
-pub struct NoShader;
+// Defined with the scene, whose default shader it is, so that `scene`
+// does not depend on this module (which depends on `scene` for `Draw`).
+pub use crate::scene::NoShader;
 
 impl<C> FragmentShader<C> for NoShader {
     type Varyings = [I16F16; 0];
