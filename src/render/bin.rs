@@ -26,6 +26,8 @@ pub(super) struct Bins<'w> {
     heads: &'w mut [u16],
     tails: &'w mut [u16],
     held: usize,
+    /// The most slots a pass has taken from the pool.
+    peak: usize,
 }
 
 impl<'w> Bins<'w> {
@@ -37,6 +39,7 @@ impl<'w> Bins<'w> {
             heads,
             tails,
             held: 0,
+            peak: 0,
         }
     }
 
@@ -48,6 +51,14 @@ impl<'w> Bins<'w> {
         let mut pass = Pass::new(self.pool, &mut self.heads[..n], &mut self.tails[..n]);
         bin(&mut pass);
         self.held = pass.tiles();
+        // Chunks are taken in order before any is reused: `fresh` is the
+        // pass's high-water mark.
+        self.peak = self.peak.max(pass.fresh as usize * CHUNK);
+    }
+
+    /// The most pool slots any pass so far has taken (whole chunks).
+    pub(super) fn peak(&self) -> usize {
+        self.peak
     }
 
     /// The number of tiles the last pass holds.

@@ -22,6 +22,8 @@ pub(super) struct Tally {
     pub(super) clipped: u32,
     pub(super) draws_culled: u32,
     pub(super) clusters_culled: u32,
+    /// (Triangle, tile) pairs, over every tile of the frame.
+    pub(super) pairs: u32,
 }
 
 /// One binning pass over every triangle: classifies it and appends a
@@ -150,6 +152,9 @@ pub(super) fn bin_triangles<const TW: usize, const TH: usize, I: Copy + Into<u32
             // coordinates are not negative.
             let (c0, c1) = (r.x0 as usize / TW, (r.x1 as usize - 1) / TW + 1);
             let (r0, r1) = (r.y0 as usize / TH, (r.y1 as usize - 1) / TH + 1);
+            // At most 2^16 triangles of 2^24 tiles: saturate, never wrap.
+            let pairs = ((c1 - c0) * (r1 - r0)) as u32;
+            tally.pairs = tally.pairs.saturating_add(pairs);
             for row in r0..r1 {
                 if hilbert {
                     for col in c0..c1 {

@@ -13,7 +13,7 @@ use crate::vertex::ScreenVertex;
 use embedded_graphics::pixelcolor::{PixelColor, Rgb888};
 
 /// The first phase of [`fill`] and [`fill_shaded`]: records the spans of
-/// a triangle in the tile and returns how many.
+/// a triangle in the tile (one per row at most) and returns how many.
 pub(super) type FindFn = fn(&[SubPoint; 3], &PixelRect, &mut [Span]) -> usize;
 
 /// The first phase for `raster`, of the rasterizers `P` links (the

@@ -108,6 +108,7 @@ where
             stats: FrameStats {
                 triangles_in: done.triangles as u32,
                 vertices: done.transformed,
+                vertex_slots: done.vertices as u32,
                 ..FrameStats::default()
             },
             features: core::marker::PhantomData,
@@ -207,6 +208,7 @@ where
             s.clipped = tally.clipped;
             s.draws_culled = tally.draws_culled;
             s.clusters_culled = tally.clusters_culled;
+            s.tile_pairs = tally.pairs;
         }
         self.t0 = t0;
         self.next = 0;
@@ -219,6 +221,9 @@ where
         } else {
             self.len = self.bins.tiles();
         }
+        let s = &mut self.stats;
+        s.peak_bin_entries = self.bins.peak() as u32;
+        s.peak_tiles_per_pass = s.peak_tiles_per_pass.max(self.bins.tiles() as u32);
     }
 
     /// What the frame did so far: after the last tile, the whole frame.

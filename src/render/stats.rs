@@ -30,6 +30,19 @@ pub struct FrameStats {
     /// Vertices transformed by the vertex stage (none of culled draws and
     /// clusters).
     pub vertices: u32,
+    /// Vertex slots of the workspace the frame used: every vertex of every
+    /// draw, culled or not. `VERTICES` must be at least this.
+    pub vertex_slots: u32,
+    /// (Triangle, tile) pairs of the frame: the bin entries it needs,
+    /// before the chunks' links and their unused slots.
+    pub tile_pairs: u32,
+    /// The most bin-pool slots one binning pass took (whole chunks of
+    /// [`CHUNK`](super::CHUNK), links included). With `bin_passes == 1`, a
+    /// `BIN_ENTRIES` of this many holds the frame in one pass.
+    pub peak_bin_entries: u32,
+    /// The most tiles one binning pass held: at most `TILES`, and the
+    /// frame's tile count when a pass holds them all.
+    pub peak_tiles_per_pass: u32,
 }
 
 /// One line of `name=value` pairs, every field in declaration order, for
@@ -46,7 +59,8 @@ impl core::fmt::Display for FrameStats {
             f,
             "triangles_in={} culled={} rejected={} clipped={} drawn={} pixels_shaded={} \
              tiles={} bin_passes={} rescanned_tiles={} draws_culled={} clusters_culled={} \
-             vertices={}",
+             vertices={} vertex_slots={} tile_pairs={} peak_bin_entries={} \
+             peak_tiles_per_pass={}",
             self.triangles_in,
             self.culled,
             self.rejected,
@@ -58,7 +72,11 @@ impl core::fmt::Display for FrameStats {
             self.rescanned_tiles,
             self.draws_culled,
             self.clusters_culled,
-            self.vertices
+            self.vertices,
+            self.vertex_slots,
+            self.tile_pairs,
+            self.peak_bin_entries,
+            self.peak_tiles_per_pass
         )
     }
 }
