@@ -27,7 +27,8 @@
 //!   on a top or left edge (see [`raster`]). Shared edges are drawn once.
 //! * Everything per vertex and per pixel is integer arithmetic, so every
 //!   target renders bit-identical images. `f32` appears only in per-frame
-//!   set-up ([`math`]), using IEEE basic operations and micromath.
+//!   set-up ([`math`]), using integers and IEEE basic operations only
+//!   (trigonometry included).
 //!
 //! ## Example
 //!

@@ -1983,8 +1983,8 @@ mod tests {
         let mut worst = 0.0f64;
         for case in 0..6_000 {
             let s = rng.log(0.1, 10.0);
-            // A rotation from a random unit quaternion: micromath's sine
-            // and cosine are too rough for an orthogonal matrix.
+            // A rotation from a random unit quaternion, orthogonal to f64
+            // precision (the f32 rotation matrices are only to f32's).
             let q = loop {
                 let q = [0.0; 4].map(|_| rng.range(-1.0, 1.0));
                 let l = q.iter().map(|x| x * x).sum::<f64>().sqrt();
