@@ -126,13 +126,14 @@ fn scaled(x: f32, s: i32) -> i64 {
 impl Frustum {
     /// The frustum of `view_proj` in the model space of `draw` (whose
     /// mesh's largest coordinate sets the margin for the vertex stage's
-    /// rounding). `None` if the matrix is not finite: nothing is culled
-    /// then, and the vertex stage reports the error.
+    /// rounding). `None` if the matrix is not finite or cannot be
+    /// normalized ([`Mat4::normalized`]): nothing is culled then, and the
+    /// vertex stage reports the error.
     pub fn new(view_proj: &Mat4, draw: &Draw<'_>) -> Option<Self> {
-        let m = *view_proj * draw.transform;
-        if !m.is_finite() {
-            return None;
-        }
+        // Normalized as the vertex stage normalizes it (the planes are
+        // homogeneous too, so the test does not change), so that its
+        // 16.16 matrix is this one rounded.
+        let m = (*view_proj * draw.transform).normalized()?;
         // The vertex stage's 16.16 matrix differs from this one by at most
         // 2^-17 per element, and a transformed coordinate by at most
         // (3 E + 2) 2^-17 with E the largest model coordinate; a plane sums

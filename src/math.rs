@@ -387,12 +387,17 @@ impl Mat4 {
         let (s, c) = sin_cos(fovy * 0.5);
         let f = c / s;
         let nf = 1.0 / (near - far);
+        // 2 far near / (near - far) as 2 far (near / (near - far)): the
+        // product far near underflows f32 for planes below about 1e-19 (and
+        // overflows above 1e19) where the ratio is still exact, so the
+        // projection of a scene scaled to any units is the same up to its
+        // scale.
         let r = Self {
             m: [
                 [f / aspect, 0.0, 0.0, 0.0],
                 [0.0, f, 0.0, 0.0],
                 [0.0, 0.0, (far + near) * nf, -1.0],
-                [0.0, 0.0, 2.0 * far * near * nf, 0.0],
+                [0.0, 0.0, 2.0 * far * (near * nf), 0.0],
             ],
         };
         r.is_finite().then_some(r)
@@ -475,8 +480,23 @@ impl Mat4 {
     ///
     /// Lighting uses it to move a world-space light direction into model
     /// space once per draw, so no per-vertex normal matrix is needed.
+    ///
+    /// The 3x3 part is first scaled by a power of two that brings its
+    /// largest element into `[1, 2)`, and the result by the same power:
+    /// exact, so the result is what the plain computation gives wherever
+    /// that neither underflows nor overflows, and a model matrix in any
+    /// units (a scale of 1e-20 has a determinant of 1e-60) still inverts.
     pub fn inverse_transform_vector(&self, v: Vec3) -> Option<Vec3> {
-        let m = &self.m;
+        let big = (0..3)
+            .flat_map(|c| self.m[c][..3].iter())
+            .fold(0.0f32, |b, x| b.max(x.abs()));
+        if !big.is_finite() || big == 0.0 {
+            return None;
+        }
+        // big = 1.x 2^e (subnormals counted as 2^-126): scale by 2^-e.
+        let e = (((big.to_bits() >> 23) as i32).max(1) - 127).min(126);
+        let k = f32::from_bits(((127 - e) as u32) << 23);
+        let m = self.m.map(|c| c.map(|x| x * k));
         // Rows of the 3x3 part.
         let r0 = Vec3::new(m[0][0], m[1][0], m[2][0]);
         let r1 = Vec3::new(m[0][1], m[1][1], m[2][1]);
@@ -490,12 +510,87 @@ impl Mat4 {
             return None;
         }
         let inv = 1.0 / det;
+        // The inverse of the scaled matrix is k times the inverse.
         let out = Vec3::new(
-            (c0.x * v.x + c1.x * v.y + c2.x * v.z) * inv,
-            (c0.y * v.x + c1.y * v.y + c2.y * v.z) * inv,
-            (c0.z * v.x + c1.z * v.y + c2.z * v.z) * inv,
+            (c0.x * v.x + c1.x * v.y + c2.x * v.z) * inv * k,
+            (c0.y * v.x + c1.y * v.y + c2.y * v.z) * inv * k,
+            (c0.z * v.x + c1.z * v.y + c2.z * v.z) * inv * k,
         );
         out.is_finite().then_some(out)
+    }
+
+    /// The same projective transform with its largest element ±1: the
+    /// matrix divided by the magnitude of its largest element.
+    ///
+    /// A model-view-projection matrix acts on homogeneous coordinates, so
+    /// any non-zero multiple of it gives the same picture (x/w, y/w and z/w
+    /// do not change). A scene in millimetres or in kilometres, with its
+    /// camera and planes in the same units, differs from the scene in metres
+    /// by such a factor only; dividing it out before the conversion to
+    /// 16.16 ([`to_fixed_normalized`](Self::to_fixed_normalized)) makes the
+    /// fixed-point matrix, and so the picture, the same in any units (up to
+    /// the rounding of the `f32` set-up). A power of two would keep the
+    /// elements' bits but leave a factor in `[1, 2)` that changes with the
+    /// units, and with it every rounding of the vertex stage.
+    ///
+    /// Returns `None` when an element is not finite, or when the largest is
+    /// below 2^-100 (zero included): then the elements that matter are
+    /// subnormal or nearly so, and have lost precision already.
+    ///
+    /// ```
+    /// use microraster::math::{Mat4, Vec3};
+    /// let m = Mat4::translation(Vec3::new(0.5, -4.0, 1.0));
+    /// let n = m.normalized().unwrap();
+    /// assert_eq!(n.m[3], [0.125, -1.0, 0.25, 0.25]);
+    /// // Any multiple of it is the same transform, and normalizes the same.
+    /// let times = |k: f32| Mat4 { m: m.m.map(|c| c.map(|v| v * k)) };
+    /// assert_eq!(times(1e-3).normalized(), Some(n));
+    /// assert_eq!(times(-65_536.0).normalized(), Some(times(-1.0).normalized().unwrap()));
+    /// assert_eq!(Mat4 { m: [[0.0; 4]; 4] }.normalized(), None);
+    /// ```
+    pub fn normalized(&self) -> Option<Self> {
+        if !self.is_finite() {
+            return None;
+        }
+        let big = self.m.iter().flatten().fold(0.0f32, |b, v| b.max(v.abs()));
+        // 2^-100: the elements within 2^-17 of it are normal f32s.
+        if big < f32::from_bits(27 << 23) {
+            return None;
+        }
+        let mut out = *self;
+        for v in out.m.iter_mut().flatten() {
+            *v /= big;
+        }
+        Some(out)
+    }
+
+    /// [`normalized`](Self::normalized), converted to 16.16: what the vertex
+    /// stage transforms with, so that the picture does not depend on the
+    /// scene's units.
+    ///
+    /// Returns `None` where `normalized` does, and when the conversion
+    /// would lose a whole row: a row with a non-zero element in `f32` whose
+    /// elements all round to zero, relative to the largest element, in
+    /// 16.16 (a coordinate of clip space would be lost, and the picture
+    /// with it). Such a matrix spans more than 2^17 between its rows: it
+    /// cannot be represented in 16.16 in any units.
+    ///
+    /// ```
+    /// use microraster::math::{Mat4, Vec3};
+    /// // The identity times 3e-5: the same transform.
+    /// let tiny = Mat4 { m: Mat4::IDENTITY.m.map(|c| c.map(|v| v * 3e-5)) };
+    /// assert_eq!(tiny.to_fixed().unwrap().m[0][0], 2); // most bits lost
+    /// assert_eq!(tiny.to_fixed_normalized(), Mat4::IDENTITY.to_fixed_normalized());
+    /// // x spans 2^-20 of w: not representable.
+    /// let flat = Mat4::scale(Vec3::new(1e-6, 1.0, 1.0));
+    /// assert!(flat.to_fixed_normalized().is_none());
+    /// ```
+    pub fn to_fixed_normalized(&self) -> Option<FixedMat4> {
+        let n = self.normalized()?;
+        let fixed = n.to_fixed()?;
+        let lost =
+            (0..4).any(|r| (0..4).any(|c| n.m[c][r] != 0.0) && (0..4).all(|c| fixed.m[c][r] == 0));
+        (!lost).then_some(fixed)
     }
 
     /// Converts to 16.16 fixed point, rounding to nearest.
@@ -828,6 +923,83 @@ mod tests {
                 p.m[0][0]
             );
         }
+    }
+
+    /// A perspective with its planes scaled by a power of two is the same
+    /// matrix up to that scale in its last column, exactly, from 2^-100 to
+    /// 2^100 (`far near` underflowed below about 2^-63 and overflowed
+    /// above 2^61).
+    #[test]
+    fn perspective_is_the_same_in_any_units() {
+        let base = Mat4::perspective(0.9, 1.3, 0.5, 20.0).unwrap();
+        for e in -100..=100 {
+            let k = 2f32.powi(e);
+            let p = Mat4::perspective(0.9, 1.3, 0.5 * k, 20.0 * k).unwrap();
+            assert_eq!(p.m[..3], base.m[..3], "2^{e}");
+            assert_eq!(p.m[3][2], base.m[3][2] * k, "2^{e}");
+        }
+    }
+
+    /// The inverse of a model matrix in any units: exact powers of two of
+    /// the unit one (the determinant of a 2^-50 scale underflowed).
+    #[test]
+    fn inverse_transform_works_in_any_units() {
+        let r = Mat4::rotation_y(0.7) * Mat4::rotation_x(-0.3);
+        let v = Vec3::new(0.3, -0.5, 0.8);
+        let unit = r.inverse_transform_vector(v).unwrap();
+        for e in -120..=120 {
+            let k = 2f32.powi(e);
+            let m = Mat4::scale(Vec3::new(k, k, k)) * r;
+            let back = m.inverse_transform_vector(v).unwrap();
+            assert_eq!(back, Vec3::new(unit.x / k, unit.y / k, unit.z / k), "2^{e}");
+        }
+        assert_eq!(
+            Mat4::scale(Vec3::new(0.0, 1.0, 1.0)).inverse_transform_vector(v),
+            None
+        );
+    }
+
+    /// The fixed-point matrix of the vertex stage does not depend on the
+    /// units: a scene scaled with its camera gives the same 16.16 matrix
+    /// (exactly for powers of two; for other factors up to the `f32`
+    /// rounding of the set-up, here none), where the plain conversion
+    /// lost every bit at 3e-5.
+    #[test]
+    fn normalized_fixed_matrix_is_the_same_in_any_units() {
+        let mvp = |s: f32| {
+            let eye = Vec3::new(1.2 * s, 1.0 * s, 2.5 * s);
+            let view = Mat4::look_at(eye, Vec3::default(), Vec3::new(0.0, 1.0, 0.0)).unwrap();
+            let proj = Mat4::perspective(0.9, 4.0 / 3.0, 0.5 * s, 20.0 * s).unwrap();
+            proj * view * Mat4::scale(Vec3::new(s, s, s)) * Mat4::rotation_y(0.6)
+        };
+        let unit = mvp(1.0).to_fixed_normalized().unwrap();
+        for e in -70..=60 {
+            let m = mvp(2f32.powi(e));
+            assert_eq!(m.to_fixed_normalized(), Some(unit), "2^{e}");
+        }
+        for s in [3e-5f32, 1e-3, 1e-4, 1e-6, 1e4] {
+            let m = mvp(s).to_fixed_normalized().unwrap();
+            let most = (0..4)
+                .flat_map(|c| (0..4).map(move |r| (c, r)))
+                .map(|(c, r)| (m.m[c][r] - unit.m[c][r]).abs())
+                .max();
+            assert!(most <= Some(1), "{s}: {m:?} against {unit:?}");
+        }
+        assert_eq!(
+            mvp(3e-5).to_fixed().map(|f| f.m[0][0].abs() < 4),
+            Some(true)
+        );
+        // What no units can represent: zero, and a row lost beside the rest.
+        assert_eq!(Mat4 { m: [[0.0; 4]; 4] }.to_fixed_normalized(), None);
+        assert_eq!(
+            Mat4::scale(Vec3::new(1.0, 1e-6, 1.0)).to_fixed_normalized(),
+            None
+        );
+        assert!(Mat4::scale(Vec3::new(1.0, 1e-4, 1.0))
+            .to_fixed_normalized()
+            .is_some());
+        let nan = Mat4::translation(Vec3::new(f32::NAN, 0.0, 0.0));
+        assert_eq!(nan.to_fixed_normalized(), None);
     }
 
     #[test]

@@ -1,8 +1,11 @@
 //! The vertex stage: model-view-projection, lighting, outcodes and the
 //! viewport transform, all in fixed point.
 //!
-//! Per frame (and per draw) the `f32` matrices of the [`Scene`](crate::scene::Scene) are combined
-//! and converted once to 16.16 ([`FixedMat4`]); the world-space lights are
+//! Per frame (and per draw) the `f32` matrices of the [`Scene`](crate::scene::Scene) are combined,
+//! normalized (divided by their largest element: clip coordinates are
+//! homogeneous, so this leaves the picture alone but makes it independent
+//! of the scene's units, see [`Mat4::normalized`]) and converted once to
+//! 16.16 ([`FixedMat4`]); the world-space lights are
 //! moved into the draw's model space ([`LightSetup`], see [`crate::light`]),
 //! so per vertex the stage needs only integer multiply-adds: 12 products for
 //! the position, a few per light, and 3 quotients by `w` for the
@@ -112,7 +115,9 @@ pub const BARY_ONE: i32 = 1 << 30;
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum VertexError {
     /// A matrix (model, view or projection, or their product) has a
-    /// non-finite element or one outside the 16.16 range.
+    /// non-finite element, or the product cannot be represented in 16.16
+    /// even normalized ([`Mat4::to_fixed_normalized`]: zero or nearly so,
+    /// or a row lost next to the largest element).
     BadMatrix,
     /// A transformed vertex left the 16.16 range of clip space.
     OutOfRange {
@@ -182,7 +187,10 @@ impl DrawSetup {
         if !m.is_finite() {
             return Err(VertexError::BadMatrix);
         }
-        let mvp = (*view_proj * *m).to_fixed().ok_or(VertexError::BadMatrix)?;
+        // Normalized: the same picture whatever the scene's units.
+        let mvp = (*view_proj * *m)
+            .to_fixed_normalized()
+            .ok_or(VertexError::BadMatrix)?;
         let light = match lighting {
             // The renderer checked the lights themselves (with an identity
             // model matrix): what is left to fail is this draw's matrix.

@@ -313,10 +313,14 @@ fn clip_space_overflow_is_reported_with_the_vertex() {
     let triangles = [[0u16, 1, 2], [0, 3, 4]];
     let mesh = Mesh::new(&positions, &triangles).unwrap();
     let ok = triangle();
+    // The model-view-projection matrix is normalized before the vertex
+    // stage (its largest element becomes 1, the picture stays), so scaling
+    // alone cannot overflow: clip x here is x's largest element times
+    // (x + 0.5) or (x + 1), past 32768 at vertex 3.
     for cam in [ortho(), perspective()] {
         for model in [
-            Mat4::scale(Vec3::new(2.0, 2.0, 2.0)),
-            Mat4::translation(Vec3::new(1.0, 0.0, 0.0)),
+            Mat4::scale(Vec3::new(10.0, 1.0, 1.0)) * Mat4::translation(Vec3::new(0.5, 0.0, 0.0)),
+            Mat4::scale(Vec3::new(-40.0, 2.0, 2.0)) * Mat4::translation(Vec3::new(1.0, 0.0, 0.0)),
         ] {
             let draws = [Draw::new(&ok), Draw::new(&mesh).transform(model)];
             let res = render_to_recorder(&Scene::new(cam, &draws));
@@ -335,9 +339,11 @@ fn clip_space_overflow_is_reported_with_the_vertex() {
 
 #[test]
 fn products_near_the_16_16_limits_do_not_overflow() {
-    // Every element of the matrix and every coordinate close to +-32768:
-    // each product is about 2^62, and their sum leaves i64. The vertex must
-    // be reported as out of range, not wrap around or panic.
+    // Every element of the matrix and every coordinate close to +-32768.
+    // The vertex stage normalizes the matrix (elements -1 here, w's
+    // translation 2^-15), so each product is about 2^47 and a sum of three
+    // leaves 16.16: the vertex must be reported as out of range, not wrap
+    // around or panic. (FixedMat4's own tests take products of 2^62.)
     let m = Mat4 {
         m: [
             [-32_000.0; 4],
@@ -350,6 +356,13 @@ fn products_near_the_16_16_limits_do_not_overflow() {
     let hi = I16F16::from_bits(0x7fff_0000);
     for p in [[lo, lo, lo], [hi, hi, hi], [hi, lo, hi]] {
         let positions = [p, p3(0.0, 0.0, 0.0), p3(0.1, 0.0, 0.0)];
+        if p == [hi, lo, hi] {
+            // The sum cancels to -hi: in range, and the frame renders.
+            let mesh = Mesh::new(&positions, &TRI_IDX).unwrap();
+            let draws = [Draw::new(&mesh).transform(m)];
+            assert!(render_to_recorder(&Scene::new(ortho(), &draws)).0.is_ok());
+            continue;
+        }
         let mesh = Mesh::new(&positions, &TRI_IDX).unwrap();
         let draws = [Draw::new(&mesh).transform(m)];
         assert_preflight(
