@@ -276,6 +276,67 @@ impl Default for Material {
     }
 }
 
+/// The colour and strength of a light or of an ambient term: a colour, or
+/// a plain fraction of white.
+///
+/// Every constructor of a light ([`DirectionalLight::new`],
+/// [`PointLight::new`], [`Lighting::new`]'s ambient term, and
+/// [`scene::Light`](crate::scene::Light)'s `color` and `ambient`) takes
+/// `impl Into<Intensity>`, so `0.8` and `Rgb888::new(204, 204, 204)` are the
+/// same light. A fraction is clamped to `[0, 1]` (NaN counts as 0) and
+/// rounded to the nearest of 256 levels, in `f32`.
+///
+/// ```
+/// use embedded_graphics::pixelcolor::Rgb888;
+/// use microraster::light::{DirectionalLight, Intensity, Lighting};
+/// use microraster::math::Vec3;
+///
+/// let sun = [DirectionalLight::new(Vec3::new(0.0, 1.0, 0.0), 0.8)];
+/// assert_eq!(sun[0].color, Rgb888::new(204, 204, 204));
+/// let lighting = Lighting::new(0.2).directional(&sun);
+/// assert_eq!(lighting.ambient, Rgb888::new(51, 51, 51));
+/// // A colour as before; a fraction beyond 1 is white.
+/// let warm = DirectionalLight::new(Vec3::new(1.0, 0.0, 0.0), Rgb888::new(255, 160, 64));
+/// assert_eq!(warm.color, Rgb888::new(255, 160, 64));
+/// assert_eq!(Intensity::from(1.5), Intensity(Rgb888::new(255, 255, 255)));
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Intensity(pub Rgb888);
+
+impl From<Rgb888> for Intensity {
+    fn from(c: Rgb888) -> Self {
+        Self(c)
+    }
+}
+
+impl From<f32> for Intensity {
+    fn from(fraction: f32) -> Self {
+        // NaN fails the test and becomes 0; the sum is below 256, so `as`
+        // only truncates.
+        let f = if fraction > 0.0 {
+            fraction.min(1.0)
+        } else {
+            0.0
+        };
+        let level = (f * 255.0 + 0.5) as u8;
+        Self(Rgb888::new(level, level, level))
+    }
+}
+
+/// For a fraction written as a literal (`0.8` is an `f64` where nothing
+/// says otherwise): converted to `f32` first, so no `f64` arithmetic runs.
+impl From<f64> for Intensity {
+    fn from(fraction: f64) -> Self {
+        Self::from(fraction as f32)
+    }
+}
+
+impl From<Intensity> for Rgb888 {
+    fn from(i: Intensity) -> Self {
+        i.0
+    }
+}
+
 /// A light infinitely far away, shining from one direction.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct DirectionalLight {
@@ -286,9 +347,13 @@ pub struct DirectionalLight {
 }
 
 impl DirectionalLight {
-    /// A light shining from `direction` (towards the light, world space).
-    pub const fn new(direction: Vec3, color: Rgb888) -> Self {
-        Self { direction, color }
+    /// A light shining from `direction` (towards the light, world space),
+    /// of a colour or a fraction of white ([`Intensity`]).
+    pub fn new(direction: Vec3, color: impl Into<Intensity>) -> Self {
+        Self {
+            direction,
+            color: color.into().0,
+        }
     }
 }
 
@@ -306,11 +371,12 @@ pub struct PointLight {
 }
 
 impl PointLight {
-    /// A light at `position` reaching `range` world units.
-    pub const fn new(position: Vec3, color: Rgb888, range: f32) -> Self {
+    /// A light at `position` reaching `range` world units, of a colour or
+    /// a fraction of white ([`Intensity`]).
+    pub fn new(position: Vec3, color: impl Into<Intensity>, range: f32) -> Self {
         Self {
             position,
-            color,
+            color: color.into().0,
             range,
         }
     }
@@ -356,10 +422,11 @@ pub struct Lighting<'a> {
 }
 
 impl<'a> Lighting<'a> {
-    /// Ambient light only: no lights, no fog (fog colour black).
-    pub const fn new(ambient: Rgb888) -> Self {
+    /// Ambient light only (a colour or a fraction of white, see
+    /// [`Intensity`]): no lights, no fog (fog colour black).
+    pub fn new(ambient: impl Into<Intensity>) -> Self {
         Self {
-            ambient,
+            ambient: ambient.into().0,
             directional: &[],
             point: &[],
             fog: Fog::None,
@@ -1977,6 +2044,41 @@ mod tests {
     /// and the eye keep some distance (ranges from 1 unit, lights beyond a
     /// tenth of their range, the eye beyond 10 units) and shininess stays
     /// up to 32. The worst error found over 200,000 cases was 1.36.
+    /// A fraction of white is the grey of that many 255ths, rounded, and
+    /// lights the same as that colour.
+    #[test]
+    fn fractions_are_grey_intensities() {
+        for (f, level) in [
+            (0.8f32, 204u8),
+            (0.0, 0),
+            (1.0, 255),
+            (0.5, 128),
+            (0.001, 0),
+            (0.003, 1),
+            (-2.0, 0),
+            (7.0, 255),
+            (f32::NAN, 0),
+            (f32::INFINITY, 255),
+        ] {
+            let grey = Rgb888::new(level, level, level);
+            assert_eq!(Intensity::from(f).0, grey, "{f}");
+            assert_eq!(Intensity::from(f as f64).0, grey, "{f}");
+        }
+        let dir = Vec3::new(0.3, 1.0, 0.2);
+        let (a, b) = (
+            [DirectionalLight::new(dir, 0.8)],
+            [DirectionalLight::new(dir, Rgb888::new(204, 204, 204))],
+        );
+        assert_eq!(a, b);
+        let (la, lb) = (
+            Lighting::new(0.2).directional(&a),
+            Lighting::new(Rgb888::new(51, 51, 51)).directional(&b),
+        );
+        assert_eq!(la, lb);
+        let lamp = PointLight::new(Vec3::new(0.0, 0.0, 2.0), 0.5, 4.0);
+        assert_eq!(lamp.color, Rgb888::new(128, 128, 128));
+    }
+
     #[test]
     fn model_space_matches_world_space() {
         let mut rng = Rng(0xabad_1dea_f00d_0042);

@@ -4,7 +4,7 @@
 //! so building a scene costs a few words of stack. Everything here is
 //! per-frame set-up in `f32`; the renderer converts it to fixed point once.
 
-use crate::light::{Lighting, Material};
+use crate::light::{Intensity, Lighting, Material};
 use crate::math::{Mat4, Vec3};
 use crate::mesh::Mesh;
 use crate::texture::Texture;
@@ -181,15 +181,25 @@ impl Light {
         }
     }
 
-    /// Sets the diffuse colour.
-    pub const fn color(mut self, color: Rgb888) -> Self {
-        self.color = color;
+    /// Sets the diffuse colour: a colour or a fraction of white
+    /// ([`Intensity`]).
+    ///
+    /// ```
+    /// use embedded_graphics::pixelcolor::Rgb888;
+    /// use microraster::prelude::*;
+    /// let light = Light::new(Vec3::new(1.0, 1.0, 1.0)).color(0.8).ambient(0.1);
+    /// assert_eq!(light.color, Rgb888::new(204, 204, 204));
+    /// assert_eq!(light.ambient, Rgb888::new(26, 26, 26));
+    /// ```
+    pub fn color(mut self, color: impl Into<Intensity>) -> Self {
+        self.color = color.into().0;
         self
     }
 
-    /// Sets the ambient colour.
-    pub const fn ambient(mut self, ambient: Rgb888) -> Self {
-        self.ambient = ambient;
+    /// Sets the ambient colour: a colour or a fraction of white
+    /// ([`Intensity`]).
+    pub fn ambient(mut self, ambient: impl Into<Intensity>) -> Self {
+        self.ambient = ambient.into().0;
         self
     }
 }
