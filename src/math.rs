@@ -31,8 +31,10 @@
 //!   result, by Horner's rule in `f32`, the remainder carried as two
 //!   `f32`s and `r²` made exact by Dekker's product where it matters.
 //!
-//! The tests compare every 8191st `f32` of either sign with `f64`: sine and
-//! cosine within 1 ulp (0.73 at worst), tangent within 2 ulps.
+//! Against `f64`, sine and cosine are within 1 ulp (0.79 at worst, checked
+//! once for every finite `f32`), the tangent within 3 ulps (2.21 at worst
+//! over every 16th `f32`); the tests check every 8191st `f32` of either
+//! sign and the worst cases.
 //!
 //! # The same bits on every target
 //!
@@ -206,7 +208,7 @@ pub fn sin_cos(x: f32) -> (f32, f32) {
     (if x.is_sign_negative() { -s } else { s }, c)
 }
 
-/// Tangent of `x` radians, `sin / cos` from [`sin_cos`]: within 2 ulps of
+/// Tangent of `x` radians, `sin / cos` from [`sin_cos`]: within 3 ulps of
 /// the exact value for every finite `f32`.
 ///
 /// ```
@@ -383,7 +385,7 @@ impl Mat4 {
         if !ok {
             return None;
         }
-        // cot(fovy / 2) from one sine and cosine (within 2.5 ulps).
+        // cot(fovy / 2) from one sine and cosine (within 3 ulps).
         let (s, c) = sin_cos(fovy * 0.5);
         let f = c / s;
         let nf = 1.0 / (near - far);
@@ -819,7 +821,8 @@ mod tests {
     /// Every 8191st `f32` of either sign, zero to the largest finite value,
     /// and angles that are hard for range reduction (near multiples of π/2,
     /// where the window of 2/π moves, the largest): sine and cosine within
-    /// 1 ulp of `f64`, tangent within 2 ulps.
+    /// 1 ulp of `f64`, tangent within 3 ulps (an exhaustive run found 0.79
+    /// and 2.21 at worst; the three worst inputs are here).
     #[test]
     fn trigonometry_is_within_an_ulp_over_the_whole_range() {
         let hard = [
@@ -832,6 +835,9 @@ mod tests {
             f32::from_bits(0x4dc9_0fdb), // 2^28 π/2
             f32::from_bits(0x4080_0000), // 4: the window starts to move
             f32::from_bits(0x5f80_0000), // 2^64: the window crosses a word
+            f32::from_bits(0x48ab_f838), // sine's worst, 0.79 ulp
+            f32::from_bits(0x6916_2f28), // cosine's worst, 0.78 ulp
+            f32::from_bits(0x4016_e450), // the tangent's worst found, 2.21 ulps
             f32::from_bits(0x5922_8000), // 2.85e15, within 1e-8 of k π/2
             f32::from_bits(0x6a80_c25b),
         ];
@@ -846,12 +852,12 @@ mod tests {
                 es < 1.0 && ec < 1.0,
                 "{x:e}: sin {s} ({es} ulp), cos {c} ({ec} ulp)"
             );
-            assert!(et < 2.0, "{x:e}: tan {t} ({et} ulp)");
+            assert!(et < 3.0, "{x:e}: tan {t} ({et} ulp)");
             worst_sc = worst_sc.max(es).max(ec);
             worst_t = worst_t.max(et);
         }
         // The bounds are close to what is reached: the sweep is not trivial.
-        assert!(worst_sc > 0.6 && worst_t > 1.2, "{worst_sc} {worst_t}");
+        assert!(worst_sc > 0.78 && worst_t > 2.2, "{worst_sc} {worst_t}");
         for x in [f32::NAN, f32::INFINITY, f32::NEG_INFINITY] {
             let (s, c) = sin_cos(x);
             assert!(s.is_nan() && c.is_nan() && tan(x).is_nan());
@@ -902,7 +908,7 @@ mod tests {
     }
 
     /// The focal length `1 / tan(fovy / 2)` of a perspective projection is
-    /// within 2.5 ulps for every field of view (micromath's tangent made the
+    /// within 3 ulps for every field of view (micromath's tangent made the
     /// picture 0.19 % too large at 45°).
     #[test]
     fn perspective_focal_length_is_accurate() {
