@@ -75,12 +75,12 @@ impl<E: core::fmt::Debug> core::fmt::Display for RenderError<E> {
                 "frame {}x{} exceeds the {MAX_VIEWPORT}-pixel limit per side",
                 size.width, size.height
             ),
-            Self::BadCamera => write!(f, "the camera matrices are not finite or exceed 16.16"),
+            Self::BadCamera => write!(f, "the camera matrices are not finite, or their product is zero"),
             Self::Light(e) => write!(f, "lighting: {e}"),
             Self::Draw { draw, error } => match error {
                 VertexError::BadMatrix => write!(
                     f,
-                    "draw {draw}: its transform is not finite, singular, or exceeds 16.16"
+                    "draw {draw}: its transform is not finite, or cannot be represented in 16.16 in any units"
                 ),
                 VertexError::OutOfRange { vertex } => write!(
                     f,

@@ -64,7 +64,11 @@ where
         return Err(RenderError::ViewportTooLarge { size });
     }
     let view_proj = scene.camera.projection * scene.camera.view;
-    if !view_proj.is_finite() || view_proj.to_fixed().is_none() {
+    // Normalized, as the vertex stage converts each draw's product: a
+    // camera in any units is fine; only a non-finite or zero one is bad.
+    // (Not `to_fixed_normalized`: a camera alone may lose a row that a
+    // draw's model matrix restores.)
+    if view_proj.normalized().is_none() {
         return Err(RenderError::BadCamera);
     }
     let eye = scene.camera.eye();
