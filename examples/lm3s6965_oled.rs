@@ -11,6 +11,9 @@
 //! the environment it stops after N frames, prints `done` and idles, which is
 //! how the end-to-end test takes the panel's picture.
 //!
+//! Each frame's line ends with the peak stack since boot, measured by
+//! painting the free RAM at start-up (`examples/stack_gauge/mod.rs`).
+//!
 //! With `--features assets` it shows `examples/assets/rocket.obj` instead,
 //! converted into flash-resident arrays by `build.rs` at build time.
 //!
@@ -28,6 +31,8 @@ fn main() {
 
 #[cfg(target_os = "none")]
 mod oled_scene;
+#[cfg(target_os = "none")]
+mod stack_gauge;
 
 #[cfg(target_os = "none")]
 mod firmware {
@@ -223,6 +228,9 @@ mod firmware {
 
     #[entry]
     fn main() -> ! {
+        // Everything below `main`'s frame, so that each frame's line can say
+        // how deep the stack has gone since boot.
+        crate::stack_gauge::paint();
         // The imported rocket (`--features assets`), in flash since the
         // build; or the knot, generated into RAM.
         #[cfg(feature = "assets")]
@@ -248,12 +256,15 @@ mod firmware {
             let scene = Scene::new(camera, &draws).light(light());
             match renderer.render(workspace, &scene, &mut oled) {
                 Ok(s) => hprintln!(
-                    "frame {}: {} of {} triangles drawn, {} pixels shaded, {} tiles",
+                    "frame {}: {} of {} triangles drawn, {} pixels shaded, {} tiles; \
+                     peak stack {} B of {} B free",
                     frame,
                     s.drawn,
                     s.triangles_in,
                     s.pixels_shaded,
-                    s.tiles
+                    s.tiles,
+                    crate::stack_gauge::peak(),
+                    crate::stack_gauge::room()
                 ),
                 Err(e) => {
                     hprintln!("frame {}: render error: {:?}", frame, e);

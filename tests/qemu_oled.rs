@@ -214,9 +214,23 @@ fn oled_firmware_in_qemu_matches_host_render() {
         status.success() || status.code().is_some(),
         "qemu ended: {status:?}"
     );
+    let frame0 = log
+        .iter()
+        .find(|l| l.starts_with("frame 0:"))
+        .unwrap_or_else(|| panic!("the firmware reported its frame: {log:?}"));
+    // "...; peak stack N B of M B free": painted and measured on the board
+    // (examples/stack_gauge/mod.rs). It must have seen the renderer's frames
+    // and must not have run into the statics.
+    let stack: Vec<u64> = frame0
+        .rsplit("; peak stack ")
+        .next()
+        .into_iter()
+        .flat_map(|t| t.split(' ').filter_map(|w| w.parse().ok()))
+        .collect();
+    println!("qemu_oled: {frame0}");
     assert!(
-        log.iter().any(|l| l.starts_with("frame 0:")),
-        "the firmware reported its frame: {log:?}"
+        matches!(stack[..], [peak, free] if peak > 1024 && peak < free),
+        "implausible peak stack: {frame0}"
     );
 
     let panel = panel_from_ppm(&std::fs::read(&ppm_path).expect("screendump wrote the file"));
