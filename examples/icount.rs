@@ -46,6 +46,10 @@
 //! splits the frame into set-up, vertex stage, binning, rasterization and
 //! shading, and the sink. Both are repeated, and must repeat exactly.
 //!
+//! It also prints each scene's peak stack, measured by painting the free
+//! RAM before the scene and finding how far down its frames wrote
+//! (`examples/stack_gauge/mod.rs`); the painting is outside the counts.
+//!
 //! On a host build this file is only a stub that says how to run it.
 
 #![cfg_attr(target_os = "none", no_std)]
@@ -60,6 +64,8 @@ fn main() {
 
 #[cfg(target_os = "none")]
 mod icount_scenes;
+#[cfg(target_os = "none")]
+mod stack_gauge;
 
 /// Exact instruction stamps from SysTick under `-icount shift=0`.
 #[cfg(target_os = "none")]
@@ -337,6 +343,7 @@ mod firmware {
     use crate::icount_scenes::{
         frame, renderer, BenchWorkspace, FrameError, Meshes, SceneId, HEIGHT, WIDTH,
     };
+    use crate::stack_gauge;
     use crate::timer::{self, Stamps, END, PERIOD, START};
     use cortex_m::peripheral::SYST;
     use cortex_m_rt::entry;
@@ -664,21 +671,25 @@ mod firmware {
         };
         let meshes = Meshes::new(texels).map_err(Error::Mesh)?;
         let ws = WORKSPACE.take();
+        // The stack since boot (calibration, printing); then each scene's
+        // own, painted afresh below this frame before it.
+        let boot_stack = stack_gauge::peak();
         let mut results = [None; SceneId::ALL.len()];
         for (slot, scene) in results.iter_mut().zip(scenes.into_iter().flatten()) {
+            stack_gauge::paint();
             let a = measure(scene, &meshes, ws, s, syst, overhead)?;
             let b = measure(scene, &meshes, ws, s, syst, overhead)?;
             if a != b {
                 return Err(Error::Unrepeatable(scene.name()));
             }
-            *slot = Some((scene, a));
+            *slot = Some((scene, a, stack_gauge::peak()));
         }
         let results = results.iter().flatten();
 
         hprintln!();
         hprintln!("| scene | instructions per frame | pixels shaded | per pixel | triangles | per triangle |");
         hprintln!("|---|---:|---:|---:|---:|---:|");
-        for (scene, m) in results.clone() {
+        for (scene, m, _) in results.clone() {
             let (px, tris) = (m.stats.pixels_shaded as u64, m.stats.triangles_in as u64);
             hprintln!(
                 "| `{}` | {} | {} | {} | {} | {} |",
@@ -695,7 +706,7 @@ mod firmware {
             "| scene | set-up | vertex | binning | raster + shade | sink | sum (profiled build) | minus plain |"
         );
         hprintln!("|---|---:|---:|---:|---:|---:|---:|---:|");
-        for (scene, m) in results.clone() {
+        for (scene, m, _) in results.clone() {
             let sum = m.stages.iter().fold(0u32, |a, &b| a.wrapping_add(b));
             hprintln!(
                 "| `{}` | {} | {} | {} | {} | {} | {} | {} |",
@@ -710,7 +721,26 @@ mod firmware {
             );
         }
         hprintln!();
-        for (scene, m) in results {
+        // Painted RAM that a scene's frames wrote: from the top of RAM, so
+        // `main`, `run` and the renderer on `measure`'s stack included.
+        hprintln!("| scene | peak stack |");
+        hprintln!("|---|---:|");
+        let mut deepest = ("start-up and calibration", boot_stack);
+        for &(scene, _, peak) in results.clone() {
+            hprintln!("| `{}` | {} B |", scene.name(), Sep(peak as u64));
+            if peak > deepest.1 {
+                deepest = (scene.name(), peak);
+            }
+        }
+        hprintln!(
+            "peak stack: {} B ({}); start-up and calibration {} B; {} B painted below the top of RAM",
+            Sep(deepest.1 as u64),
+            deepest.0,
+            Sep(boot_stack as u64),
+            Sep(stack_gauge::room() as u64)
+        );
+        hprintln!();
+        for (scene, m, _) in results {
             let st = &m.stats;
             hprintln!(
                 "{}: {} triangles in, {} culled, {} rejected, {} clipped, {} drawn; {} tiles, {} bin passes, {} rescanned",
@@ -733,6 +763,9 @@ mod firmware {
 
     #[entry]
     fn main() -> ! {
+        // All the free RAM under `main`: `run` reads how deep start-up and
+        // calibration went, then repaints for each scene.
+        crate::stack_gauge::paint();
         match run() {
             Ok(()) => {
                 hprintln!("icount: done");

@@ -9,8 +9,8 @@
 #
 # For each board, builds examples/icount.rs in release for its target, runs
 # it twice in QEMU and checks that both runs print the same thing, then
-# prints its tables and the firmware's flash and static RAM (llvm-size -A
-# of the linked ELF). SCENES (names separated by spaces) is passed to the
+# prints its tables and the firmware's flash, static RAM (llvm-size -A of
+# the linked ELF) and peak stack (which the firmware measures). SCENES (names separated by spaces) is passed to the
 # build as MICRORASTER_ICOUNT_SCENES; the scenes are demo, demo-flat, fill,
 # grid4 and the fragment-shader fills fill-gouraud-exact,
 # fill-nearest-exact, fill-nearest-affine, fill-bilinear-exact and
@@ -88,28 +88,34 @@ for board in $BOARDS; do
 
         # Flash: what is loaded (vector table, code, read-only data, the
         # initial values of .data); static RAM: .data, .bss, .uninit.
+        # Peak stack: the firmware's own measurement ("peak stack: N B
+        # (scene); ..."), commas taken out.
+        stack=$(sed -n 's/^peak stack: \([0-9,]*\) B (\([^)]*\)).*/\1 \2/p' "$OUT/$board.1.txt" | tr -d ,)
+        [ -n "$stack" ] || { echo "icount: no peak stack from $board" >&2; exit 1; }
         read -r flash ram < <("$size" -A "$elf" | awk '
             $1 == ".vector_table" || $1 == ".text" || $1 == ".rodata" || $1 == ".gnu.sgstubs" { f += $2 }
             $1 == ".data" { f += $2; r += $2 }
             $1 == ".bss" || $1 == ".uninit" { r += $2 }
             END { print f, r }')
         footprint+=("$(awk -v b="$board" -v t="$target" -v f="$flash" -v r="$ram" \
-            -v fk="$flash_kib" -v rk="$ram_kib" -v g="${group:-all}" '
+            -v fk="$flash_kib" -v rk="$ram_kib" -v g="${group:-all}" \
+            -v st="${stack%% *}" -v deepest="${stack#* }" '
             function sep(n,   s) {
                 s = sprintf("%d", n)
                 while (s ~ /[0-9][0-9][0-9][0-9]/) sub(/[0-9][0-9][0-9](,|$)/, ",&", s)
                 return s
             }
             BEGIN {
-                printf "| `icount` on %s (%s) | `%s` | %s B (%.1f of %d KiB) | %s B (%.1f of %d KiB) | %s B |",
-                    b, g, t, sep(f), f / 1024, fk, sep(r), r / 1024, rk, sep(rk * 1024 - r)
+                printf "| `icount` on %s (%s) | `%s` | %s B (%.1f of %d KiB) | %s B | %s B (`%s`) | %s B (%.1f of %d KiB) |",
+                    b, g, t, sep(f), f / 1024, fk, sep(r), sep(st), deepest,
+                    sep(r + st), (r + st) / 1024, rk
             }')")
     done
 done
 
 echo
-echo "## Footprint (release, llvm-size -A)"
+echo "## Footprint (release: llvm-size -A; peak stack measured by the firmware)"
 echo
-echo "| firmware | target | flash | static RAM | RAM left for the stack |"
-echo "|---|---|---|---|---|"
+echo "| firmware | target | flash | static RAM | peak stack (deepest scene) | total RAM |"
+echo "|---|---|---|---|---|---|"
 printf '%s\n' "${footprint[@]}"
