@@ -175,13 +175,13 @@ mod timer {
         syst.has_wrapped()
     }
 
-    /// Charges the instructions since the last stamp to the last stamp's
-    /// tag and starts charging `tag`. Every call executes the same
-    /// instructions, except the spin loop, whose 4 instructions a turn are
-    /// left out; the constant rest is measured by the firmware's
-    /// calibration and taken out by the caller.
-    #[inline(never)]
-    pub extern "C" fn stamp(s: &mut Stamps, tag: u32) {
+    /// The stamp's timer reads (see [`stamp`]): the spin loop's turns `n`,
+    /// the burst read `k` that saw the edge (plus 8 if none did) and the
+    /// counter's value `v2` after it. ARMv6-M code (loads only into r0-r7,
+    /// no `it` blocks, so `k` is computed without branches), which the
+    /// ARMv7-M cores run as well: one sequence for every board.
+    #[inline(always)]
+    fn vernier() -> (u32, u32, u32) {
         let (n, k, v2): (u32, u32, u32);
         // SAFETY: the sequence only reads SysTick's current-value register,
         // a read-only memory-mapped register that no Rust object aliases
@@ -193,10 +193,15 @@ mod timer {
         // instructions 2 + 4m) stops at the first value v1 != v0, read at
         // 4n - 2 with n turns, so that edge fell in (4n - 6, 4n - 2] and
         // the next one, PERIOD later, in (4n - 6 + P, 4n - 2 + P]. After
-        // PERIOD - 8 nops the burst reads at 4n - 6 + P + i, i = 0..=4:
-        // the first one that sees v2 = v1 - 1 is that edge, so
-        // k = (reads still at v1) is in 1..=4, and 8 is added if the last
-        // read has not changed (which must never happen).
+        // PERIOD - 8 instructions (two `mov`s that keep n and v1 out of the
+        // burst's five low registers, then nops) the burst reads at
+        // 4n - 6 + P + i, i = 0..=4: the first one that sees v2 = v1 - 1 is
+        // that edge, so k = (reads still at v1) is in 1..=4, and 8 is added
+        // if the last read has not changed (which must never happen). Each
+        // read is v1 or v1 - 1, so with d_i = v1 - read_i (0 or 1),
+        // k = 12 - (d_0 + d_1 + d_2 + d_3) - 8 d_4. Outputs only in low
+        // registers (Thumb-1 allows high ones as clobbers only): n comes
+        // back to r1.
         unsafe {
             asm!(
                 "ldr r1, [r0]",
@@ -206,42 +211,53 @@ mod timer {
                 "adds r2, r2, #1",
                 "cmp r3, r1",
                 "beq 2b",
+                "mov r8, r2",
+                "mov r9, r3",
                 ".rept {delay}",
                 "nop",
                 ".endr",
                 "ldr r1, [r0]",
+                "ldr r2, [r0]",
+                "ldr r3, [r0]",
                 "ldr r4, [r0]",
                 "ldr r5, [r0]",
-                "ldr r8, [r0]",
-                "ldr r10, [r0]",
-                "movs r0, #0",
-                "cmp r1, r3",
-                "it eq",
-                "addeq r0, r0, #1",
-                "cmp r4, r3",
-                "it eq",
-                "addeq r0, r0, #1",
-                "cmp r5, r3",
-                "it eq",
-                "addeq r0, r0, #1",
-                "cmp r8, r3",
-                "it eq",
-                "addeq r0, r0, #1",
-                "cmp r10, r3",
-                "it eq",
-                "addeq r0, r0, #8",
-                delay = const PERIOD - 8,
+                "mov r0, r9",
+                "subs r1, r0, r1",
+                "subs r2, r0, r2",
+                "adds r1, r1, r2",
+                "subs r2, r0, r3",
+                "adds r1, r1, r2",
+                "subs r2, r0, r4",
+                "adds r1, r1, r2",
+                "subs r0, r0, r5",
+                "lsls r0, r0, #3",
+                "adds r0, r0, r1",
+                "movs r1, #12",
+                "subs r0, r1, r0",
+                "mov r1, r8",
+                delay = const PERIOD - 10,
                 inout("r0") SYST_CVR => k,
-                out("r1") _,
-                out("r2") n,
+                out("r1") n,
+                out("r2") _,
                 out("r3") _,
                 out("r4") _,
-                out("r5") _,
+                out("r5") v2,
                 out("r8") _,
-                out("r10") v2,
+                out("r9") _,
                 options(nostack),
             );
         }
+        (n, k, v2)
+    }
+
+    /// Charges the instructions since the last stamp to the last stamp's
+    /// tag and starts charging `tag`. Every call executes the same
+    /// instructions, except the spin loop, whose 4 instructions a turn are
+    /// left out; the constant rest is measured by the firmware's
+    /// calibration and taken out by the caller.
+    #[inline(never)]
+    pub extern "C" fn stamp(s: &mut Stamps, tag: u32) {
+        let (n, k, v2) = vernier();
         // The edge to v2 came PERIOD * (RELOAD - v2) after the reload; this
         // stamp's end is a constant after it, less k, and its start (the
         // first read) 4n before that. Straight-line code: every call runs
@@ -261,28 +277,33 @@ mod timer {
     }
 
     /// Shifts the phase of what follows by `q` instructions, for `q` below
-    /// 128: the assembly executes exactly `q + 4`, a jump into a run of 128
-    /// `nop`s, `q` from its end.
-    #[inline(always)]
+    /// 128: the assembly executes exactly `q + 3`, a jump into a run of 128
+    /// `nop`s, `q` from its end; the call around it, a constant more.
+    /// ARMv6-M code, as every sequence here. Never inlined: LLVM counts a
+    /// `.rept` as one instruction when it places a function's literal pool,
+    /// which ARMv6-M's loads reach only 1,020 bytes ahead, so 128 `nop`s
+    /// inlined into the calibration loop would push its pool out of reach.
+    #[inline(never)]
     pub fn shift(q: u32) {
-        let offset = 2 * (128 - q.min(128));
-        // SAFETY: the jump lands inside the run of nops (2 bytes each, from
-        // the word-aligned label), on a Thumb address; nothing but nops
-        // runs there, then execution falls through. Assembly, because the
-        // count of instructions is the point.
+        // `mov r0, pc` reads its own address + 4, the address of the first
+        // nop less 2 (the three instructions are 2 bytes each); bit 0 set:
+        // `bx` needs a Thumb address.
+        let offset = (2 + 2 * (128 - q.min(128))) | 1;
+        // SAFETY: the jump lands inside the run of nops, which follows the
+        // `bx` directly, on a Thumb address; nothing but nops runs there,
+        // then execution falls through. Assembly, because the count of
+        // instructions is the point. `mov` and `add` without `s` keep the
+        // flags.
         unsafe {
             asm!(
-                "adr.w {t}, 2f",
-                "add {t}, {t}, {o}",
-                "orr {t}, {t}, #1",
-                "bx {t}",
-                ".balign 4",
-                "2:",
+                "mov r0, pc",
+                "add r0, {o}",
+                "bx r0",
                 ".rept 128",
                 "nop",
                 ".endr",
-                t = out(reg) _,
                 o = in(reg) offset,
+                out("r0") _,
                 options(nomem, nostack, preserves_flags),
             );
         }
@@ -308,9 +329,10 @@ mod timer {
         s.charge[START as usize]
     }
 
-    /// Iterations of the long calibration loop.
-    pub const LOOP_TURNS: u32 = 500_000;
-    /// Instructions the long calibration loop executes: `movw`, `movt`,
+    /// Iterations of the long calibration loop: what `movs` (8 bits) and a
+    /// shift make in two instructions, the ARMv6-M way (no `movw`).
+    pub const LOOP_TURNS: u32 = 0x7A << 12;
+    /// Instructions the long calibration loop executes: `movs`, `lsls`,
     /// then `subs` and `bne` per turn.
     pub const LOOP_INSTRUCTIONS: u32 = 2 + 2 * LOOP_TURNS;
 
@@ -319,17 +341,17 @@ mod timer {
     pub fn around_loop(s: &mut Stamps) -> u32 {
         s.reset();
         stamp(s, START);
-        // SAFETY: a counted loop on a scratch register, nothing else.
+        // SAFETY: a counted loop on a scratch register, nothing else (r0:
+        // ARMv6-M's `movs` and `lsls` take only low registers).
         unsafe {
             asm!(
-                "movw {r}, #{lo}",
-                "movt {r}, #{hi}",
+                "movs r0, #{hi}",
+                "lsls r0, r0, #12",
                 "2:",
-                "subs {r}, {r}, #1",
+                "subs r0, r0, #1",
                 "bne 2b",
-                r = out(reg) _,
-                lo = const LOOP_TURNS & 0xFFFF,
-                hi = const LOOP_TURNS >> 16,
+                hi = const LOOP_TURNS >> 12,
+                out("r0") _,
                 options(nomem, nostack),
             );
         }
