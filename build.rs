@@ -9,6 +9,16 @@
 //! | `thumbv6m-none-eabi`    | Raspberry Pi Pico (RP2040)   | `memory/rp2040.x`     |
 //! | `thumbv7em-none-eabihf` | Arm MPS2-AN386 (Cortex-M4F)  | `memory/mps2-an386.x` |
 //!
+//! A thumbv6m build may instead be for QEMU's MPS2-AN386, which runs the
+//! ARMv6-M instruction stream unchanged (the instruction counts of a
+//! Cortex-M0+, `scripts/icount.sh`): built with
+//! `--cfg microraster_board="mps2-an386"` in its rustflags, it gets that
+//! board's map. A cfg rather than an environment variable, because the same
+//! switch must also keep the RP2040's HAL out of the build (`Cargo.toml`
+//! selects those dependencies on it; cargo sees rustflags' cfgs, never the
+//! environment), and one switch cannot disagree with itself. The build script
+//! reads it as `CARGO_CFG_MICRORASTER_BOARD`.
+//!
 //! lld looks for an `INCLUDE`d file in its working directory (the package
 //! root) before its search path, so the root `memory.x` would win for every
 //! target. `.cargo/config.toml` therefore links the other two boards through
@@ -28,13 +38,20 @@
 
 use std::{env, fs, path::PathBuf};
 
-/// The memory map for a target triple, if it is one of the boards.
-fn board_map(target: &str) -> Option<&'static str> {
+/// The memory map for a target triple, if it is one of the boards, or for
+/// the board named by the `microraster_board` cfg (`board`), which only a
+/// Cortex-M target can run.
+fn board_map(target: &str, board: Option<&str>) -> Option<&'static str> {
     let arch = target.split('-').next().unwrap_or_default();
-    match arch {
-        "thumbv7m" => Some("memory.x"),
-        "thumbv6m" => Some("memory/rp2040.x"),
-        "thumbv7em" => Some("memory/mps2-an386.x"),
+    match (arch, board) {
+        ("thumbv6m" | "thumbv7m" | "thumbv7em", Some("mps2-an386")) => Some("memory/mps2-an386.x"),
+        (_, Some(other)) => panic!(
+            "--cfg microraster_board=\"{other}\" is not a board for {target} \
+             (the one board to pick is \"mps2-an386\", on a thumbv6m/v7m/v7em target)"
+        ),
+        ("thumbv7m", None) => Some("memory.x"),
+        ("thumbv6m", None) => Some("memory/rp2040.x"),
+        ("thumbv7em", None) => Some("memory/mps2-an386.x"),
         _ => None,
     }
 }
@@ -58,8 +75,10 @@ fn main() {
     println!("cargo:rerun-if-changed=build.rs");
     println!("cargo:rerun-if-changed=memory");
     println!("cargo:rerun-if-changed=memory.x");
+    println!("cargo::rustc-check-cfg=cfg(microraster_board, values(\"mps2-an386\"))");
     let target = env::var("TARGET").unwrap_or_default();
-    if let Some(map) = board_map(&target) {
+    let board = env::var("CARGO_CFG_MICRORASTER_BOARD").ok();
+    if let Some(map) = board_map(&target, board.as_deref()) {
         let out = PathBuf::from(env::var_os("OUT_DIR").expect("cargo sets OUT_DIR"));
         fs::copy(map, out.join("memory.x"))
             .unwrap_or_else(|e| panic!("copying {map} to OUT_DIR/memory.x: {e}"));

@@ -1,10 +1,13 @@
 //! Instruction counts per frame on Cortex-M, under QEMU with
 //! `-icount shift=0`: benchmark firmware for the emulated TI LM3S6965EVB
 //! (Cortex-M3, `thumbv7m-none-eabi`) and Arm MPS2-AN386 (Cortex-M4F,
-//! `thumbv7em-none-eabihf`).
+//! `thumbv7em-none-eabihf`; and `thumbv6m-none-eabi`, whose ARMv6-M code
+//! the M4F runs unchanged: a Cortex-M0+'s instruction stream, built with
+//! `--cfg microraster_board="mps2-an386"` for that board's memory map, see
+//! build.rs).
 //!
 //! ```text
-//! scripts/icount.sh                # both boards, every scene, twice
+//! scripts/icount.sh                # the three boards, every scene, twice
 //! cargo run --release --example icount --target thumbv7m-none-eabi -- -icount shift=0
 //! cargo run --release --example icount --target thumbv7em-none-eabihf -- -icount shift=0
 //! ```
@@ -62,6 +65,21 @@ fn main() {
     );
 }
 
+// A thumbv6m build is for the MPS2-AN386 only, which must be asked for: by
+// default build.rs links thumbv6m for the RP2040 (and Cargo.toml brings its
+// HAL in). thumbv6m is the one bare-metal Arm target here without 32-bit
+// compare-and-swap, which is how stable Rust's `cfg` can tell it.
+#[cfg(all(
+    target_os = "none",
+    not(target_has_atomic = "32"),
+    not(microraster_board = "mps2-an386")
+))]
+compile_error!(
+    "icount for thumbv6m-none-eabi runs on QEMU's mps2-an386 only: build it with \
+     --cfg microraster_board=\"mps2-an386\" in the target's rustflags, as \
+     scripts/icount.sh does for its board mps2-an386-v6m"
+);
+
 #[cfg(target_os = "none")]
 mod icount_scenes;
 #[cfg(target_os = "none")]
@@ -80,11 +98,11 @@ mod timer {
     pub const RELOAD: u32 = 0x00FF_FFFF;
 
     /// Instructions per SysTick tick on the MPS2-AN386: SYSCLK is 25 MHz.
-    #[cfg(target_abi = "eabihf")]
+    #[cfg(any(target_abi = "eabihf", microraster_board = "mps2-an386"))]
     pub const PERIOD: u32 = 40;
     /// Instructions per SysTick tick on the LM3S6965EVB: the system clock
     /// after reset, 200 MHz / 16.
-    #[cfg(not(target_abi = "eabihf"))]
+    #[cfg(not(any(target_abi = "eabihf", microraster_board = "mps2-an386")))]
     pub const PERIOD: u32 = 80;
 
     /// Stamp tags: the renderer's stages (`Stage as u32`), then ours.
@@ -382,7 +400,10 @@ mod firmware {
     /// The board this build is for.
     #[cfg(target_abi = "eabihf")]
     const BOARD: (&str, &str, u32) = ("mps2-an386", "Cortex-M4F", 0xC24);
-    #[cfg(not(target_abi = "eabihf"))]
+    /// ARMv6-M code on the MPS2's M4F: what a Cortex-M0+ would execute.
+    #[cfg(all(not(target_abi = "eabihf"), microraster_board = "mps2-an386"))]
+    const BOARD: (&str, &str, u32) = ("mps2-an386", "ARMv6-M code on a Cortex-M4F", 0xC24);
+    #[cfg(not(any(target_abi = "eabihf", microraster_board = "mps2-an386")))]
     const BOARD: (&str, &str, u32) = ("lm3s6965evb", "Cortex-M3", 0xC23);
 
     const NOT_COUNTING: &str = "SysTick does not count";

@@ -3,9 +3,18 @@
 # (the virtual clock then advances 1 ns per executed instruction; QEMU is not
 # cycle-accurate, so these are instructions, never cycles).
 #
-#   scripts/icount.sh                    # both boards, every scene
+#   scripts/icount.sh                    # the three boards, every scene
 #   SCENES="fill grid4" scripts/icount.sh
 #   BOARDS=lm3s6965evb scripts/icount.sh
+#
+# The boards: lm3s6965evb (Cortex-M3, thumbv7m-none-eabi), mps2-an386
+# (Cortex-M4F, thumbv7em-none-eabihf) and mps2-an386-v6m: the MPS2-AN386
+# running a thumbv6m-none-eabi build, whose ARMv6-M instructions are the
+# ones a Cortex-M0+ would execute (no 32x32->64 multiply, no divide). That
+# build is told its board with --cfg microraster_board="mps2-an386" (build.rs
+# then links it with the MPS2's memory map instead of the RP2040's, and
+# Cargo.toml leaves the RP2040's HAL out), in a target directory of its own
+# so that it and the Pico firmware do not rebuild each other.
 #
 # For each board, builds examples/icount.rs in release for its target, runs
 # it twice in QEMU and checks that both runs print the same thing, then
@@ -20,7 +29,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
-BOARDS=${BOARDS:-lm3s6965evb mps2-an386}
+BOARDS=${BOARDS:-lm3s6965evb mps2-an386 mps2-an386-v6m}
 SHADER_SCENES="fill-gouraud-exact fill-nearest-exact fill-nearest-affine fill-bilinear-exact fill-lit-exact"
 SCENES=${SCENES:-}
 TARGET_DIR=${CARGO_TARGET_DIR:-target}
@@ -39,10 +48,19 @@ echo "$(rustc --version); $(qemu-system-arm --version | head -n 1)"
 
 footprint=()
 for board in $BOARDS; do
+    # machine: QEMU's -M; config: extra cargo arguments; dir: its target
+    # directory.
+    machine=$board config=() dir=$TARGET_DIR
     case $board in
         lm3s6965evb) target=thumbv7m-none-eabi; flash_kib=256; ram_kib=64 ;;
         mps2-an386) target=thumbv7em-none-eabihf; flash_kib=4096; ram_kib=4096 ;;
-        *) echo "unknown board $board (lm3s6965evb or mps2-an386)" >&2; exit 1 ;;
+        mps2-an386-v6m)
+            target=thumbv6m-none-eabi; flash_kib=4096; ram_kib=4096
+            machine=mps2-an386 dir=$TARGET_DIR/mps2-an386-v6m
+            # Appended to .cargo/config.toml's rustflags for the target.
+            config=(--config "target.$target.rustflags=[\"--cfg\", \"microraster_board=\\\"mps2-an386\\\"\"]")
+            ;;
+        *) echo "unknown board $board (lm3s6965evb, mps2-an386 or mps2-an386-v6m)" >&2; exit 1 ;;
     esac
     # The builds per board: every scene at once, except on the LM3S6965,
     # whose 256 KiB of flash hold neither the demo's knot and grid4's grid
@@ -57,17 +75,17 @@ for board in $BOARDS; do
     fi
     for group in "${groups[@]}"; do
         if [ -n "$group" ]; then
-            MICRORASTER_ICOUNT_SCENES="$group" \
-                cargo build --release --example icount --target "$target" >&2
+            MICRORASTER_ICOUNT_SCENES="$group" CARGO_TARGET_DIR=$dir \
+                cargo build "${config[@]}" --release --example icount --target "$target" >&2
         else
-            env -u MICRORASTER_ICOUNT_SCENES \
-                cargo build --release --example icount --target "$target" >&2
+            env -u MICRORASTER_ICOUNT_SCENES CARGO_TARGET_DIR="$dir" \
+                cargo build "${config[@]}" --release --example icount --target "$target" >&2
         fi
-        elf=$TARGET_DIR/$target/release/examples/icount
+        elf=$dir/$target/release/examples/icount
         for run in 1 2; do
             # QEMU's stellaris model says "Timer with period zero, disabling"
             # at every boot; anything else on stderr is shown.
-            if ! timeout 600 qemu-system-arm -M "$board" -display none -serial none \
+            if ! timeout 600 qemu-system-arm -M "$machine" -display none -serial none \
                 -monitor none -icount shift=0 -semihosting-config enable=on,target=native \
                 -kernel "$elf" >"$OUT/$board.$run.txt" 2>"$OUT/$board.$run.err"; then
                 cat "$OUT/$board.$run.txt" "$OUT/$board.$run.err" >&2
