@@ -6,6 +6,15 @@
 #   scripts/icount.sh                    # the three boards, every scene
 #   SCENES="fill grid4" scripts/icount.sh
 #   BOARDS=lm3s6965evb scripts/icount.sh
+#   TRACE=1 SCENES=demo BOARDS=mps2-an386-v6m scripts/icount.sh
+#
+# With TRACE=1 the firmware runs once under QEMU's execution trace instead
+# (-d in_asm,exec,nochain, through scripts/icount-trace.awk; about a minute
+# for one scene, and no disk: the log is never stored), which prints the instructions
+# executed per function and the calls of the integer helpers (__aeabi_*,
+# __udivmoddi4) by caller, for the whole run: each scene renders four
+# frames (plain and profiled, twice), so a single-scene build's figures are
+# four frames plus the calibration (the timer's functions) and start-up.
 #
 # The boards: lm3s6965evb (Cortex-M3, thumbv7m-none-eabi), mps2-an386
 # (Cortex-M4F, thumbv7em-none-eabihf) and mps2-an386-v6m: the MPS2-AN386
@@ -82,6 +91,24 @@ for board in $BOARDS; do
                 cargo build "${config[@]}" --release --example icount --target "$target" >&2
         fi
         elf=$dir/$target/release/examples/icount
+        if [ -n "${TRACE:-}" ]; then
+            nm="$(dirname "$size")/llvm-nm"
+            # The helpers' entry addresses, Thumb bit cleared.
+            "$nm" "$elf" | awk '$3 ~ /^(__aeabi_|__udivmoddi4$|__divmoddi4$)/ {
+                d = index("0123456789abcdef", substr($1, 8, 1)) - 1
+                printf "%s%x %s\n", substr($1, 1, 7), d - d % 2, $3 }' \
+                >"$OUT/$board.helpers"
+            echo
+            echo "## $board ($target), scenes: ${group:-all}; execution trace, whole run"
+            echo
+            timeout 3600 qemu-system-arm -M "$machine" -display none -serial none \
+                -monitor none -icount shift=0 -semihosting-config enable=on,target=native \
+                -kernel "$elf" -d in_asm,exec,nochain -D /dev/stdout 2>/dev/null |
+                awk -v helpers="$OUT/$board.helpers" -f scripts/icount-trace.awk |
+                sort -k1,1 -k2,2nr | { c++filt 2>/dev/null || cat; } |
+                awk '$1 == "self" && s++ < 30 || $1 == "calls" && c++ < 30'
+            continue
+        fi
         for run in 1 2; do
             # QEMU's stellaris model says "Timer with period zero, disabling"
             # at every boot; anything else on stderr is shown.
@@ -131,6 +158,7 @@ for board in $BOARDS; do
     done
 done
 
+[ -z "${TRACE:-}" ] || exit 0
 echo
 echo "## Footprint (release: llvm-size -A; peak stack measured by the firmware)"
 echo
