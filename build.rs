@@ -39,15 +39,16 @@
 use std::{env, fs, path::PathBuf};
 
 /// The memory map for a target triple, if it is one of the boards, or for
-/// the board named by the `microraster_board` cfg (`board`), which only a
-/// Cortex-M target can run.
+/// the board named by the `microraster_board` cfg (`board`). Only targets
+/// that `.cargo/config.toml` links from `memory/` can take the MPS2's map
+/// (for thumbv7m, lld would find the root `memory.x` first).
 fn board_map(target: &str, board: Option<&str>) -> Option<&'static str> {
     let arch = target.split('-').next().unwrap_or_default();
     match (arch, board) {
-        ("thumbv6m" | "thumbv7m" | "thumbv7em", Some("mps2-an386")) => Some("memory/mps2-an386.x"),
+        ("thumbv6m" | "thumbv7em", Some("mps2-an386")) => Some("memory/mps2-an386.x"),
         (_, Some(other)) => panic!(
             "--cfg microraster_board=\"{other}\" is not a board for {target} \
-             (the one board to pick is \"mps2-an386\", on a thumbv6m/v7m/v7em target)"
+             (the one board to pick is \"mps2-an386\", for thumbv6m or thumbv7em)"
         ),
         ("thumbv7m", None) => Some("memory.x"),
         ("thumbv6m", None) => Some("memory/rp2040.x"),
