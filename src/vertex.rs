@@ -124,6 +124,11 @@ pub enum VertexError {
         /// Index of the vertex within its mesh.
         vertex: usize,
     },
+    /// The draw needs the general lighting (more than one light, a point
+    /// light, fog, or a material other than white and matte), which the
+    /// renderer does not link
+    /// ([`Features::LIGHTING`](crate::render::Features::LIGHTING)).
+    GeneralLighting,
 }
 
 /// Everything the vertex stage needs for one draw, in fixed point.
@@ -138,9 +143,16 @@ pub struct DrawSetup {
     /// material without highlights or fog: a dozen instructions per vertex
     /// instead of the general loop, same colours.
     lambert: Option<Lambert>,
+    /// The general lighting loop, when the set-up links it and the fast
+    /// path does not apply: through a pointer, so that a set-up made
+    /// without it (`with_lighting::<false>`) does not link it at all.
+    general: Option<GeneralShade>,
     material: Material,
     color: [u8; 3],
 }
+
+/// [`LightSetup::shade`] as a function pointer.
+type GeneralShade = fn(&LightSetup<MAX_LIGHTS>, &Material, [u8; 3], [i32; 3], [i32; 3]) -> [u8; 3];
 
 /// One directional light in model space (see
 /// [`LightSetup::single_directional`]).
@@ -183,6 +195,19 @@ impl DrawSetup {
         lighting: Option<&Lighting<'_>>,
         eye: Vec3,
     ) -> Result<Self, VertexError> {
+        Self::with_lighting::<true>(draw, view_proj, lighting, eye)
+    }
+
+    /// [`new`](Self::new), linking the general lighting loop only with
+    /// `GENERAL`; without it, a draw that needs more than the fast path
+    /// (one directional light on a white, matte material) is
+    /// [`VertexError::GeneralLighting`].
+    pub fn with_lighting<const GENERAL: bool>(
+        draw: &Draw<'_>,
+        view_proj: &Mat4,
+        lighting: Option<&Lighting<'_>>,
+        eye: Vec3,
+    ) -> Result<Self, VertexError> {
         let m = &draw.transform;
         if !m.is_finite() {
             return Err(VertexError::BadMatrix);
@@ -213,11 +238,20 @@ impl DrawSetup {
             }
             _ => None,
         };
+        let general: Option<GeneralShade> = match (&light, &lambert) {
+            (Some(_), None) if GENERAL => Some(|l, m, b, p, n| l.shade(m, b, p, n)),
+            // Unlit vertices (no normals) need no lighting at all.
+            (Some(_), None) if draw.mesh.normals().is_some() => {
+                return Err(VertexError::GeneralLighting)
+            }
+            _ => None,
+        };
         Ok(Self {
             mvp,
             bounded: mvp.bounded(draw.mesh.extent()),
             light,
             lambert,
+            general,
             material: draw.material,
             color: [draw.color.r(), draw.color.g(), draw.color.b()],
         })
@@ -248,15 +282,19 @@ impl DrawSetup {
                 Some(l) => l.shade(n[i], base),
                 None => base,
             },
-            (Some(l), Some(n)) => {
-                let n = n[i];
-                l.shade(
-                    &self.material,
-                    base,
-                    p,
-                    [n[0].to_bits(), n[1].to_bits(), n[2].to_bits()],
-                )
-            }
+            (Some(l), Some(n)) => match self.general {
+                Some(shade) => {
+                    let n = n[i];
+                    shade(
+                        l,
+                        &self.material,
+                        base,
+                        p,
+                        [n[0].to_bits(), n[1].to_bits(), n[2].to_bits()],
+                    )
+                }
+                None => base,
+            },
             _ => base,
         };
         Ok(ClipVertex {

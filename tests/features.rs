@@ -103,6 +103,27 @@ fn a_path_left_out_is_a_typed_error() {
         // The full renderer draws it.
         render::<All, _>(&scene, config).unwrap();
     }
+    // The general lighting: a point light, or a shiny material under the
+    // one directional light. Unlit draws and the plain light are fine.
+    let lamp = [PointLight::new(Vec3::new(0.0, 1.0, 2.0), 0.8, 10.0)];
+    let sun = [DirectionalLight::new(Vec3::new(0.0, 1.0, 1.0), 0.9)];
+    let lights = Lighting::new(0.2).directional(&sun).point(&lamp);
+    let shiny = base.material(Material::new().specular(Rgb888::new(255, 255, 255)));
+    for (scene_lighting, draw) in [(Some(&lights), base), (None, shiny)] {
+        let d = [base, draw];
+        let mut scene = Scene::new(cam, &d).light(Light::new(Vec3::new(0.0, 1.0, 1.0)));
+        scene.lighting = scene_lighting;
+        let err = render::<Triangles, _>(&scene, config).unwrap_err();
+        let want = if scene_lighting.is_some() { 0 } else { 1 };
+        assert_eq!(
+            err,
+            RenderError::Unsupported {
+                draw: Some(want),
+                path: Path::Lighting
+            }
+        );
+        render::<All, _>(&scene, config).unwrap();
+    }
     let d = [base];
     let scene = Scene::new(cam, &d);
     assert_eq!(

@@ -86,6 +86,10 @@ impl<E: core::fmt::Debug> core::fmt::Display for RenderError<E> {
                     f,
                     "draw {draw}: vertex {vertex} leaves the 16.16 range of clip space"
                 ),
+                VertexError::GeneralLighting => write!(
+                    f,
+                    "draw {draw}: needs the general lighting, which this renderer does not link"
+                ),
             },
             Self::VertexCapacity { needed, capacity } => write!(
                 f,

@@ -66,6 +66,13 @@ pub trait Features {
     ///
     /// [`DepthTest::LessEqual`]: crate::DepthTest::LessEqual
     const DEPTH_TESTS: bool = true;
+    /// The general lighting: [`Scene::lighting`](crate::scene::Scene::lighting)
+    /// with more than one light, point lights or fog, and materials other
+    /// than white and matte. Without it a draw is lit only by the fast
+    /// path: one directional light and ambient (a
+    /// [`Scene::light`](crate::scene::Scene::light)) on the default
+    /// material.
+    const LIGHTING: bool = true;
 }
 
 /// Every path (the default).
@@ -75,7 +82,8 @@ pub struct All;
 impl Features for All {}
 
 /// Flat and Gouraud triangles only, with the scanline rasterizer, the
-/// default depth test and no frustum culling: the smallest firmware.
+/// default depth test, one directional light and no frustum culling: the
+/// smallest firmware.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Triangles;
 
@@ -87,6 +95,7 @@ impl Features for Triangles {
     const CULL: bool = false;
     const SORT: bool = false;
     const DEPTH_TESTS: bool = false;
+    const LIGHTING: bool = false;
 }
 
 /// A path a [`Features`] type can leave out, named in
@@ -103,6 +112,8 @@ pub enum Path {
     Sort,
     /// [`Features::DEPTH_TESTS`].
     DepthTests,
+    /// [`Features::LIGHTING`].
+    Lighting,
 }
 
 impl core::fmt::Display for Path {
@@ -113,6 +124,7 @@ impl core::fmt::Display for Path {
             Path::Blend => "blending",
             Path::Sort => "sorted draws",
             Path::DepthTests => "depth tests other than LessEqual with writes",
+            Path::Lighting => "the general lighting",
         })
     }
 }

@@ -86,6 +86,7 @@ where
             draws: scene.draws,
             light: scene.light,
             lighting: scene.lighting,
+            make_setup: vertex_stage::setup_fn::<P>(),
             eye: done.eye,
             vertices: &vertices[..done.vertices],
             view_proj: done.view_proj,

@@ -1,7 +1,7 @@
 //! The read-only state of a frame being rendered, and triangle classification.
 
 use super::binning::{Fate, Tally};
-use super::vertex_stage::with_lighting;
+use super::vertex_stage::{with_lighting, SetupFn};
 use super::Features;
 use crate::cull::Frustum;
 use crate::light::Lighting;
@@ -19,6 +19,8 @@ pub(super) struct FrameState<'a> {
     /// the frame's lighting of them).
     pub(super) light: Option<Light>,
     pub(super) lighting: Option<&'a Lighting<'a>>,
+    /// How a draw is set up (with or without the general lighting).
+    pub(super) make_setup: SetupFn,
     /// The camera's position, world space.
     pub(super) eye: crate::math::Vec3,
     /// Cull draws outside the frustum ([`Config::frustum_cull`]).
@@ -185,7 +187,7 @@ impl FrameState<'_> {
             Some((c, s)) if *c == d => Some(*s),
             _ => {
                 let s = with_lighting(self.light.as_ref(), self.lighting, |lighting| {
-                    DrawSetup::new(&self.draws[d], &self.view_proj, lighting, self.eye)
+                    (self.make_setup)(&self.draws[d], &self.view_proj, lighting, self.eye)
                 })
                 .ok()?;
                 *cache = Some((d, s));

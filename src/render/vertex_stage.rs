@@ -5,10 +5,11 @@ use super::{Config, Features, Path, Profiler, RenderError, Stage, MAX_LIGHTS, MA
 use crate::cull::Frustum;
 use crate::light::{DirectionalLight, LightError, LightSetup, Lighting};
 use crate::math::{Mat4, Vec3};
+use crate::scene::Draw;
 use crate::scene::{Blend, Light, Scene, Shading};
 use crate::shade::DepthTest;
 use crate::shader::FragmentShader;
-use crate::vertex::{DrawSetup, ScreenVertex, Viewport, MAX_VIEWPORT};
+use crate::vertex::{DrawSetup, ScreenVertex, VertexError, Viewport, MAX_VIEWPORT};
 use embedded_graphics::pixelcolor::PixelColor;
 
 /// What the vertex stage found, for the rest of the frame.
@@ -22,6 +23,32 @@ pub(super) struct Transformed {
     pub(super) triangles: usize,
     /// Vertices actually transformed (none of culled draws and clusters).
     pub(super) transformed: u32,
+}
+
+/// How a frame sets up a draw: with or without the general lighting
+/// ([`Features::LIGHTING`]), chosen once so that the other is not linked.
+pub(super) type SetupFn =
+    fn(&Draw<'_>, &Mat4, Option<&Lighting<'_>>, Vec3) -> Result<DrawSetup, VertexError>;
+
+/// The [`SetupFn`] of the paths `P` links.
+pub(super) fn setup_fn<P: Features>() -> SetupFn {
+    if P::LIGHTING {
+        DrawSetup::with_lighting::<true>
+    } else {
+        DrawSetup::with_lighting::<false>
+    }
+}
+
+/// The error of draw `draw`'s set-up: the general lighting, when it is not
+/// linked, is a path left out.
+pub(super) fn draw_error(draw: usize, error: VertexError) -> RenderError {
+    match error {
+        VertexError::GeneralLighting => RenderError::Unsupported {
+            draw: Some(draw),
+            path: Path::Lighting,
+        },
+        error => RenderError::Draw { draw, error },
+    }
 }
 
 /// The frame's lighting, passed to `f`: the scene's lighting, or its one
@@ -140,7 +167,16 @@ where
     let viewport = Viewport::new(size.width, size.height);
     let transformed = with_lighting(scene.light.as_ref(), scene.lighting, |lighting| {
         let cull = P::CULL && config.frustum_cull;
-        transform(cull, scene, &view_proj, lighting, eye, &viewport, vertices)
+        transform(
+            cull,
+            setup_fn::<P>(),
+            scene,
+            &view_proj,
+            lighting,
+            eye,
+            &viewport,
+            vertices,
+        )
     })?;
     Ok(Transformed {
         view_proj,
@@ -155,8 +191,10 @@ where
 /// The vertex stage: every vertex of every draw in view (or of every
 /// cluster in view) to a [`ScreenVertex`]; returns how many.
 #[inline(never)]
+#[allow(clippy::too_many_arguments)]
 fn transform<F>(
     cull: bool,
+    make: SetupFn,
     scene: &Scene<'_, F>,
     view_proj: &Mat4,
     lighting: Option<&Lighting<'_>>,
@@ -171,8 +209,7 @@ fn transform<F>(
         // or not; a draw wholly outside the frustum is then not
         // transformed (its vertices cannot overflow what is never
         // computed), and binning skips it the same way.
-        let setup = DrawSetup::new(draw, view_proj, lighting, eye)
-            .map_err(|error| RenderError::Draw { draw: di, error })?;
+        let setup = make(draw, view_proj, lighting, eye).map_err(|e| draw_error(di, e))?;
         let out = &mut vertices[base..base + draw.mesh.vertex_count()];
         base += draw.mesh.vertex_count();
         let frustum = match cull {
