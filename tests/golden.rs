@@ -125,7 +125,7 @@ fn demo_frame_full_size() {
         &std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/frame_000.png"),
     )
     .expect(
-        "docs/frame_000.png exists: cargo run --release --example demo -- --frames 1 --out docs",
+        "docs/frame_000.png exists: cargo run --release --example demo -- --frames 1 --out-dir docs",
     );
     assert_eq!(readme.0, size);
     assert!(
