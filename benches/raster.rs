@@ -30,13 +30,11 @@
 
 #[path = "../examples/common/mod.rs"]
 mod common;
-#[path = "../examples/scenes/mod.rs"]
-mod scenes;
 
+use common::scenes::*;
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use embedded_graphics::pixelcolor::{Rgb565, RgbColor};
 use microraster::prelude::*;
-use scenes::*;
 use std::hint::black_box;
 use std::time::Duration;
 

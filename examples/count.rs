@@ -23,10 +23,9 @@
 //! The program prints the statistics of one frame.
 
 mod common;
-mod scenes;
 
+use common::scenes::*;
 use microraster::prelude::*;
-use scenes::*;
 
 /// Fill-rate layers.
 const FILL_LAYERS: usize = 8;

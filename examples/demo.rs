@@ -5,7 +5,7 @@
 //! Headless by default: writes PNG frames to the repository's
 //! `target/demo/` and prints the statistics of every frame. With
 //! `--features window` it opens the live simulator window instead (needs
-//! SDL2). `--help` lists the options (`examples/demo_args/mod.rs`):
+//! SDL2). `--help` lists the options (`examples/common/demo_args.rs`):
 //!
 //! ```text
 //! cargo run --release --example demo [-- --frames N --out-dir DIR]
@@ -32,11 +32,9 @@
 //! status 2.
 
 mod common;
-#[path = "demo_args/mod.rs"]
-mod demo_args;
 
+use common::demo_args::{self, Args, Look, Mode, Parsed};
 use common::*;
-use demo_args::{Args, Look, Mode, Parsed};
 use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
 use fixed::types::I16F16;
 use microraster::light::{DirectionalLight, Lighting, Material, PointLight};

@@ -1,5 +1,5 @@
 //! Draws the README's gallery, `docs/gallery.png`: the classic shading
-//! scenes of `examples/gallery_scenes` (the golden tests' scenes) on one
+//! scenes of `examples/common/gallery.rs` (the golden tests' scenes) on one
 //! contact sheet, each 160x120 with its caption.
 //!
 //! ```text
@@ -7,11 +7,10 @@
 //! ```
 
 mod common;
-mod gallery_scenes;
 
+use common::gallery::{draw_sheet, sheet_size, Gallery};
 use embedded_graphics::pixelcolor::Rgb565;
 use embedded_graphics_simulator::{OutputSettingsBuilder, SimulatorDisplay};
-use gallery_scenes::{draw_sheet, sheet_size, Gallery};
 
 fn main() {
     let out = std::env::args()

@@ -9,18 +9,17 @@
 //!
 //! Reads `target/criterion/triangles/{RASTERIZER}/{SIZE}/new/estimates.json`
 //! (the mean of the last run) for every rasterizer and size of
-//! `examples/scenes` and draws with embedded-graphics into a frame in memory.
+//! `examples/common/scenes.rs` and draws with embedded-graphics into a frame in memory.
 
 mod common;
-mod scenes;
 
+use common::scenes::TRIANGLE_SIZES;
 use common::write_png;
 use embedded_graphics::mono_font::{ascii::FONT_6X10, MonoTextStyle};
 use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
 use embedded_graphics::prelude::*;
 use embedded_graphics::primitives::{Circle, Line, PrimitiveStyle, Rectangle};
 use embedded_graphics::text::{Alignment, Text};
-use scenes::TRIANGLE_SIZES;
 use std::path::{Path, PathBuf};
 
 const W: u32 = 560;

@@ -1,10 +1,10 @@
-//! The demo's command line (`examples/demo_args/mod.rs`): `--help`,
+//! The demo's command line (`examples/common/demo_args.rs`): `--help`,
 //! separate outputs for the animation (a directory) and a model (a PNG
 //! file), flags that do not apply refused rather than ignored, nothing
 //! written into the repository root by default, and every error naming
 //! its flag.
 
-#[path = "../examples/demo_args/mod.rs"]
+#[path = "../examples/common/demo_args.rs"]
 #[allow(dead_code)]
 mod demo_args;
 

@@ -1,4 +1,4 @@
-//! Golden images of the classic shading scenes (`examples/gallery_scenes`),
+//! Golden images of the classic shading scenes (`examples/common/gallery.rs`),
 //! each rendered with every rasterizer and tile order, which must agree
 //! pixel for pixel, and compared exactly with `tests/golden/`.
 //! `BLESS=1 cargo test --test shading` regenerates them (look at them
@@ -7,12 +7,10 @@
 
 #[path = "../examples/common/mod.rs"]
 mod common;
-#[path = "../examples/gallery_scenes/mod.rs"]
-mod gallery_scenes;
 mod support;
 
+use common::gallery::*;
 use embedded_graphics::pixelcolor::{Rgb565, Rgb888, RgbColor};
-use gallery_scenes::*;
 use microraster::prelude::*;
 use support::{check_golden, Capture};
 

@@ -14,10 +14,15 @@ mod png_file;
 #[allow(unused_imports)]
 pub use png_file::{render_png, write_png};
 
-#[path = "../checker/mod.rs"]
-mod checker;
 #[path = "../demo_scene/mod.rs"]
 mod demo_scene;
+use demo_scene::checker;
+
+// Host-only parts that only some includers use: the benchmark scenes, the
+// shading gallery and the demo's command line.
+pub mod demo_args;
+pub mod gallery;
+pub mod scenes;
 // Each example or test that includes this file uses a different subset.
 #[allow(unused_imports)]
 pub use demo_scene::{

@@ -4,6 +4,9 @@
 //! every one of them renders the very same scene.
 #![allow(dead_code)]
 
+/// The checker texture, the same texels on the host and the firmware.
+pub mod checker;
+
 use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
 use microraster::prelude::*;
 

@@ -1,6 +1,6 @@
-//! Benchmark scenes, shared by `benches/raster.rs` and `examples/count.rs`
-//! (include it with `#[path]` next to `examples/common/mod.rs`, which it
-//! uses for the demo scene).
+//! Benchmark scenes, shared by `benches/raster.rs`, `examples/count.rs`
+//! and `examples/raster_plot.rs` (`common::scenes`; they use the demo
+//! scene of `common`).
 //!
 //! * [`DemoScene`]: the demo frame (torus knot + cube, frame 0 of the demo)
 //!   at 320x240, as the demo renders it.
@@ -13,7 +13,7 @@
 //!   seen from on it: most of it lies outside the view.
 #![allow(dead_code)]
 
-use super::common;
+use crate::common;
 use embedded_graphics::pixelcolor::{Rgb565, Rgb888, RgbColor};
 use embedded_graphics::prelude::IntoStorage;
 use fixed::types::I16F16;

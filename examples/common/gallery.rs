@@ -6,15 +6,14 @@
 //! several lights with highlights and fog, wireframe over shaded,
 //! wireframe alone, points, and transparency.
 //!
-//! Include it next to `examples/common/mod.rs` (it uses the demo scene).
+//! `common::gallery` (it uses the demo scene of `common`).
 #![allow(dead_code)]
 
-use super::common::*;
+use crate::common::*;
 use embedded_graphics::pixelcolor::{Rgb565, Rgb888, RgbColor};
 use fixed::types::I16F16;
 use microraster::light::{DirectionalLight, Fog, Lighting, Material, PointLight};
 use microraster::mesh::Vec3Fx;
-use microraster::prelude::*;
 use microraster::shader::{DepthShade, Normals, Textured, TexturedLit};
 use microraster::texture::{Filter, Texels, Texture};
 
