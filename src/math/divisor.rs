@@ -1,0 +1,122 @@
+//! Exact division of many dividends by one divisor: the attribute set-up's
+//! and the vertex stage's divisions, as each kind of core does them best.
+
+use core::num::NonZeroU64;
+
+/// Exact integer division of many dividends by one divisor, through the
+/// divisor's reciprocal: one 64-bit division up front, then per quotient a
+/// multiply-high and one correction.
+///
+/// A 64-bit division is a slow library call on a 32-bit core (and the
+/// Cortex-M0+ has no divider at all), while the 64 x 64 -> 128-bit
+/// multiply-high is a handful of `umull`s. The quotients are exactly those
+/// of the division: `r = floor((2^64 - 1) / d)` undershoots `2^64 / d` by
+/// less than 2, so for `m < 2^63` the estimate `floor(m r / 2^64)`
+/// undershoots `m / d` by less than 1 and is `floor(m / d)` or one less,
+/// which the remainder test corrects.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(target_pointer_width = "64", allow(dead_code))]
+pub(crate) struct Reciprocal {
+    d: u64,
+    r: u64,
+}
+
+#[cfg_attr(target_pointer_width = "64", allow(dead_code))]
+impl Reciprocal {
+    /// The reciprocal of `d`.
+    #[inline(always)]
+    pub(crate) fn new(d: NonZeroU64) -> Self {
+        Self {
+            d: d.get(),
+            r: u64::MAX / d,
+        }
+    }
+
+    /// `floor(m / d)`, for `m < 2^63`.
+    #[inline(always)]
+    pub(crate) fn div(&self, m: u64) -> u64 {
+        debug_assert!(m < 1 << 63);
+        let q = ((m as u128 * self.r as u128) >> 64) as u64;
+        // q <= floor(m / d), so q d <= m and the remainder cannot wrap.
+        let rem = m - q * self.d;
+        q + (rem >= self.d) as u64
+    }
+}
+
+/// A divisor used for many dividends, divided by as a 64-bit CPU does best:
+/// with its division instruction.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[cfg_attr(not(target_pointer_width = "64"), allow(dead_code))]
+pub(crate) struct Hardware(NonZeroU64);
+
+#[cfg_attr(not(target_pointer_width = "64"), allow(dead_code))]
+impl Hardware {
+    /// The divisor `d`.
+    #[inline(always)]
+    pub(crate) fn new(d: NonZeroU64) -> Self {
+        Self(d)
+    }
+
+    /// `floor(m / d)`.
+    #[inline(always)]
+    pub(crate) fn div(&self, m: u64) -> u64 {
+        m / self.0
+    }
+}
+
+/// The divisor the attribute set-up uses: [`Reciprocal`] where a 64-bit
+/// division is a library call (32-bit targets: every Cortex-M, RISC-V
+/// `rv32`), the division instruction on 64-bit targets, where one
+/// instruction beats a multiply-high and a correction. Both give the same
+/// quotients, so images do not depend on the choice.
+#[cfg(not(target_pointer_width = "64"))]
+pub(crate) type Divisor = Reciprocal;
+/// See the 32-bit definition.
+#[cfg(target_pointer_width = "64")]
+pub(crate) type Divisor = Hardware;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn reciprocal_division_is_exact() {
+        let mut x = 0x9e37_79b9_7f4a_7c15u64;
+        let mut next = move || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            x
+        };
+        let divisors = [
+            1u64,
+            2,
+            3,
+            7,
+            255,
+            65_535,
+            1 << 20,
+            (1 << 39) - 1,
+            1 << 39,
+            (1 << 62) + 12_345,
+        ];
+        for &d in &divisors {
+            let r = Reciprocal::new(NonZeroU64::new(d).unwrap());
+            for m in [0u64, 1, d - 1, d, d + 1, (1 << 63) - 1, (1 << 63) - d] {
+                assert_eq!(r.div(m), m / d, "{m} / {d}");
+            }
+        }
+        for _ in 0..200_000 {
+            let d = next() >> (next() % 64);
+            let Some(nz) = NonZeroU64::new(d) else {
+                continue;
+            };
+            let (r, h) = (Reciprocal::new(nz), Hardware::new(nz));
+            for _ in 0..4 {
+                let m = next() >> (1 + next() % 63);
+                assert_eq!(r.div(m), m / d, "{m} / {d}");
+                assert_eq!(h.div(m), m / d, "{m} / {d}");
+            }
+        }
+    }
+}
