@@ -108,7 +108,7 @@ impl<E: core::fmt::Debug> core::fmt::Display for RenderError<E> {
                 if let Some(d) = draw {
                     write!(f, "draw {d}: ")?;
                 }
-                write!(f, "{path} are not linked into this renderer (its Features)")
+                write!(f, "not linked into this renderer (its Features): {path}")
             }
             Self::Sink(e) => write!(f, "the sink failed: {e:?}"),
         }

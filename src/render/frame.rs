@@ -92,7 +92,8 @@ where
             view_proj: done.view_proj,
             viewport: done.viewport,
             cull: config.cull,
-            cull_draws: P::CULL && config.frustum_cull,
+            // `frustum` also asks `P::CULL`, at compile time.
+            cull_draws: config.frustum_cull,
             frame: PixelRect::new(0, 0, size.width as i32, size.height as i32),
         };
         Ok(Self {
