@@ -52,19 +52,58 @@ fn covered(img: &[Rgb888]) -> usize {
     img.iter().filter(|&&c| c != BACKGROUND).count()
 }
 
-/// Asserts that scale `s` draws exactly what scale 1 draws.
+/// The most pixels a scale that is not a power of two may change. Such a
+/// scale rounds the `f32` set-up (model, eye, near and far planes)
+/// differently in the last bit, and after normalization and rounding to
+/// 16.16 a vertex may land one step away: a pixel whose centre lies within
+/// that step of an edge flips. The drift the normalization removed was
+/// hundreds of pixels, and a blank frame.
+const EDGE_FLIPS: usize = 12;
+
+/// Whether pixel `i` of `img` touches (4-neighbourhood) a pixel of another
+/// colour: a pixel on an edge of the picture, which the last bit of the
+/// set-up may move.
+fn on_edge(img: &[Rgb888], i: usize) -> bool {
+    let (w, h) = (SIZE.width as usize, SIZE.height as usize);
+    let (x, y) = (i % w, i / w);
+    let mut neighbours = Vec::with_capacity(4);
+    if x > 0 {
+        neighbours.push(i - 1);
+    }
+    if x + 1 < w {
+        neighbours.push(i + 1);
+    }
+    if y > 0 {
+        neighbours.push(i - w);
+    }
+    if y + 1 < h {
+        neighbours.push(i + w);
+    }
+    neighbours.iter().any(|&n| img[n] != img[i])
+}
+
+/// Asserts that scale `s` draws what scale 1 draws: the same pixels but
+/// for at most [`EDGE_FLIPS`], each on an edge of the reference.
 #[track_caller]
 fn assert_same_picture(s: f32, yaw: f32) {
     let (reference, _) = render(1.0, yaw).unwrap();
     let (img, _) = render(s, yaw).unwrap_or_else(|e| panic!("scale {s:e}: {e:?}"));
-    let differ = img.iter().zip(&reference).filter(|(a, b)| a != b).count();
-    assert_eq!(
-        differ,
-        0,
-        "scale {s:e}, yaw {yaw}: {differ} pixels differ ({} covered, {} at scale 1)",
+    let differ: Vec<usize> = (0..img.len()).filter(|&i| img[i] != reference[i]).collect();
+    assert!(
+        differ.len() <= EDGE_FLIPS,
+        "scale {s:e}, yaw {yaw}: {} pixels differ ({} covered, {} at scale 1)",
+        differ.len(),
         covered(&img),
         covered(&reference)
     );
+    for &i in &differ {
+        assert!(
+            on_edge(&reference, i),
+            "scale {s:e}, yaw {yaw}: pixel ({}, {}) differs inside a face",
+            i % SIZE.width as usize,
+            i / SIZE.width as usize
+        );
+    }
 }
 
 /// The scales of the issue: 3e-5 drew nothing (with `Ok`), 1e-3 and 1e-4
@@ -117,7 +156,7 @@ proptest! {
     #![proptest_config(ProptestConfig { cases: 64, ..ProptestConfig::default() })]
 
     /// Any scale from 1e-6 to 1e4, any turn of the cube: the picture of
-    /// scale 1.
+    /// scale 1, up to a few pixels on its edges.
     #[test]
     fn any_scale_draws_the_picture_of_scale_one(
         exponent in -6.0f32..4.0,
