@@ -311,14 +311,14 @@ impl From<Rgb888> for Intensity {
 
 impl From<f32> for Intensity {
     fn from(fraction: f32) -> Self {
-        // NaN fails the test and becomes 0; the sum is below 256, so `as`
-        // only truncates.
+        // NaN fails the test and becomes 0; the sum is below 256, so the
+        // conversion only truncates.
         let f = if fraction > 0.0 {
             fraction.min(1.0)
         } else {
             0.0
         };
-        let level = (f * 255.0 + 0.5) as u8;
+        let level = crate::math::f32_to_u8(f * 255.0 + 0.5);
         Self(Rgb888::new(level, level, level))
     }
 }
@@ -681,7 +681,7 @@ fn to_raw(v: Vec3) -> Option<[i64; 3]> {
         if x.is_nan() || x.abs() > LIMIT {
             return None;
         }
-        // Round half away from zero (the cast truncates). From 2^23 on, `x`
+        // Round half away from zero (the conversion truncates). From 2^23 on, `x`
         // is an integer, and adding ½ would round to even instead.
         let half = if x.abs() >= 8_388_608.0 {
             0.0
@@ -690,7 +690,7 @@ fn to_raw(v: Vec3) -> Option<[i64; 3]> {
         } else {
             0.5
         };
-        *o = (x + half) as i64;
+        *o = crate::math::f32_to_i64(x + half);
     }
     Some(out)
 }
@@ -798,9 +798,9 @@ impl Core {
                 let x = v * 65536.0;
                 if coarse {
                     // Truncated, as the vertex stage converts scene::Light.
-                    x as i32
+                    crate::math::f32_to_i32(x)
                 } else {
-                    (x + if x < 0.0 { -0.5 } else { 0.5 }) as i32
+                    crate::math::f32_to_i32(x + if x < 0.0 { -0.5 } else { 0.5 })
                 }
             };
             if let Some(slot) = slots.next() {
@@ -827,7 +827,7 @@ impl Core {
             // Vertices lie within ±32768 units: a light whose sphere misses
             // that cube lights nothing (and its position need not fit).
             let misses = [p.x, p.y, p.z].iter().any(|c| c.abs() - r > 32769.0);
-            let reach = (r * 65536.0) as u64;
+            let reach = crate::math::f32_to_u64(r * 65536.0);
             let source = match (misses, to_raw(p), Scale::from_f32(1.0 / r)) {
                 (false, Some(pos), Some(inv_range)) if reach > 0 => Source::Point {
                     pos,
@@ -853,7 +853,8 @@ impl Core {
                 }
                 let scale = Scale::from_f32(model_scale / width).ok_or(LightError::BadFog)?;
                 const LIMIT: f32 = (1u64 << 46) as f32;
-                let offset = (start / width * 65536.0).clamp(-LIMIT, LIMIT) as i64;
+                let offset =
+                    crate::math::f32_to_i64((start / width * 65536.0).clamp(-LIMIT, LIMIT));
                 FixedFog::Linear { scale, offset }
             }
             Fog::Exponential { density } => {

@@ -161,8 +161,10 @@ pub const fn torus_knot(
     }
     // The only floats: the two sizes, converted once (exactly, for sizes
     // that are multiples of 2^-16).
-    let radius = I16F16::from_bits((radius * 65_536.0) as i32);
-    let tube_bits = (tube as f64 * 65_536.0) as i64;
+    let radius = I16F16::from_bits(crate::math::f32_to_i32(radius * 65_536.0));
+    // Scaling by 2^16 is exact in `f32` (an overflow to infinity saturates
+    // as the `i64` would).
+    let tube_bits = crate::math::f32_to_i64(tube * 65_536.0);
     if radius.to_bits() == 0 || tube_bits == 0 {
         return Err(ShapeError::BadSize);
     }

@@ -17,16 +17,20 @@
 //! # The same bits on every target
 //!
 //! Everything here uses only integer arithmetic and the basic IEEE
-//! operations (`+ - * /`, conversions), which are correctly rounded on
-//! every target, soft float included; Rust never contracts `a * b + c` into
+//! operations (`+ - * /`), which are correctly rounded on every target,
+//! soft float included. Floats become integers through [`f32_to_i32`] and
+//! its kin (in `cast`), which read the float's bits, never through a
+//! platform's conversion routine (the RP2040's ROM rounds differently); Rust never contracts `a * b + c` into
 //! a fused multiply-add, and no function of a platform's maths library is
 //! called. So the set-up gives the same bits on the host, a Cortex-M0+
 //! without an FPU and a Cortex-M4F with one. [`sqrt`] refines micromath's
 //! estimate with Newton steps in basic operations.
 
+mod cast;
 mod divisor;
 mod trig;
 
+pub use cast::{f32_to_i32, f32_to_i64, f32_to_u64, f32_to_u8};
 pub(crate) use divisor::Divisor;
 pub use trig::{sin_cos, sqrt, tan};
 
