@@ -1,0 +1,294 @@
+//! The set-up of a [`Lighting`] for one draw ([`LightSetup`]): lights, eye
+//! and fog moved into the draw's model space and converted to fixed point,
+//! once per draw, in `f32`.
+
+use super::arith::*;
+use super::{Fog, LightError, Lighting, Material};
+use crate::math::{sqrt, Mat4, Vec3};
+use embedded_graphics::pixelcolor::Rgb888;
+use embedded_graphics::prelude::RgbColor;
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Source {
+    /// A point light whose range cannot reach any vertex.
+    Off,
+    /// Unit direction towards the light, Q16.
+    Directional { dir: [i32; 3] },
+    /// `pos`: raw 16.16; `reach`: the range in raw units (a vertex
+    /// differing from `pos` by `reach` in any coordinate is out of range);
+    /// `inv_range`: `1 / range` in model units, so that a length times it
+    /// is `d / r` in Q16.
+    Point {
+        pos: [i64; 3],
+        reach: u64,
+        inv_range: Scale,
+    },
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) struct FixedLight {
+    pub(super) source: Source,
+    pub(super) color: [u8; 3],
+}
+
+impl FixedLight {
+    const OFF: Self = Self {
+        source: Source::Off,
+        color: [0; 3],
+    };
+}
+
+/// Fog in the draw's model space: `scale` turns a model-space distance into
+/// Q16 (of `d / (end - start)` for linear fog, of `log2(e) · density · d`
+/// for exponential fog).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum FixedFog {
+    None,
+    /// `f = scale · d - offset`, with `offset = start / (end - start)` in Q16.
+    Linear {
+        scale: Scale,
+        offset: i64,
+    },
+    Exponential {
+        scale: Scale,
+    },
+}
+
+/// The fixed-point set-up of a [`Lighting`] for one draw: lights, eye and
+/// fog moved into the draw's model space. It holds at most `N` lights
+/// (directional and point together).
+///
+/// Building it costs a few dozen `f32` operations per light (one `M⁻¹`
+/// product each, a square root per directional light) and none per vertex;
+/// it is deterministic, so rebuilding it gives the same bits. Its size is
+/// 56 bytes per light plus about 64.
+#[derive(Clone, Copy, Debug)]
+pub struct LightSetup<const N: usize> {
+    pub(super) lights: [FixedLight; N],
+    pub(super) core: Core,
+}
+
+/// The part of a [`LightSetup`] that does not depend on its capacity.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Core {
+    pub(super) count: usize,
+    pub(super) ambient: [u8; 3],
+    /// The eye in model space, raw 16.16.
+    pub(super) eye: [i64; 3],
+    pub(super) fog: FixedFog,
+    pub(super) fog_color: [u8; 3],
+    /// One directional light and nothing else: `n·l` in 1/256 steps, floored,
+    /// as the vertex stage's `scene::Light` always did.
+    pub(super) coarse: bool,
+}
+
+pub(super) fn rgb(c: Rgb888) -> [u8; 3] {
+    [c.r(), c.g(), c.b()]
+}
+
+/// A model-space point or offset as raw 16.16 in `i64`, rounded; `None` when
+/// not finite or beyond 2^60 raw (2^44 units).
+pub(super) fn to_raw(v: Vec3) -> Option<[i64; 3]> {
+    const LIMIT: f32 = (1u64 << 60) as f32;
+    let mut out = [0i64; 3];
+    for (o, c) in out.iter_mut().zip([v.x, v.y, v.z]) {
+        let x = c * 65536.0;
+        if x.is_nan() || x.abs() > LIMIT {
+            return None;
+        }
+        // Round half away from zero (the conversion truncates). From 2^23 on, `x`
+        // is an integer, and adding ½ would round to even instead.
+        let half = if x.abs() >= 8_388_608.0 {
+            0.0
+        } else if x < 0.0 {
+            -0.5
+        } else {
+            0.5
+        };
+        *o = crate::math::f32_to_i64(x + half);
+    }
+    Some(out)
+}
+
+impl<const N: usize> LightSetup<N> {
+    /// Moves `lighting` into the model space of a draw with model-to-world
+    /// matrix `model`, seen from `eye` (the camera position, world space).
+    ///
+    /// Errors: more than `N` lights; a zero or non-finite direction; a
+    /// non-finite position; a range that is not finite and positive; bad fog
+    /// parameters; a singular or non-finite matrix or a non-finite eye (see
+    /// [`LightError`]). Light indices count within their own slice.
+    pub fn new(lighting: &Lighting<'_>, model: &Mat4, eye: Vec3) -> Result<Self, LightError> {
+        let mut lights = [FixedLight::OFF; N];
+        let core = Core::new(lighting, model, eye, &mut lights)?;
+        Ok(Self { lights, core })
+    }
+
+    /// The lit colour of a vertex.
+    ///
+    /// `base` is the vertex or draw colour (it multiplies the material's
+    /// ambient and diffuse reflectance); `position` and `normal` are in the
+    /// draw's model space, raw 16.16 bits. The normal should be unit length
+    /// (it is not normalised; see the [module docs](crate::light)), but any normal,
+    /// zero or huge, gives a defined colour.
+    #[inline]
+    pub fn shade(
+        &self,
+        material: &Material,
+        base: [u8; 3],
+        position: [i32; 3],
+        normal: [i32; 3],
+    ) -> [u8; 3] {
+        let lights = &self.lights[..self.core.count.min(N)];
+        self.core.shade(lights, material, base, position, normal)
+    }
+
+    /// For one directional light without fog (the lighting of a
+    /// [`scene::Light`](crate::scene::Light)): its model-space unit
+    /// direction (Q16), its colour and the ambient light, with which a
+    /// white material without highlights is lit as
+    /// `(base (256 ambient + colour · n·l) + 32,640) / 65,280`, `n·l` in
+    /// 1/256 steps, floored, clamped to `0..=256` (the same bits as
+    /// [`shade`](Self::shade), which the tests check): the vertex stage's
+    /// fast path.
+    pub(crate) fn single_directional(&self) -> Option<([i32; 3], [u8; 3], [u8; 3])> {
+        self.core
+            .single_directional(&self.lights[..self.core.count.min(N)])
+    }
+}
+
+/// Everything of a [`LightSetup`] but its lights: the code that does not
+/// depend on `N` lives here, so that it is compiled once (in this crate)
+/// rather than once per instance and codegen unit of every user.
+impl Core {
+    /// [`LightSetup::new`] into the light slots `lights`.
+    pub(super) fn new(
+        lighting: &Lighting<'_>,
+        model: &Mat4,
+        eye: Vec3,
+        lights: &mut [FixedLight],
+    ) -> Result<Self, LightError> {
+        let count = lighting
+            .directional
+            .len()
+            .saturating_add(lighting.point.len());
+        if count > lights.len() {
+            return Err(LightError::TooManyLights {
+                count,
+                max: lights.len(),
+            });
+        }
+        if !model.is_finite() {
+            return Err(LightError::BadMatrix);
+        }
+        let m = &model.m;
+        let t = Vec3::new(m[3][0], m[3][1], m[3][2]);
+        let to_model = |p: Vec3| model.inverse_transform_vector(p - t);
+        // World units per model unit (exact for a uniform scale).
+        let axis = |c: usize| Vec3::new(m[c][0], m[c][1], m[c][2]);
+        let model_scale =
+            sqrt((axis(0).dot(axis(0)) + axis(1).dot(axis(1)) + axis(2).dot(axis(2))) / 3.0);
+        if !(model_scale.is_finite() && model_scale > 0.0) {
+            return Err(LightError::BadMatrix);
+        }
+        if !eye.is_finite() {
+            return Err(LightError::BadMatrix);
+        }
+        // None for a singular matrix, too.
+        let eye = to_model(eye)
+            .and_then(to_raw)
+            .ok_or(LightError::BadMatrix)?;
+
+        let coarse = lighting.directional.len() == 1 && lighting.point.is_empty();
+        let mut slots = lights.iter_mut();
+        for (i, l) in lighting.directional.iter().enumerate() {
+            if l.direction.normalize().is_none() {
+                return Err(LightError::BadDirection { light: i });
+            }
+            let local = model
+                .inverse_transform_vector(l.direction)
+                .and_then(|v| v.normalize())
+                .ok_or(LightError::BadMatrix)?;
+            let fx = |v: f32| {
+                let x = v * 65536.0;
+                if coarse {
+                    // Truncated, as the vertex stage converts scene::Light.
+                    crate::math::f32_to_i32(x)
+                } else {
+                    crate::math::f32_to_i32(x + if x < 0.0 { -0.5 } else { 0.5 })
+                }
+            };
+            if let Some(slot) = slots.next() {
+                *slot = FixedLight {
+                    source: Source::Directional {
+                        dir: [fx(local.x), fx(local.y), fx(local.z)],
+                    },
+                    color: rgb(l.color),
+                };
+            }
+        }
+        for (i, l) in lighting.point.iter().enumerate() {
+            if !l.position.is_finite() {
+                return Err(LightError::BadPosition { light: i });
+            }
+            if !(l.range.is_finite() && l.range > 0.0) {
+                return Err(LightError::BadRange { light: i });
+            }
+            let p = to_model(l.position).ok_or(LightError::BadPosition { light: i })?;
+            let r = l.range / model_scale;
+            if r.is_nan() || r * 65536.0 > (1u64 << 59) as f32 {
+                return Err(LightError::BadRange { light: i });
+            }
+            // Vertices lie within ±32768 units: a light whose sphere misses
+            // that cube lights nothing (and its position need not fit).
+            let misses = [p.x, p.y, p.z].iter().any(|c| c.abs() - r > 32769.0);
+            let reach = crate::math::f32_to_u64(r * 65536.0);
+            let source = match (misses, to_raw(p), Scale::from_f32(1.0 / r)) {
+                (false, Some(pos), Some(inv_range)) if reach > 0 => Source::Point {
+                    pos,
+                    reach,
+                    inv_range,
+                },
+                _ => Source::Off,
+            };
+            if let Some(slot) = slots.next() {
+                *slot = FixedLight {
+                    source,
+                    color: rgb(l.color),
+                };
+            }
+        }
+
+        let fog = match lighting.fog {
+            Fog::None => FixedFog::None,
+            Fog::Linear { start, end } => {
+                let width = end - start;
+                if !(start.is_finite() && end.is_finite() && width > 0.0 && width.is_finite()) {
+                    return Err(LightError::BadFog);
+                }
+                let scale = Scale::from_f32(model_scale / width).ok_or(LightError::BadFog)?;
+                const LIMIT: f32 = (1u64 << 46) as f32;
+                let offset =
+                    crate::math::f32_to_i64((start / width * 65536.0).clamp(-LIMIT, LIMIT));
+                FixedFog::Linear { scale, offset }
+            }
+            Fog::Exponential { density } => {
+                if !(density.is_finite() && density >= 0.0) {
+                    return Err(LightError::BadFog);
+                }
+                let scale = Scale::from_f32(density * model_scale * core::f32::consts::LOG2_E)
+                    .ok_or(LightError::BadFog)?;
+                FixedFog::Exponential { scale }
+            }
+        };
+
+        Ok(Core {
+            count,
+            ambient: rgb(lighting.ambient),
+            eye,
+            fog,
+            fog_color: rgb(lighting.fog_color),
+            coarse,
+        })
+    }
+}
