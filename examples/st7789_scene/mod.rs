@@ -109,14 +109,16 @@ pub fn draws<'a>(knot: &'a Mesh<'a>, cube: &'a Mesh<'a>, time_us: u64) -> [Draw<
     let orbit = phase(time_us, 7_500_000);
     let cube_spin = phase(time_us, 3_000_000);
     // The orbit: radius 1.55 in a plane tilted 0.35 rad towards the camera.
-    let (s, c) = (micromath::F32Ext::sin(orbit), micromath::F32Ext::cos(orbit));
+    // The crate's own sine and cosine, in basic float operations only: the
+    // same bits on the host and the Pico. (micromath's cast negative
+    // fractions to integers, which the RP2040's ROM rounds towards -inf
+    // where the host truncates.)
+    let (s, c) = microraster::math::sin_cos(orbit);
     let centre = Mat4::rotation_x(0.35) * Mat4::translation(Vec3::new(1.55 * s, 0.0, 1.55 * c));
+    let (tumble_sin, _) = microraster::math::sin_cos(tumble);
     [
         Draw::new(knot)
-            .transform(
-                Mat4::rotation_y(spin)
-                    * Mat4::rotation_x(0.5 + 0.4 * micromath::F32Ext::sin(tumble)),
-            )
+            .transform(Mat4::rotation_y(spin) * Mat4::rotation_x(0.5 + 0.4 * tumble_sin))
             .color(Rgb888::new(235, 125, 40)),
         Draw::new(cube)
             .transform(
