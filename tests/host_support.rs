@@ -70,3 +70,20 @@ fn targets_are_found_in_the_sysroot_or_pretended_missing() {
     let pretend = format!("qemu-system-arm, {host}");
     assert!(Need::Target(host).missing(&pretend).is_some());
 }
+
+#[test]
+fn installed_files_are_looked_for_in_the_repository() {
+    let need = |path| Need::File {
+        name: "some-package",
+        path,
+        install: "npm ci --prefix somewhere",
+    };
+    let why = need("tests/no-such-dir/package.json")
+        .missing("")
+        .expect("no such file");
+    assert!(why.contains("some-package is not installed"), "{why}");
+    assert!(why.contains("npm ci --prefix somewhere"), "{why}");
+    // Cargo.toml is always there, unless pretended missing by name.
+    assert_eq!(need("Cargo.toml").missing(""), None);
+    assert!(need("Cargo.toml").missing("some-package").is_some());
+}

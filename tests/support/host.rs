@@ -26,6 +26,14 @@ pub enum Need<'a> {
     Program { name: &'a str, install: &'a str },
     /// A Rust target whose standard library rustup has installed.
     Target(&'a str),
+    /// A file that an install step creates (for example the `package.json`
+    /// of a Node.js package that `npm ci` installs), relative to the
+    /// repository; `name` is what `MICRORASTER_PRETEND_MISSING` calls it.
+    File {
+        name: &'a str,
+        path: &'a str,
+        install: &'a str,
+    },
 }
 
 /// QEMU's Arm system emulator (the emulated boards).
@@ -33,6 +41,13 @@ pub const QEMU_ARM: Need<'static> = Need::Program {
     name: "qemu-system-arm",
     install: "apt-get install qemu-system-arm (Debian, Ubuntu), \
               dnf install qemu-system-arm (Fedora) or brew install qemu (macOS)",
+};
+
+/// Node.js (the emulated Raspberry Pi Pico runs in rp2040js).
+pub const NODE: Need<'static> = Need::Program {
+    name: "node",
+    install: "apt-get install nodejs npm (Debian, Ubuntu; Node.js 18 or later), \
+              or from https://nodejs.org",
 };
 
 /// What a test does about its needs.
@@ -61,6 +76,17 @@ impl Need<'_> {
                      toolchain that is already installed); \
                      install it with: rustup target add {triple}"
                 )
+            }),
+            Need::File {
+                name,
+                path,
+                install,
+            } => (pretended(name)
+                || !std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+                    .join(path)
+                    .exists())
+            .then(|| {
+                format!("{name} is not installed ({path} is missing); install it with {install}")
             }),
         }
     }
