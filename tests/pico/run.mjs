@@ -1,0 +1,263 @@
+// Runs the Raspberry Pi Pico firmware `examples/rp2040_st7789.rs` in
+// rp2040js with the stub boot ROM (bootrom.mjs) and an ST7789 on SPI1
+// (st7789.mjs), until it has drawn the frames asked for.
+//
+//   node tests/pico/run.mjs ELF [--frames N] [--out DIR] [--max-cycles C]
+//
+// Writes DIR/frame_NNN.rgb565 (what the panel shows after frame N:
+// 240x240 big-endian Rgb565) and DIR/report.json, and prints a line per
+// frame. Exits with status 1 and a message on the first thing a panel or a
+// Pico would not do (see st7789.mjs, bootrom.mjs).
+//
+// The wiring is the firmware's: SCK GP10, TX GP11 (SPI1), CS GP9, DC GP8,
+// RES GP12, backlight GP13.
+//
+// Timing. rp2040js charges each instruction its Cortex-M0+ cycles (and a
+// few for peripheral accesses) and keeps the clock by them; nothing is
+// charged for XIP cache misses, and the ROM's routines cost the nominal
+// figures of bootrom.mjs. The SPI takes 8 SPI clocks a byte at the baud
+// rate the firmware set, so the firmware waits for the wire as on a Pico.
+// For every frame the report has, in system-clock cycles:
+//   period: from the end of the previous frame's last pixel to the end of
+//           this one's (frame 0: from the end of the panel's set-up);
+//   spi:    how long the SPI was sending in that period (transfer);
+//   idle:   period - spi, when the wire was idle: with a firmware that
+//           renders, then sends, tile after tile, the render time. With
+//           one that sends a tile by DMA while it renders the next, the
+//           period is the overlapped frame and idle what the overlap did
+//           not hide.
+
+import { readFileSync, writeFileSync, mkdirSync } from 'node:fs';
+import { join } from 'node:path';
+import { RP2040, ConsoleLogger, LogLevel } from 'rp2040js';
+import { buildBootrom } from './bootrom.mjs';
+import { ST7789, WIDTH, HEIGHT } from './st7789.mjs';
+
+const PIN_DC = 8;
+const PIN_CS = 9;
+const PIN_RES = 12;
+const SPI = 1;
+
+function parseArgs(argv) {
+  const args = { frames: 1, out: null, maxCycles: null, elf: null };
+  for (let i = 0; i < argv.length; i++) {
+    const a = argv[i];
+    if (a === '--frames') args.frames = Number(argv[++i]);
+    else if (a === '--out') args.out = argv[++i];
+    else if (a === '--max-cycles') args.maxCycles = Number(argv[++i]);
+    else if (!args.elf && !a.startsWith('--')) args.elf = a;
+    else throw new Error(`unknown argument ${a}`);
+  }
+  if (!args.elf || !(args.frames >= 1)) {
+    throw new Error('usage: node run.mjs ELF [--frames N] [--out DIR] [--max-cycles C]');
+  }
+  return args;
+}
+
+/** Copies the ELF's loadable segments to flash, by physical (load) address. */
+function loadElf(mcu, path) {
+  const elf = readFileSync(path);
+  if (elf.readUInt32BE(0) !== 0x7f454c46 || elf[4] !== 1 || elf[5] !== 1 || elf.readUInt16LE(18) !== 40) {
+    throw new Error(`${path} is not a 32-bit little-endian Arm ELF`);
+  }
+  const phoff = elf.readUInt32LE(28);
+  const phentsize = elf.readUInt16LE(42);
+  const phnum = elf.readUInt16LE(44);
+  let bytes = 0;
+  for (let i = 0; i < phnum; i++) {
+    const ph = phoff + i * phentsize;
+    const type = elf.readUInt32LE(ph);
+    const offset = elf.readUInt32LE(ph + 4);
+    const paddr = elf.readUInt32LE(ph + 12);
+    const filesz = elf.readUInt32LE(ph + 16);
+    if (type !== 1 || filesz === 0) continue; // PT_LOAD with contents
+    if (paddr < 0x10000000 || paddr + filesz > 0x10000000 + mcu.flash.length) {
+      throw new Error(`segment at 0x${paddr.toString(16)} is not in flash`);
+    }
+    mcu.flash.set(elf.subarray(offset, offset + filesz), paddr - 0x10000000);
+    bytes += filesz;
+  }
+  if (bytes === 0) throw new Error(`${path} has nothing to load`);
+  return bytes;
+}
+
+function main() {
+  const args = parseArgs(process.argv.slice(2));
+  const mcu = new RP2040();
+  // The default logger throws on errors; warnings (unimplemented
+  // peripherals the firmware does not use) are only noise here.
+  mcu.logger = new ConsoleLogger(LogLevel.Error, true);
+
+  let cycles = 0; // system-clock cycles since reset
+  let charged = 0; // cycles a ROM stub stands for, not yet on the clock
+  const fail = (message) => {
+    throw new Error(message);
+  };
+  let romCycles = 0; // of them, in the current frame, for the report
+  const charge = (c) => {
+    charged += c;
+    romCycles += c;
+  };
+  const rom = buildBootrom(mcu, { fail, charge });
+  // The ROM first: loadBootrom resets the chip, which erases the flash.
+  mcu.loadBootrom(rom.image);
+  const flashBytes = loadElf(mcu, args.elf);
+  mcu.core.reset();
+  mcu.onBreak = (n) => rom.onBreak(n);
+
+  const clock = mcu.clock;
+  const nsPerCycle = () => 1e9 / mcu.clkSys;
+
+  // The panel and its pins.
+  const panel = new ST7789(() => clock.nanos);
+  const pin = (n) => mcu.gpio[n].outputValue;
+  mcu.gpio[PIN_RES].addListener(() => {
+    if (mcu.gpio[PIN_RES].outputEnable) panel.reset(pin(PIN_RES));
+  });
+
+  // The animation time the firmware read: the timer's low word, read last
+  // before a frame's first byte.
+  const timer = mcu.peripherals[0x40054];
+  const timerRead = timer.readUint32.bind(timer);
+  let lastTimeUs = null;
+  timer.readUint32 = (offset) => {
+    const v = timerRead(offset);
+    if (offset === 0x28 || offset === 0x0c) lastTimeUs = v; // TIMERAWL, TIMELR
+    return v;
+  };
+
+  // SPI1: a byte takes 8 SPI clocks; the panel sees it when its last bit
+  // is clocked, with DC and CS as they are then.
+  const spi = mcu.spi[SPI];
+  let spiBusyCycles = 0;
+  let byteValue = 0;
+  const byteDone = clock.createAlarm(() => {
+    panel.byte(byteValue, pin(PIN_DC), pin(PIN_CS));
+    afterByte();
+    spi.completeTransmit(0);
+  });
+  spi.onTransmit = (value) => {
+    if (spi.dataBits !== 8) fail(`SPI${SPI} sends ${spi.dataBits}-bit words, not bytes`);
+    const hz = spi.clockFrequency;
+    if (!(hz > 0)) fail(`SPI${SPI} transmits with no clock`);
+    const ns = (8 * 1e9) / hz;
+    spiBusyCycles += ns / nsPerCycle();
+    byteValue = value;
+    byteDone.schedule(ns);
+  };
+
+  // Frames: a frame is done when every pixel of the panel has been written
+  // since the previous one was.
+  const frames = [];
+  const covered = new Uint8Array(WIDTH * HEIGHT);
+  let coveredCount = 0;
+  let frameStart = null; // { time_us, cycle } of the frame being sent
+  let periodStart = null; // cycle of the end of the last frame (or set-up)
+  let periodSpi = 0;
+  panel.onPixel = (i) => {
+    if (!covered[i]) {
+      covered[i] = 1;
+      coveredCount++;
+    }
+  };
+  const cyclesNow = () => cycles + charged;
+  function afterByte() {
+    const last = panel.commands[panel.commands.length - 1];
+    if (frameStart === null && last && last[1] === 'CASET' && panel.cmd === null) {
+      // The first window of a frame.
+      if (periodStart === null) {
+        periodStart = cyclesNow();
+        periodSpi = spiBusyCycles;
+      }
+      frameStart = { time_us: lastTimeUs, cycle: cyclesNow() };
+    }
+    if (coveredCount === WIDTH * HEIGHT && panel.windowFilled()) {
+      const end = cyclesNow();
+      const period = Math.round(end - periodStart);
+      const spiCycles = Math.round(spiBusyCycles - periodSpi);
+      const frame = {
+        index: frames.length,
+        time_us: frameStart.time_us,
+        end_cycle: Math.round(end),
+        period_cycles: period,
+        spi_cycles: spiCycles,
+        idle_cycles: period - spiCycles,
+        rom_calls: Object.fromEntries(rom.calls),
+        rom_cycles_charged: romCycles,
+      };
+      rom.calls.clear();
+      romCycles = 0;
+      frames.push(frame);
+      const picture = panel.picture();
+      if (args.out) writeFileSync(join(args.out, `frame_${String(frame.index).padStart(3, '0')}.rgb565`), picture);
+      const ms = (c) => ((c * nsPerCycle()) / 1e6).toFixed(2);
+      console.log(
+        `frame ${frame.index}: t = ${frame.time_us} us; ${period} cycles (${ms(period)} ms), ` +
+          `SPI ${spiCycles} (${ms(spiCycles)} ms), idle wire ${frame.idle_cycles} (${ms(frame.idle_cycles)} ms)`,
+      );
+      covered.fill(0);
+      coveredCount = 0;
+      frameStart = null;
+      periodStart = end;
+      periodSpi = spiBusyCycles;
+    }
+  }
+  // The set-up's traffic ends the period before frame 0.
+  const setupEnd = () => {
+    if (periodStart === null) {
+      periodStart = cyclesNow();
+      periodSpi = spiBusyCycles;
+    }
+  };
+  const panelCommand = panel.finishCommand.bind(panel);
+  panel.finishCommand = () => {
+    const was = panel.cmd;
+    panelCommand();
+    if (was === 0x29) setupEnd(); // DISPON
+  };
+
+  if (args.out) mkdirSync(args.out, { recursive: true });
+  const maxCycles = args.maxCycles ?? 200e6 + args.frames * 100e6;
+  const started = Date.now();
+  try {
+    while (frames.length < args.frames) {
+      if (mcu.core.waiting) {
+        if (!clock.nextAlarm) fail('the core sleeps with nothing to wake it');
+        const ns = Math.max(clock.nanosToNextAlarm, 0);
+        clock.tick(ns);
+        cycles += ns / nsPerCycle();
+      } else {
+        const c = mcu.core.executeInstruction();
+        cycles += c;
+        clock.tick(c * nsPerCycle());
+      }
+      if (charged) {
+        cycles += charged;
+        clock.tick(charged * nsPerCycle());
+        charged = 0;
+      }
+      if (cycles > maxCycles) {
+        fail(`${frames.length} of ${args.frames} frames after ${maxCycles} cycles`);
+      }
+    }
+  } catch (e) {
+    const pc = (mcu.core.PC >>> 0).toString(16);
+    const log = panel.commands.slice(-6).map((c) => c[1]).join(', ');
+    console.error(`pico: ${e.message}\n  at cycle ${Math.round(cycles)}, PC 0x${pc}; last panel commands: ${log}`);
+    process.exit(1);
+  }
+  const report = {
+    elf: args.elf,
+    flash_bytes: flashBytes,
+    clk_sys_hz: mcu.clkSys,
+    spi_hz: spi.clockFrequency,
+    wall_ms: Date.now() - started,
+    setup: panel.commands.filter((c) => c[1] !== 'CASET' && c[1] !== 'RASET' && c[1] !== 'RAMWR')
+      .map((c) => [Math.round(c[0] / 1000), c[1], c[2]]),
+    frames,
+  };
+  if (args.out) writeFileSync(join(args.out, 'report.json'), JSON.stringify(report, null, 1));
+  console.log(`pico: ${frames.length} frames in ${report.wall_ms} ms of wall time`);
+}
+
+main();
