@@ -171,6 +171,15 @@ fn pico_firmware_in_rp2040js_matches_host_render() {
     let report = std::fs::read_to_string(out.join("report.json")).expect("report.json");
     let reported = frames_of(&report);
     assert_eq!(reported.len(), frames, "{report}");
+    // The stack, painted before reset and read back after the last frame,
+    // stayed clear of the statics (RAM is 256 KiB; a stack that reached
+    // them would have left no painted word).
+    let statics = field(&report, "static_ram_bytes");
+    let stack = field(&report, "peak_stack_bytes");
+    assert!(
+        stack > 1_024 && statics + stack < 256 * 1024,
+        "peak stack {stack} B over statics of {statics} B"
+    );
 
     let mut knot_data = Box::new(KnotData::new());
     let knot = knot_data.generate().expect("the knot");

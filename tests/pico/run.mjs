@@ -6,7 +6,7 @@
 //
 // Writes DIR/frame_NNN.rgb565 (what the panel shows after frame N:
 // 240x240 big-endian Rgb565) and DIR/report.json, and prints a line per
-// frame. Exits with status 1 and a message on the first thing a panel or a
+// frame and the peak stack. Exits with status 1 and a message on the first thing a panel or a
 // Pico would not do (see st7789.mjs, bootrom.mjs).
 //
 // The wiring is the firmware's: SCK GP10, TX GP11 (SPI1), CS GP9, DC GP8,
@@ -52,6 +52,63 @@ function parseArgs(argv) {
     throw new Error('usage: node run.mjs ELF [--frames N] [--out DIR] [--max-cycles C]');
   }
   return args;
+}
+
+/**
+ * The value of each of `names` in the ELF's symbol table (`.symtab`), by
+ * name; a missing one is an error.
+ */
+function elfSymbols(path, names) {
+  const elf = readFileSync(path);
+  const shoff = elf.readUInt32LE(32);
+  const shentsize = elf.readUInt16LE(46);
+  const shnum = elf.readUInt16LE(48);
+  const section = (i) => {
+    const sh = shoff + i * shentsize;
+    return {
+      type: elf.readUInt32LE(sh + 4),
+      offset: elf.readUInt32LE(sh + 16),
+      size: elf.readUInt32LE(sh + 20),
+      link: elf.readUInt32LE(sh + 24),
+      entsize: elf.readUInt32LE(sh + 36),
+    };
+  };
+  const found = {};
+  for (let i = 0; i < shnum; i++) {
+    const symtab = section(i);
+    if (symtab.type !== 2) continue; // SHT_SYMTAB
+    const strtab = section(symtab.link);
+    for (let off = symtab.offset; off < symtab.offset + symtab.size; off += symtab.entsize) {
+      const start = strtab.offset + elf.readUInt32LE(off);
+      const end = elf.indexOf(0, start);
+      const name = elf.toString('latin1', start, end);
+      if (names.includes(name)) found[name] = elf.readUInt32LE(off + 4);
+    }
+  }
+  for (const n of names) {
+    if (!(n in found)) throw new Error(`${path} has no symbol ${n}`);
+  }
+  return found;
+}
+
+// The peak stack, measured as on the QEMU boards (examples/stack_gauge):
+// the RAM between the statics' end and the top of the stack is painted
+// with a pattern before reset, and after the last frame the lowest word no
+// longer holding it marks how deep the stack went. cortex-m-rt puts the
+// stack at the top of RAM (`_stack_start`) growing down to `_stack_end`;
+// nothing else writes that range (no heap). A lower bound, like every
+// painted measurement: stack reserved but never written goes unseen.
+const PAINT = 0xc5acce55;
+const RAM_START = 0x20000000;
+
+function paintStack(mcu, bottom, top) {
+  for (let a = bottom; a < top; a += 4) mcu.sramView.setUint32(a - RAM_START, PAINT, true);
+}
+
+function peakStack(mcu, bottom, top) {
+  let a = bottom;
+  while (a < top && mcu.sramView.getUint32(a - RAM_START, true) === PAINT) a += 4;
+  return top - a;
 }
 
 /** Copies the ELF's loadable segments to flash, by physical (load) address. */
@@ -102,6 +159,11 @@ function main() {
   // The ROM first: loadBootrom resets the chip, which erases the flash.
   mcu.loadBootrom(rom.image);
   const flashBytes = loadElf(mcu, args.elf);
+  const stack = elfSymbols(args.elf, ['_stack_start', '_stack_end']);
+  if (stack._stack_end % 4 || stack._stack_start % 4 || stack._stack_end >= stack._stack_start) {
+    throw new Error(`stack bounds 0x${stack._stack_end.toString(16)}..0x${stack._stack_start.toString(16)}`);
+  }
+  paintStack(mcu, stack._stack_end, stack._stack_start);
   mcu.core.reset();
   mcu.onBreak = (n) => rom.onBreak(n);
 
@@ -252,12 +314,18 @@ function main() {
     clk_sys_hz: mcu.clkSys,
     spi_hz: spi.clockFrequency,
     wall_ms: Date.now() - started,
+    static_ram_bytes: stack._stack_end - RAM_START,
+    peak_stack_bytes: peakStack(mcu, stack._stack_end, stack._stack_start),
     setup: panel.commands.filter((c) => c[1] !== 'CASET' && c[1] !== 'RASET' && c[1] !== 'RAMWR')
       .map((c) => [Math.round(c[0] / 1000), c[1], c[2]]),
     frames,
   };
   if (args.out) writeFileSync(join(args.out, 'report.json'), JSON.stringify(report, null, 1));
   console.log(`pico: ${frames.length} frames in ${report.wall_ms} ms of wall time`);
+  console.log(
+    `pico: peak stack ${report.peak_stack_bytes} B (painted and read back), ` +
+      `statics ${report.static_ram_bytes} B`,
+  );
 }
 
 main();
