@@ -89,6 +89,54 @@ impl<C: Copy, const W: usize, const H: usize> TileBuffer<C, W, H> {
             height: (area.size.height as usize).min(H),
         }
     }
+
+    /// The finished pixels of the tile that covers `area`, moved together
+    /// into one contiguous run, row-major: `width * height` pixels, for a
+    /// DMA channel that reads one block.
+    ///
+    /// A tile lies in the buffer's top-left `area.size` pixels with the
+    /// buffer's row stride `W`, so a tile as wide as the buffer (every
+    /// tile but those on the right edge of a frame whose width is not a
+    /// multiple of `W`) is contiguous already and nothing moves. A
+    /// narrower one has its rows moved left in place, one `copy_within`
+    /// per row, after which the buffer no longer holds the tile in its
+    /// usual layout: call this once per drawn tile, after it is drawn and
+    /// instead of [`view`](Self::view) (the next
+    /// [`render_next`](crate::render::Frame::render_next) into this
+    /// buffer clears it and lays the next tile out again).
+    ///
+    /// ```
+    /// use microraster::embedded_graphics::pixelcolor::{Rgb565, RgbColor};
+    /// use microraster::{prelude::*, TileBuffer};
+    ///
+    /// let draws = [];
+    /// let scene = Scene::new(Camera::new(Mat4::IDENTITY, Mat4::IDENTITY), &draws);
+    /// // A 24-pixel-wide frame of 16x16 tiles: the second tile is 8 wide.
+    /// let renderer: Renderer<Rgb565, 16, 16> =
+    ///     Renderer::new(Config::new(Size::new(24, 16), Rgb565::BLUE));
+    /// let mut ws: Workspace<4, 64, 4> = Workspace::new();
+    /// let mut tile = TileBuffer::new(Rgb565::BLACK);
+    /// let mut frame = renderer.begin(&mut ws, &scene).unwrap();
+    /// frame.render_next(&mut tile).unwrap();
+    /// let area = frame.render_next(&mut tile).unwrap();
+    /// assert_eq!(area.size, Size::new(8, 16));
+    /// assert_eq!(tile.view(&area).contiguous(), None); // rows 16 pixels apart
+    /// let expected: Vec<Rgb565> = tile.view(&area).pixels().collect();
+    /// assert_eq!(tile.pack(&area), &expected[..]); // 8 x 16 pixels in a row
+    /// ```
+    pub fn pack(&mut self, area: &Rectangle) -> &[C] {
+        let width = (area.size.width as usize).min(W);
+        let height = (area.size.height as usize).min(H);
+        let pixels = self.color.as_flattened_mut();
+        if width < W {
+            // Row 0 is in place; each later row moves left, onto pixels
+            // that are either already moved or the row's own.
+            for row in 1..height {
+                pixels.copy_within(row * W..row * W + width, row * width);
+            }
+        }
+        &pixels[..width * height]
+    }
 }
 
 /// The finished pixels of one tile, row-major, as handed to a sink.
@@ -123,6 +171,19 @@ impl<'a, C: Copy> TileView<'a, C> {
     /// Every pixel, row by row.
     pub fn pixels(&self) -> impl Iterator<Item = C> + 'a {
         self.rows().flat_map(|r| r.iter().copied())
+    }
+
+    /// Every pixel, row by row, as one slice when the rows follow each
+    /// other in memory: when the tile is as wide as its buffer or one row
+    /// high. `None` for a tile narrower than its buffer: its rows are
+    /// `width` pixels `W` apart, and [`rows`](Self::rows) gives them one by
+    /// one, or [`TileBuffer::pack`] moves them together.
+    pub fn contiguous(&self) -> Option<&'a [C]> {
+        let len = self.width * self.height;
+        match self.width == self.stride || self.height <= 1 {
+            true => self.pixels.get(..len),
+            false => None,
+        }
     }
 }
 
