@@ -7,10 +7,25 @@
 //! bytes, for example to start a DMA transfer per tile, implements
 //! [`TileSink`] directly and reads [`TileView::rows`]. [`FrameBuffer`]
 //! places the tiles into a whole frame in the caller's memory.
+//!
+//! A sink returns when its tile is gone, so drawing and sending take
+//! turns. To overlap them, a DMA driver implements [`TileTransfer`]
+//! (start sending a tile, wait for it later) for
+//! [`Renderer::render_double_buffered`](crate::Renderer::render_double_buffered),
+//! which draws the next tile into a second buffer while the previous one
+//! is on the wire.
+//!
+//! | file | what |
+//! |---|---|
+//! | `sink.rs` | [`TileSink`], every `DrawTarget` as one, [`NullSink`] |
+//! | `sink/framebuffer.rs` | [`FrameBuffer`]: tiles placed in a whole frame |
+//! | `sink/transfer.rs` | [`TileTransfer`] and the double-buffered frame loop |
 
 mod framebuffer;
+mod transfer;
 
 pub use framebuffer::{FrameBuffer, FrameBufferError};
+pub use transfer::TileTransfer;
 
 use crate::tile::TileView;
 use embedded_graphics::draw_target::DrawTarget;

@@ -1,0 +1,343 @@
+//! Double-buffered streaming: a frame sent through a `TileTransfer` (a fake
+//! DMA channel that completes a tile only when it is waited for) delivers
+//! every tile once, in visiting order, from the two buffers in turn,
+//! drawing each tile only into the buffer that is not in flight, with the
+//! pixels of `Renderer::render`; a failed transfer stops the frame with
+//! nothing in flight and both buffers back.
+
+#[path = "../examples/common/mod.rs"]
+mod common;
+mod support;
+
+use common::*;
+use embedded_graphics::pixelcolor::{Rgb565, Rgb888, RgbColor};
+use microraster::prelude::*;
+use std::cell::RefCell;
+use std::rc::Rc;
+use support::Capture;
+
+type Tile<C> = TileBuffer<C, 32, 32>;
+
+/// What happened to the two tile buffers, in order.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Event {
+    /// The renderer took buffer `n` to draw into.
+    Draw(usize),
+    /// The transfer started sending buffer `n`, holding tile `area`.
+    Start(usize, Rectangle),
+    /// The transfer of buffer `n` completed.
+    Done(usize),
+}
+
+type Log = Rc<RefCell<Vec<Event>>>;
+
+/// A tile buffer handle that logs each time the renderer draws into it.
+struct Logged<'t, C> {
+    id: usize,
+    tile: &'t mut Tile<C>,
+    log: Log,
+}
+
+impl<C> core::borrow::Borrow<Tile<C>> for Logged<'_, C> {
+    fn borrow(&self) -> &Tile<C> {
+        self.tile
+    }
+}
+
+impl<C> core::borrow::BorrowMut<Tile<C>> for Logged<'_, C> {
+    fn borrow_mut(&mut self) -> &mut Tile<C> {
+        RefCell::borrow_mut(&self.log).push(Event::Draw(self.id));
+        self.tile
+    }
+}
+
+/// A DMA channel on the host: `start` packs the tile and keeps its buffer;
+/// the bytes "arrive" only when `wait` is called, read from the buffer
+/// then, so a tile overwritten in flight would arrive wrong.
+struct FakeDma<'t, C> {
+    in_flight: Option<(Logged<'t, C>, Rectangle)>,
+    frame: Capture<C>,
+    log: Log,
+    /// Fail the `start` (or the `wait`) of this tile, counted from 0.
+    fail_start: Option<usize>,
+    fail_wait: Option<usize>,
+    started: usize,
+}
+
+impl<'t, C: PixelColor> FakeDma<'t, C> {
+    fn new(size: Size, log: &Log, background: C) -> Self {
+        Self {
+            in_flight: None,
+            frame: Capture::new(size, background),
+            log: log.clone(),
+            fail_start: None,
+            fail_wait: None,
+            started: 0,
+        }
+    }
+}
+
+#[derive(Debug, PartialEq, Eq)]
+struct WireError(usize);
+
+impl<'t, C: PixelColor> TileTransfer<Logged<'t, C>> for FakeDma<'t, C> {
+    type Error = WireError;
+
+    fn start(
+        &mut self,
+        area: &Rectangle,
+        tile: Logged<'t, C>,
+    ) -> Result<(), (WireError, Logged<'t, C>)> {
+        assert!(self.in_flight.is_none(), "two transfers in flight");
+        let k = self.started;
+        if self.fail_start == Some(k) {
+            return Err((WireError(k), tile));
+        }
+        self.started += 1;
+        // What a DMA driver does: one block, then the channel is started.
+        let packed = tile.tile.pack(area).len();
+        assert_eq!(packed, (area.size.width * area.size.height) as usize);
+        self.log.borrow_mut().push(Event::Start(tile.id, *area));
+        self.in_flight = Some((tile, *area));
+        Ok(())
+    }
+
+    fn wait(&mut self) -> (Logged<'t, C>, Result<(), WireError>) {
+        let (tile, area) = self.in_flight.take().expect("wait with nothing in flight");
+        self.log.borrow_mut().push(Event::Done(tile.id));
+        let k = self.started - 1;
+        if self.fail_wait == Some(k) {
+            return (tile, Err(WireError(k)));
+        }
+        // The bytes go out now, from the packed block.
+        let n = (area.size.width * area.size.height) as usize;
+        let pixels = &tile.tile.flat()[..n];
+        let width = area.size.width as usize;
+        for (i, &c) in pixels.iter().enumerate() {
+            let (x, y) = (
+                area.top_left.x as u32 + (i % width) as u32,
+                area.top_left.y as u32 + (i / width) as u32,
+            );
+            let at = (y * self.frame.size.width + x) as usize;
+            self.frame.pixels[at] = c;
+            self.frame.writes[at] += 1;
+        }
+        (tile, Ok(()))
+    }
+}
+
+/// The packed block of a buffer, read back without disturbing it: `pack`
+/// of a whole-width area moves nothing.
+trait FlatPixels<C> {
+    fn flat(&self) -> Vec<C>;
+}
+
+impl<C: PixelColor> FlatPixels<C> for Tile<C> {
+    fn flat(&self) -> Vec<C> {
+        let whole = Rectangle::new(Point::zero(), Size::new(32, 32));
+        self.view(&whole).pixels().collect()
+    }
+}
+
+/// A sink that records the order of the tiles it receives.
+struct Order<C>(Vec<Rectangle>, Capture<C>);
+
+impl<C: PixelColor> TileSink<C> for Order<C> {
+    type Error = core::convert::Infallible;
+    fn write_tile(&mut self, area: &Rectangle, tile: &TileView<'_, C>) -> Result<(), Self::Error> {
+        self.0.push(*area);
+        self.1.write_tile(area, tile)
+    }
+}
+
+/// `render`'s tiles in order and its frame.
+fn reference<C, const B: usize, const T: usize>(
+    scene: &Scene<'_, impl FragmentShader<C>>,
+    config: Config<C>,
+) -> (Vec<Rectangle>, Capture<C>, FrameStats)
+where
+    C: PixelColor + From<Rgb888> + Into<Rgb888>,
+{
+    let mut renderer: Renderer<C, 32, 32> = Renderer::new(config);
+    let mut ws: Box<Workspace<2048, B, T>> = Box::new(Workspace::new());
+    let mut sink = Order(Vec::new(), Capture::new(config.size, config.clear_color));
+    let stats = renderer.render(&mut ws, scene, &mut sink).unwrap();
+    (sink.0, sink.1, stats)
+}
+
+/// The scene sent through the fake DMA channel; checks the order of
+/// events, every tile and every pixel against `render`'s.
+fn double_buffered<const B: usize, const T: usize>(
+    scene: &Scene<'_>,
+    config: Config<Rgb565>,
+) -> FrameStats {
+    let (order, expected, stats) = reference::<Rgb565, B, T>(scene, config);
+    let renderer: Renderer<Rgb565, 32, 32> = Renderer::new(config);
+    let mut ws: Box<Workspace<2048, B, T>> = Box::new(Workspace::new());
+    let log: Log = Rc::default();
+    let mut a = Box::new(Tile::new(Rgb565::new(0, 63, 0)));
+    let mut b = Box::new(Tile::new(Rgb565::new(0, 0, 31)));
+    let tiles = [
+        Logged {
+            id: 0,
+            tile: &mut *a,
+            log: log.clone(),
+        },
+        Logged {
+            id: 1,
+            tile: &mut *b,
+            log: log.clone(),
+        },
+    ];
+    let mut dma = FakeDma::new(config.size, &log, Rgb565::new(31, 0, 31));
+    let (back, result) = renderer.render_double_buffered(&mut ws, scene, tiles, &mut dma);
+    assert_eq!(result.unwrap(), stats, "the same statistics");
+    let mut ids: Vec<usize> = back.iter().map(|t| t.id).collect();
+    ids.sort();
+    assert_eq!(ids, [0, 1], "both buffers come back");
+    assert!(dma.in_flight.is_none());
+
+    // Every tile once, in visiting order, from the buffers in turn.
+    let log = log.borrow();
+    let starts: Vec<(usize, Rectangle)> = log
+        .iter()
+        .filter_map(|e| match *e {
+            Event::Start(id, area) => Some((id, area)),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(starts.iter().map(|s| s.1).collect::<Vec<_>>(), order);
+    for (k, s) in starts.iter().enumerate() {
+        assert_eq!(s.0, k % 2, "tile {k} from buffer {}", s.0);
+    }
+    // Draw into one buffer while the other is in flight: the first tile,
+    // then per tile start, draw the next (the last draw finds none), done.
+    let mut want = vec![Event::Draw(0)];
+    for (k, &(id, area)) in starts.iter().enumerate() {
+        want.extend([
+            Event::Start(id, area),
+            Event::Draw(1 - k % 2),
+            Event::Done(id),
+        ]);
+    }
+    assert_eq!(*log, want);
+
+    assert!(dma.frame.writes.iter().all(|&w| w == 1), "every pixel once");
+    let diff = dma
+        .frame
+        .pixels
+        .iter()
+        .zip(&expected.pixels)
+        .filter(|(a, b)| a != b)
+        .count();
+    assert_eq!(diff, 0, "pixels differ");
+    stats
+}
+
+fn demo<'a>(knot: &'a Mesh<'a>, cube: &'a Mesh<'a>, t: f32) -> [Draw<'a>; 2] {
+    draws(knot, cube, t, Shading::Gouraud)
+}
+
+#[test]
+fn double_buffered_frames_match_render_in_both_tile_orders() {
+    let assets = DemoAssets::new();
+    let (knot, cube) = (assets.knot(), cube());
+    let d = demo(&knot, &cube, 0.7);
+    // Not a multiple of the tile size: the right column's tiles are
+    // packed, the bottom row's are short.
+    let size = Size::new(317, 233);
+    let scene = Scene::new(camera(size.width, size.height), &d).light(light());
+    let config = Config::new(size, Rgb565::new(2, 4, 6));
+    let s = double_buffered::<8192, 80>(&scene, config);
+    assert_eq!((s.bin_passes, s.tiles), (1, 80));
+    assert!(s.pixels_shaded > 10_000, "{s:?}");
+    double_buffered::<8192, 80>(&scene, config.tile_order(TileOrder::Hilbert));
+}
+
+#[test]
+fn double_buffered_frames_match_render_over_many_passes() {
+    let assets = DemoAssets::new();
+    let (knot, cube) = (assets.knot(), cube());
+    let d = demo(&knot, &cube, 1.3);
+    let size = Size::new(317, 233);
+    let scene = Scene::new(camera(size.width, size.height), &d).light(light());
+    let config = Config::new(size, Rgb565::new(2, 4, 6));
+    let s = double_buffered::<8192, 7>(&scene, config);
+    assert!(s.bin_passes >= 12, "{s:?}");
+    let s = double_buffered::<64, 80>(&scene, config.tile_order(TileOrder::Hilbert));
+    assert!(s.bin_passes > 12 && s.rescanned_tiles > 0, "{s:?}");
+}
+
+/// A double-buffered frame whose transfer fails at tile `k`'s start or
+/// wait: the error comes back typed, no tile is started after it, nothing
+/// is left in flight, and both buffers come back.
+fn failing(fail_start: Option<usize>, fail_wait: Option<usize>) -> (usize, Vec<Event>) {
+    let cube = cube();
+    let d = [Draw::new(&cube)];
+    let size = Size::new(160, 96);
+    let scene = Scene::new(camera(size.width, size.height), &d).light(light());
+    let renderer: Renderer<Rgb565, 32, 32> = Renderer::new(Config::new(size, Rgb565::BLACK));
+    let mut ws: Box<Workspace<2048, 1024, 16>> = Box::new(Workspace::new());
+    let log: Log = Rc::default();
+    let (mut a, mut b) = (Tile::new(Rgb565::BLACK), Tile::new(Rgb565::BLACK));
+    let tiles = [(0, &mut a), (1, &mut b)].map(|(id, tile)| Logged {
+        id,
+        tile,
+        log: log.clone(),
+    });
+    let mut dma = FakeDma::new(size, &log, Rgb565::BLACK);
+    dma.fail_start = fail_start;
+    dma.fail_wait = fail_wait;
+    let (back, result) = renderer.render_double_buffered(&mut ws, &scene, tiles, &mut dma);
+    let k = fail_start.or(fail_wait).unwrap();
+    assert_eq!(result, Err(RenderError::Sink(WireError(k))));
+    let mut ids: Vec<usize> = back.iter().map(|t| t.id).collect();
+    ids.sort();
+    assert_eq!(ids, [0, 1], "both buffers come back");
+    assert!(dma.in_flight.is_none(), "nothing left in flight");
+    let events = log.borrow().clone();
+    (dma.started, events)
+}
+
+#[test]
+fn a_failed_transfer_stops_the_frame_cleanly() {
+    // The start of tile 3 fails: tiles 0..3 were sent, and the last event
+    // is the wait for tile 2.
+    let (started, log) = failing(Some(3), None);
+    assert_eq!(started, 3);
+    assert_eq!(log.last(), Some(&Event::Done(0)));
+    // The first tile's start.
+    let (started, log) = failing(Some(0), None);
+    assert_eq!((started, log), (0, vec![Event::Draw(0)]));
+    // Tile 4's transfer fails when waited for: tile 5 was drawn, never
+    // started.
+    let (started, log) = failing(None, Some(4));
+    assert_eq!(started, 5);
+    assert_eq!(&log[log.len() - 2..], [Event::Draw(1), Event::Done(0)]);
+    // The last tile's transfer (15 tiles of 32x32 in 160x96).
+    let (started, log) = failing(None, Some(14));
+    assert_eq!(started, 15);
+    assert_eq!(log.last(), Some(&Event::Done(0)));
+}
+
+#[test]
+fn scene_errors_come_back_before_any_transfer_with_the_buffers() {
+    let cube = cube();
+    let d = [Draw::new(&cube)];
+    let scene = Scene::new(camera(64, 64), &d);
+    let renderer: Renderer<Rgb565, 32, 32> =
+        Renderer::new(Config::new(Size::new(64, 64), Rgb565::BLACK));
+    let mut ws: Workspace<4, 64, 4> = Workspace::new();
+    let log: Log = Rc::default();
+    let (mut a, mut b) = (Tile::new(Rgb565::BLACK), Tile::new(Rgb565::BLACK));
+    let tiles = [(0, &mut a), (1, &mut b)].map(|(id, tile)| Logged {
+        id,
+        tile,
+        log: log.clone(),
+    });
+    let mut dma = FakeDma::new(Size::new(64, 64), &log, Rgb565::BLACK);
+    let (back, result) = renderer.render_double_buffered(&mut ws, &scene, tiles, &mut dma);
+    assert!(matches!(result, Err(RenderError::VertexCapacity { .. })));
+    assert_eq!(back.map(|t| t.id), [0, 1]);
+    assert!(log.borrow().is_empty());
+}
