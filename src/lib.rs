@@ -84,12 +84,13 @@ pub use fixed;
 pub use raster::Rasterizer;
 pub use render::{Config, Features, FrameStats, Profiler, RenderError, Renderer, Stage, Workspace};
 pub use shade::DepthTest;
-pub use sink::{FrameBuffer, FrameBufferError, NullSink, TileSink, TileTransfer};
+pub use sink::{AsyncTileSink, FrameBuffer, FrameBufferError, NullSink, TileSink, TileTransfer};
 pub use tile::{TileBuffer, TileOrder, TileView};
 
 /// The types most programs need: the scene, the renderer, lighting,
 /// textures, the fragment-shader interface with the built-in shaders, and
-/// what a [`TileSink`] or [`TileTransfer`] implementation names.
+/// what a [`TileSink`], [`TileTransfer`] or [`AsyncTileSink`]
+/// implementation names.
 pub mod prelude {
     pub use crate::light::{DirectionalLight, Lighting, Material, PointLight};
     pub use crate::math::{Mat4, Vec3};
@@ -102,7 +103,9 @@ pub mod prelude {
         DepthShade, Dithered, Flat, Fragment, FragmentShader, Gouraud, Normals, Perspective,
         Textured, TexturedLit, VertexInput,
     };
-    pub use crate::sink::{FrameBuffer, FrameBufferError, NullSink, TileSink, TileTransfer};
+    pub use crate::sink::{
+        AsyncTileSink, FrameBuffer, FrameBufferError, NullSink, TileSink, TileTransfer,
+    };
     pub use crate::texture::{Filter, Texels, Texture};
     pub use crate::tile::{TileBuffer, TileOrder, TileView};
     pub use embedded_graphics::pixelcolor::PixelColor;

@@ -12,18 +12,23 @@
 //! turns. To overlap them, a DMA driver implements [`TileTransfer`]
 //! (start sending a tile, wait for it later) for
 //! [`Renderer::render_double_buffered`](crate::Renderer::render_double_buffered),
-//! which draws the next tile into a second buffer while the previous one
-//! is on the wire.
+//! or [`AsyncTileSink`] for
+//! [`Renderer::render_async`](crate::Renderer::render_async); both draw
+//! the next tile into a second buffer while the previous one is on the
+//! wire.
 //!
 //! | file | what |
 //! |---|---|
 //! | `sink.rs` | [`TileSink`], every `DrawTarget` as one, [`NullSink`] |
 //! | `sink/framebuffer.rs` | [`FrameBuffer`]: tiles placed in a whole frame |
 //! | `sink/transfer.rs` | [`TileTransfer`] and the double-buffered frame loop |
+//! | `sink/async_sink.rs` | [`AsyncTileSink`] and the async frame loop |
 
+mod async_sink;
 mod framebuffer;
 mod transfer;
 
+pub use async_sink::AsyncTileSink;
 pub use framebuffer::{FrameBuffer, FrameBufferError};
 pub use transfer::TileTransfer;
 

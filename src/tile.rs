@@ -174,15 +174,28 @@ impl<'a, C: Copy> TileView<'a, C> {
     }
 
     /// Every pixel, row by row, as one slice when the rows follow each
-    /// other in memory: when the tile is as wide as its buffer or one row
-    /// high. `None` for a tile narrower than its buffer: its rows are
-    /// `width` pixels `W` apart, and [`rows`](Self::rows) gives them one by
-    /// one, or [`TileBuffer::pack`] moves them together.
+    /// other in memory: when the tile is as wide as its buffer, is one row
+    /// high, or was packed ([`TileBuffer::pack`]; the views that
+    /// [`render_async`](crate::Renderer::render_async) hands to an
+    /// [`AsyncTileSink`](crate::sink::AsyncTileSink) always are). `None`
+    /// for a tile narrower than its buffer: its rows are `width` pixels
+    /// `W` apart, and [`rows`](Self::rows) gives them one by one.
     pub fn contiguous(&self) -> Option<&'a [C]> {
         let len = self.width * self.height;
         match self.width == self.stride || self.height <= 1 {
             true => self.pixels.get(..len),
             false => None,
+        }
+    }
+
+    /// A view of `width x height` pixels that follow each other in
+    /// `pixels`, as [`TileBuffer::pack`] leaves them.
+    pub(crate) fn packed(pixels: &'a [C], width: usize, height: usize) -> Self {
+        Self {
+            pixels,
+            stride: width.max(1),
+            width,
+            height,
         }
     }
 }

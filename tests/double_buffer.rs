@@ -1,15 +1,20 @@
 //! Double-buffered streaming: a frame sent through a `TileTransfer` (a fake
-//! DMA channel that completes a tile only when it is waited for) delivers
-//! every tile once, in visiting order, from the two buffers in turn,
-//! drawing each tile only into the buffer that is not in flight, with the
-//! pixels of `Renderer::render`; a failed transfer stops the frame with
-//! nothing in flight and both buffers back.
+//! DMA channel that completes a tile only when it is waited for) or an
+//! `AsyncTileSink` (whose writes pend) delivers every tile once, in
+//! visiting order, from the two buffers in turn, drawing each tile only
+//! into the buffer that is not in flight, with the pixels of
+//! `Renderer::render`; a failed transfer stops the frame with nothing in
+//! flight.
 
 #[path = "../examples/common/mod.rs"]
 mod common;
 mod support;
 
 use common::*;
+use core::future::Future;
+use core::pin::{pin, Pin};
+use core::task::{Context, Poll, Waker};
+use embedded_graphics::draw_target::DrawTarget;
 use embedded_graphics::pixelcolor::{Rgb565, Rgb888, RgbColor};
 use microraster::prelude::*;
 use std::cell::RefCell;
@@ -340,4 +345,149 @@ fn scene_errors_come_back_before_any_transfer_with_the_buffers() {
     assert!(matches!(result, Err(RenderError::VertexCapacity { .. })));
     assert_eq!(back.map(|t| t.id), [0, 1]);
     assert!(log.borrow().is_empty());
+}
+
+// ---- The async form ----
+
+/// A future that is pending on its first `n` polls (waking its task each
+/// time), then ready: a transfer that completes "later".
+struct Pend(u32);
+
+impl Future for Pend {
+    type Output = ();
+    fn poll(mut self: Pin<&mut Self>, cx: &mut Context<'_>) -> Poll<()> {
+        if self.0 == 0 {
+            return Poll::Ready(());
+        }
+        self.0 -= 1;
+        cx.waker().wake_by_ref();
+        Poll::Pending
+    }
+}
+
+/// An async sink whose every write pends `pends` times: it records the
+/// start of each tile (its first poll), and copies the pixels when it
+/// completes.
+struct AsyncFake<C> {
+    frame: Capture<C>,
+    order: Vec<Rectangle>,
+    /// The address of each tile's block, to tell the buffers apart.
+    blocks: Vec<usize>,
+    events: Vec<&'static str>,
+    fail_at: Option<usize>,
+    pends: u32,
+}
+
+impl<C: PixelColor> AsyncTileSink<C> for AsyncFake<C> {
+    type Error = WireError;
+    async fn write_tile(
+        &mut self,
+        area: &Rectangle,
+        tile: &TileView<'_, C>,
+    ) -> Result<(), WireError> {
+        let k = self.order.len();
+        self.order.push(*area);
+        let block = tile.contiguous().expect("a packed tile");
+        self.blocks.push(block.as_ptr() as usize);
+        self.events.push("start");
+        if self.fail_at == Some(k) {
+            return Err(WireError(k));
+        }
+        Pend(self.pends).await;
+        self.events.push("done");
+        self.frame
+            .fill_contiguous(area, block.iter().copied())
+            .unwrap();
+        Ok(())
+    }
+}
+
+/// Runs `future` to completion on this thread: polls until ready and
+/// counts the polls.
+fn block_on<F: Future>(future: F) -> (F::Output, usize) {
+    let mut future = pin!(future);
+    let mut cx = Context::from_waker(Waker::noop());
+    let mut polls = 0;
+    loop {
+        polls += 1;
+        if let Poll::Ready(out) = future.as_mut().poll(&mut cx) {
+            return (out, polls);
+        }
+    }
+}
+
+fn async_frame<const B: usize, const T: usize>(
+    scene: &Scene<'_>,
+    config: Config<Rgb565>,
+    pends: u32,
+) {
+    let (order, expected, stats) = reference::<Rgb565, B, T>(scene, config);
+    let renderer: Renderer<Rgb565, 32, 32> = Renderer::new(config);
+    let mut ws: Box<Workspace<2048, B, T>> = Box::new(Workspace::new());
+    let mut tiles = Box::new([Tile::new(Rgb565::GREEN), Tile::new(Rgb565::BLUE)]);
+    let mut sink = AsyncFake {
+        frame: Capture::new(config.size, Rgb565::new(31, 0, 31)),
+        order: Vec::new(),
+        blocks: Vec::new(),
+        events: Vec::new(),
+        fail_at: None,
+        pends,
+    };
+    let (result, polls) = block_on(renderer.render_async(&mut ws, scene, &mut tiles, &mut sink));
+    assert_eq!(result.unwrap(), stats);
+    // The write's first poll starts it, before the next tile is drawn;
+    // the await after the drawing polls it again, and the frame is
+    // suspended only while the write is still pending after that.
+    let suspended = order.len() * pends.saturating_sub(1) as usize;
+    assert_eq!(polls, suspended + 1);
+    assert_eq!(sink.order, order, "every tile once, in visiting order");
+    let n = order.len();
+    assert_eq!(sink.events, ["start", "done"].repeat(n));
+    let (a, b) = (sink.blocks[0], sink.blocks[1]);
+    assert_ne!(a, b);
+    for (k, &block) in sink.blocks.iter().enumerate() {
+        assert_eq!(block, [a, b][k % 2], "tile {k} from the other buffer");
+    }
+    assert!(
+        sink.frame.writes.iter().all(|&w| w == 1),
+        "every pixel once"
+    );
+    assert!(sink.frame.pixels == expected.pixels, "pixels differ");
+}
+
+#[test]
+fn async_frames_match_render() {
+    let assets = DemoAssets::new();
+    let (knot, cube) = (assets.knot(), cube());
+    let d = demo(&knot, &cube, 0.4);
+    let size = Size::new(317, 233);
+    let scene = Scene::new(camera(size.width, size.height), &d).light(light());
+    let config = Config::new(size, Rgb565::new(2, 4, 6));
+    for pends in [0, 1, 2, 3] {
+        async_frame::<8192, 80>(&scene, config, pends);
+    }
+    async_frame::<8192, 80>(&scene, config.tile_order(TileOrder::Hilbert), 2);
+    async_frame::<64, 80>(&scene, config, 2);
+}
+
+#[test]
+fn an_async_sink_error_stops_the_frame() {
+    let cube = cube();
+    let d = [Draw::new(&cube)];
+    let size = Size::new(160, 96);
+    let scene = Scene::new(camera(size.width, size.height), &d).light(light());
+    let renderer: Renderer<Rgb565, 32, 32> = Renderer::new(Config::new(size, Rgb565::BLACK));
+    let mut ws: Box<Workspace<2048, 1024, 16>> = Box::new(Workspace::new());
+    let mut tiles = Box::new([Tile::new(Rgb565::BLACK), Tile::new(Rgb565::BLACK)]);
+    let mut sink = AsyncFake {
+        frame: Capture::new(size, Rgb565::BLACK),
+        order: Vec::new(),
+        blocks: Vec::new(),
+        events: Vec::new(),
+        fail_at: Some(6),
+        pends: 2,
+    };
+    let (result, _) = block_on(renderer.render_async(&mut ws, &scene, &mut tiles, &mut sink));
+    assert_eq!(result, Err(RenderError::Sink(WireError(6))));
+    assert_eq!(sink.order.len(), 7, "no write after the failed one");
 }
