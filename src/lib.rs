@@ -84,7 +84,9 @@ pub use fixed;
 pub use raster::Rasterizer;
 pub use render::{Config, Features, FrameStats, Profiler, RenderError, Renderer, Stage, Workspace};
 pub use shade::DepthTest;
-pub use sink::{AsyncTileSink, FrameBuffer, FrameBufferError, NullSink, TileSink, TileTransfer};
+pub use sink::{
+    AsyncTileSink, FrameBuffer, FrameBufferError, NullSink, Rgb565Be, TileSink, TileTransfer,
+};
 pub use tile::{TileBuffer, TileOrder, TileView};
 
 /// The types most programs need: the scene, the renderer, lighting,
@@ -104,7 +106,7 @@ pub mod prelude {
         Textured, TexturedLit, VertexInput,
     };
     pub use crate::sink::{
-        AsyncTileSink, FrameBuffer, FrameBufferError, NullSink, TileSink, TileTransfer,
+        AsyncTileSink, FrameBuffer, FrameBufferError, NullSink, Rgb565Be, TileSink, TileTransfer,
     };
     pub use crate::texture::{Filter, Texels, Texture};
     pub use crate::tile::{TileBuffer, TileOrder, TileView};

@@ -15,7 +15,8 @@
 //! or [`AsyncTileSink`] for
 //! [`Renderer::render_async`](crate::Renderer::render_async); both draw
 //! the next tile into a second buffer while the previous one is on the
-//! wire.
+//! wire. [`Rgb565Be`] draws tiles in an SPI panel's byte order, and
+//! [`wire`] has the window commands that precede a tile's pixels.
 //!
 //! | file | what |
 //! |---|---|
@@ -23,14 +24,17 @@
 //! | `sink/framebuffer.rs` | [`FrameBuffer`]: tiles placed in a whole frame |
 //! | `sink/transfer.rs` | [`TileTransfer`] and the double-buffered frame loop |
 //! | `sink/async_sink.rs` | [`AsyncTileSink`] and the async frame loop |
+//! | `sink/wire.rs` | [`Rgb565Be`], [`wire::Window`]: the panel's wire format |
 
 mod async_sink;
 mod framebuffer;
 mod transfer;
+pub mod wire;
 
 pub use async_sink::AsyncTileSink;
 pub use framebuffer::{FrameBuffer, FrameBufferError};
 pub use transfer::TileTransfer;
+pub use wire::Rgb565Be;
 
 use crate::tile::TileView;
 use embedded_graphics::draw_target::DrawTarget;

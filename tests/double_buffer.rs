@@ -4,7 +4,7 @@
 //! visiting order, from the two buffers in turn, drawing each tile only
 //! into the buffer that is not in flight, with the pixels of
 //! `Renderer::render`; a failed transfer stops the frame with nothing in
-//! flight.
+//! flight. Tiles in the wire format (`Rgb565Be`) are Rgb565 byte-swapped.
 
 #[path = "../examples/common/mod.rs"]
 mod common;
@@ -15,8 +15,12 @@ use core::future::Future;
 use core::pin::{pin, Pin};
 use core::task::{Context, Poll, Waker};
 use embedded_graphics::draw_target::DrawTarget;
+use embedded_graphics::pixelcolor::raw::{RawData, RawU16};
 use embedded_graphics::pixelcolor::{Rgb565, Rgb888, RgbColor};
+use microraster::embedded_graphics::prelude::IntoStorage;
 use microraster::prelude::*;
+use microraster::shader::Dithered;
+use microraster::sink::wire::{self, Window, CASET, RAMWR, RASET};
 use std::cell::RefCell;
 use std::rc::Rc;
 use support::Capture;
@@ -490,4 +494,160 @@ fn an_async_sink_error_stops_the_frame() {
     let (result, _) = block_on(renderer.render_async(&mut ws, &scene, &mut tiles, &mut sink));
     assert_eq!(result, Err(RenderError::Sink(WireError(6))));
     assert_eq!(sink.order.len(), 7, "no write after the failed one");
+}
+
+// ---- The wire format ----
+
+/// The scene rendered in Rgb565 and in Rgb565Be: every pixel's wire bytes
+/// are the Rgb565 pixel's bits, high byte first.
+fn wire_matches<F>(scene: &Scene<'_, F>, size: Size)
+where
+    F: FragmentShader<Rgb565> + FragmentShader<Rgb565Be>,
+{
+    let clear = Rgb565::new(3, 7, 11);
+    let (_, native, _) = reference::<Rgb565, 8192, 80>(scene, Config::new(size, clear));
+    let (_, wire, _) = reference::<Rgb565Be, 8192, 80>(scene, Config::new(size, clear.into()));
+    let mut differ = 0;
+    for (n, w) in native.pixels.iter().zip(&wire.pixels) {
+        // High byte first; on this little-endian host, the native pixel's
+        // bytes in memory swapped.
+        let [lo, hi] = n.into_storage().to_le_bytes();
+        differ += usize::from(w.to_be_bytes() != [hi, lo]);
+        differ += usize::from(Rgb565::from(*w) != *n);
+    }
+    assert_eq!(differ, 0);
+    assert!(
+        native.pixels.iter().any(|&c| c != clear),
+        "something is drawn"
+    );
+}
+
+#[test]
+fn wire_format_tiles_are_rgb565_byte_swapped() {
+    let assets = DemoAssets::new();
+    let (knot, cube) = (assets.knot(), cube());
+    let size = Size::new(200, 150);
+    let d = demo(&knot, &cube, 0.9);
+    let scene = Scene::new(camera(size.width, size.height), &d).light(light());
+    wire_matches(&scene, size);
+    // Through a shader with ordered dithering, which has its own
+    // conversion.
+    let d = draws(&knot, &cube, 0.9, Shading::Shader);
+    let dithered = Dithered(Gouraud);
+    let scene = Scene::new(camera(size.width, size.height), &d)
+        .light(light())
+        .shader(&dithered);
+    wire_matches(&scene, size);
+}
+
+#[test]
+fn the_wire_bytes_of_a_packed_tile_are_the_frame_in_panel_order() {
+    let assets = DemoAssets::new();
+    let (knot, cube) = (assets.knot(), cube());
+    let size = Size::new(100, 70); // edge tiles 4 wide, 6 high
+    let d = demo(&knot, &cube, 0.2);
+    let scene = Scene::new(camera(size.width, size.height), &d).light(light());
+    let (_, native, _) =
+        reference::<Rgb565, 8192, 80>(&scene, Config::new(size, Rgb565::new(1, 2, 3)));
+
+    let renderer: Renderer<Rgb565Be, 32, 32> =
+        Renderer::new(Config::new(size, Rgb565::new(1, 2, 3).into()));
+    let mut ws: Box<Workspace<2048, 8192, 80>> = Box::new(Workspace::new());
+    let mut tile = Tile::new(Rgb565Be::BLACK);
+    let mut frame = renderer.begin(&mut ws, &scene).unwrap();
+    let mut panel = vec![0u8; (size.width * size.height * 2) as usize];
+    while let Some(area) = frame.render_next(&mut tile) {
+        let full_width = area.size.width == 32;
+        assert_eq!(tile.view(&area).contiguous().is_some(), full_width);
+        let (ptr, len) = wire::wire_bytes(tile.pack(&area));
+        assert_eq!(len, (2 * area.size.width * area.size.height) as usize);
+        // What the DMA channel reads.
+        let bytes = unsafe { core::slice::from_raw_parts(ptr, len) };
+        let row = 2 * area.size.width as usize;
+        for (j, line) in bytes.chunks(row).enumerate() {
+            let y = area.top_left.y as usize + j;
+            let at = 2 * (y * size.width as usize + area.top_left.x as usize);
+            panel[at..at + row].copy_from_slice(line);
+        }
+    }
+    let expected: Vec<u8> = native
+        .pixels
+        .iter()
+        .flat_map(|c| c.into_storage().to_be_bytes())
+        .collect();
+    assert!(panel == expected, "the panel's bytes differ");
+}
+
+#[test]
+fn rgb565be_converts_like_rgb565() {
+    for v in (0..=u16::MAX).step_by(7) {
+        let native = Rgb565::from(RawU16::new(v));
+        let wire = Rgb565Be::from(native);
+        assert_eq!(wire.value(), v);
+        assert_eq!(wire.to_be_bytes(), v.to_be_bytes());
+        assert_eq!(Rgb565Be::from_be_bytes(v.to_be_bytes()), wire);
+        assert_eq!(Rgb565Be::from_value(v), wire);
+        assert_eq!(Rgb565Be::from(RawU16::new(v)), wire);
+        assert_eq!(RawU16::from(wire).into_inner(), v);
+        assert_eq!(Rgb888::from(wire), Rgb888::from(native));
+        assert_eq!(
+            (wire.r(), wire.g(), wire.b()),
+            (native.r(), native.g(), native.b())
+        );
+        assert_eq!(Rgb565Be::new(native.r(), native.g(), native.b()), wire);
+    }
+    for c in [0u8, 1, 7, 8, 127, 128, 200, 254, 255] {
+        let rgb = Rgb888::new(c, c.wrapping_mul(3), 255 - c);
+        assert_eq!(
+            Rgb565Be::from(rgb).value(),
+            Rgb565::from(rgb).into_storage()
+        );
+    }
+    let consts = [
+        (Rgb565Be::BLACK, Rgb565::BLACK),
+        (Rgb565Be::RED, Rgb565::RED),
+        (Rgb565Be::GREEN, Rgb565::GREEN),
+        (Rgb565Be::BLUE, Rgb565::BLUE),
+        (Rgb565Be::YELLOW, Rgb565::YELLOW),
+        (Rgb565Be::MAGENTA, Rgb565::MAGENTA),
+        (Rgb565Be::CYAN, Rgb565::CYAN),
+        (Rgb565Be::WHITE, Rgb565::WHITE),
+    ];
+    for (w, n) in consts {
+        assert_eq!(Rgb565::from(w), n);
+    }
+    assert_eq!(format!("{:?}", Rgb565Be::RED), "Rgb565Be(0xf800)");
+}
+
+#[test]
+fn window_commands_for_a_tile() {
+    let area = Rectangle::new(Point::new(288, 224), Size::new(32, 16));
+    let w = Window::new(&area, Point::zero()).unwrap();
+    assert_eq!(w.columns, [0x01, 0x20, 0x01, 0x3f]); // 288..=319
+    assert_eq!(w.rows, [0x00, 0xe0, 0x00, 0xef]); // 224..=239
+    let bytes: Vec<(u8, Vec<u8>)> = w.commands().iter().map(|(c, p)| (*c, p.to_vec())).collect();
+    assert_eq!(
+        bytes,
+        [
+            (0x2a, vec![0x01, 0x20, 0x01, 0x3f]),
+            (0x2b, vec![0x00, 0xe0, 0x00, 0xef]),
+            (0x2c, vec![]),
+        ]
+    );
+    assert_eq!((CASET, RASET, RAMWR), (0x2a, 0x2b, 0x2c));
+    // A 135x240 panel's offset (52, 40).
+    let one = Rectangle::new(Point::new(0, 0), Size::new(1, 1));
+    let w = Window::new(&one, Point::new(52, 40)).unwrap();
+    assert_eq!((w.columns, w.rows), ([0, 52, 0, 52], [0, 40, 0, 40]));
+    // Empty, negative or beyond 16-bit addresses: no window.
+    assert_eq!(
+        Window::new(
+            &Rectangle::new(Point::zero(), Size::new(0, 4)),
+            Point::zero()
+        ),
+        None
+    );
+    assert_eq!(Window::new(&one, Point::new(-1, 0)), None);
+    let far = Rectangle::new(Point::new(65_535, 0), Size::new(2, 1));
+    assert_eq!(Window::new(&far, Point::zero()), None);
 }

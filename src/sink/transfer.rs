@@ -38,8 +38,11 @@ use embedded_graphics::primitives::Rectangle;
 /// `wait`, …, `start(last tile)`, `wait`.
 ///
 /// An implementation for a DMA channel takes the tile's pixels with
-/// [`TileBuffer::pack`] (they are then one contiguous block), sends the
-/// panel's window commands for `area`, starts the channel and keeps the
+/// [`TileBuffer::pack`] (they are then one contiguous block; for
+/// [`Rgb565Be`](super::Rgb565Be) pixels,
+/// [`wire_bytes`](super::wire::wire_bytes) gives the block's address and
+/// length), sends the panel's window commands for `area` (see
+/// [`Window`](super::wire::Window)), starts the channel and keeps the
 /// buffer until the channel is done.
 ///
 /// The buffer always comes back, with the error if there is one, so a
