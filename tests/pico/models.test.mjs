@@ -1,13 +1,15 @@
 // The harness's own models, checked without a firmware:
 //   node --test tests/pico/
-// The panel must refuse a malformed command stream, and the stub ROM must
-// round as the RP2040's does.
+// The panel must refuse a malformed command stream, the stub ROM must
+// round as the RP2040's does, and a DMA channel feeding the SPI must be
+// paced by the wire's byte time.
 
 import { test } from 'node:test';
 import assert from 'node:assert/strict';
-import { RP2040 } from 'rp2040js';
+import { RP2040, ConsoleLogger, LogLevel } from 'rp2040js';
 import { ST7789 } from './st7789.mjs';
 import { buildBootrom, bits, f32, bigToF32 } from './bootrom.mjs';
+import { attachWire } from './wire.mjs';
 
 const MS = 1e6;
 
@@ -127,4 +129,79 @@ test('the stub ROM converts floats as the RP2040 ROM does', () => {
   // would round it down to the halfway point, and f32 then to even.
   assert.equal(bigToF32(2n ** 60n + 2n ** 36n + 1n), 2 ** 60 + 2 ** 37);
   assert.equal(bigToF32(2n ** 60n + 2n ** 36n), 2 ** 60);
+});
+
+/**
+ * SPI1 as rp2040-hal sets it up at 62.5 MHz, with the harness's wire, and
+ * DMA channel 0 started on `n` bytes from SRAM to SSPDR, paced by
+ * `treq`. Returns what the test reads back.
+ */
+function dmaToSpi(n, treq) {
+  const mcu = new RP2040();
+  mcu.logger = new ConsoleLogger(LogLevel.Error, true);
+  const sent = [];
+  const wire = attachWire(mcu, 1, {
+    fail: (m) => assert.fail(m),
+    onByte: (v) => sent.push([mcu.clock.nanos, v]),
+  });
+  // From the 125 MHz clk_peri: prescale 2, SCR 0, 8-bit frames, mode 3,
+  // TX DMA on, enabled.
+  const SPI1 = 0x40040000;
+  mcu.writeUint32(SPI1 + 0x10, 2); // SSPCPSR
+  mcu.writeUint32(SPI1 + 0x00, 7 | (1 << 6) | (1 << 7)); // SSPCR0
+  mcu.writeUint32(SPI1 + 0x24, 1 << 1); // SSPDMACR: TXDMAE
+  mcu.writeUint32(SPI1 + 0x04, 1 << 1); // SSPCR1: SSE
+  const src = 0x20001000;
+  for (let i = 0; i < n; i++) mcu.writeUint8(src + i, (i * 37 + 5) & 0xff);
+  // As rp2040-hal's single_buffer transfer configures a channel.
+  const DMA = 0x50000000;
+  mcu.writeUint32(DMA + 0x00, src); // READ_ADDR
+  mcu.writeUint32(DMA + 0x04, SPI1 + 0x08); // WRITE_ADDR: SSPDR
+  mcu.writeUint32(DMA + 0x08, n); // TRANS_COUNT
+  // CTRL_TRIG: EN, byte transfers, INCR_READ, TREQ_SEL, chained to itself
+  // (no chaining); the write starts the channel.
+  mcu.writeUint32(DMA + 0x0c, 1 | (1 << 4) | (treq << 15));
+  return {
+    mcu,
+    sent,
+    wire,
+    dmaBusy: () => (mcu.readUint32(DMA + 0x0c) >>> 24) & 1,
+    spiBusy: () => (mcu.readUint32(SPI1 + 0x0c) >>> 4) & 1, // SSPSR.BSY
+  };
+}
+
+test('DMA into SPI1 goes at the wire\'s pace: paced by TX DREQ, a byte every 8 SPI clocks', () => {
+  const N = 100;
+  const { mcu, sent, wire, dmaBusy, spiBusy } = dmaToSpi(N, 18); // DREQ_SPI1_TX
+  assert.equal(dmaBusy(), 1);
+  // 62.5 MHz: a byte is 128 ns, 16 cycles at 125 MHz.
+  const byteNs = 128;
+  let dmaDoneAt = null;
+  let queuedAtDone = null;
+  for (let t = 0; t < (N + 4) * byteNs; t += 8) {
+    mcu.clock.tick(8);
+    if (dmaDoneAt === null && !dmaBusy()) {
+      dmaDoneAt = mcu.clock.nanos;
+      queuedAtDone = N - sent.length;
+      // The channel is done when it has written its last byte into the
+      // FIFO: the SPI is still sending.
+      assert.equal(spiBusy(), 1, 'the SPI still busy when the DMA is done');
+    }
+  }
+  assert.equal(sent.length, N, 'every byte sent, none lost to a full FIFO');
+  sent.forEach(([at, v], i) => {
+    assert.equal(v, (i * 37 + 5) & 0xff, `byte ${i}`);
+    assert.equal(at, (i + 1) * byteNs, `byte ${i} on the wire at the byte time`);
+  });
+  assert.equal(Math.round(wire.busyCycles), N * 16);
+  // Done as the last byte entered the FIFO, with the shifter's byte and a
+  // full FIFO behind it: 9 bytes still to go.
+  assert.equal(queuedAtDone, 9);
+  assert.equal(dmaDoneAt, (N - 9) * byteNs);
+  assert.equal(spiBusy(), 0);
+});
+
+test('an unpaced DMA channel overruns the SPI FIFO, and the wire says so', () => {
+  // TREQ_SEL 0x3f: as fast as the DMA can go.
+  assert.throws(() => dmaToSpi(100, 0x3f).mcu.clock.tick(1), /full TX FIFO: the byte is lost/);
 });

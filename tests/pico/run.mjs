@@ -2,54 +2,66 @@
 // rp2040js with the stub boot ROM (bootrom.mjs) and an ST7789 on SPI1
 // (st7789.mjs), until it has drawn the frames asked for.
 //
-//   node tests/pico/run.mjs ELF [--frames N] [--out DIR] [--max-cycles C]
+//   node tests/pico/run.mjs ELF [--frames N] [--out DIR] [--max-cycles C] [--serial]
 //
 // Writes DIR/frame_NNN.rgb565 (what the panel shows after frame N:
 // 240x240 big-endian Rgb565) and DIR/report.json, and prints a line per
-// frame and the peak stack. Exits with status 1 and a message on the first thing a panel or a
-// Pico would not do (see st7789.mjs, bootrom.mjs).
+// frame and the peak stack. Exits with status 1 and a message on the first
+// thing a panel or a Pico would not do (see st7789.mjs, bootrom.mjs,
+// wire.mjs).
 //
 // The wiring is the firmware's: SCK GP10, TX GP11 (SPI1), CS GP9, DC GP8,
 // RES GP12, backlight GP13.
+//
+// `--serial` sets the firmware's flash byte `MICRORASTER_PICO_SERIAL` to 1
+// in the image it loads: the firmware then waits for each tile to leave
+// the wire before it draws the next, instead of drawing it while DMA sends
+// the previous one. That run's idle wire is the render alone.
 //
 // Timing. rp2040js charges each instruction its Cortex-M0+ cycles (and a
 // few for peripheral accesses) and keeps the clock by them; nothing is
 // charged for XIP cache misses, and the ROM's routines cost the nominal
 // figures of bootrom.mjs. The SPI takes 8 SPI clocks a byte at the baud
-// rate the firmware set, so the firmware waits for the wire as on a Pico.
-// For every frame the report has, in system-clock cycles:
+// rate the firmware set, and a DMA channel that feeds it is paced by its
+// TX DREQ, so by that byte time (wire.mjs), so the firmware waits for the
+// wire as on a Pico. For every frame the report has, in system-clock
+// cycles:
 //   period: from the end of the previous frame's last pixel to the end of
 //           this one's (frame 0: from the end of the panel's set-up);
 //   spi:    how long the SPI was sending in that period (transfer);
-//   idle:   period - spi, when the wire was idle: with a firmware that
-//           renders, then sends, tile after tile, the render time. With
-//           one that sends a tile by DMA while it renders the next, the
-//           period is the overlapped frame and idle what the overlap did
-//           not hide.
+//   idle:   period - spi, when the wire was idle. With `--serial` (the
+//           firmware renders a tile, then sends it, tile after tile) the
+//           render time. Without, the firmware sends a tile by DMA while
+//           it renders the next: the period is the overlapped frame and
+//           idle what the overlap did not hide.
 
 import { readFileSync, writeFileSync, mkdirSync } from 'node:fs';
 import { join } from 'node:path';
 import { RP2040, ConsoleLogger, LogLevel } from 'rp2040js';
 import { buildBootrom } from './bootrom.mjs';
 import { ST7789, WIDTH, HEIGHT } from './st7789.mjs';
+import { attachWire } from './wire.mjs';
 
 const PIN_DC = 8;
 const PIN_CS = 9;
 const PIN_RES = 12;
 const SPI = 1;
+/** The firmware's flash byte that `--serial` sets. */
+const SERIAL = 'MICRORASTER_PICO_SERIAL';
 
 function parseArgs(argv) {
-  const args = { frames: 1, out: null, maxCycles: null, elf: null };
+  const args = { frames: 1, out: null, maxCycles: null, elf: null, serial: false };
   for (let i = 0; i < argv.length; i++) {
     const a = argv[i];
     if (a === '--frames') args.frames = Number(argv[++i]);
     else if (a === '--out') args.out = argv[++i];
     else if (a === '--max-cycles') args.maxCycles = Number(argv[++i]);
+    else if (a === '--serial') args.serial = true;
     else if (!args.elf && !a.startsWith('--')) args.elf = a;
     else throw new Error(`unknown argument ${a}`);
   }
   if (!args.elf || !(args.frames >= 1)) {
-    throw new Error('usage: node run.mjs ELF [--frames N] [--out DIR] [--max-cycles C]');
+    throw new Error('usage: node run.mjs ELF [--frames N] [--out DIR] [--max-cycles C] [--serial]');
   }
   return args;
 }
@@ -159,6 +171,15 @@ function main() {
   // The ROM first: loadBootrom resets the chip, which erases the flash.
   mcu.loadBootrom(rom.image);
   const flashBytes = loadElf(mcu, args.elf);
+  if (args.serial) {
+    // A byte of .rodata, in flash: its link address is its load address.
+    const { [SERIAL]: at } = elfSymbols(args.elf, [SERIAL]);
+    if (at < 0x10000000 || at >= 0x10000000 + mcu.flash.length) {
+      throw new Error(`${SERIAL} at 0x${at.toString(16)} is not in flash`);
+    }
+    if (mcu.flash[at - 0x10000000] !== 0) throw new Error(`${SERIAL} is not 0 in the image`);
+    mcu.flash[at - 0x10000000] = 1;
+  }
   const stack = elfSymbols(args.elf, ['_stack_start', '_stack_end']);
   if (stack._stack_end % 4 || stack._stack_start % 4 || stack._stack_end >= stack._stack_start) {
     throw new Error(`stack bounds 0x${stack._stack_end.toString(16)}..0x${stack._stack_start.toString(16)}`);
@@ -188,25 +209,17 @@ function main() {
     return v;
   };
 
-  // SPI1: a byte takes 8 SPI clocks; the panel sees it when its last bit
-  // is clocked, with DC and CS as they are then.
+  // SPI1: a byte takes 8 SPI clocks (wire.mjs, which also says how DMA is
+  // paced by it); the panel sees it when its last bit is clocked, with DC
+  // and CS as they are then.
   const spi = mcu.spi[SPI];
-  let spiBusyCycles = 0;
-  let byteValue = 0;
-  const byteDone = clock.createAlarm(() => {
-    panel.byte(byteValue, pin(PIN_DC), pin(PIN_CS));
-    afterByte();
-    spi.completeTransmit(0);
+  const wire = attachWire(mcu, SPI, {
+    fail,
+    onByte: (value) => {
+      panel.byte(value, pin(PIN_DC), pin(PIN_CS));
+      afterByte();
+    },
   });
-  spi.onTransmit = (value) => {
-    if (spi.dataBits !== 8) fail(`SPI${SPI} sends ${spi.dataBits}-bit words, not bytes`);
-    const hz = spi.clockFrequency;
-    if (!(hz > 0)) fail(`SPI${SPI} transmits with no clock`);
-    const ns = (8 * 1e9) / hz;
-    spiBusyCycles += ns / nsPerCycle();
-    byteValue = value;
-    byteDone.schedule(ns);
-  };
 
   // Frames: a frame is done when every pixel of the panel has been written
   // since the previous one was.
@@ -229,14 +242,14 @@ function main() {
       // The first window of a frame.
       if (periodStart === null) {
         periodStart = cyclesNow();
-        periodSpi = spiBusyCycles;
+        periodSpi = wire.busyCycles;
       }
       frameStart = { time_us: lastTimeUs, cycle: cyclesNow() };
     }
     if (coveredCount === WIDTH * HEIGHT && panel.windowFilled()) {
       const end = cyclesNow();
       const period = Math.round(end - periodStart);
-      const spiCycles = Math.round(spiBusyCycles - periodSpi);
+      const spiCycles = Math.round(wire.busyCycles - periodSpi);
       const frame = {
         index: frames.length,
         time_us: frameStart.time_us,
@@ -261,14 +274,14 @@ function main() {
       coveredCount = 0;
       frameStart = null;
       periodStart = end;
-      periodSpi = spiBusyCycles;
+      periodSpi = wire.busyCycles;
     }
   }
   // The set-up's traffic ends the period before frame 0.
   const setupEnd = () => {
     if (periodStart === null) {
       periodStart = cyclesNow();
-      periodSpi = spiBusyCycles;
+      periodSpi = wire.busyCycles;
     }
   };
   const panelCommand = panel.finishCommand.bind(panel);
@@ -310,6 +323,7 @@ function main() {
   }
   const report = {
     elf: args.elf,
+    serial: args.serial,
     flash_bytes: flashBytes,
     clk_sys_hz: mcu.clkSys,
     spi_hz: spi.clockFrequency,
@@ -321,7 +335,8 @@ function main() {
     frames,
   };
   if (args.out) writeFileSync(join(args.out, 'report.json'), JSON.stringify(report, null, 1));
-  console.log(`pico: ${frames.length} frames in ${report.wall_ms} ms of wall time`);
+  const mode = args.serial ? ' with --serial (each tile on the wire before the next is drawn)' : '';
+  console.log(`pico: ${frames.length} frames${mode} in ${report.wall_ms} ms of wall time`);
   console.log(
     `pico: peak stack ${report.peak_stack_bytes} B (painted and read back), ` +
       `statics ${report.static_ram_bytes} B`,
