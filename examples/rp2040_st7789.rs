@@ -1,7 +1,9 @@
 //! Firmware for a Raspberry Pi Pico (RP2040): renders a lit torus knot of
-//! 2,048 triangles with a cube orbiting it, with microraster, and streams
-//! every finished 32x32 Rgb565 tile over SPI1 to a 240x240 ST7789 through
-//! mipidsi, frame after frame.
+//! 2,048 triangles with a cube orbiting it, with microraster, in 32x32
+//! tiles, on a 240x240 ST7789 on SPI1, frame after frame. A DMA channel
+//! sends each finished tile while the core draws the next one
+//! (`Renderer::render_double_buffered` over two tile buffers), so a frame
+//! takes about the longer of the drawing and the sending, not their sum.
 //!
 //! ```text
 //! cargo build --release --example rp2040_st7789 --target thumbv6m-none-eabi
@@ -19,6 +21,15 @@
 //! | BLK    | GP13 (backlight)   |
 //! | VCC    | 3V3(OUT), pin 36   |
 //! | GND    | GND                |
+//!
+//! mipidsi brings the panel up (reset, SLPOUT, MADCTL, INVON, COLMOD,
+//! NORON, DISPON); from then on the firmware drives the bus itself. Per
+//! tile: the window's CASET/RASET/RAMWR from the core (DC low for each
+//! command byte, high for its parameters), then the tile's pixels by DMA
+//! (DMA channel 0, paced by SPI1's TX DREQ), already in the panel's
+//! big-endian byte order (`Rgb565Be`): no per-pixel pass before sending.
+//! CS stays low from the end of the set-up on: the panel is the bus's only
+//! device.
 //!
 //! The on-board LED (GP25) toggles once per frame. If the board cannot be
 //! brought up or a frame fails, the LED blinks a code instead, forever:
@@ -46,16 +57,21 @@ mod st7789_scene;
 mod firmware {
     use crate::st7789_scene::*;
     use core::convert::Infallible;
+    use core::mem;
+    use embedded_dma::ReadBuffer;
     use embedded_hal::digital::{OutputPin, StatefulOutputPin};
-    use embedded_hal::spi::MODE_3;
+    use embedded_hal::spi::{SpiBus, MODE_3};
     use embedded_hal_bus::spi::ExclusiveDevice;
     use microraster::prelude::*;
+    use microraster::sink::wire::{wire_bytes, Window};
     use mipidsi::interface::SpiInterface;
     use mipidsi::models::ST7789;
     use mipidsi::options::ColorInversion;
     use mipidsi::Builder;
     use panic_halt as _;
     use rp2040_hal::clocks::{init_clocks_and_plls, Clock};
+    use rp2040_hal::dma::single_buffer::{self, Transfer};
+    use rp2040_hal::dma::{DMAExt, SingleChannel, WriteTarget};
     use rp2040_hal::fugit::RateExtU32;
     use rp2040_hal::gpio::{FunctionSpi, PinState, Pins};
     use rp2040_hal::{pac, Sio, Spi, Timer, Watchdog};
@@ -71,14 +87,22 @@ mod firmware {
     #[used]
     static BOOT2: [u8; 256] = rp2040_boot2::BOOT_LOADER_W25Q080;
 
+    /// 0 in every build: draw the next tile while DMA sends this one. Any
+    /// other value makes each transfer wait until its tile has left the
+    /// wire before the next tile is drawn, so that a frame is the drawing
+    /// and the sending one after the other: how the emulator's harness
+    /// measures the render alone (`tests/pico/run.mjs --serial` sets this
+    /// byte in the image it loads; the test and BENCHMARKS.md report both
+    /// runs). A byte in flash, read once at start-up.
+    #[no_mangle]
+    #[used]
+    static MICRORASTER_PICO_SERIAL: u8 = 0;
+
     /// The Pico's crystal.
     const XTAL_HZ: u32 = 12_000_000;
     /// The SPI clock asked for: the RP2040's fastest (the 125 MHz
     /// peripheral clock halved). Lower it if long wires garble the picture.
     const SPI_HZ: u32 = 62_500_000;
-    /// mipidsi gathers pixels into this buffer before each SPI write: one
-    /// 32x32 Rgb565 tile, so one transfer per tile.
-    const SPI_BUFFER_BYTES: usize = TILE * TILE * 2;
     /// Half a period of the fault blink: 0.2 s at 125 MHz (slower if the
     /// clocks never came up).
     const BLINK_CYCLES: u32 = 25_000_000;
@@ -86,8 +110,148 @@ mod firmware {
     // Built in place in RAM (.bss), never moved through the stack.
     static KNOT: ConstStaticCell<KnotData> = ConstStaticCell::new(KnotData::new());
     static WORKSPACE: ConstStaticCell<PicoWorkspace> = ConstStaticCell::new(PicoWorkspace::new());
-    static SPI_BUFFER: ConstStaticCell<[u8; SPI_BUFFER_BYTES]> =
-        ConstStaticCell::new([0; SPI_BUFFER_BYTES]);
+    // The two tile buffers. `'static`, as a DMA transfer's buffer must be:
+    // a transfer that was leaked must not go on reading freed memory.
+    // (Their first colour is never seen: each tile is cleared first.)
+    static TILE_A: ConstStaticCell<PicoTile> =
+        ConstStaticCell::new(PicoTile::new(Rgb565Be::new(0, 0, 0)));
+    static TILE_B: ConstStaticCell<PicoTile> =
+        ConstStaticCell::new(PicoTile::new(Rgb565Be::new(0, 0, 0)));
+
+    /// A finished tile, packed into one block of wire bytes, as the DMA
+    /// channel reads it: the buffer and the block's address and length.
+    struct TileBytes {
+        tile: &'static mut PicoTile,
+        bytes: (*const u8, usize),
+    }
+
+    impl TileBytes {
+        /// Packs the tile that covers `area` of the frame (see
+        /// `TileBuffer::pack`) and takes its buffer.
+        fn new(tile: &'static mut PicoTile, area: &Rectangle) -> Self {
+            let bytes = wire_bytes(tile.pack(area));
+            Self { tile, bytes }
+        }
+    }
+
+    // SAFETY: `bytes` lies within `*tile` (it was made from the tile's
+    // packed pixels, `2 n` bytes for `n` pixels) and never changes. The
+    // buffer is `'static` and borrowed exclusively by `self`, so nothing
+    // else writes or frees it while the DMA channel reads it: the channel's
+    // `Transfer` owns `self` until it is done, and only then gives the
+    // buffer back (`TileTransfer::wait`).
+    unsafe impl ReadBuffer for TileBytes {
+        type Word = u8;
+
+        unsafe fn read_buffer(&self) -> (*const u8, usize) {
+            self.bytes
+        }
+    }
+
+    /// Where the bus is: free, carrying a tile by DMA, or (in serial mode)
+    /// done with a tile that `wait` has not yet given back.
+    enum Link<CH: SingleChannel, S: WriteTarget<TransmittedWord = u8>> {
+        Idle(CH, S),
+        Sending(Transfer<CH, TileBytes, S>),
+        Sent(CH, TileBytes, S),
+        /// Only while a transition is under way.
+        Taken,
+    }
+
+    /// Why a tile could not be started.
+    #[derive(Debug)]
+    enum PanelError {
+        /// A transfer was still in flight.
+        Busy,
+        /// The tile's window lies outside the panel's addresses.
+        Window,
+    }
+
+    /// The panel, past its set-up, as a [`TileTransfer`]: the window
+    /// commands of each tile from the core, then its pixels by DMA.
+    struct Panel<CH: SingleChannel, S: WriteTarget<TransmittedWord = u8>, DC> {
+        link: Link<CH, S>,
+        dc: DC,
+        /// Wait for every tile to be on the wire (`MICRORASTER_PICO_SERIAL`).
+        serial: bool,
+    }
+
+    impl<CH, S, DC> TileTransfer<&'static mut PicoTile> for Panel<CH, S, DC>
+    where
+        CH: SingleChannel,
+        S: WriteTarget<TransmittedWord = u8> + SpiBus<u8, Error = Infallible>,
+        DC: OutputPin<Error = Infallible>,
+    {
+        type Error = PanelError;
+
+        fn start(
+            &mut self,
+            area: &Rectangle,
+            tile: &'static mut PicoTile,
+        ) -> Result<(), (PanelError, &'static mut PicoTile)> {
+            let Some(window) = Window::new(area, Point::zero()) else {
+                return Err((PanelError::Window, tile));
+            };
+            let (channel, mut spi) = match mem::replace(&mut self.link, Link::Taken) {
+                Link::Idle(channel, spi) => (channel, spi),
+                busy => {
+                    self.link = busy;
+                    return Err((PanelError::Busy, tile));
+                }
+            };
+            // A finished DMA transfer has only put its last bytes into the
+            // SPI's FIFO: DC changes only once the SPI is idle (`flush`),
+            // so that no byte goes out with the wrong DC.
+            for (command, parameters) in window.commands() {
+                let Ok(()) = spi.flush();
+                let Ok(()) = self.dc.set_low();
+                let Ok(()) = spi.write(&[command]);
+                let Ok(()) = spi.flush();
+                let Ok(()) = self.dc.set_high();
+                let Ok(()) = spi.write(parameters);
+            }
+            // After RAMWR, DC high: the pixels, by DMA, paced by SPI1's TX
+            // DREQ (the FIFO's room).
+            let bytes = TileBytes::new(tile, area);
+            let transfer = single_buffer::Config::new(channel, bytes, spi).start();
+            self.link = if self.serial {
+                let (channel, bytes, mut spi) = transfer.wait();
+                let Ok(()) = spi.flush();
+                Link::Sent(channel, bytes, spi)
+            } else {
+                Link::Sending(transfer)
+            };
+            Ok(())
+        }
+
+        fn wait(&mut self) -> (&'static mut PicoTile, Result<(), PanelError>) {
+            let (channel, bytes, spi) = match mem::replace(&mut self.link, Link::Taken) {
+                // Done once the channel has written the last byte into the
+                // FIFO; the next `start` waits for the FIFO to drain.
+                Link::Sending(transfer) => transfer.wait(),
+                Link::Sent(channel, bytes, spi) => (channel, bytes, spi),
+                // `render_double_buffered` waits only after a successful
+                // start, so there is always a buffer to give back here.
+                Link::Idle(..) | Link::Taken => park(),
+            };
+            self.link = Link::Idle(channel, spi);
+            (bytes.tile, Ok(()))
+        }
+    }
+
+    /// The timer's delays made "at least": rp2040-hal's `Timer` counts
+    /// whole ticks of its 1 MHz counter from the one it starts in, so a
+    /// delay can end up to 1 us early. That matters for the panel's reset
+    /// pulse (mipidsi holds RES low for the 10 us minimum of the ST7789's
+    /// datasheet, no more): one more tick makes every set-up delay at
+    /// least what mipidsi asks for.
+    struct AtLeast(Timer);
+
+    impl embedded_hal::delay::DelayNs for AtLeast {
+        fn delay_ns(&mut self, ns: u32) {
+            self.0.delay_us(ns.div_ceil(1_000).saturating_add(1));
+        }
+    }
 
     /// Sleeps forever: for the one state in which not even the LED can be
     /// reached.
@@ -142,30 +306,50 @@ mod firmware {
         let timer = Timer::new(pac.TIMER, &mut pac.RESETS, &clocks);
 
         // The display: SPI1 transmit-only, mode 3 (which also suits modules
-        // whose CS is tied low), CS driven as a GPIO around each transfer.
+        // whose CS is tied low).
         let sck = pins.gpio10.into_function::<FunctionSpi>();
         let mosi = pins.gpio11.into_function::<FunctionSpi>();
-        let cs = pins.gpio9.into_push_pull_output_in_state(PinState::High);
-        let dc = pins.gpio8.into_push_pull_output_in_state(PinState::Low);
-        let rst = pins.gpio12.into_push_pull_output_in_state(PinState::High);
+        let mut cs = pins.gpio9.into_push_pull_output_in_state(PinState::High);
+        let mut dc = pins.gpio8.into_push_pull_output_in_state(PinState::Low);
+        let mut rst = pins.gpio12.into_push_pull_output_in_state(PinState::High);
         let mut backlight = pins.gpio13.into_push_pull_output_in_state(PinState::Low);
-        let spi = Spi::<_, _, _, 8>::new(pac.SPI1, (mosi, sck)).init(
+        let mut spi = Spi::<_, _, _, 8>::new(pac.SPI1, (mosi, sck)).init(
             &mut pac.RESETS,
             clocks.peripheral_clock.freq(),
             SPI_HZ.Hz(),
             MODE_3,
         );
-        let Ok(spi) = ExclusiveDevice::new(spi, cs, timer);
-        let interface = SpiInterface::new(spi, dc, SPI_BUFFER.take());
-        // 240x240 ST7789 panels are IPS panels that need inverted colours.
-        let mut delay = timer;
-        let Ok(mut display) = Builder::new(ST7789, interface)
-            .display_size(WIDTH as u16, HEIGHT as u16)
-            .invert_colors(ColorInversion::Inverted)
-            .reset_pin(rst)
-            .init(&mut delay)
-        else {
-            fault(&mut led, 3)
+        // mipidsi's start-up sequence, through borrowed pins and bus (CS
+        // driven as a GPIO around each command), which come back when the
+        // display is dropped. 240x240 ST7789 panels are IPS panels that
+        // need inverted colours. mipidsi draws no pixel here, so its pixel
+        // buffer can be tiny.
+        {
+            let mut delay = AtLeast(timer);
+            let mut scratch = [0; 4];
+            let Ok(device) = ExclusiveDevice::new(&mut spi, &mut cs, timer);
+            let interface = SpiInterface::new(device, &mut dc, &mut scratch);
+            if Builder::new(ST7789, interface)
+                .display_size(WIDTH as u16, HEIGHT as u16)
+                .invert_colors(ColorInversion::Inverted)
+                .reset_pin(&mut rst)
+                .init(&mut delay)
+                .is_err()
+            {
+                fault(&mut led, 3)
+            }
+        }
+        // From here on the panel is the bus's: CS low for good.
+        let Ok(()) = cs.set_low();
+        let dma = pac.DMA.split(&mut pac.RESETS);
+        // Read once, as a value the compiler cannot assume (the harness
+        // may have changed it in the image).
+        // SAFETY: a valid, aligned `'static` byte that nothing writes.
+        let serial = unsafe { core::ptr::read_volatile(&MICRORASTER_PICO_SERIAL) } != 0;
+        let mut panel = Panel {
+            link: Link::Idle(dma.ch0, spi),
+            dc,
+            serial,
         };
 
         // The scene: the knot is generated once, into its static.
@@ -174,13 +358,17 @@ mod firmware {
             fault(&mut led, 4)
         };
         let workspace = WORKSPACE.take();
-        let mut renderer = PicoRenderer::new(config());
+        let renderer = PicoRenderer::new(config());
+        let mut tiles = [TILE_A.take(), TILE_B.take()];
 
         loop {
             // The timer counts microseconds from its reset above.
             let draws = draws(&knot, &cube, timer.get_counter().ticks());
             let scene = Scene::new(camera, &draws).light(light());
-            if renderer.render(workspace, &scene, &mut display).is_err() {
+            let (back, result) =
+                renderer.render_double_buffered(workspace, &scene, tiles, &mut panel);
+            tiles = back;
+            if result.is_err() {
                 fault(&mut led, 5);
             }
             // Lit once the first frame is on the panel, so the panel's

@@ -12,13 +12,15 @@ use microraster::render::Triangles;
 use microraster::shapes::{
     torus_knot, torus_knot_size, CUBE_NORMALS, CUBE_POSITIONS, CUBE_TRIANGLES,
 };
+use microraster::sink::Rgb565Be;
+use microraster::TileBuffer;
 
 /// Panel size.
 pub const WIDTH: u32 = 240;
 /// Panel size.
 pub const HEIGHT: u32 = 240;
 
-/// Tile side: 32x32 Rgb565 is 2 KiB of colour and 2 KiB of depth.
+/// Tile side: a 32x32 tile is 2 KiB of Rgb565 colour and 2 KiB of depth.
 pub const TILE: usize = 32;
 /// Tiles of the frame: 8 x 8, the last row and column 16 pixels wide.
 pub const TILES: usize =
@@ -40,9 +42,18 @@ pub const SCENE_VERTICES: usize = KNOT_VERTICES + CUBE_POSITIONS.len();
 /// in more passes).
 pub const BIN_ENTRIES: usize = 2048;
 
-/// Rgb565 in 32x32 tiles, flat and Gouraud triangles only
-/// ([`Triangles`]: nothing else is linked).
-pub type PicoRenderer = Renderer<Rgb565, TILE, TILE, Triangles>;
+/// The firmware's renderer: Rgb565 in the panel's byte order
+/// ([`Rgb565Be`], so that DMA sends a finished tile as it is), in 32x32
+/// tiles, flat and Gouraud triangles only ([`Triangles`]: nothing else is
+/// linked).
+pub type PicoRenderer = Renderer<Rgb565Be, TILE, TILE, Triangles>;
+/// The same renderer in plain [`Rgb565`], the host's reference: its
+/// frames are the firmware's pixel for pixel, each pixel's two bytes in
+/// the MCU's order instead of the wire's.
+pub type Rgb565Renderer = Renderer<Rgb565, TILE, TILE, Triangles>;
+/// One of the firmware's two tile buffers: one is drawn into while DMA
+/// sends the other.
+pub type PicoTile = TileBuffer<Rgb565Be, TILE, TILE>;
 /// The whole scene and all 64 tiles in one binning pass.
 pub type PicoWorkspace = Workspace<SCENE_VERTICES, BIN_ENTRIES, TILES>;
 
@@ -147,7 +158,8 @@ pub fn light() -> Light {
     Light::new(Vec3::new(-0.6, 0.8, 0.9)).ambient(Rgb888::new(40, 40, 56))
 }
 
-/// The renderer's settings.
-pub fn config() -> Config<Rgb565> {
-    Config::new(Size::new(WIDTH, HEIGHT), CLEAR)
+/// The renderer's settings, in [`Rgb565Be`] for the firmware or
+/// [`Rgb565`] for the host's reference.
+pub fn config<C: From<Rgb565>>() -> Config<C> {
+    Config::new(Size::new(WIDTH, HEIGHT), CLEAR.into())
 }
