@@ -75,7 +75,7 @@ mod firmware {
     use rp2040_hal::fugit::RateExtU32;
     use rp2040_hal::gpio::{FunctionSpi, PinState, Pins};
     use rp2040_hal::{pac, Sio, Spi, Timer, Watchdog};
-    use static_cell::ConstStaticCell;
+    use static_cell::{ConstStaticCell, StaticCell};
 
     /// The second-stage bootloader, which the boot ROM loads from the first
     /// 256 bytes of flash to set the flash up for execute-in-place; the
@@ -112,11 +112,22 @@ mod firmware {
     static WORKSPACE: ConstStaticCell<PicoWorkspace> = ConstStaticCell::new(PicoWorkspace::new());
     // The two tile buffers. `'static`, as a DMA transfer's buffer must be:
     // a transfer that was leaked must not go on reading freed memory.
-    // (Their first colour is never seen: each tile is cleared first.)
-    static TILE_A: ConstStaticCell<PicoTile> =
-        ConstStaticCell::new(PicoTile::new(Rgb565Be::new(0, 0, 0)));
-    static TILE_B: ConstStaticCell<PicoTile> =
-        ConstStaticCell::new(PicoTile::new(Rgb565Be::new(0, 0, 0)));
+    // Built at start-up (see `tiles`), so that they take RAM (.bss) and no
+    // flash: a `const` tile buffer holds the farthest depth, not zeros,
+    // and would be stored in flash as initial data (.data).
+    static TILE_A: StaticCell<PicoTile> = StaticCell::new();
+    static TILE_B: StaticCell<PicoTile> = StaticCell::new();
+
+    /// The two tile buffers, once (`None` the second time). Not inlined: the
+    /// compiler builds each 4 KiB buffer on the stack before it moves it
+    /// into its static, and here that stack is given back before the first
+    /// frame instead of staying in `main`'s frame under every render. (The
+    /// buffers' first colour is never seen: each tile is cleared first.)
+    #[inline(never)]
+    fn tiles() -> Option<[&'static mut PicoTile; 2]> {
+        let new = || PicoTile::new(Rgb565Be::new(0, 0, 0));
+        Some([TILE_A.try_init_with(new)?, TILE_B.try_init_with(new)?])
+    }
 
     /// A finished tile, packed into one block of wire bytes, as the DMA
     /// channel reads it: the buffer and the block's address and length.
@@ -359,7 +370,9 @@ mod firmware {
         };
         let workspace = WORKSPACE.take();
         let renderer = PicoRenderer::new(config());
-        let mut tiles = [TILE_A.take(), TILE_B.take()];
+        let Some(mut tiles) = tiles() else {
+            fault(&mut led, 4)
+        };
 
         loop {
             // The timer counts microseconds from its reset above.
