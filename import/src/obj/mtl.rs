@@ -5,7 +5,8 @@
 
 use std::path::Path;
 
-use super::{malformed, number, numbers, rest, Lines, Loader, Parser};
+use super::lines::Lines;
+use super::parser::{malformed, number, numbers, rest, Loader, Parser};
 use crate::error::{escape_controls, ImportError};
 use crate::obj::Material;
 use crate::paths;
