@@ -9,7 +9,7 @@
 //!
 //! Reads `target/criterion/triangles/{RASTERIZER}/{SIZE}/new/estimates.json`
 //! (the mean of the last run) for every rasterizer and size of
-//! `examples/common/scenes.rs` and draws with embedded-graphics into a frame in memory.
+//! `examples/common/scenes/` and draws with embedded-graphics into a frame in memory.
 
 mod common;
 

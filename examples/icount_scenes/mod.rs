@@ -3,7 +3,7 @@
 //! `const fn`s into `static`s, so that the meshes live in flash and the
 //! LM3S6965's 64 KiB of RAM holds only the renderer and its workspace.
 //!
-//! The first three are the host benchmark scenes of `examples/common/scenes.rs`,
+//! The first three are the host benchmark scenes of `examples/common/scenes/`,
 //! at the same size and with the same renderer settings (320x240, `Rgb565`, 32x32
 //! tiles, back-face culling, `LessEqual` with depth writes):
 //!
@@ -92,7 +92,7 @@ const fn fx(v: f32) -> I16F16 {
 }
 
 /// Pixel position (x right, y down) to a normalised-device-coordinate
-/// vertex at depth `z`, as `examples/common/scenes.rs` computes it.
+/// vertex at depth `z`, as `examples/common/scenes/mod.rs` computes it.
 const fn ndc(px: f32, py: f32, z: f32) -> Vec3Fx {
     [
         fx(px * 2.0 / WIDTH as f32 - 1.0),

@@ -1,0 +1,106 @@
+//! Benchmark scenes, shared by `benches/raster.rs`, `examples/count.rs`
+//! and `examples/raster_plot.rs` (`common::scenes`; they use the demo
+//! scene of `common`).
+//!
+//! * [`DemoScene`]: the demo frame (torus knot + cube, frame 0 of the demo)
+//!   at 320x240, as the demo renders it.
+//! * [`FillScene`]: `layers` flat-shaded 320x240 quads, drawn back to front
+//!   with the depth test on, so every fragment passes and is written.
+//! * [`Copies`]: many copies of one triangle of a given pixel area,
+//!   scattered over the frame, for per-triangle costs.
+//! * [`EucDemo`]: the demo frame rendered by the `euc` crate, for comparison.
+//! * [`TerrainScene`]: a terrain of 18,432 triangles imported in clusters,
+//!   seen from on it: most of it lies outside the view.
+#![allow(dead_code)]
+
+use crate::common;
+use embedded_graphics::pixelcolor::Rgb565;
+use fixed::types::I16F16;
+use microraster::mesh::Vec3Fx;
+use microraster::prelude::*;
+
+mod copies;
+mod demo;
+mod euc_demo;
+mod fill;
+mod rock;
+mod terrain;
+
+// Each example or bench that includes this file uses a different subset.
+#[allow(unused_imports)]
+pub use copies::{Copies, TRIANGLE_SIZES};
+#[allow(unused_imports)]
+pub use demo::DemoScene;
+#[allow(unused_imports)]
+pub use euc_demo::EucDemo;
+#[allow(unused_imports)]
+pub use fill::FillScene;
+#[allow(unused_imports)]
+pub use rock::{RockScene, RockWorkspace, ROCK_FREQUENCY};
+#[allow(unused_imports)]
+pub use terrain::{TerrainScene, TERRAIN_CLUSTER, TERRAIN_QUADS};
+
+/// Frame width of every scene.
+pub const WIDTH: u32 = 320;
+/// Frame height of every scene.
+pub const HEIGHT: u32 = 240;
+
+/// The renderer every benchmark uses: 32x32 tiles of `Rgb565`.
+pub type BenchRenderer = Renderer<Rgb565, 32, 32>;
+/// The demo's workspace: the whole demo scene, all 80 tiles in one pass.
+pub type DemoWorkspace = Workspace<2048, 4096, 80>;
+/// A workspace for the triangle-copies scenes (up to 24,000 vertices).
+pub type CopiesWorkspace = Workspace<24_000, 32_768, 80>;
+
+/// A workspace for the terrain scene (every vertex of the clustered
+/// terrain, a slot each whether culled or not).
+pub type TerrainWorkspace = Workspace<16_384, 16_384, 80>;
+
+/// A renderer with the demo's settings (back-face culling, `LessEqual`,
+/// depth writes) and the scanline rasterizer.
+pub fn renderer() -> BenchRenderer {
+    renderer_with(Rasterizer::Scanline)
+}
+
+/// [`renderer`] with the given rasterizer.
+pub fn renderer_with(raster: Rasterizer) -> BenchRenderer {
+    BenchRenderer::new(Config::new(Size::new(WIDTH, HEIGHT), common::DEMO_CLEAR).rasterizer(raster))
+}
+
+/// The rasterizer named on a command line: `scanline`, `hilbert` or
+/// `auto`.
+pub fn parse_rasterizer(name: &str) -> Option<Rasterizer> {
+    match name {
+        "scanline" => Some(Rasterizer::Scanline),
+        "hilbert" => Some(Rasterizer::Hilbert),
+        "auto" => Some(Rasterizer::Auto),
+        _ => None,
+    }
+}
+
+/// A camera whose clip space is the model space: x, y, z in `[-1, 1]` are
+/// the frame, z = -1 nearest.
+pub fn ndc_camera() -> Camera {
+    Camera::new(Mat4::IDENTITY, Mat4::IDENTITY)
+}
+
+fn fx(v: f32) -> I16F16 {
+    I16F16::from_num(v)
+}
+
+/// Pixel position (x right, y down) to a normalised-device-coordinate
+/// vertex at depth `z`.
+fn ndc(px: f32, py: f32, z: f32) -> Vec3Fx {
+    [
+        fx(px * 2.0 / WIDTH as f32 - 1.0),
+        fx(1.0 - py * 2.0 / HEIGHT as f32),
+        fx(z),
+    ]
+}
+
+/// Leaks `v` so a mesh can borrow it for the rest of the program (scenes
+/// are built once per process, and building a [`Mesh`] validates every
+/// index, which is not per-frame work).
+fn leak<T>(v: Vec<T>) -> &'static [T] {
+    Vec::leak(v)
+}
