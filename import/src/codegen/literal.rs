@@ -1,9 +1,10 @@
 //! The pieces of generated text: the full paths of the types it names,
-//! comments, and `f32` and 16.16 literals.
+//! comments, `f32` and 16.16 literals, and arrays of 16.16 rows.
 
+use std::fmt::Write as _;
 use std::path::Path;
 
-pub(super) const FX: &str = "::fixed::types::I16F16";
+const FX: &str = "::fixed::types::I16F16";
 pub(super) const RGB888: &str = "::embedded_graphics::pixelcolor::Rgb888";
 pub(super) const CLUSTER: &str = "::microraster::mesh::Cluster";
 
@@ -45,4 +46,23 @@ pub(super) fn fixed_row(values: &[i32]) -> String {
         .map(|v| format!("{FX}::from_bits({v})"))
         .collect();
     format!("[{}]", items.join(", "))
+}
+
+/// A `pub static` array of 16.16 rows named `item`, documented as `doc`
+/// (and "16.16 fixed point"), one row a line.
+pub(super) fn fixed_array<const N: usize>(
+    s: &mut String,
+    doc: &str,
+    item: &str,
+    rows: &[[i32; N]],
+) {
+    let _ = writeln!(
+        s,
+        "\n/// {doc}, 16.16 fixed point.\npub static {item}: [[{FX}; {N}]; {}] = [",
+        rows.len()
+    );
+    for v in rows {
+        let _ = writeln!(s, "    {},", fixed_row(v));
+    }
+    s.push_str("];\n");
 }

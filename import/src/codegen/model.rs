@@ -5,7 +5,7 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use super::literal::{
-    comment_text, f32_literal, f32x3_literal, file_name, fixed_row, CLUSTER, FX, RGB888,
+    comment_text, f32_literal, f32x3_literal, file_name, fixed_array, fixed_row, CLUSTER, RGB888,
 };
 use super::{rerun_lines, rust_prefix, write_atomic};
 use crate::error::ImportError;
@@ -117,37 +117,29 @@ pub fn model_to_rust(model: &Model, name: &str) -> Result<String, ImportError> {
 
     write_counts(&mut s, &p, model);
 
-    let _ = writeln!(
-        s,
-        "\n/// Vertex positions, model space, 16.16 fixed point.\npub static {p}_POSITIONS: [[{FX}; 3]; {n}] = ["
+    fixed_array(
+        &mut s,
+        "Vertex positions, model space",
+        &format!("{p}_POSITIONS"),
+        &model.positions_fixed(),
     );
-    for v in model.positions_fixed() {
-        let _ = writeln!(s, "    {},", fixed_row(&v));
-    }
-    s.push_str("];\n");
 
     if !model.normals.is_empty() {
-        let _ = writeln!(
-            s,
-            "\n/// Unit vertex normals, 16.16 fixed point.\npub static {p}_NORMALS: [[{FX}; 3]; {}] = [",
-            model.normals.len()
+        fixed_array(
+            &mut s,
+            "Unit vertex normals",
+            &format!("{p}_NORMALS"),
+            &model.normals_fixed(),
         );
-        for v in model.normals_fixed() {
-            let _ = writeln!(s, "    {},", fixed_row(&v));
-        }
-        s.push_str("];\n");
     }
 
     if !model.uvs.is_empty() {
-        let _ = writeln!(
-            s,
-            "\n/// Texture coordinates (u, v), 16.16 fixed point.\npub static {p}_UVS: [[{FX}; 2]; {}] = [",
-            model.uvs.len()
+        fixed_array(
+            &mut s,
+            "Texture coordinates (u, v)",
+            &format!("{p}_UVS"),
+            &model.uvs_fixed(),
         );
-        for v in model.uvs_fixed() {
-            let _ = writeln!(s, "    {},", fixed_row(&v));
-        }
-        s.push_str("];\n");
     }
 
     if !model.colors.is_empty() {
