@@ -294,3 +294,44 @@ fn pico_firmware_in_rp2040js_matches_host_render() {
         failures.join("; ")
     );
 }
+
+/// The Embassy firmware, `boards/rp2040-embassy-st7789` (the same scene on
+/// the same wiring, each tile sent by embassy-rp's DMA while the next is
+/// drawn, through `Renderer::render_async`), in the same harness: every
+/// frame the host's render, pixel for pixel. The root workspace never
+/// builds the board crates, so this runs only when
+/// `MICRORASTER_PICO_EMBASSY_ELF` names the board crate's release ELF, as
+/// CI's board step does after building it; without it, it says so and
+/// passes.
+#[test]
+fn embassy_pico_firmware_in_rp2040js_matches_host_render() {
+    let Some(elf) = std::env::var_os("MICRORASTER_PICO_EMBASSY_ELF") else {
+        eprintln!(
+            "embassy_pico_emulated: skipped; set MICRORASTER_PICO_EMBASSY_ELF to the ELF of \
+             boards/rp2040-embassy-st7789 (cargo build --release --manifest-path \
+             boards/rp2040-embassy-st7789/Cargo.toml --target thumbv6m-none-eabi) to run it"
+        );
+        return;
+    };
+    if !host::require("embassy_pico_emulated", &[host::NODE, RP2040JS]) {
+        return;
+    }
+    let frames: usize = std::env::var("MICRORASTER_PICO_FRAMES")
+        .ok()
+        .and_then(|n| n.parse().ok())
+        .unwrap_or(2);
+    let out = root().join("target/pico-e2e/embassy");
+    let (report, reported) = run_pico(Path::new(&elf), frames, false, &out);
+    let statics = field(&report, "static_ram_bytes");
+    let stack = field(&report, "peak_stack_bytes");
+    assert!(
+        stack > 1_024 && statics + stack < 256 * 1024,
+        "peak stack {stack} B over statics of {statics} B"
+    );
+    let failures = compare_with_host(&out, &reported, "embassy");
+    assert!(
+        failures.is_empty(),
+        "the emulated panel differs from the host render: {} (target/golden-diff/embassy_*.png)",
+        failures.join("; ")
+    );
+}
