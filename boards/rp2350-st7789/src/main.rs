@@ -1,8 +1,13 @@
 //! Firmware for a Raspberry Pi Pico 2 (RP2350, Cortex-M33): the Pico
-//! example's lit torus knot and orbiting cube (`examples/st7789_scene`),
-//! rendered by microraster and streamed tile by tile over SPI1 to a 240x240
-//! ST7789 through mipidsi, frame after frame, wired as on the Pico
-//! (Waveshare's Pico-LCD-1.3 fits both boards).
+//! firmware (`examples/rp2040_st7789.rs`) on the RP2350. The same lit torus
+//! knot and orbiting cube (`examples/st7789_scene`), rendered with
+//! `Renderer::render_double_buffered`: each finished tile goes over SPI1 by
+//! DMA, paced by SPI1's TX DREQ, while the next is drawn, to a 240x240
+//! ST7789 wired as on the Pico (Waveshare's Pico-LCD-1.3 fits both boards).
+//! The tiles are drawn in the panel's byte order (`Rgb565Be`), so DMA
+//! sends them as they are; the core only sends each tile's window commands,
+//! and mipidsi only brings the panel up. CS stays low after the set-up: the
+//! panel is the bus's only device.
 //!
 //! ```text
 //! cargo build --release --manifest-path boards/rp2350-st7789/Cargo.toml --target thumbv8m.main-none-eabihf
@@ -36,11 +41,15 @@
 mod st7789_scene;
 
 use core::convert::Infallible;
+use core::mem;
+use embedded_dma::ReadBuffer;
+use embedded_graphics::primitives::Rectangle;
 use embedded_hal::delay::DelayNs;
 use embedded_hal::digital::{OutputPin, StatefulOutputPin};
-use embedded_hal::spi::MODE_3;
+use embedded_hal::spi::{SpiBus, MODE_3};
 use embedded_hal_bus::spi::ExclusiveDevice;
 use microraster::prelude::*;
+use microraster::sink::wire::{wire_bytes, Window};
 use mipidsi::interface::SpiInterface;
 use mipidsi::models::ST7789;
 use mipidsi::options::ColorInversion;
@@ -48,9 +57,11 @@ use mipidsi::Builder;
 use panic_halt as _;
 use rp235x_hal as hal;
 use st7789_scene::*;
-use static_cell::ConstStaticCell;
+use static_cell::{ConstStaticCell, StaticCell};
 
 use hal::clocks::{init_clocks_and_plls, Clock};
+use hal::dma::single_buffer::{self, Transfer};
+use hal::dma::{DMAExt, SingleChannel, WriteTarget};
 use hal::fugit::RateExtU32;
 use hal::gpio::{FunctionSpi, PinState, Pins};
 use hal::{pac, Sio, Spi, Timer, Watchdog};
@@ -67,9 +78,6 @@ const XTAL_HZ: u32 = 12_000_000;
 /// 150 MHz peripheral clock by an even number at least 4 below 75 MHz, so
 /// this gives 37.5 MHz (75 MHz would be beyond the panel's specification).
 const SPI_HZ: u32 = 62_500_000;
-/// mipidsi gathers pixels into this buffer before each SPI write: one
-/// 32x32 Rgb565 tile, so one transfer per tile.
-const SPI_BUFFER_BYTES: usize = TILE * TILE * 2;
 /// Half a period of the fault blink: 0.2 s at 150 MHz (slower if the clocks
 /// never came up).
 const BLINK_CYCLES: u32 = 30_000_000;
@@ -77,8 +85,132 @@ const BLINK_CYCLES: u32 = 30_000_000;
 // Built in place in RAM (.bss), never moved through the stack.
 static KNOT: ConstStaticCell<KnotData> = ConstStaticCell::new(KnotData::new());
 static WORKSPACE: ConstStaticCell<PicoWorkspace> = ConstStaticCell::new(PicoWorkspace::new());
-static SPI_BUFFER: ConstStaticCell<[u8; SPI_BUFFER_BYTES]> =
-    ConstStaticCell::new([0; SPI_BUFFER_BYTES]);
+// The two tile buffers. `'static`, as a DMA transfer's buffer must be: a
+// transfer that was leaked must not go on reading freed memory. Built at
+// start-up (see `tiles`), so that they take RAM (.bss) and no flash: a
+// `const` tile buffer holds the farthest depth, not zeros, and would be
+// stored in flash as initial data (.data).
+static TILE_A: StaticCell<PicoTile> = StaticCell::new();
+static TILE_B: StaticCell<PicoTile> = StaticCell::new();
+
+/// The two tile buffers, once (`None` the second time). Not inlined: the
+/// compiler builds each 4 KiB buffer on the stack before it moves it into
+/// its static, and that stack is given back before the first frame. (The
+/// buffers' first colour is never seen: each tile is cleared first.)
+#[inline(never)]
+fn tiles() -> Option<[&'static mut PicoTile; 2]> {
+    let new = || PicoTile::new(Rgb565Be::new(0, 0, 0));
+    Some([TILE_A.try_init_with(new)?, TILE_B.try_init_with(new)?])
+}
+
+/// A finished tile, packed into one block of wire bytes, as the DMA
+/// channel reads it: the buffer and the block's address and length.
+struct TileBytes {
+    tile: &'static mut PicoTile,
+    bytes: (*const u8, usize),
+}
+
+impl TileBytes {
+    /// Packs the tile that covers `area` of the frame (see
+    /// `TileBuffer::pack`) and takes its buffer.
+    fn new(tile: &'static mut PicoTile, area: &Rectangle) -> Self {
+        let bytes = wire_bytes(tile.pack(area));
+        Self { tile, bytes }
+    }
+}
+
+// SAFETY: `bytes` lies within `*tile` (it was made from the tile's packed
+// pixels, `2 n` bytes for `n` pixels) and never changes. The buffer is
+// `'static` and borrowed exclusively by `self`, so nothing else writes or
+// frees it while the DMA channel reads it: the channel's `Transfer` owns
+// `self` until it is done, and only then gives the buffer back
+// (`TileTransfer::wait`).
+unsafe impl ReadBuffer for TileBytes {
+    type Word = u8;
+
+    unsafe fn read_buffer(&self) -> (*const u8, usize) {
+        self.bytes
+    }
+}
+
+/// Where the bus is: free, or carrying a tile by DMA.
+enum Link<CH: SingleChannel, S: WriteTarget<TransmittedWord = u8>> {
+    Idle(CH, S),
+    Sending(Transfer<CH, TileBytes, S>),
+    /// Only while a transition is under way.
+    Taken,
+}
+
+/// Why a tile could not be started.
+#[derive(Debug)]
+enum PanelError {
+    /// A transfer was still in flight.
+    Busy,
+    /// The tile's window lies outside the panel's addresses.
+    Window,
+}
+
+/// The panel, past its set-up, as a `TileTransfer`: the window commands of
+/// each tile from the core, then its pixels by DMA.
+struct Panel<CH: SingleChannel, S: WriteTarget<TransmittedWord = u8>, DC> {
+    link: Link<CH, S>,
+    dc: DC,
+}
+
+impl<CH, S, DC> TileTransfer<&'static mut PicoTile> for Panel<CH, S, DC>
+where
+    CH: SingleChannel,
+    S: WriteTarget<TransmittedWord = u8> + SpiBus<u8, Error = Infallible>,
+    DC: OutputPin<Error = Infallible>,
+{
+    type Error = PanelError;
+
+    fn start(
+        &mut self,
+        area: &Rectangle,
+        tile: &'static mut PicoTile,
+    ) -> Result<(), (PanelError, &'static mut PicoTile)> {
+        let Some(window) = Window::new(area, Point::zero()) else {
+            return Err((PanelError::Window, tile));
+        };
+        let (channel, mut spi) = match mem::replace(&mut self.link, Link::Taken) {
+            Link::Idle(channel, spi) => (channel, spi),
+            busy => {
+                self.link = busy;
+                return Err((PanelError::Busy, tile));
+            }
+        };
+        // A finished DMA transfer has only put its last bytes into the
+        // SPI's FIFO: DC changes only once the SPI is idle (`flush`), so
+        // that no byte goes out with the wrong DC.
+        for (command, parameters) in window.commands() {
+            let Ok(()) = spi.flush();
+            let Ok(()) = self.dc.set_low();
+            let Ok(()) = spi.write(&[command]);
+            let Ok(()) = spi.flush();
+            let Ok(()) = self.dc.set_high();
+            let Ok(()) = spi.write(parameters);
+        }
+        // After RAMWR, DC high: the pixels, by DMA, paced by SPI1's TX DREQ
+        // (the FIFO's room).
+        let bytes = TileBytes::new(tile, area);
+        self.link = Link::Sending(single_buffer::Config::new(channel, bytes, spi).start());
+        Ok(())
+    }
+
+    fn wait(&mut self) -> (&'static mut PicoTile, Result<(), PanelError>) {
+        let (channel, bytes, spi) = match mem::replace(&mut self.link, Link::Taken) {
+            // Done once the channel has written the last byte into the
+            // FIFO; the next `start` waits for the FIFO to drain.
+            Link::Sending(transfer) => transfer.wait(),
+            // `render_double_buffered` waits only after a successful start,
+            // so there is always a buffer to give back here.
+            Link::Idle(..) | Link::Taken => park(),
+        };
+        self.link = Link::Idle(channel, spi);
+        (bytes.tile, Ok(()))
+    }
+}
 
 /// The timer's delays made "at least": rp235x-hal's `Timer` counts whole
 /// ticks of its 1 MHz counter from the one it starts in, so a delay can end
@@ -146,30 +278,44 @@ fn main() -> ! {
     let timer = Timer::new_timer0(pac.TIMER0, &mut pac.RESETS, &clocks);
 
     // The display: SPI1 transmit-only, mode 3 (which also suits modules
-    // whose CS is tied low), CS driven as a GPIO around each transfer.
+    // whose CS is tied low).
     let sck = pins.gpio10.into_function::<FunctionSpi>();
     let mosi = pins.gpio11.into_function::<FunctionSpi>();
-    let cs = pins.gpio9.into_push_pull_output_in_state(PinState::High);
-    let dc = pins.gpio8.into_push_pull_output_in_state(PinState::Low);
-    let rst = pins.gpio12.into_push_pull_output_in_state(PinState::High);
+    let mut cs = pins.gpio9.into_push_pull_output_in_state(PinState::High);
+    let mut dc = pins.gpio8.into_push_pull_output_in_state(PinState::Low);
+    let mut rst = pins.gpio12.into_push_pull_output_in_state(PinState::High);
     let mut backlight = pins.gpio13.into_push_pull_output_in_state(PinState::Low);
-    let spi = Spi::<_, _, _, 8>::new(pac.SPI1, (mosi, sck)).init(
+    let mut spi = Spi::<_, _, _, 8>::new(pac.SPI1, (mosi, sck)).init(
         &mut pac.RESETS,
         clocks.peripheral_clock.freq(),
         SPI_HZ.Hz(),
         MODE_3,
     );
-    let Ok(spi) = ExclusiveDevice::new(spi, cs, timer);
-    let interface = SpiInterface::new(spi, dc, SPI_BUFFER.take());
-    // 240x240 ST7789 panels are IPS panels that need inverted colours.
-    let mut delay = AtLeast(timer);
-    let Ok(mut display) = Builder::new(ST7789, interface)
-        .display_size(WIDTH as u16, HEIGHT as u16)
-        .invert_colors(ColorInversion::Inverted)
-        .reset_pin(rst)
-        .init(&mut delay)
-    else {
-        fault(&mut led, 3)
+    // mipidsi's start-up sequence, through borrowed pins and bus (CS driven
+    // as a GPIO around each command), which come back when the display is
+    // dropped. 240x240 ST7789 panels are IPS panels that need inverted
+    // colours. mipidsi draws no pixel here, so its pixel buffer can be tiny.
+    {
+        let mut delay = AtLeast(timer);
+        let mut scratch = [0; 4];
+        let Ok(device) = ExclusiveDevice::new(&mut spi, &mut cs, timer);
+        let interface = SpiInterface::new(device, &mut dc, &mut scratch);
+        if Builder::new(ST7789, interface)
+            .display_size(WIDTH as u16, HEIGHT as u16)
+            .invert_colors(ColorInversion::Inverted)
+            .reset_pin(&mut rst)
+            .init(&mut delay)
+            .is_err()
+        {
+            fault(&mut led, 3)
+        }
+    }
+    // From here on the panel is the bus's: CS low for good.
+    let Ok(()) = cs.set_low();
+    let dma = pac.DMA.split(&mut pac.RESETS);
+    let mut panel = Panel {
+        link: Link::Idle(dma.ch0, spi),
+        dc,
     };
 
     // The scene: the knot is generated once, into its static.
@@ -177,13 +323,18 @@ fn main() -> ! {
         fault(&mut led, 4)
     };
     let workspace = WORKSPACE.take();
-    let mut renderer = Rgb565Renderer::new(config());
+    let renderer = PicoRenderer::new(config());
+    let Some(mut tiles) = tiles() else {
+        fault(&mut led, 4)
+    };
 
     loop {
         // The timer counts microseconds from its reset above.
         let draws = draws(&knot, &cube, timer.get_counter().ticks());
         let scene = Scene::new(camera, &draws).light(light());
-        if renderer.render(workspace, &scene, &mut display).is_err() {
+        let (back, result) = renderer.render_double_buffered(workspace, &scene, tiles, &mut panel);
+        tiles = back;
+        if result.is_err() {
             fault(&mut led, 5);
         }
         // Lit once the first frame is on the panel, so the panel's
