@@ -20,10 +20,12 @@
 //! * columns: a span is `[ceil(x_left - ½), ceil(x_right - ½))`, so a centre
 //!   on a left edge is drawn and one on a right edge is not.
 //!
-//! Set-up needs `i64` products (screen coordinates within the guard band
-//! reach ±2^18 sub-pixels) but `i32` divisions, two per edge, except for
-//! the start column of a long edge far from the origin; the per-row
-//! stepping is `i32` adds and one compare per edge.
+//! Set-up needs one `i32` division per edge, its per-row step. The start
+//! column of an edge's own first row follows from that step in `i32`;
+//! only a start that a tile's top clips lower needs `i64` products (screen
+//! coordinates within the guard band reach ±2^18 sub-pixels) and a second
+//! division, in `i32` unless a long edge lies far from the origin. The
+//! per-row stepping is `i32` adds and one compare per edge.
 //!
 //! The walk is a resumable `Walker`, which records the spans of the next
 //! rows in a buffer rather than calling back for each: the renderer walks a
@@ -31,33 +33,43 @@
 //! edge loop runs with nothing else in registers, and shades them
 //! afterwards. [`spans`] drives the same walker through a small buffer.
 
-use super::{first_centre_at_or_after, PixelRect, Span, SubPoint, HALF_PIXEL, SUBPIXEL};
+use super::{
+    first_centre_at_or_after, PixelRect, Span, SubPoint, HALF_PIXEL, SUBPIXEL, SUBPIXEL_BITS,
+};
 use core::num::NonZeroU32;
 
 /// One edge being walked down the rows: the first covered column at the
-/// current row, and the exact remainder of that ceiling.
+/// current row, and the exact remainder of that ceiling, kept as an error
+/// term below zero so that a step needs no comparison with a register.
 #[derive(Clone, Copy, Debug)]
 struct EdgeStepper {
     /// `ceil(N / den)` for the current row, with `N` the edge's numerator.
     col: i32,
-    /// `col * den - N`, always in `0..den`.
-    rem: i32,
+    /// `col * den - N - den`, always in `-den..0`.
+    err: i32,
     /// Column step per row: `ceil(SUBPIXEL * dx / den)`.
     step_col: i32,
-    /// Remainder step per row: `step_col * den - SUBPIXEL * dx`.
-    step_rem: i32,
+    /// Error step per row: `step_col * den - SUBPIXEL * dx`, in `0..den`;
+    /// a carry (the error reaching zero) takes one column back.
+    step_err: i32,
     /// `SUBPIXEL * dy`.
     den: i32,
 }
 
 impl EdgeStepper {
-    /// Starts the edge `p -> q` (`q.y > p.y`) at pixel row `row`.
+    /// Starts the edge `p -> q` (`q.y > p.y`) at pixel row `row`, whose
+    /// centre is at or below `p` (`row >= first_centre_at_or_after(p.y)`).
     ///
-    /// Two divisions: the per-row step, whose operands always fit `i32`,
-    /// and the start column, whose numerator fits `i32` for all but long
-    /// edges far from the origin. A 32-bit division is a single instruction
-    /// on a Cortex-M3/M4 where the 64-bit one is a library call, so the
-    /// 64-bit one is only used when needed; both give the same quotient.
+    /// One `i32` division, the per-row step `ceil(dx / dy) = (s, r)`. When
+    /// the start row is one of the first sixteen sub-pixel rows below `p`
+    /// (every edge's own first row: only a tile's top clips below that),
+    /// the start column follows from it with no second division: with
+    /// `t = y_c - p.y < 16` and `P = p.x - ½ + t s = 16 Q + R`, the
+    /// numerator is `16 dy Q + (dy R - t r)`, and `|dy R - t r| < 16 dy`, so
+    /// the ceiling is `Q` or `Q + 1`. Otherwise the start column is divided
+    /// out: in `i32` when its numerator fits (a single instruction on a
+    /// Cortex-M3/M4 where the 64-bit one is a library call), in `i64` for
+    /// long edges far from the origin; all give the same quotient.
     #[inline(always)]
     fn new(p: SubPoint, q: SubPoint, row: i32) -> Self {
         // Within the guard band coordinates are below 2^18 in magnitude
@@ -68,39 +80,43 @@ impl EdgeStepper {
         // dy > 0 (the caller walks edges downwards); the fallback only
         // spares the divisions their checks.
         let dy = NonZeroU32::new(dy as u32).unwrap_or(NonZeroU32::MIN);
-        let den = NonZeroU32::new(dy.get() * SUBPIXEL as u32).unwrap_or(NonZeroU32::MIN);
-        // x_edge(y_c) - ½px, times den, as a sub-pixel numerator:
-        // (p.x - ½) * dy + (y_c - p.y) * dx, over SUBPIXEL * dy (< 2^39).
-        let yc = row * SUBPIXEL + HALF_PIXEL;
-        let num = (p.x - HALF_PIXEL) as i64 * dy.get() as i64 + (yc - p.y) as i64 * dx as i64;
-        let (col, rem) = match i32::try_from(num) {
-            Ok(n) => ceil_div_rem32(n, den),
-            Err(_) => {
-                let (c, r) = ceil_div_rem(num, den.get() as i64);
-                (c as i32, r as i32)
-            }
-        };
+        let den = (dy.get() * SUBPIXEL as u32) as i32;
         // ceil(SUBPIXEL dx / (SUBPIXEL dy)) = ceil(dx / dy), with the
         // remainder scaled back by SUBPIXEL.
-        let (step_col, step_rem) = ceil_div_rem32(dx, dy);
+        let (step_col, r) = ceil_div_rem32(dx, dy);
+        let yc = row * SUBPIXEL + HALF_PIXEL;
+        let t = yc - p.y;
+        let (col, rem) = if (t as u32) < SUBPIXEL as u32 {
+            // |t s| <= 15 * 2^19: P fits i32; dy R and t r are below 2^24.
+            let big_p = p.x - HALF_PIXEL + t * step_col;
+            let n = dy.get() as i32 * (big_p & (SUBPIXEL - 1)) - t * r;
+            let up = (n > 0) as i32;
+            (
+                (big_p >> SUBPIXEL_BITS) + up,
+                // den - n when the ceiling rounds up, -n otherwise.
+                (den & -up) - n,
+            )
+        } else {
+            // x_edge(y_c) - ½px, times den, as a sub-pixel numerator:
+            // (p.x - ½) * dy + (y_c - p.y) * dx, over SUBPIXEL * dy (< 2^39).
+            let num = (p.x - HALF_PIXEL) as i64 * dy.get() as i64 + t as i64 * dx as i64;
+            let den = NonZeroU32::new(den as u32).unwrap_or(NonZeroU32::MIN);
+            match i32::try_from(num) {
+                Ok(n) => ceil_div_rem32(n, den),
+                Err(_) => {
+                    let (c, r) = ceil_div_rem(num, den.get() as i64);
+                    (c as i32, r as i32)
+                }
+            }
+        };
         // Within the guard band every quantity here fits i32; see the
         // module docs of `crate::vertex` for the bound.
         Self {
             col,
-            rem,
+            err: rem - den,
             step_col,
-            step_rem: step_rem * SUBPIXEL,
-            den: den.get() as i32,
-        }
-    }
-
-    #[inline(always)]
-    fn step(&mut self) {
-        self.col += self.step_col;
-        self.rem += self.step_rem;
-        if self.rem >= self.den {
-            self.rem -= self.den;
-            self.col -= 1;
+            step_err: r * SUBPIXEL,
+            den,
         }
     }
 }
@@ -276,25 +292,11 @@ impl Walker {
     pub(crate) fn walk(&mut self, out: &mut [Span]) -> usize {
         // The state in locals, so the loop keeps it in registers.
         let (mut left, mut right, mut row, mut stop) = (self.left, self.right, self.row, self.stop);
-        let (x0, x1) = (self.x0, self.x1);
         // Rows left in `out`; spans recorded (never more than rows walked).
         let (mut room, mut n) = (out.len(), 0);
         loop {
             let rows = ((stop - row) as usize).min(room);
-            for j in row..row + rows as i32 {
-                let s = Span {
-                    j,
-                    x0: left.col.max(x0),
-                    x1: right.col.min(x1),
-                };
-                // Written whether empty or not, kept only if not: no branch.
-                if let Some(o) = out.get_mut(n) {
-                    *o = s;
-                }
-                n += (s.x0 < s.x1) as usize;
-                left.step();
-                right.step();
-            }
+            n = half(out, n, row, rows, &mut left, &mut right, self.x0, self.x1);
             room -= rows;
             row += rows as i32;
             if row < stop || row >= self.end {
@@ -313,6 +315,56 @@ impl Walker {
         (self.left, self.right, self.row, self.stop) = (left, right, row, stop);
         n
     }
+}
+
+/// Walks `rows` rows from `row` between the edges `left` and `right`,
+/// recording the non-empty spans, clipped to columns `x0..x1`, in `out`
+/// from `out[n]` on; returns the new count.
+#[inline(always)]
+// `j` counts the rows beside the loop's count, the form that was measured.
+#[allow(clippy::too_many_arguments, clippy::explicit_counter_loop)]
+fn half(
+    out: &mut [Span],
+    mut n: usize,
+    row: i32,
+    rows: usize,
+    left: &mut EdgeStepper,
+    right: &mut EdgeStepper,
+    x0: i32,
+    x1: i32,
+) -> usize {
+    let (mut lc, mut le) = (left.col, left.err);
+    let (mut rc, mut re) = (right.col, right.err);
+    let (ls, lse, ld) = (left.step_col, left.step_err, left.den);
+    let (rs, rse, rd) = (right.step_col, right.step_err, right.den);
+    let mut j = row;
+    for _ in 0..rows {
+        let s = Span {
+            j,
+            x0: lc.max(x0),
+            x1: rc.min(x1),
+        };
+        // Written whether empty or not, kept only if not: no branch.
+        if let Some(o) = out.get_mut(n) {
+            *o = s;
+        }
+        n += (s.x0 < s.x1) as usize;
+        j += 1;
+        lc += ls;
+        le += lse;
+        if le >= 0 {
+            le -= ld;
+            lc -= 1;
+        }
+        rc += rs;
+        re += rse;
+        if re >= 0 {
+            re -= rd;
+            rc -= 1;
+        }
+    }
+    (left.col, left.err, right.col, right.err) = (lc, le, rc, re);
+    n
 }
 
 /// Calls `span(row, x_start, x_end)` for every non-empty run of covered
