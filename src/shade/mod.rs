@@ -38,7 +38,7 @@ pub(crate) mod perspective;
 use crate::math::Divisor;
 use crate::raster::{SubPoint, HALF_PIXEL, SUBPIXEL_BITS};
 use crate::vertex::ScreenVertex;
-use core::num::NonZeroU64;
+use core::num::{NonZeroU32, NonZeroU64};
 use embedded_graphics::pixelcolor::Rgb888;
 
 /// Fraction bits of interpolated depth.
@@ -190,18 +190,81 @@ struct Basis {
     x2: i64,
     y2: i64,
     /// Twice the absolute area, by which all eight gradients are divided
-    /// (through its reciprocal on 32-bit targets, see [`Divisor`]).
+    /// (through its reciprocal on 32-bit targets, see [`Divisor`]; not
+    /// made for a [`Small`] triangle, whose gradients take 32-bit
+    /// divisions instead).
     area: Divisor,
+    /// Twice the absolute area, for the divisions of a [`Small`] triangle's
+    /// gradients that do not fit its 32-bit ones.
+    area64: NonZeroU64,
     /// Half of twice the absolute area, for rounding.
     half: u64,
     /// `HALF_PIXEL - o.x` and `HALF_PIXEL - o.y` of vertex 0.
     ox: i64,
     oy: i64,
+    /// On 32-bit targets, a triangle whose edge vectors are below
+    /// [`SMALL_EDGE`] in magnitude.
+    small: Option<Small>,
+}
+
+/// On 32-bit targets, the attribute set-up of a small triangle (edge
+/// vectors from vertex 0 below this, in sub-pixels: 64 pixels) divides in
+/// 32-bit operations ([`Small::div_round`]) instead of through the 64-bit
+/// reciprocal of its area; 64-bit targets keep their division instruction.
+/// The gradients are the same.
+const SMALL_EDGE: i64 = 1 << 10;
+/// Whether the target sets small triangles up in 32-bit divisions.
+const SMALL_SETUP: bool = cfg!(not(target_pointer_width = "64"));
+
+/// The divisor of a small triangle's gradients: twice its absolute area,
+/// below `2 * SMALL_EDGE^2 = 2^21`.
+#[derive(Clone, Copy, Debug)]
+struct Small {
+    area: NonZeroU32,
+    half: u32,
+}
+
+impl Small {
+    /// `n 2^shift / area` rounded to nearest, ties away from zero, for
+    /// `|n| < 2^31` and `area < 2^21`: [`Basis::div_round`]'s quotient, by
+    /// long division in 32-bit steps of at most 10 bits. With
+    /// `|n| = q area + r`, `|n| 2^10 = (q 2^10 + d) area + r'` for
+    /// `d = floor(r 2^10 / area)`, and so on down the shift; every partial
+    /// dividend is below `area 2^10 + half < 2^32`. Three divisions for
+    /// the shifts of depth and colour (18 and 20), each one instruction on
+    /// a Cortex-M3/M4.
+    #[inline(always)]
+    fn div_round(&self, n: i32, shift: u32) -> i64 {
+        let d = self.area;
+        let a = n.unsigned_abs();
+        let mut q = (a / d) as u64;
+        let mut r = a % d;
+        let mut left = shift;
+        while left > 10 {
+            let part = r << 10;
+            q = (q << 10) | (part / d) as u64;
+            r = part % d;
+            left -= 10;
+        }
+        let q = ((q << left) + (((r << left) + self.half) / d) as u64) as i64;
+        if n < 0 {
+            -q
+        } else {
+            q
+        }
+    }
 }
 
 impl Basis {
     #[inline(always)]
     fn new(v: &[SubPoint; 3]) -> Self {
+        Self::with_small(v, SMALL_SETUP)
+    }
+
+    /// [`Basis::new`], with small triangles set up in 32-bit divisions
+    /// when `small_setup` (the tests compare both on the host).
+    #[inline(always)]
+    fn with_small(v: &[SubPoint; 3], small_setup: bool) -> Self {
         let (x1, y1) = (v[1].x as i64 - v[0].x as i64, v[1].y as i64 - v[0].y as i64);
         let (x2, y2) = (v[2].x as i64 - v[0].x as i64, v[2].y as i64 - v[0].y as i64);
         // Twice the signed area, as `crate::raster::signed_area2`.
@@ -213,15 +276,28 @@ impl Basis {
         // every numerator exactly, so every division has a positive
         // denominator and the same rounded result.
         let s = if area2 < 0 { -1 } else { 1 };
+        let small = match small_setup && [x1, y1, x2, y2].iter().all(|c| c.abs() < SMALL_EDGE) {
+            // Twice the area of a small triangle is below 2^21.
+            true => NonZeroU32::new(area.get() as u32).map(|area| Small {
+                area,
+                half: area.get() / 2,
+            }),
+            false => None,
+        };
         Self {
             x1: s * x1,
             y1: s * y1,
             x2: s * x2,
             y2: s * y2,
-            area: Divisor::new(area),
+            area: match small {
+                Some(_) => Divisor::new(NonZeroU64::MIN),
+                None => Divisor::new(area),
+            },
+            area64: area,
             half: area.get() / 2,
             ox: HALF_PIXEL as i64 - v[0].x as i64,
             oy: HALF_PIXEL as i64 - v[0].y as i64,
+            small,
         }
     }
 
@@ -229,6 +305,12 @@ impl Basis {
     /// the vertex stage rounds too.
     #[inline(always)]
     fn div_round(&self, n: i64) -> i64 {
+        if self.small.is_some() {
+            // A small triangle's attribute beyond its 32-bit divisions
+            // (the perspective weights): a plain division.
+            let q = ((n.unsigned_abs() + self.half) / self.area64) as i64;
+            return if n >= 0 { q } else { -q };
+        }
         // |n| < 2^57 and half < 2^39: within `Reciprocal::div`'s range.
         if n >= 0 {
             self.area.div(n as u64 + self.half) as i64
@@ -247,6 +329,18 @@ impl Basis {
         let d1 = values[1] - values[0];
         let d2 = values[2] - values[0];
         let shift = frac + SUBPIXEL_BITS;
+        if let Some(small) = &self.small {
+            if d1.abs() < 1 << 16 && d2.abs() < 1 << 16 {
+                // |d| < 2^16 and edge vectors below 2^10: the numerators
+                // are below 2^27, and the shift at most 20.
+                let [x1, y1, x2, y2] = [self.x1, self.y1, self.x2, self.y2].map(|c| c as i32);
+                let (d1, d2) = (d1 as i32, d2 as i32);
+                return (
+                    small.div_round(d1 * y2 - d2 * y1, shift),
+                    small.div_round(d2 * x1 - d1 * x2, shift),
+                );
+            }
+        }
         (
             self.div_round((d1 * self.y2 - d2 * self.y1) << shift),
             self.div_round((d2 * self.x1 - d1 * self.x2) << shift),
@@ -653,6 +747,73 @@ mod tests {
         for (n, o) in [(0, 0), (1, 0), (0, 1), (65_535, 65_534)] {
             assert_eq!(DLessEqual.pass(n, o), DepthTest::LessEqual.pass(n, o));
         }
+    }
+
+    /// The 32-bit division of small triangles against the 64-bit one, on
+    /// every target (the host sets up with the latter).
+    #[test]
+    fn small_division_matches_the_64_bit_one() {
+        let mut next = crate::testing::rng();
+        let check = |n: i32, area: u32, shift: u32| {
+            let small = Small {
+                area: NonZeroU32::new(area).unwrap(),
+                half: area / 2,
+            };
+            let m = (n.unsigned_abs() as u64) << shift;
+            let q = ((m + (area / 2) as u64) / area as u64) as i64;
+            let expected = if n < 0 { -q } else { q };
+            assert_eq!(
+                small.div_round(n, shift),
+                expected,
+                "{n} << {shift} / {area}"
+            );
+        };
+        let max_area = 2 * (SMALL_EDGE as u32 - 1) * (SMALL_EDGE as u32 - 1);
+        for area in [1, 2, 3, 255, 256, 65_535, max_area - 1, max_area] {
+            for n in [0, 1, -1, 7, -7, (1 << 27) - 1, -(1 << 27) + 1] {
+                for shift in [4, 18, 20] {
+                    check(n, area, shift);
+                }
+            }
+        }
+        for k in 0..300_000 {
+            let area = (1 + next(max_area as u64) as u32) >> (k % 20);
+            let n = next(1 << 28) as i32 - (1 << 27);
+            // Ties: n 2^shift an odd multiple of area / 2.
+            let n = if k % 7 == 0 {
+                (n % 64) * area as i32 / 2
+            } else {
+                n
+            };
+            check(n, area.max(1), [4, 18, 20][k % 3]);
+        }
+    }
+
+    /// Gradients of small triangles through the 32-bit divisions against
+    /// the 64-bit ones, for depth, colour and the perspective weights.
+    #[test]
+    fn small_gradients_match() {
+        let mut next = crate::testing::rng();
+        let mut small = 0;
+        for k in 0..100_000u64 {
+            let r = [64, 600, 2_100][k as usize % 3];
+            let mut p = || SubPoint::new(next(r) as i32 - 300, next(r) as i32 - 300);
+            let v = [p(), p(), p()];
+            if crate::raster::signed_area2(&v) == 0 {
+                continue;
+            }
+            let (a, b) = (Basis::with_small(&v, true), Basis::with_small(&v, false));
+            small += a.small.is_some() as u32;
+            for (max, frac) in [(65_536, Z_FRAC), (256, C_FRAC), (1 << 28, 0)] {
+                let values = [next(max) as i64, next(max) as i64, next(max) as i64];
+                assert_eq!(
+                    a.gradients(values, frac),
+                    b.gradients(values, frac),
+                    "{v:?}"
+                );
+            }
+        }
+        assert!(small > 30_000, "{small} small triangles");
     }
 
     #[test]
