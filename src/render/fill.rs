@@ -183,7 +183,7 @@ where
 {
     let dt = D::new(test);
     let corners = &Corners(sv);
-    let setup = &TriangleSetup::new(corners, GOURAUD);
+    let setup = &TriangleSetup::for_spans::<GOURAUD>(corners);
     let flat = C::from(Rgb888::new(flat[0], flat[1], flat[2]));
     each_span(tile, rect, found, |color, depth, sp| {
         if GOURAUD {

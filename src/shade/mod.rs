@@ -5,7 +5,9 @@
 //! B (y - y0)`, whose gradients `A = ∂a/∂x` and `B = ∂a/∂y` are computed
 //! once per triangle (and tile) from the three vertices, by Cramer's rule
 //! over twice the signed area: eight divisions by the same denominator,
-//! which a 32-bit target does through one reciprocal (`math::Divisor`). At the
+//! which a 64-bit host does with its division instruction and a 32-bit
+//! target, for a triangle under 64 pixels, in 32-bit steps (`Small`), for a
+//! larger one through one reciprocal (`math::Divisor`). At the
 //! first pixel of every span the plane is evaluated directly, so error
 //! never accumulates from row to row; along the span the value steps by the
 //! x gradient. Depth uses 14 fraction bits and colour 16, each biased by one
@@ -431,13 +433,7 @@ pub(crate) struct TriangleSetup {
 impl TriangleSetup {
     /// Sets up the planes of a non-degenerate triangle. Colour planes are
     /// only computed for `gouraud` (flat shading needs only depth).
-    ///
-    /// Inlined into each span loop on a 64-bit host, where that measured
-    /// fastest; out of line on 32-bit targets, where a copy per span loop
-    /// costs over a kilobyte of flash each and the span loops keep their
-    /// registers.
-    #[cfg_attr(target_pointer_width = "64", inline(always))]
-    #[cfg_attr(not(target_pointer_width = "64"), inline(never))]
+    #[inline(always)]
     pub(crate) fn new(t: &Corners<'_>, gouraud: bool) -> Self {
         let f = Basis::new(&t.points());
         let n = if gouraud { 4 } else { 1 };
@@ -464,6 +460,35 @@ impl TriangleSetup {
             planes,
             wide: range >= 2 * GRADIENT_LIMIT as u64,
         }
+    }
+
+    /// [`TriangleSetup::new`] for the span loops, Gouraud (`GOURAUD`) or
+    /// flat. Inlined into each span loop on a 64-bit host, where that
+    /// measured fastest; on 32-bit targets one copy for each shading, out
+    /// of line, rather than one in each of the eight span loops of a colour
+    /// type (over a kilobyte of flash each), and the span loops keep their
+    /// registers.
+    #[inline(always)]
+    pub(crate) fn for_spans<const GOURAUD: bool>(t: &Corners<'_>) -> Self {
+        if GOURAUD {
+            Self::gouraud(t)
+        } else {
+            Self::flat(t)
+        }
+    }
+
+    /// [`TriangleSetup::new`] of a Gouraud triangle.
+    #[cfg_attr(target_pointer_width = "64", inline(always))]
+    #[cfg_attr(not(target_pointer_width = "64"), inline(never))]
+    fn gouraud(t: &Corners<'_>) -> Self {
+        Self::new(t, true)
+    }
+
+    /// [`TriangleSetup::new`] of a flat triangle.
+    #[cfg_attr(target_pointer_width = "64", inline(always))]
+    #[cfg_attr(not(target_pointer_width = "64"), inline(never))]
+    fn flat(t: &Corners<'_>) -> Self {
+        Self::new(t, false)
     }
 
     /// Depth at the centre of pixel `(i, j)`, in `Z_LO..=Z_HI`.
