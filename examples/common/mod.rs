@@ -17,6 +17,10 @@ pub use png_file::{render_png, write_png};
 #[path = "../demo_scene/mod.rs"]
 mod demo_scene;
 use demo_scene::checker;
+/// The `rock` scene's mesh, camera and draw, shared with the RP2040
+/// benchmark firmware (`examples/rp2040_bench.rs`).
+#[path = "../rock_scene/mod.rs"]
+pub mod rock_scene;
 
 // Host-only parts that only some includers use: the benchmark scenes, the
 // shading gallery and the demo's command line.
