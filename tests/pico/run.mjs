@@ -3,6 +3,7 @@
 // (st7789.mjs), until it has drawn the frames asked for.
 //
 //   node tests/pico/run.mjs ELF [--frames N] [--out DIR] [--max-cycles C] [--serial]
+//   node tests/pico/run.mjs ELF --bench [--max-cycles C]
 //
 // Writes DIR/frame_NNN.rgb565 (what the panel shows after frame N:
 // 240x240 big-endian Rgb565) and DIR/report.json, and prints a line per
@@ -17,6 +18,16 @@
 // in the image it loads: the firmware then waits for each tile to leave
 // the wire before it draws the next, instead of drawing it while DMA sends
 // the previous one. That run's idle wire is the render alone.
+//
+// `--bench` runs the benchmark firmware `examples/rp2040_bench.rs` instead,
+// which renders scenes into a `NullSink` and marks each frame with `bkpt`s
+// of its own (see that file): the harness charges the cycles from a
+// frame's start mark to its end mark to the frame, prints a line per frame
+// (with its `FrameStats`, as the host's `examples/count.rs` prints them)
+// and a table of cycles per frame for each scene and size, against the
+// time the frame's Rgb565 pixels would take on SPI at 62.5 MHz (16
+// system-clock cycles a byte at 125 MHz), until the firmware says it is
+// done.
 //
 // Timing. rp2040js charges each instruction its Cortex-M0+ cycles (and a
 // few for peripheral accesses) and keeps the clock by them; nothing is
@@ -50,18 +61,21 @@ const SPI = 1;
 const SERIAL = 'MICRORASTER_PICO_SERIAL';
 
 function parseArgs(argv) {
-  const args = { frames: 1, out: null, maxCycles: null, elf: null, serial: false };
+  const args = { frames: 1, out: null, maxCycles: null, elf: null, serial: false, bench: false };
   for (let i = 0; i < argv.length; i++) {
     const a = argv[i];
     if (a === '--frames') args.frames = Number(argv[++i]);
     else if (a === '--out') args.out = argv[++i];
     else if (a === '--max-cycles') args.maxCycles = Number(argv[++i]);
     else if (a === '--serial') args.serial = true;
+    else if (a === '--bench') args.bench = true;
     else if (!args.elf && !a.startsWith('--')) args.elf = a;
     else throw new Error(`unknown argument ${a}`);
   }
   if (!args.elf || !(args.frames >= 1)) {
-    throw new Error('usage: node run.mjs ELF [--frames N] [--out DIR] [--max-cycles C] [--serial]');
+    throw new Error(
+      'usage: node run.mjs ELF [--frames N] [--out DIR] [--max-cycles C] [--serial], or node run.mjs ELF --bench [--max-cycles C]',
+    );
   }
   return args;
 }
@@ -150,6 +164,94 @@ function loadElf(mcu, path) {
   return bytes;
 }
 
+/** The SPI clock of the Pico firmware, for the frames' transfer times. */
+const BENCH_SPI_HZ = 62.5e6;
+const BENCH_SCENES = ['demo', 'rock'];
+/** `FrameStats`' fields, in the order the firmware sends them. */
+const FRAME_STATS = [
+  'triangles_in', 'culled', 'rejected', 'clipped', 'drawn', 'pixels_shaded', 'tiles', 'bin_passes',
+  'rescanned_tiles', 'draws_culled', 'clusters_culled', 'vertices', 'vertex_slots', 'tile_pairs',
+  'peak_bin_entries', 'peak_tiles_per_pass',
+];
+
+/** The benchmark firmware's marks (`examples/rp2040_bench.rs`). */
+class Bench {
+  constructor(mcu, cyclesNow, romCycles, fail) {
+    Object.assign(this, { mcu, cyclesNow, romCycles, fail });
+    this.frames = [];
+    this.open = null; // the frame under way
+    this.done = false;
+  }
+
+  onBreak(n) {
+    const r = this.mcu.core.registers;
+    const now = this.cyclesNow();
+    if (n === 0x60) {
+      if (this.open) this.fail('a frame started inside another');
+      const scene = BENCH_SCENES[r[0]] ?? this.fail(`unknown scene ${r[0]}`);
+      this.open = { scene, width: r[1], height: r[2], start: now, rom0: this.romCycles() };
+    } else if (n === 0x61) {
+      if (!this.open || this.open.cycles !== undefined) this.fail('a frame ended that had not started');
+      this.open.cycles = Math.round(now - this.open.start);
+      this.open.rom = this.romCycles() - this.open.rom0;
+    } else if (n === 0x62) {
+      const f = this.open;
+      if (!f || f.cycles === undefined) this.fail('statistics outside a frame');
+      const at = r[0] >>> 0;
+      f.stats = FRAME_STATS.map((k, i) => `${k}=${this.mcu.readUint32(at + 4 * i)}`).join(' ');
+      this.frames.push(f);
+      this.open = null;
+      console.log(`${f.scene} ${f.width}x${f.height}: ${f.cycles} cycles (ROM stubs ${f.rom}); ${f.stats}`);
+    } else if (n === 0x6f) {
+      if (this.open) this.fail('done inside a frame');
+      this.done = true;
+    } else if (n === 0x6e) {
+      this.fail(`the benchmark firmware failed with code ${r[0]} (examples/rp2040_bench.rs)`);
+    } else {
+      this.fail(`bkpt #0x${n.toString(16)} in flash: not a benchmark mark`);
+    }
+  }
+
+  /** The table: per scene and size, cycles per frame against the SPI. */
+  print(clkSys) {
+    const groups = new Map();
+    for (const f of this.frames) {
+      const key = `${f.scene} ${f.width}x${f.height}`;
+      if (!groups.has(key)) groups.set(key, []);
+      groups.get(key).push(f);
+    }
+    const sep = (n) => Math.round(n).toLocaleString('en-US');
+    let spread = 0;
+    console.log(`\n| Scene | Size | Cycles per frame | ms at ${clkSys / 1e6} MHz | fps | SPI frame (cycles, ms) | x SPI |`);
+    console.log('|---|---|---:|---:|---:|---:|---:|');
+    for (const [, fs] of groups) {
+      // The frames of a scene and size are the same frame: the same
+      // statistics, and cycles within a few of each other (the mean is
+      // shown).
+      const f = fs[0];
+      const all = fs.map((g) => g.cycles);
+      const [lo, hi] = [Math.min(...all), Math.max(...all)];
+      if (fs.some((g) => g.stats !== f.stats) || hi - lo > hi / 1000) {
+        this.fail(`${f.scene} ${f.width}x${f.height}: the same frame took ${lo} to ${hi} cycles, or differs`);
+      }
+      const cycles = all.reduce((x, y) => x + y, 0) / all.length;
+      spread = Math.max(spread, hi - lo);
+      const ms = (cycles / clkSys) * 1e3;
+      // Rgb565: 2 bytes a pixel, 8 SPI clocks a byte.
+      const spi = ((f.width * f.height * 2 * 8) / BENCH_SPI_HZ) * clkSys;
+      const spiMs = (spi / clkSys) * 1e3;
+      console.log(
+        `| \`${f.scene}\` | ${f.width}x${f.height} | ${sep(cycles)} | ${ms.toFixed(1)} | ${(1e3 / ms).toFixed(1)} | ` +
+          `${sep(spi)} (${spiMs.toFixed(2)} ms) | ${(cycles / spi).toFixed(1)}x |`,
+      );
+    }
+    console.log(
+      `(${this.frames.length} frames; the frames of a scene and size had the same FrameStats ` +
+        `and differed by at most ${spread} cycles)`,
+    );
+  }
+}
+
 function main() {
   const args = parseArgs(process.argv.slice(2));
   const mcu = new RP2040();
@@ -186,7 +288,13 @@ function main() {
   }
   paintStack(mcu, stack._stack_end, stack._stack_start);
   mcu.core.reset();
-  mcu.onBreak = (n) => rom.onBreak(n);
+  // A `bkpt` in the ROM is a stub's; in flash, a benchmark mark (`--bench`).
+  const bench = args.bench ? new Bench(mcu, () => cycles + charged, () => romCycles, fail) : null;
+  mcu.onBreak = (n) => {
+    const at = (mcu.core.PC - 2) >>> 0;
+    if (bench && at >= 0x10000000 && at < 0x11000000) bench.onBreak(n);
+    else rom.onBreak(n);
+  };
 
   const clock = mcu.clock;
   const nsPerCycle = () => 1e9 / mcu.clkSys;
@@ -292,10 +400,10 @@ function main() {
   };
 
   if (args.out) mkdirSync(args.out, { recursive: true });
-  const maxCycles = args.maxCycles ?? 200e6 + args.frames * 100e6;
+  const maxCycles = args.maxCycles ?? (bench ? 2e9 : 200e6 + args.frames * 100e6);
   const started = Date.now();
   try {
-    while (frames.length < args.frames) {
+    while (bench ? !bench.done : frames.length < args.frames) {
       if (mcu.core.waiting) {
         if (!clock.nextAlarm) fail('the core sleeps with nothing to wake it');
         const ns = Math.max(clock.nanosToNextAlarm, 0);
@@ -312,7 +420,11 @@ function main() {
         charged = 0;
       }
       if (cycles > maxCycles) {
-        fail(`${frames.length} of ${args.frames} frames after ${maxCycles} cycles`);
+        fail(
+          bench
+            ? `the benchmark is not done after ${maxCycles} cycles`
+            : `${frames.length} of ${args.frames} frames after ${maxCycles} cycles`,
+        );
       }
     }
   } catch (e) {
@@ -320,6 +432,15 @@ function main() {
     const log = panel.commands.slice(-6).map((c) => c[1]).join(', ');
     console.error(`pico: ${e.message}\n  at cycle ${Math.round(cycles)}, PC 0x${pc}; last panel commands: ${log}`);
     process.exit(1);
+  }
+  if (bench) {
+    bench.print(mcu.clkSys);
+    console.log(
+      `pico: benchmark done in ${Date.now() - started} ms of wall time; peak stack ` +
+        `${peakStack(mcu, stack._stack_end, stack._stack_start)} B (painted and read back), ` +
+        `statics ${stack._stack_end - RAM_START} B`,
+    );
+    return;
   }
   const report = {
     elf: args.elf,
