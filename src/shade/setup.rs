@@ -1,0 +1,425 @@
+//! The attribute planes of a triangle: gradients by Cramer's rule over
+//! twice its signed area, computed once per triangle-tile pair, and each
+//! plane's value at the start of a span (see the [parent module](super)
+//! for the method, the fixed-point formats and why the `i32` evaluation is
+//! exact).
+
+use super::{C_FRAC, GRADIENT_LIMIT, Z_FRAC};
+use crate::math::Divisor;
+use crate::raster::{SubPoint, HALF_PIXEL, SUBPIXEL_BITS};
+use crate::vertex::ScreenVertex;
+use core::num::{NonZeroU32, NonZeroU64};
+
+/// One interpolated attribute, with `frac` fraction bits: its value at the
+/// centre of pixel `(i, j)` is `gx i + gy j + k`.
+///
+/// That is the plane `base + floor((gx dx + gy dy) / SUBPIXEL)` through
+/// vertex `o`, with `dx = SUBPIXEL i + HALF_PIXEL - o.x` (likewise `dy`)
+/// and `base` the biased value at `o`, regrouped exactly: `gx SUBPIXEL i`
+/// is a multiple of `SUBPIXEL`, so it passes through the floor unchanged,
+/// and the terms that do not depend on the pixel are summed once into `k`.
+///
+/// # Why `i32` arithmetic is exact
+///
+/// The gradients are rounded to the nearest integer, so at a pixel centre
+/// `(dx, dy)` sub-pixels from `o` the value is within
+/// `(|dx| + |dy|) / 32 + 1` of the exact plane. Span starts are covered
+/// centres, which lie in the triangle, where the exact plane is between
+/// the smallest and largest vertex value; vertices lie within 2^18
+/// sub-pixels of the origin and pixels within 2^16, so the value is within
+/// 20,481 of `lo..=hi`, far inside `i32` (`hi < 2^30`). The sum
+/// `gx i + gy j + k` may wrap on the way there, but wrapping arithmetic is
+/// exact modulo 2^32, so its result is that value exactly, as the `i64`
+/// sum would give. This holds unless a gradient had to be clamped to
+/// ±2^40 (only for a sliver narrower than about 1/1,000 pixel, see the
+/// module docs); then [`TriangleSetup::wide`] is set and the span starts
+/// come from [`wide_start`], in `i64`, which never wraps.
+///
+/// The value is then clamped to `lo..=hi`, as a span starts there and
+/// steps from there.
+///
+/// Along a span the value steps by `gx`. A span of two or more pixels has
+/// two covered centres one pixel apart, where the exact values differ by
+/// at most the attribute's range, so `|gx| < 2^30` there and the step is
+/// exact too.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct Plane {
+    pub(super) gx: i32,
+    pub(super) gy: i32,
+    pub(super) k: i32,
+}
+
+/// The geometry every plane of a triangle shares: the edge vectors from
+/// vertex 0, with signs chosen so that the Cramer denominator (twice the
+/// absolute area) is positive, that denominator, and the offset of the
+/// first pixel centre from vertex 0.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Basis {
+    pub(super) x1: i64,
+    pub(super) y1: i64,
+    pub(super) x2: i64,
+    pub(super) y2: i64,
+    /// Twice the absolute area, by which all eight gradients are divided
+    /// (through its reciprocal on 32-bit targets, see [`Divisor`]; not
+    /// made for a [`Small`] triangle, whose gradients take 32-bit
+    /// divisions instead).
+    pub(super) area: Divisor,
+    /// Twice the absolute area, for the divisions of a [`Small`] triangle's
+    /// gradients that do not fit its 32-bit ones.
+    pub(super) area64: NonZeroU64,
+    /// Half of twice the absolute area, for rounding.
+    pub(super) half: u64,
+    /// `HALF_PIXEL - o.x` and `HALF_PIXEL - o.y` of vertex 0.
+    pub(super) ox: i64,
+    pub(super) oy: i64,
+    /// On 32-bit targets, a triangle whose edge vectors are below
+    /// [`SMALL_EDGE`] in magnitude.
+    pub(super) small: Option<Small>,
+}
+
+/// On 32-bit targets, the attribute set-up of a small triangle (edge
+/// vectors from vertex 0 below this, in sub-pixels: 64 pixels) divides in
+/// 32-bit operations ([`Small::div_round`]) instead of through the 64-bit
+/// reciprocal of its area; 64-bit targets keep their division instruction.
+/// The gradients are the same.
+pub(super) const SMALL_EDGE: i64 = 1 << 10;
+/// Whether the target sets small triangles up in 32-bit divisions.
+pub(super) const SMALL_SETUP: bool = cfg!(not(target_pointer_width = "64"));
+
+/// The divisor of a small triangle's gradients: twice its absolute area,
+/// below `2 * SMALL_EDGE^2 = 2^21`.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Small {
+    pub(super) area: NonZeroU32,
+    pub(super) half: u32,
+}
+
+impl Small {
+    /// `n 2^shift / area` rounded to nearest, ties away from zero, for
+    /// `|n| < 2^31` and `area < 2^21`: [`Basis::div_round`]'s quotient, by
+    /// long division in 32-bit steps of at most 10 bits. With
+    /// `|n| = q area + r`, `|n| 2^10 = (q 2^10 + d) area + r'` for
+    /// `d = floor(r 2^10 / area)`, and so on down the shift; every partial
+    /// dividend is below `area 2^10 + half < 2^32`. Three divisions for
+    /// the shifts of depth and colour (18 and 20), each one instruction on
+    /// a Cortex-M3/M4.
+    #[inline(always)]
+    pub(super) fn div_round(&self, n: i32, shift: u32) -> i64 {
+        let d = self.area;
+        let a = n.unsigned_abs();
+        let mut q = (a / d) as u64;
+        let mut r = a % d;
+        let mut left = shift;
+        while left > 10 {
+            let part = r << 10;
+            q = (q << 10) | (part / d) as u64;
+            r = part % d;
+            left -= 10;
+        }
+        let q = ((q << left) + (((r << left) + self.half) / d) as u64) as i64;
+        if n < 0 {
+            -q
+        } else {
+            q
+        }
+    }
+}
+
+impl Basis {
+    #[inline(always)]
+    pub(super) fn new(v: &[SubPoint; 3]) -> Self {
+        Self::with_small(v, SMALL_SETUP)
+    }
+
+    /// [`Basis::new`], with small triangles set up in 32-bit divisions
+    /// when `small_setup` (the tests compare both on the host).
+    #[inline(always)]
+    pub(super) fn with_small(v: &[SubPoint; 3], small_setup: bool) -> Self {
+        let (x1, y1) = (v[1].x as i64 - v[0].x as i64, v[1].y as i64 - v[0].y as i64);
+        let (x2, y2) = (v[2].x as i64 - v[0].x as i64, v[2].y as i64 - v[0].y as i64);
+        // Twice the signed area, as `crate::raster::signed_area2`.
+        let area2 = x1 * y2 - x2 * y1;
+        // Callers never set up a zero-area triangle (it has no spans); the
+        // fallback only keeps this total.
+        let area = NonZeroU64::new(area2.unsigned_abs()).unwrap_or(NonZeroU64::MIN);
+        // n / d with d < 0 is (-n) / (-d); negating the edge vectors negates
+        // every numerator exactly, so every division has a positive
+        // denominator and the same rounded result.
+        let s = if area2 < 0 { -1 } else { 1 };
+        let small = match small_setup && [x1, y1, x2, y2].iter().all(|c| c.abs() < SMALL_EDGE) {
+            // Twice the area of a small triangle is below 2^21.
+            true => NonZeroU32::new(area.get() as u32).map(|area| Small {
+                area,
+                half: area.get() / 2,
+            }),
+            false => None,
+        };
+        Self {
+            x1: s * x1,
+            y1: s * y1,
+            x2: s * x2,
+            y2: s * y2,
+            area: match small {
+                Some(_) => Divisor::new(NonZeroU64::MIN),
+                None => Divisor::new(area),
+            },
+            area64: area,
+            half: area.get() / 2,
+            ox: HALF_PIXEL as i64 - v[0].x as i64,
+            oy: HALF_PIXEL as i64 - v[0].y as i64,
+            small,
+        }
+    }
+
+    /// `n / area` rounded to nearest, ties away from zero, as
+    /// the vertex stage rounds too.
+    #[inline(always)]
+    pub(super) fn div_round(&self, n: i64) -> i64 {
+        if self.small.is_some() {
+            // A small triangle's attribute beyond its 32-bit divisions
+            // (the perspective weights): a plain division.
+            let q = ((n.unsigned_abs() + self.half) / self.area64) as i64;
+            return if n >= 0 { q } else { -q };
+        }
+        // |n| < 2^57 and half < 2^39: within `Reciprocal::div`'s range.
+        if n >= 0 {
+            self.area.div(n as u64 + self.half) as i64
+        } else {
+            -(self.area.div(n.unsigned_abs() + self.half) as i64)
+        }
+    }
+}
+
+impl Basis {
+    /// The gradients `(gx, gy)` of an attribute with `values` at the three
+    /// vertices and `frac` fraction bits, per pixel, rounded to nearest
+    /// (Cramer's rule), not yet clamped.
+    #[inline(always)]
+    pub(super) fn gradients(&self, values: [i64; 3], frac: u32) -> (i64, i64) {
+        let d1 = values[1] - values[0];
+        let d2 = values[2] - values[0];
+        let shift = frac + SUBPIXEL_BITS;
+        if let Some(small) = &self.small {
+            if d1.abs() < 1 << 16 && d2.abs() < 1 << 16 {
+                // |d| < 2^16 and edge vectors below 2^10: the numerators
+                // are below 2^27, and the shift at most 20.
+                let [x1, y1, x2, y2] = [self.x1, self.y1, self.x2, self.y2].map(|c| c as i32);
+                let (d1, d2) = (d1 as i32, d2 as i32);
+                return (
+                    small.div_round(d1 * y2 - d2 * y1, shift),
+                    small.div_round(d2 * x1 - d1 * x2, shift),
+                );
+            }
+        }
+        (
+            self.div_round((d1 * self.y2 - d2 * self.y1) << shift),
+            self.div_round((d2 * self.x1 - d1 * self.x2) << shift),
+        )
+    }
+
+    /// The plane constant `k` of an attribute whose value at vertex 0 is
+    /// `value`, for gradients within ±[`GRADIENT_LIMIT`].
+    #[inline(always)]
+    pub(super) fn constant(&self, value: i64, frac: u32, (gx, gy): (i64, i64)) -> i64 {
+        let base = (value << frac) + (1i64 << (frac - 1));
+        base + ((gx * self.ox + gy * self.oy) >> SUBPIXEL_BITS)
+    }
+
+    /// [`constant`](Self::constant) in wrapping arithmetic: the same value
+    /// for gradients within ±[`GRADIENT_LIMIT`], no overflow check beyond.
+    #[inline(always)]
+    pub(super) fn constant_wrapping(&self, value: i64, frac: u32, (gx, gy): (i64, i64)) -> i64 {
+        let base = (value << frac) + (1i64 << (frac - 1));
+        let t = gx
+            .wrapping_mul(self.ox)
+            .wrapping_add(gy.wrapping_mul(self.oy));
+        base.wrapping_add(t >> SUBPIXEL_BITS)
+    }
+}
+
+impl Plane {
+    /// The value at the centre of pixel `(i, j)`, exact (see the type's
+    /// docs), not clamped to the attribute's range.
+    #[inline(always)]
+    pub(super) fn at(&self, i: i32, j: i32) -> i32 {
+        self.gx
+            .wrapping_mul(i)
+            .wrapping_add(self.gy.wrapping_mul(j))
+            .wrapping_add(self.k)
+    }
+
+    /// The step along a span (exact for every span of two pixels or more,
+    /// see the type's docs).
+    #[inline(always)]
+    pub(super) fn step(&self) -> i32 {
+        self.gx
+    }
+}
+
+/// Depth interpolated with [`Z_FRAC`] bits and its half-unit bias: the
+/// range of values that round to `0..=65535`.
+pub(super) const Z_LO: i32 = 1 << (Z_FRAC - 1);
+pub(super) const Z_HI: i32 = (65_535 << Z_FRAC) + Z_LO;
+/// Likewise for colour channels, `0..=255` with [`C_FRAC`] bits.
+pub(super) const C_LO: i32 = 1 << (C_FRAC - 1);
+pub(super) const C_HI: i32 = (255 << C_FRAC) + C_LO;
+
+/// The triangle the attribute set-up reads: its three screen vertices (in
+/// submission order: vertex 0 anchors the planes).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Corners<'a>(pub [&'a ScreenVertex; 3]);
+
+impl Corners<'_> {
+    /// The screen positions.
+    #[inline(always)]
+    pub(super) fn points(&self) -> [SubPoint; 3] {
+        self.0.map(|v| SubPoint::new(v.x, v.y))
+    }
+
+    /// The values of attribute `a` (0 depth, 1 to 3 red, green, blue) at
+    /// the three vertices, and its fraction bits.
+    #[inline(always)]
+    pub(super) fn values(&self, a: usize) -> ([i64; 3], u32) {
+        if a == 0 {
+            (self.0.map(|v| v.z as i64), Z_FRAC)
+        } else {
+            (self.0.map(|v| v.color[a - 1] as i64), C_FRAC)
+        }
+    }
+}
+
+/// A triangle ready to shade: its attribute planes (depth, then red,
+/// green and blue for Gouraud shading).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct TriangleSetup {
+    pub(super) planes: [Plane; 4],
+    /// A gradient was beyond ±[`GRADIENT_LIMIT`]: span starts come from
+    /// [`wide_start`] instead of `planes` (only the steps are used).
+    pub(super) wide: bool,
+}
+
+impl TriangleSetup {
+    /// Sets up the planes of a non-degenerate triangle. Colour planes are
+    /// only computed for `gouraud` (flat shading needs only depth).
+    #[inline(always)]
+    pub(crate) fn new(t: &Corners<'_>, gouraud: bool) -> Self {
+        let f = Basis::new(&t.points());
+        let n = if gouraud { 4 } else { 1 };
+        let mut planes = [Plane::default(); 4];
+        // Or-ing `gradient + LIMIT` over all gradients: below 2^41 only if
+        // every one is within ±LIMIT (2^40 itself is sent to the wide path
+        // too, which gives the same values).
+        let mut range = 0u64;
+        for (a, p) in planes.iter_mut().enumerate().take(n) {
+            let (values, frac) = t.values(a);
+            let g = f.gradients(values, frac);
+            range |= (g.0 + GRADIENT_LIMIT) as u64 | (g.1 + GRADIENT_LIMIT) as u64;
+            // Wrapping to i32 keeps everything `Plane::at` needs. Within
+            // ±LIMIT `constant` cannot overflow; beyond, its wrapped value
+            // is not used (a wide triangle's starts come from `wide_start`).
+            let k = f.constant_wrapping(values[0], frac, g);
+            *p = Plane {
+                gx: g.0 as i32,
+                gy: g.1 as i32,
+                k: k as i32,
+            };
+        }
+        Self {
+            planes,
+            wide: range >= 2 * GRADIENT_LIMIT as u64,
+        }
+    }
+
+    /// [`TriangleSetup::new`] for the span loops, Gouraud (`GOURAUD`) or
+    /// flat. Inlined into each span loop on a 64-bit host, where that
+    /// measured fastest; on 32-bit targets one copy for each shading, out
+    /// of line, rather than one in each of the eight span loops of a colour
+    /// type (over a kilobyte of flash each), and the span loops keep their
+    /// registers.
+    #[inline(always)]
+    pub(crate) fn for_spans<const GOURAUD: bool>(t: &Corners<'_>) -> Self {
+        if GOURAUD {
+            Self::gouraud(t)
+        } else {
+            Self::flat(t)
+        }
+    }
+
+    /// [`TriangleSetup::new`] of a Gouraud triangle.
+    #[cfg_attr(target_pointer_width = "64", inline(always))]
+    #[cfg_attr(not(target_pointer_width = "64"), inline(never))]
+    pub(super) fn gouraud(t: &Corners<'_>) -> Self {
+        Self::new(t, true)
+    }
+
+    /// [`TriangleSetup::new`] of a flat triangle.
+    #[cfg_attr(target_pointer_width = "64", inline(always))]
+    #[cfg_attr(not(target_pointer_width = "64"), inline(never))]
+    pub(super) fn flat(t: &Corners<'_>) -> Self {
+        Self::new(t, false)
+    }
+
+    /// Depth at the centre of pixel `(i, j)`, in `Z_LO..=Z_HI`.
+    #[inline(always)]
+    pub(super) fn z_at(&self, i: i32, j: i32) -> i32 {
+        // Constant bounds: `clamp`'s check of them is done at compile time.
+        self.planes[0].at(i, j).clamp(Z_LO, Z_HI)
+    }
+
+    /// Red, green and blue at the centre of pixel `(i, j)`, in
+    /// `C_LO..=C_HI`.
+    #[inline(always)]
+    pub(super) fn rgb_at(&self, i: i32, j: i32) -> [i32; 3] {
+        [
+            self.planes[1].at(i, j).clamp(C_LO, C_HI),
+            self.planes[2].at(i, j).clamp(C_LO, C_HI),
+            self.planes[3].at(i, j).clamp(C_LO, C_HI),
+        ]
+    }
+
+    /// The steps along a span of depth, red, green and blue.
+    #[inline(always)]
+    pub(super) fn steps(&self) -> [i32; 4] {
+        [
+            self.planes[0].step(),
+            self.planes[1].step(),
+            self.planes[2].step(),
+            self.planes[3].step(),
+        ]
+    }
+
+    /// Depth, red, green and blue at the centre of pixel `(i, j)`, for
+    /// [`TriangleSetup::wide`] triangles from [`wide_start`].
+    #[inline(always)]
+    pub(super) fn start(&self, t: &Corners<'_>, i: i32, j: i32) -> [i32; 4] {
+        if self.wide {
+            return wide_start(t, i, j);
+        }
+        let [r, g, b] = self.rgb_at(i, j);
+        [self.z_at(i, j), r, g, b]
+    }
+}
+
+/// The values at the centre of pixel `(i, j)` of a sliver whose gradients
+/// had to be clamped to ±[`GRADIENT_LIMIT`]: the planes set up again with
+/// the clamped gradients and evaluated in `i64`, which cannot overflow
+/// (`|gx i| < 2^52`, `|k| < 2^59`), then clamped to each attribute's range.
+/// Rare enough to redo the set-up for every span.
+#[cold]
+#[inline(never)]
+pub(super) fn wide_start(t: &Corners<'_>, i: i32, j: i32) -> [i32; 4] {
+    let f = Basis::new(&t.points());
+    let mut out = [0; 4];
+    for (a, o) in out.iter_mut().enumerate() {
+        let (values, frac) = t.values(a);
+        let (gx, gy) = f.gradients(values, frac);
+        let g = (
+            gx.clamp(-GRADIENT_LIMIT, GRADIENT_LIMIT),
+            gy.clamp(-GRADIENT_LIMIT, GRADIENT_LIMIT),
+        );
+        let k = f.constant(values[0], frac, g);
+        let (lo, hi) = if a == 0 { (Z_LO, Z_HI) } else { (C_LO, C_HI) };
+        *o = (g.0 * i as i64 + g.1 * j as i64 + k).clamp(lo as i64, hi as i64) as i32;
+    }
+    out
+}
