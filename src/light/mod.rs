@@ -216,6 +216,12 @@
 mod arith;
 mod setup;
 mod shade;
+// The tests (in a file of their own) run on the host, with std: its
+// names they use are imported here, under the same `cfg(test)`.
+#[cfg(test)]
+extern crate std;
+#[cfg(test)]
+use std::{format, println, string::String, vec::Vec};
 #[cfg(test)]
 mod tests;
 

@@ -1,13 +1,11 @@
 //! Tests of lighting: the set-up, the per-vertex arithmetic against `f64`
 //! references, and the documented error bounds.
 
-extern crate std;
 use super::arith::*;
 use super::setup::*;
 use super::*;
 use crate::math::Mat4;
 use embedded_graphics::prelude::RgbColor;
-use std::vec::Vec;
 
 /// xorshift64, as the crate's other tests use.
 struct Rng(u64);
@@ -141,7 +139,7 @@ fn rsqrt_error_is_bounded() {
     for _ in 0..1_000_000 {
         check((rng.next() as u32) | 1 << 30);
     }
-    std::println!("rsqrt: {worst} units, {worst_rel} relative");
+    println!("rsqrt: {worst} units, {worst_rel} relative");
     assert!(worst <= 1.25, "{worst}");
 }
 
@@ -197,7 +195,7 @@ fn normalize_finds_direction_and_length() {
             exp: -15
         })
     );
-    std::println!("direction {worst_dir}, length {worst_len}");
+    println!("direction {worst_dir}, length {worst_len}");
     assert!(worst_dir < 4.5e-5, "{worst_dir}");
     assert!(worst_len < 6.5e-5, "{worst_len}");
 }
@@ -614,7 +612,7 @@ fn matches_the_f64_model() {
     let mut rng = Rng(0xfeed_beef_0bad_cafe);
     let bands: [(u8, u8, f64); 3] = [(0, 64, 1.5), (65, 160, 1.5), (161, 255, 2.5)];
     let mut worst = [0.0f64; 3];
-    let mut worst_case: [std::string::String; 3] = Default::default();
+    let mut worst_case: [String; 3] = Default::default();
     let mut hist = [0u32; 8];
     for case in 0..30_000 {
         let band = case % 3;
@@ -650,7 +648,7 @@ fn matches_the_f64_model() {
                 hist[(e as usize).min(7)] += 1;
                 if e > worst[band] {
                     worst[band] = e;
-                    worst_case[band] = std::format!(
+                    worst_case[band] = format!(
                         "case {case}: got {got:?}, exact {exact:?}, p {pf:?}, n {n:?}, base {:?}, ambient {:?}, fog colour {:?}, {:?} {:?} {:?} {:?} {:?}",
                         c.base,
                         c.ambient,
@@ -666,9 +664,9 @@ fn matches_the_f64_model() {
             }
         }
     }
-    std::println!("worst {worst:?}, histogram of |error| {hist:?}");
+    println!("worst {worst:?}, histogram of |error| {hist:?}");
     for w in &worst_case {
-        std::println!("{w}");
+        println!("{w}");
     }
 }
 
@@ -818,7 +816,7 @@ fn model_space_matches_world_space() {
             }
         }
     }
-    std::println!("worst {worst}");
+    println!("worst {worst}");
 }
 
 #[test]
@@ -924,7 +922,7 @@ fn bad_input_is_an_error() {
     );
     // Every error has a message.
     let e = LightError::TooManyLights { count: 3, max: 2 };
-    assert_eq!(std::format!("{e}"), "3 lights exceed the capacity of 2");
+    assert_eq!(format!("{e}"), "3 lights exceed the capacity of 2");
 }
 
 /// Zero, huge and random normals, extreme positions, and lights and

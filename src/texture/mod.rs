@@ -122,6 +122,12 @@
 mod axis;
 mod bilinear;
 mod fetch;
+// The tests (in a file of their own) run on the host, with std: its
+// names they use are imported here, under the same `cfg(test)`.
+#[cfg(test)]
+extern crate std;
+#[cfg(test)]
+use std::{string::ToString, vec::Vec};
 #[cfg(test)]
 mod tests;
 

@@ -1,9 +1,6 @@
 //! Tests of texture layout checks, addressing and filtering.
 
-extern crate std;
-
 use super::*;
-use std::vec::Vec;
 
 /// A small xorshift generator: reproducible pseudo-random raw values.
 struct XorShift(u32);
@@ -594,7 +591,6 @@ fn largest_sizes_any_coordinate() {
 
 #[test]
 fn error_messages() {
-    use std::string::ToString;
     let cases = [
         (
             TextureError::ZeroSize {
