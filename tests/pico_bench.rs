@@ -18,42 +18,10 @@ use common::rock_scene;
 use common::scenes::{DemoWorkspace, RockWorkspace};
 use embedded_graphics::pixelcolor::Rgb565;
 use microraster::prelude::*;
-use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::time::Instant;
 use support::host;
-
-const TARGET: &str = "thumbv6m-none-eabi";
-
-fn root() -> &'static Path {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-}
-
-/// Builds the release firmware, as CI builds it.
-fn build_firmware() -> PathBuf {
-    let target_dir = std::env::var_os("CARGO_TARGET_DIR")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| root().join("target"));
-    let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
-    let status = Command::new(cargo)
-        .current_dir(root())
-        .args(["build", "--release", "--example", "rp2040_bench"])
-        .args(["--target", TARGET])
-        .status()
-        .expect("cargo runs");
-    assert!(status.success(), "the firmware builds");
-    target_dir
-        .join(TARGET)
-        .join("release/examples/rp2040_bench")
-}
-
-/// The harness's npm packages.
-const RP2040JS: host::Need<'static> = host::Need::File {
-    name: "rp2040js",
-    path: "tests/pico/node_modules/rp2040js/package.json",
-    install: "npm ci --prefix tests/pico (Node.js's npm; the versions are in \
-              tests/pico/package-lock.json)",
-};
+use support::pico::{build_example, root, RP2040JS, TARGET};
 
 /// The host's `FrameStats` of `scene` at `width` x `height`, as the
 /// firmware renders it (and, at 320x240, `examples/count.rs`), printed as
@@ -91,7 +59,7 @@ fn rp2040_bench_renders_the_host_frames() {
     ) {
         return;
     }
-    let elf = build_firmware();
+    let elf = build_example("rp2040_bench");
     let started = Instant::now();
     let run = Command::new("node")
         .arg(root().join("tests/pico/run.mjs"))

@@ -28,35 +28,11 @@ use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
 use embedded_graphics::prelude::RawData;
 use microraster::prelude::*;
 use st7789_scene::*;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::Command;
 use std::time::Instant;
 use support::host;
-
-const TARGET: &str = "thumbv6m-none-eabi";
-
-fn root() -> &'static Path {
-    Path::new(env!("CARGO_MANIFEST_DIR"))
-}
-
-/// Builds the release firmware, as CI and the README build it (into the
-/// same target directory: the same command builds nothing twice).
-fn build_firmware() -> PathBuf {
-    let target_dir = std::env::var_os("CARGO_TARGET_DIR")
-        .map(PathBuf::from)
-        .unwrap_or_else(|| root().join("target"));
-    let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
-    let status = Command::new(cargo)
-        .current_dir(root())
-        .args(["build", "--release", "--example", "rp2040_st7789"])
-        .args(["--target", TARGET])
-        .status()
-        .expect("cargo runs");
-    assert!(status.success(), "the firmware builds");
-    target_dir
-        .join(TARGET)
-        .join("release/examples/rp2040_st7789")
-}
+use support::pico::{build_example, root, RP2040JS, TARGET};
 
 /// The host's render of the firmware's scene at `time_us`, as raw Rgb565.
 fn host_frame(knot: &Mesh<'_>, cube: &Mesh<'_>, time_us: u64) -> Vec<u16> {
@@ -112,14 +88,6 @@ fn frames_of(report: &str) -> Vec<Frame> {
         })
         .collect()
 }
-
-/// The harness's npm packages.
-const RP2040JS: host::Need<'static> = host::Need::File {
-    name: "rp2040js",
-    path: "tests/pico/node_modules/rp2040js/package.json",
-    install: "npm ci --prefix tests/pico (Node.js's npm; the versions are in \
-              tests/pico/package-lock.json)",
-};
 
 /// The harness's panel model refuses malformed command streams and its
 /// ROM rounds as the RP2040's does (`tests/pico/models.test.mjs`).
@@ -236,7 +204,7 @@ fn pico_firmware_in_rp2040js_matches_host_render() {
         .ok()
         .and_then(|n| n.parse().ok())
         .unwrap_or(2);
-    let elf = build_firmware();
+    let elf = build_example("rp2040_st7789");
     let out = root().join("target/pico-e2e/panel");
     let serial_out = root().join("target/pico-e2e/serial");
     let (report, overlapped) = run_pico(&elf, frames, false, &out);
