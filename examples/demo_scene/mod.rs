@@ -8,6 +8,7 @@
 pub mod checker;
 
 use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
+use microraster::fixed::types::I16F16;
 use microraster::prelude::*;
 
 /// The demo's background.
@@ -68,4 +69,21 @@ pub fn draws<'a>(
             .color(Rgb888::new(70, 150, 230))
             .shading(shading),
     ]
+}
+
+/// `v` in 16.16 in a `const` context (meshes built into flash), rounded to the nearest with ties to even, as
+/// `I16F16::from_num` rounds (`v` well inside the 16.16 range).
+pub const fn fx(v: f32) -> I16F16 {
+    // Scaling by a power of two is exact, so one rounding happens, here.
+    let x = v * 65536.0;
+    let t = x as i64; // towards zero
+    let frac = x - t as f32;
+    let r = if frac > 0.5 || (frac == 0.5 && t % 2 != 0) {
+        t + 1
+    } else if frac < -0.5 || (frac == -0.5 && t % 2 != 0) {
+        t - 1
+    } else {
+        t
+    };
+    I16F16::from_bits(r as i32)
 }

@@ -40,7 +40,7 @@ use microraster::Profiler;
 
 #[path = "../demo_scene/mod.rs"]
 mod demo_scene;
-use demo_scene::checker;
+use demo_scene::{checker, fx};
 
 /// Frame width.
 pub const WIDTH: u32 = 320;
@@ -73,23 +73,6 @@ pub static KNOT: MeshData<KNOT_VERTICES, KNOT_TRIANGLES> = match torus_knot_data
     Ok(m) => m,
     Err(_) => panic!("the demo knot's parameters are valid"),
 };
-
-/// `v` in 16.16, rounded to the nearest with ties to even, as
-/// `I16F16::from_num` rounds (`v` well inside the 16.16 range).
-const fn fx(v: f32) -> I16F16 {
-    // Scaling by a power of two is exact, so one rounding happens, here.
-    let x = v * 65536.0;
-    let t = x as i64; // towards zero
-    let frac = x - t as f32;
-    let r = if frac > 0.5 || (frac == 0.5 && t % 2 != 0) {
-        t + 1
-    } else if frac < -0.5 || (frac == -0.5 && t % 2 != 0) {
-        t - 1
-    } else {
-        t
-    };
-    I16F16::from_bits(r as i32)
-}
 
 /// Pixel position (x right, y down) to a normalised-device-coordinate
 /// vertex at depth `z`, as `examples/common/scenes/mod.rs` computes it.

@@ -13,6 +13,8 @@ use fixed::types::I16F16;
 use microraster::mesh::Vec3Fx;
 use microraster::prelude::*;
 
+use super::demo_scene::fx;
+
 /// Subdivision frequency of the rock: `20 n²` triangles, `10 n² + 2`
 /// vertices.
 pub const FREQUENCY: usize = 14;
@@ -53,23 +55,6 @@ pub fn draws<'a>(mesh: &'a Mesh<'a>) -> [Draw<'a>; 1] {
     [Draw::new(mesh)
         .transform(Mat4::rotation_y(0.4))
         .color(COLOR)]
-}
-
-/// `v` in 16.16, rounded to the nearest with ties to even, as
-/// `I16F16::from_num` rounds (`v` well inside the 16.16 range).
-const fn fx(v: f32) -> I16F16 {
-    // Scaling by a power of two is exact, so one rounding happens, here.
-    let x = v * 65536.0;
-    let t = x as i64; // towards zero
-    let frac = x - t as f32;
-    let r = if frac > 0.5 || (frac == 0.5 && t % 2 != 0) {
-        t + 1
-    } else if frac < -0.5 || (frac == -0.5 && t % 2 != 0) {
-        t - 1
-    } else {
-        t
-    };
-    I16F16::from_bits(r as i32)
 }
 
 /// The correctly rounded square root of a positive, finite `x` (or zero),
