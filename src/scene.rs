@@ -19,8 +19,9 @@ pub enum Shading {
     /// Vertex colours interpolated linearly in screen space.
     #[default]
     Gouraud,
-    /// Coloured per pixel by the scene's fragment shader
-    /// ([`Scene::shader`]), with perspective-correct varyings.
+    /// Coloured per pixel by one of the scene's fragment shaders
+    /// ([`Scene::shader`], [`Scene::shaders`]; the draw picks it with
+    /// [`Draw::shader`]), with perspective-correct varyings.
     Shader,
     /// No fill: only the edges of the triangles that survive culling,
     /// as [`Draw::edges`] styles them (by default in the vertex colours).
@@ -213,8 +214,11 @@ pub struct Draw<'a> {
     pub transform: Mat4,
     /// Base colour, used when the mesh has no vertex colours.
     pub color: Rgb888,
-    /// Flat, Gouraud or the scene's shader.
+    /// Flat, Gouraud or one of the scene's shaders.
     pub shading: Shading,
+    /// Which of the scene's shaders colours a [`Shading::Shader`] draw: its
+    /// place in the scene's [`ShaderSet`](crate::shader::ShaderSet).
+    pub shader: u8,
     /// The texture the scene's shader may sample.
     pub texture: Option<&'a Texture<'a>>,
     /// Opaque or transparent.
@@ -233,6 +237,7 @@ impl<'a> Draw<'a> {
             transform: Mat4::IDENTITY,
             color: Rgb888::new(255, 255, 255),
             shading: Shading::Gouraud,
+            shader: 0,
             texture: None,
             blend: Blend::Opaque,
             edges: None,
@@ -255,6 +260,15 @@ impl<'a> Draw<'a> {
     /// Sets the shading.
     pub fn shading(mut self, shading: Shading) -> Self {
         self.shading = shading;
+        self
+    }
+
+    /// Colours the draw with shader `index` of the scene's
+    /// [`ShaderSet`](crate::shader::ShaderSet) (0 for the first, or only,
+    /// one): sets the shading to [`Shading::Shader`].
+    pub fn shader(mut self, index: u8) -> Self {
+        self.shading = Shading::Shader;
+        self.shader = index;
         self
     }
 
@@ -285,11 +299,12 @@ impl<'a> Draw<'a> {
     }
 }
 
-/// The shader of a scene that has none. [`Shading::Shader`] draws are an
+/// The shaders of a scene that has none. [`Shading::Shader`] draws are an
 /// error without a shader
 /// ([`RenderError::MissingShader`](crate::render::RenderError::MissingShader)).
-/// It implements [`FragmentShader`](crate::shader::FragmentShader) for
-/// every colour, drawing nothing.
+/// It is an empty [`ShaderSet`](crate::shader::ShaderSet), and a
+/// [`FragmentShader`](crate::shader::FragmentShader) of every colour that
+/// draws nothing.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct NoShader;
 
@@ -306,14 +321,24 @@ pub struct NoShader;
 /// ```
 ///
 /// Draws with [`Shading::Shader`] are coloured by the scene's fragment
-/// shader, whose type `S` the renderer is monomorphized for:
+/// shaders `S`, a [`ShaderSet`](crate::shader::ShaderSet) that the renderer
+/// is monomorphized for: one shader, or several that each draw picks from
+/// by index ([`Draw::shader`]):
 ///
 /// ```
 /// use microraster::prelude::*;
-/// use microraster::shader::Textured;
+/// use microraster::shader::{Normals, Textured};
+/// # let positions = [[fixed::types::I16F16::ZERO; 3]; 3];
+/// # let mesh = Mesh::new(&positions, &[[0, 1, 2]]).unwrap();
 /// let camera = Camera::new(Mat4::IDENTITY, Mat4::IDENTITY);
-/// let scene = Scene::new(camera, &[]).shader(&Textured);
-/// assert!(scene.shader.is_some());
+/// let one = Scene::new(camera, &[]).shader(&Textured);
+/// let draws = [
+///     Draw::new(&mesh).shader(0), // textured
+///     Draw::new(&mesh).shader(1), // its normals as colours
+///     Draw::new(&mesh),           // Gouraud, no shader
+/// ];
+/// let two = Scene::new(camera, &draws).shaders((Textured, Normals));
+/// # let _ = (one, two);
 /// ```
 pub struct Scene<'a, S = NoShader> {
     /// The camera.
@@ -329,17 +354,24 @@ pub struct Scene<'a, S = NoShader> {
     /// The draws, rendered in order (later ones win depth ties under
     /// [`crate::DepthTest::LessEqual`]).
     pub draws: &'a [Draw<'a>],
-    /// The fragment shader of [`Shading::Shader`] draws.
-    pub shader: Option<&'a S>,
+    /// The fragment shaders of [`Shading::Shader`] draws: a
+    /// [`ShaderSet`](crate::shader::ShaderSet).
+    pub shaders: S,
 }
 
-// By hand: derived impls would require `S: Clone` and `S: Debug`.
-impl<S> Clone for Scene<'_, S> {
+// By hand: derived impls would require `S: Debug`.
+impl<S: Clone> Clone for Scene<'_, S> {
     fn clone(&self) -> Self {
-        *self
+        Self {
+            camera: self.camera,
+            light: self.light,
+            lighting: self.lighting,
+            draws: self.draws,
+            shaders: self.shaders.clone(),
+        }
     }
 }
-impl<S> Copy for Scene<'_, S> {}
+impl<S: Copy> Copy for Scene<'_, S> {}
 impl<S> core::fmt::Debug for Scene<'_, S> {
     fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
         f.debug_struct("Scene")
@@ -347,7 +379,7 @@ impl<S> core::fmt::Debug for Scene<'_, S> {
             .field("light", &self.light)
             .field("lighting", &self.lighting)
             .field("draws", &self.draws)
-            .field("shader", &self.shader.map(|_| core::any::type_name::<S>()))
+            .field("shaders", &core::any::type_name::<S>())
             .finish()
     }
 }
@@ -360,7 +392,7 @@ impl<'a> Scene<'a> {
             light: None,
             lighting: None,
             draws,
-            shader: None,
+            shaders: NoShader,
         }
     }
 }
@@ -378,14 +410,22 @@ impl<'a, S> Scene<'a, S> {
         self
     }
 
-    /// Sets the fragment shader of [`Shading::Shader`] draws.
-    pub const fn shader<T>(self, shader: &'a T) -> Scene<'a, T> {
+    /// Sets the fragment shader of [`Shading::Shader`] draws: the scene's
+    /// only one, index 0.
+    pub fn shader<T>(self, shader: &'a T) -> Scene<'a, &'a T> {
+        self.shaders(shader)
+    }
+
+    /// Sets the fragment shaders of [`Shading::Shader`] draws: a tuple of
+    /// up to eight, which each draw picks from by index
+    /// ([`Draw::shader`]), or any other [`ShaderSet`](crate::shader::ShaderSet).
+    pub fn shaders<T>(self, shaders: T) -> Scene<'a, T> {
         Scene {
             camera: self.camera,
             light: self.light,
             lighting: self.lighting,
             draws: self.draws,
-            shader: Some(shader),
+            shaders,
         }
     }
 }

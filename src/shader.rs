@@ -50,6 +50,11 @@
 //! [`Shading::Flat`]: crate::scene::Shading::Flat
 //! [`Shading::Gouraud`]: crate::scene::Shading::Gouraud
 
+mod set;
+
+pub(crate) use set::check as check_in_set;
+pub use set::{ShaderSet, VisitShader};
+
 use crate::mesh::Mesh;
 use crate::scene::Draw;
 use crate::texture::Texture;
@@ -174,6 +179,9 @@ impl VertexInput<'_> {
 /// One fragment, as [`FragmentShader::fragment`] sees it.
 #[derive(Clone, Copy, Debug)]
 pub struct Fragment<'t, V> {
+    /// Index of the draw in the scene (a shader shared by several draws
+    /// can tell them apart).
+    pub draw: usize,
     /// Screen column of the pixel.
     pub x: i32,
     /// Screen row of the pixel.
@@ -252,6 +260,25 @@ pub trait FragmentShader<C> {
 
     /// The colour of a fragment, or `None` to discard it (nothing written).
     fn fragment(&self, f: &Fragment<'_, Self::Varyings>) -> Option<C>;
+}
+
+/// A shader by reference, so that a [`ShaderSet`] tuple can hold
+/// shaders it borrows: `(&a, &b)`.
+impl<C, S: FragmentShader<C> + ?Sized> FragmentShader<C> for &S {
+    type Varyings = S::Varyings;
+    const INTERPOLATE_COLOR: bool = S::INTERPOLATE_COLOR;
+    #[inline(always)]
+    fn check(&self, draw: &Draw<'_>) -> Result<(), ShaderError> {
+        (**self).check(draw)
+    }
+    #[inline(always)]
+    fn vertex(&self, v: &VertexInput<'_>) -> Self::Varyings {
+        (**self).vertex(v)
+    }
+    #[inline(always)]
+    fn fragment(&self, f: &Fragment<'_, Self::Varyings>) -> Option<C> {
+        (**self).fragment(f)
+    }
 }
 
 // Defined with the scene, whose default shader it is, so that `scene`

@@ -914,7 +914,33 @@ fn shader_draws_need_a_shader_and_its_inputs() {
 
     let d = [Draw::new(&bare), Draw::new(&bare).shading(Shading::Shader)];
     let e = r.render(&mut ws, &Scene::new(cam, &d), &mut sink);
-    assert_eq!(e, Err(RenderError::MissingShader { draw: 1 }));
+    assert_eq!(e, Err(RenderError::MissingShader { draw: 1, index: 0 }));
+    // An index past the scene's shaders, one or several.
+    let d = [Draw::new(&bare), Draw::new(&with_uvs).shader(1)];
+    let e = r.render(&mut ws, &Scene::new(cam, &d).shader(&Normals), &mut sink);
+    assert_eq!(e, Err(RenderError::MissingShader { draw: 1, index: 1 }));
+    let d = [Draw::new(&with_uvs).texture(&tex).shader(2)];
+    let two = Scene::new(cam, &d).shaders((Textured, Normals));
+    let e = r.render(&mut ws, &two, &mut sink);
+    assert_eq!(e, Err(RenderError::MissingShader { draw: 0, index: 2 }));
+    assert!(e
+        .unwrap_err()
+        .to_string()
+        .contains("draw 0 uses shader 2, which the scene does not have"));
+    // The shader a draw picks is the one whose inputs are checked.
+    let d = [Draw::new(&with_uvs).texture(&tex).shader(1)];
+    let e = r.render(
+        &mut ws,
+        &Scene::new(cam, &d).shaders((Textured, Normals)),
+        &mut sink,
+    );
+    assert_eq!(
+        e,
+        Err(RenderError::Shader {
+            draw: 0,
+            error: ShaderError::MissingNormals
+        })
+    );
 
     let d = [Draw::new(&with_uvs).shading(Shading::Shader)];
     let e = r.render(&mut ws, &Scene::new(cam, &d).shader(&Textured), &mut sink);

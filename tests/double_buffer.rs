@@ -161,7 +161,7 @@ impl<C: PixelColor> TileSink<C> for Order<C> {
 
 /// `render`'s tiles in order and its frame.
 fn reference<C, const B: usize, const T: usize>(
-    scene: &Scene<'_, impl FragmentShader<C>>,
+    scene: &Scene<'_, impl ShaderSet<C>>,
     config: Config<C>,
 ) -> (Vec<Rectangle>, Capture<C>, FrameStats)
 where
@@ -502,7 +502,7 @@ fn an_async_sink_error_stops_the_frame() {
 /// are the Rgb565 pixel's bits, high byte first.
 fn wire_matches<F>(scene: &Scene<'_, F>, size: Size)
 where
-    F: FragmentShader<Rgb565> + FragmentShader<Rgb565Be>,
+    F: ShaderSet<Rgb565> + ShaderSet<Rgb565Be>,
 {
     let clear = Rgb565::new(3, 7, 11);
     let (_, native, _) = reference::<Rgb565, 8192, 80>(scene, Config::new(size, clear));

@@ -24,7 +24,7 @@ impl Features for Lines {
     const SORT: bool = false;
 }
 
-fn render<P: Features, F: FragmentShader<Rgb565>>(
+fn render<P: Features, F: ShaderSet<Rgb565>>(
     scene: &Scene<'_, F>,
     config: Config<Rgb565>,
 ) -> Result<(Vec<Rgb565>, FrameStats), RenderError<core::convert::Infallible>> {

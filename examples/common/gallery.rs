@@ -159,7 +159,7 @@ pub fn scene_config(name: &str) -> Config<Rgb565> {
 /// Renders `scene` with a 32x32-tile renderer into `sink`.
 fn draw<F, S>(scene: &Scene<'_, F>, cfg: Config<Rgb565>, sink: &mut S) -> FrameStats
 where
-    F: FragmentShader<Rgb565>,
+    F: ShaderSet<Rgb565>,
     S: TileSink<Rgb565>,
     S::Error: core::fmt::Debug,
 {

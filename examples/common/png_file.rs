@@ -24,7 +24,7 @@ pub fn render_png<
 ) -> Result<FrameStats, String>
 where
     C: PixelColor + From<Rgb888> + Into<Rgb888>,
-    S: FragmentShader<C>,
+    S: ShaderSet<C>,
 {
     let config = renderer.config();
     let (size, clear) = (config.size, config.clear_color);

@@ -7,7 +7,7 @@ use crate::raster::{PixelRect, Span};
 use crate::scene::Blend;
 use crate::shade::perspective::{Output, ShaderTriangle};
 use crate::shade::{DepthFn, DepthTest};
-use crate::shader::{self, FragmentShader};
+use crate::shader::{self, FragmentShader, ShaderSet};
 use crate::texture::Texture;
 use crate::tile::TileBuffer;
 use crate::vertex::ScreenVertex;
@@ -39,36 +39,29 @@ pub(super) type CustomFn<C, G, const TW: usize, const TH: usize> = fn(
 ) -> u32;
 
 /// How a frame draws a triangle: its rasterizer and its shading
-/// functions: Gouraud, flat, the fragment shader's, and for transparent
-/// draws flat and Gouraud through the fragment-shader path.
-pub(super) struct Shaders<
-    's,
-    C: From<Rgb888>,
-    F: FragmentShader<C>,
-    const TW: usize,
-    const TH: usize,
-> {
+/// functions: Gouraud, flat, for transparent draws flat and Gouraud
+/// through the fragment-shader path, and the scene's fragment shaders.
+pub(super) struct Shaders<'s, C: From<Rgb888>, F, const TW: usize, const TH: usize> {
     pub(super) find: FindFn,
     pub(super) out: Output,
     pub(super) gouraud: ShadeFn<C, TW, TH>,
     pub(super) flat: ShadeFn<C, TW, TH>,
-    pub(super) custom: CustomFn<C, F, TW, TH>,
     pub(super) flat_t: CustomFn<C, shader::Flat, TW, TH>,
     pub(super) gouraud_t: CustomFn<C, shader::Gouraud, TW, TH>,
-    pub(super) shader: Option<&'s F>,
+    pub(super) set: &'s F,
 }
 
 impl<'s, C, F, const TW: usize, const TH: usize> Shaders<'s, C, F, TW, TH>
 where
     C: PixelColor + From<Rgb888> + Into<Rgb888>,
-    F: FragmentShader<C>,
+    F: ShaderSet<C>,
 {
     /// The functions of a frame drawn with depth comparison `D`, depth
     /// writes `WRITE` and the paths `P` links: those of the other paths
     /// are never taken, so that they are not linked.
     pub(super) fn new<D: DepthFn, const WRITE: bool, P: Features>(
         cfg: &Config<C>,
-        shader: Option<&'s F>,
+        set: &'s F,
     ) -> Self {
         Self {
             find: finder::<P>(cfg.rasterizer),
@@ -80,11 +73,6 @@ where
             },
             gouraud: shade::<C, D, WRITE, true, TW, TH>,
             flat: shade::<C, D, WRITE, false, TW, TH>,
-            custom: if P::SHADERS {
-                shade_custom::<C, F, TW, TH>
-            } else {
-                shade_none::<C, F, TW, TH>
-            },
             flat_t: if P::BLEND {
                 shade_custom::<C, shader::Flat, TW, TH>
             } else {
@@ -95,7 +83,17 @@ where
             } else {
                 shade_none::<C, shader::Gouraud, TW, TH>
             },
-            shader,
+            set,
+        }
+    }
+
+    /// The function that shades with the scene's shader `G`: none when the
+    /// paths `P` leave shaders out, so that none is linked.
+    pub(super) fn custom<G: FragmentShader<C>, P: Features>() -> CustomFn<C, G, TW, TH> {
+        if P::SHADERS {
+            shade_custom::<C, G, TW, TH>
+        } else {
+            shade_none::<C, G, TW, TH>
         }
     }
 

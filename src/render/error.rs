@@ -42,10 +42,14 @@ pub enum RenderError<E = core::convert::Infallible> {
         /// Triangles in the scene.
         count: usize,
     },
-    /// A draw uses [`Shading::Shader`](crate::scene::Shading::Shader) and the scene has no shader.
+    /// A draw uses [`Shading::Shader`](crate::scene::Shading::Shader) with
+    /// a shader index ([`Draw::shader`](crate::scene::Draw::shader)) that
+    /// the scene's shaders do not have: the scene has none, or fewer.
     MissingShader {
         /// Index of the draw in the scene.
         draw: usize,
+        /// The shader it asks for.
+        index: usize,
     },
     /// A draw lacks what the scene's shader reads.
     Shader {
@@ -99,9 +103,9 @@ impl<E: core::fmt::Debug> core::fmt::Display for RenderError<E> {
                 f,
                 "the scene has {count} triangles, more than {MAX_TRIANGLES}"
             ),
-            Self::MissingShader { draw } => write!(
+            Self::MissingShader { draw, index } => write!(
                 f,
-                "draw {draw} uses Shading::Shader but the scene has no shader"
+                "draw {draw} uses shader {index}, which the scene does not have"
             ),
             Self::Shader { draw, error } => write!(f, "draw {draw}: {error}"),
             Self::Unsupported { draw, path } => {
@@ -130,7 +134,7 @@ impl RenderError {
                 RenderError::VertexCapacity { needed, capacity }
             }
             Self::TooManyTriangles { count } => RenderError::TooManyTriangles { count },
-            Self::MissingShader { draw } => RenderError::MissingShader { draw },
+            Self::MissingShader { draw, index } => RenderError::MissingShader { draw, index },
             Self::Shader { draw, error } => RenderError::Shader { draw, error },
             Self::Unsupported { draw, path } => RenderError::Unsupported { draw, path },
             Self::Sink(never) => match never {},

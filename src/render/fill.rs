@@ -6,7 +6,7 @@ use crate::raster::scanline::Walker;
 use crate::raster::{hilbert, PixelRect, Rasterizer, Span, SubPoint};
 use crate::shade::perspective::{span_shader, Output, PerspectiveSetup, ShaderTriangle};
 use crate::shade::{span_flat, span_gouraud, Corners, DepthFn, DepthTest, SpanPos, TriangleSetup};
-use crate::shader::{FragmentShader, Perspective};
+use crate::shader::{FragmentShader, Perspective, ShaderSet};
 use crate::texture::Texture;
 use crate::tile::TileBuffer;
 use crate::vertex::ScreenVertex;
@@ -43,7 +43,7 @@ fn find_auto(v: &[SubPoint; 3], rect: &PixelRect, found: &mut [Span]) -> usize {
 /// Where a triangle is drawn: the tile, its place in the frame, the
 /// spans of the triangle being drawn (at most one per tile row) and the
 /// frame's span loops.
-pub(super) struct Target<'j, C, F: FragmentShader<C>, const TW: usize, const TH: usize>
+pub(super) struct Target<'j, C, F: ShaderSet<C>, const TW: usize, const TH: usize>
 where
     C: From<Rgb888>,
 {
@@ -71,7 +71,7 @@ pub(super) fn fill<C, F, const TW: usize, const TH: usize>(
 ) -> u32
 where
     C: PixelColor + From<Rgb888> + Into<Rgb888>,
-    F: FragmentShader<C>,
+    F: ShaderSet<C>,
 {
     let v = sv.map(|v| SubPoint::new(v.x, v.y));
     let count = (to.shaders.find)(&v, to.rect, &mut to.found);
@@ -103,7 +103,7 @@ pub(super) fn fill_shaded<C, F, G, const TW: usize, const TH: usize>(
 ) -> u32
 where
     C: PixelColor + From<Rgb888> + Into<Rgb888>,
-    F: FragmentShader<C>,
+    F: ShaderSet<C>,
     G: FragmentShader<C>,
 {
     let v = tri.corners.0.map(|v| SubPoint::new(v.x, v.y));

@@ -22,7 +22,7 @@ use super::{vertex_stage, Config, Features, FrameStats, Profiler, RenderError, S
 use crate::raster::PixelRect;
 use crate::scene::Scene;
 use crate::shade::{DLessEqual, DepthTest};
-use crate::shader::FragmentShader;
+use crate::shader::ShaderSet;
 use crate::sink::rectangle;
 use crate::tile::{TileBuffer, TileGrid, TileOrder};
 use embedded_graphics::pixelcolor::{PixelColor, Rgb888};
@@ -36,7 +36,7 @@ use embedded_graphics::primitives::Rectangle;
 pub struct Frame<'a, C, F, const TW: usize, const TH: usize, P = super::All> {
     config: Config<C>,
     state: FrameState<'a>,
-    shader: Option<&'a F>,
+    shaders: &'a F,
     grid: TileGrid,
     bins: Bins<'a>,
     /// The current pass: its first tile (visiting position), how many
@@ -55,7 +55,7 @@ pub struct Frame<'a, C, F, const TW: usize, const TH: usize, P = super::All> {
 impl<'a, C, F, const TW: usize, const TH: usize, P> Frame<'a, C, F, TW, TH, P>
 where
     C: PixelColor + From<Rgb888> + Into<Rgb888>,
-    F: FragmentShader<C>,
+    F: ShaderSet<C>,
     P: Features,
 {
     /// [`Renderer::begin`](super::Renderer::begin), telling `profiler`
@@ -99,7 +99,7 @@ where
         Ok(Self {
             config,
             state,
-            shader: scene.shader,
+            shaders: &scene.shaders,
             grid,
             bins: Bins::new(&mut bins[..], &mut heads[..], &mut tails[..]),
             t0: 0,
@@ -163,7 +163,7 @@ where
         };
         // LessEqual with writes, the default, has span loops of its own;
         // every other comparison shares one set (see `DepthFn`).
-        let shader = self.shader;
+        let shader = self.shaders;
         let shaders = match (cfg.depth_test, cfg.depth_write) {
             (DepthTest::Never, _) => None,
             (DepthTest::LessEqual, true) => Some(Shaders::new::<DLessEqual, true, P>(cfg, shader)),

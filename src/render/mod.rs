@@ -98,7 +98,7 @@ pub use tile_loop::MAX_TRANSPARENT;
 pub use workspace::{Workspace, MAX_TRIANGLES};
 
 use crate::scene::Scene;
-use crate::shader::FragmentShader;
+use crate::shader::ShaderSet;
 use crate::sink::TileSink;
 use crate::tile::TileBuffer;
 use embedded_graphics::pixelcolor::{PixelColor, Rgb888};
@@ -160,9 +160,9 @@ where
     /// Every error but [`RenderError::Sink`] is detected before anything is
     /// sent to the sink.
     ///
-    /// The renderer is monomorphized for the scene's fragment shader `F`
-    /// ([`NoShader`](crate::shader::NoShader) unless
-    /// [`Scene::shader`] set one).
+    /// The renderer is monomorphized for each of the scene's fragment
+    /// shaders `F` (a [`ShaderSet`]: [`NoShader`](crate::shader::NoShader)
+    /// unless [`Scene::shader`] or [`Scene::shaders`] set them).
     pub fn render<S, F, const V: usize, const B: usize, const T: usize>(
         &mut self,
         ws: &mut Workspace<V, B, T>,
@@ -171,7 +171,7 @@ where
     ) -> Result<FrameStats, RenderError<S::Error>>
     where
         S: TileSink<C>,
-        F: FragmentShader<C>,
+        F: ShaderSet<C>,
     {
         self.render_profiled(ws, scene, sink, &mut ())
     }
@@ -188,7 +188,7 @@ where
     where
         S: TileSink<C>,
         Q: Profiler,
-        F: FragmentShader<C>,
+        F: ShaderSet<C>,
     {
         let mut frame = Frame::<C, F, TW, TH, P>::begin_profiled(self.config, ws, scene, profiler)
             .map_err(RenderError::for_sink)?;
@@ -243,7 +243,7 @@ where
         scene: &'a Scene<'a, F>,
     ) -> Result<Frame<'a, C, F, TW, TH, P>, RenderError>
     where
-        F: FragmentShader<C>,
+        F: ShaderSet<C>,
     {
         Frame::begin_profiled(self.config, ws, scene, &mut ())
     }

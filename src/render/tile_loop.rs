@@ -10,7 +10,7 @@ use crate::raster::{PixelRect, Span, SubPoint};
 use crate::scene::{Blend, Shading};
 use crate::shade::perspective::{Output, ShaderTriangle};
 use crate::shade::Corners;
-use crate::shader::{self, FragmentShader, Varyings, VertexInput};
+use crate::shader::{self, FragmentShader, ShaderSet, Varyings, VertexInput, VisitShader};
 use crate::tile::TileBuffer;
 use crate::vertex::{ScreenVertex, BARY_ONE, MUST_CLIP};
 use embedded_graphics::pixelcolor::{PixelColor, Rgb888};
@@ -30,7 +30,7 @@ pub(super) fn raster_tile<'f, C, F, P, const TW: usize, const TH: usize>(
 ) -> u32
 where
     C: PixelColor + From<Rgb888> + Into<Rgb888>,
-    F: FragmentShader<C>,
+    F: ShaderSet<C>,
     P: Features,
 {
     let mut cur = DrawCursor::new(frame);
@@ -78,22 +78,13 @@ where
             // triangles than the list holds sorts them in batches of
             // `MAX_TRANSPARENT`, in submission order between batches.
             if later.is_full() {
-                n += job.draw_later(&mut later);
+                n += job.draw_later::<P>(&mut later);
             }
             let _ = later.push((key, t as u16));
             continue;
         }
         n += if P::SHADERS && cur.shading == Shading::Shader {
-            match shaders.shader {
-                Some(s) => job.shaded(
-                    &cur,
-                    idx,
-                    any,
-                    shaders.pass(s, shaders.custom, Blend::Opaque),
-                ),
-                // `render` checked that shader draws have a shader.
-                None => 0,
-            }
+            job.with_shader::<P>(&cur, idx, any, Blend::Opaque)
         } else if any & MUST_CLIP != 0 {
             job.clipped(&cur, idx, any, sv[0].color)
         } else {
@@ -106,13 +97,13 @@ where
         };
     }
     if P::BLEND {
-        n += job.draw_later(&mut later);
+        n += job.draw_later::<P>(&mut later);
     }
     n
 }
 
 /// One tile being drawn, and what drawing a triangle into it needs.
-struct TileJob<'j, 'f, C, F: FragmentShader<C>, const TW: usize, const TH: usize>
+struct TileJob<'j, 'f, C, F: ShaderSet<C>, const TW: usize, const TH: usize>
 where
     C: PixelColor + From<Rgb888>,
 {
@@ -126,12 +117,42 @@ where
 impl<C, F, const TW: usize, const TH: usize> TileJob<'_, '_, C, F, TW, TH>
 where
     C: PixelColor + From<Rgb888> + Into<Rgb888>,
-    F: FragmentShader<C>,
+    F: ShaderSet<C>,
 {
+    /// Draws triangle `idx` of the cursor's draw, a [`Shading::Shader`]
+    /// draw, with the scene's shader that the draw picks, blended by
+    /// `blend` (and then never writing depth). Each shader of the set has
+    /// its own [`shaded`](Self::shaded) and span loop; picking one is a
+    /// `match` on the index.
+    #[inline(always)]
+    fn with_shader<P: Features>(
+        &mut self,
+        cur: &DrawCursor<'_>,
+        idx: [u32; 3],
+        any: u8,
+        blend: Blend,
+    ) -> u32 {
+        let index = self.frame.draws[cur.draw].shader as usize;
+        let set = self.to.shaders.set;
+        let visit = WithShader::<'_, '_, '_, '_, C, F, P, TW, TH> {
+            job: self,
+            cur,
+            idx,
+            any,
+            blend,
+            features: core::marker::PhantomData,
+        };
+        // `begin` checked that every shader draw's index is in the set.
+        set.visit(index, visit).unwrap_or(0)
+    }
+
     /// Draws the transparent triangles of `later` back to front (equal keys in
     /// submission order) and empties it.
     #[inline(never)]
-    fn draw_later(&mut self, later: &mut heapless::Vec<(u16, u16), MAX_TRANSPARENT>) -> u32 {
+    fn draw_later<P: Features>(
+        &mut self,
+        later: &mut heapless::Vec<(u16, u16), MAX_TRANSPARENT>,
+    ) -> u32 {
         if later.is_empty() {
             return 0;
         }
@@ -155,7 +176,7 @@ where
             let any = idx
                 .iter()
                 .fold(0, |a, &i| a | cur.verts[i as usize].outcode);
-            n += self.transparent(&cur, idx, any);
+            n += self.transparent::<P>(&cur, idx, any);
         }
         later.clear();
         n
@@ -165,31 +186,18 @@ where
     /// fragment-shader path: the scene's shader, or the flat or Gouraud
     /// colour, blended, depth tested and never writing depth.
     #[inline(never)]
-    fn transparent(&mut self, cur: &DrawCursor<'_>, idx: [u32; 3], any: u8) -> u32 {
+    fn transparent<P: Features>(&mut self, cur: &DrawCursor<'_>, idx: [u32; 3], any: u8) -> u32 {
         let blend = cur.blend;
-        let no_write = |mut out: Output| {
-            out.write = false;
-            out.blend = blend;
-            out
-        };
         let shaders = self.to.shaders;
         match cur.shading {
-            Shading::Shader => match shaders.shader {
-                Some(s) => self.shaded(
-                    cur,
-                    idx,
-                    any,
-                    shaders.pass(s, shaders.custom, blend).with(no_write),
-                ),
-                None => 0,
-            },
+            Shading::Shader => self.with_shader::<P>(cur, idx, any, blend),
             Shading::Flat => self.shaded(
                 cur,
                 idx,
                 any,
                 shaders
                     .pass(&shader::Flat, shaders.flat_t, blend)
-                    .with(no_write),
+                    .with(no_write(blend)),
             ),
             Shading::Gouraud => self.shaded(
                 cur,
@@ -197,7 +205,7 @@ where
                 any,
                 shaders
                     .pass(&shader::Gouraud, shaders.gouraud_t, blend)
-                    .with(no_write),
+                    .with(no_write(blend)),
             ),
             // Never deferred: they have no fill.
             Shading::Wireframe | Shading::Points(_) => 0,
@@ -328,6 +336,7 @@ where
                     flat
                 };
                 let tri = ShaderTriangle {
+                    draw: cur.draw,
                     corners: Corners([&pv[0], &pv[1], &pv[2]]),
                     w: piece.w,
                     var: piece.bary.map(|b| lerp_varyings(&var, b)),
@@ -340,11 +349,56 @@ where
             return 0;
         };
         let tri = ShaderTriangle {
+            draw: cur.draw,
             corners: Corners(sv),
             w: idx.map(|i| setup.clip_w(mesh, i as usize)),
             var,
         };
         fill_shaded(&mut self.to, &tri, draw.texture, &pass)
+    }
+}
+
+/// The output of a transparent triangle: blended by `blend`, never
+/// writing depth.
+fn no_write(blend: Blend) -> impl FnOnce(Output) -> Output {
+    move |mut out: Output| {
+        out.write = false;
+        out.blend = blend;
+        out
+    }
+}
+
+/// [`TileJob::with_shader`]'s visit of the scene's shaders: draws the
+/// triangle with the one the draw picks.
+struct WithShader<'v, 'c, 'j, 'f, C, F, P, const TW: usize, const TH: usize>
+where
+    C: PixelColor + From<Rgb888>,
+    F: ShaderSet<C>,
+{
+    job: &'v mut TileJob<'j, 'f, C, F, TW, TH>,
+    cur: &'v DrawCursor<'c>,
+    idx: [u32; 3],
+    any: u8,
+    blend: Blend,
+    features: core::marker::PhantomData<P>,
+}
+
+impl<C, F, P, const TW: usize, const TH: usize> VisitShader<C>
+    for WithShader<'_, '_, '_, '_, C, F, P, TW, TH>
+where
+    C: PixelColor + From<Rgb888> + Into<Rgb888>,
+    F: ShaderSet<C>,
+    P: Features,
+{
+    type Output = u32;
+    #[inline(always)]
+    fn visit<G: FragmentShader<C>>(self, shader: &G) -> u32 {
+        let shade = Shaders::<C, F, TW, TH>::custom::<G, P>();
+        let mut pass = self.job.to.shaders.pass(shader, shade, self.blend);
+        if self.blend != Blend::Opaque {
+            pass = pass.with(no_write(self.blend));
+        }
+        self.job.shaded(self.cur, self.idx, self.any, pass)
     }
 }
 

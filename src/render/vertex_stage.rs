@@ -8,7 +8,7 @@ use crate::math::{Mat4, Vec3};
 use crate::scene::Draw;
 use crate::scene::{Blend, Light, Scene, Shading};
 use crate::shade::DepthTest;
-use crate::shader::FragmentShader;
+use crate::shader::ShaderSet;
 use crate::vertex::{DrawSetup, ScreenVertex, VertexError, Viewport, MAX_VIEWPORT};
 use embedded_graphics::pixelcolor::PixelColor;
 
@@ -79,7 +79,7 @@ pub(super) fn run<C, F, P, Q>(
 ) -> Result<Transformed, RenderError>
 where
     C: PixelColor,
-    F: FragmentShader<C>,
+    F: ShaderSet<C>,
     P: Features,
     Q: Profiler,
 {
@@ -156,9 +156,9 @@ where
             return Err(unsupported(Path::Shaders));
         }
         if d.shading == Shading::Shader {
-            let shader = scene.shader.ok_or(RenderError::MissingShader { draw })?;
-            shader
-                .check(d)
+            let index = d.shader as usize;
+            crate::shader::check_in_set(&scene.shaders, index, d)
+                .ok_or(RenderError::MissingShader { draw, index })?
                 .map_err(|error| RenderError::Shader { draw, error })?;
         }
     }

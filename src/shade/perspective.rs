@@ -38,6 +38,8 @@ const Q_MAX: i64 = 1 << 29;
 /// `w` and varyings.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct ShaderTriangle<'a, V> {
+    /// Index of the triangle's draw in the scene.
+    pub draw: usize,
     pub corners: Corners<'a>,
     pub w: [i32; 3],
     pub var: [V; 3],
@@ -82,6 +84,8 @@ impl WidePlane {
 /// A triangle's perspective set-up.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct PerspectiveSetup<V> {
+    /// Index of the triangle's draw in the scene.
+    draw: usize,
     depth: TriangleSetup,
     /// `Q`, `B1`, `B2`.
     planes: [WidePlane; 3],
@@ -103,6 +107,7 @@ impl<V: Varyings> PerspectiveSetup<V> {
             w.map(|w| (wmin << 28) / w)
         };
         Self {
+            draw: t.draw,
             depth: TriangleSetup::new(&t.corners, false),
             planes: [
                 WidePlane::new(&f, q),
@@ -232,10 +237,11 @@ where
     let (gq, g1, g2) = (pq.step(), p1.step(), p2.step());
     let (a, b) = ((x0 - ox) as usize, (x1 - ox) as usize);
     let (color, depth) = (&mut color[a..b], &mut depth[a..b]);
-    let flat = p.color[0];
+    let (flat, draw) = (p.color[0], p.draw);
     let mut n = 0;
     let emit = |x: i32, zz: u16, var, c: [i32; 3], out: &mut C, d: &mut u16| -> bool {
         let frag = Fragment {
+            draw,
             x,
             y: j,
             depth: zz,

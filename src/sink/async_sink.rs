@@ -3,7 +3,7 @@
 
 use crate::render::{FrameStats, Renderer, Workspace};
 use crate::scene::Scene;
-use crate::shader::FragmentShader;
+use crate::shader::ShaderSet;
 use crate::tile::{TileBuffer, TileView};
 use crate::{Features, RenderError};
 use core::future::{poll_fn, Future};
@@ -139,7 +139,7 @@ where
     ) -> Result<FrameStats, RenderError<S::Error>>
     where
         S: AsyncTileSink<C>,
-        F: FragmentShader<C>,
+        F: ShaderSet<C>,
     {
         let mut frame = self.begin(ws, scene).map_err(RenderError::for_sink)?;
         let [sending, free] = tiles;

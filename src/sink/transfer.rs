@@ -20,7 +20,7 @@
 
 use crate::render::{FrameStats, Renderer, Workspace};
 use crate::scene::Scene;
-use crate::shader::FragmentShader;
+use crate::shader::ShaderSet;
 use crate::tile::TileBuffer;
 use crate::{Features, RenderError};
 use core::borrow::BorrowMut;
@@ -133,7 +133,7 @@ where
     where
         X: TileTransfer<B>,
         B: BorrowMut<TileBuffer<C, TW, TH>>,
-        F: FragmentShader<C>,
+        F: ShaderSet<C>,
     {
         let mut frame = match self.begin(ws, scene) {
             Ok(frame) => frame,
