@@ -231,15 +231,7 @@ fn double_buffered<const B: usize, const T: usize>(
     }
     assert_eq!(*log, want);
 
-    assert!(dma.frame.writes.iter().all(|&w| w == 1), "every pixel once");
-    let diff = dma
-        .frame
-        .pixels
-        .iter()
-        .zip(&expected.pixels)
-        .filter(|(a, b)| a != b)
-        .count();
-    assert_eq!(diff, 0, "pixels differ");
+    dma.frame.assert_once_and_equal(&expected);
     stats
 }
 
@@ -452,11 +444,7 @@ fn async_frame<const B: usize, const T: usize>(
     for (k, &block) in sink.blocks.iter().enumerate() {
         assert_eq!(block, [a, b][k % 2], "tile {k} from the other buffer");
     }
-    assert!(
-        sink.frame.writes.iter().all(|&w| w == 1),
-        "every pixel once"
-    );
-    assert!(sink.frame.pixels == expected.pixels, "pixels differ");
+    sink.frame.assert_once_and_equal(&expected);
 }
 
 #[test]

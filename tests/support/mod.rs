@@ -32,6 +32,19 @@ impl<C: PixelColor> Capture<C> {
         self.pixels[(y * self.size.width + x) as usize]
     }
 
+    /// Asserts that every pixel was written exactly once, and that the
+    /// frame equals `expected` (which may have been drawn any way).
+    pub fn assert_once_and_equal(&self, expected: &Capture<C>) {
+        assert!(self.writes.iter().all(|&w| w == 1), "every pixel once");
+        let diff = self
+            .pixels
+            .iter()
+            .zip(&expected.pixels)
+            .filter(|(a, b)| a != b)
+            .count();
+        assert_eq!(diff, 0, "pixels differ");
+    }
+
     pub fn to_rgb(&self) -> Vec<Rgb888>
     where
         C: Into<Rgb888>,
