@@ -14,7 +14,10 @@
 //! `bilinear` (textured) and `lit` (textured and lit), `MODE` one of
 //! `exact`, `quasi8`, `quasi16` and `affine`; `terrain` (a terrain of
 //! 18,432 triangles imported in clusters of 64, mostly outside the view)
-//! and `terrain-whole` (the same terrain imported without clusters).
+//! and `terrain-whole` (the same terrain imported without clusters),
+//! `rock` (a 3,920-triangle mesh of small, uneven triangles) and
+//! `demo-textured-lit` (the demo frame through `TexturedLit`: the checker
+//! texture, nearest, times the Lambert-lit vertex colour).
 //! `RASTERIZER` is `scanline` (default), `hilbert` or `auto`.
 //! Every frame of a run is identical; each is rendered by the function
 //! `count::frame`, so `valgrind --tool=callgrind
@@ -59,6 +62,10 @@ enum Job {
         scene: RockScene,
         ws: Box<RockWorkspace>,
     },
+    TexturedDemo {
+        scene: TexturedDemoScene,
+        ws: Box<DemoWorkspace>,
+    },
 }
 
 /// The fragment shaders of the `fill-*` scenes.
@@ -85,6 +92,7 @@ fn frame(job: &mut Job, r: &mut BenchRenderer) -> Option<FrameStats> {
             clustered,
         } => Some(scene.render(r, ws, *clustered, sink)),
         Job::Rock { scene, ws } => Some(scene.render(r, ws, sink)),
+        Job::TexturedDemo { scene, ws } => Some(scene.render(r, ws, sink)),
         Job::Euc(e) => {
             e.render();
             None
@@ -192,6 +200,10 @@ fn main() {
             scene: RockScene::new(),
             ws: Box::default(),
         },
+        "demo-textured-lit" => Job::TexturedDemo {
+            scene: TexturedDemoScene::new(),
+            ws: Box::default(),
+        },
         other if shaded(other).is_some() => {
             let (job, mode) = shaded(other).expect("just checked");
             perspective = mode;
@@ -201,7 +213,7 @@ fn main() {
             eprintln!(
                 "count: unknown scene {other:?} \
                  (demo, demo-flat, fill, tri4, tri32, tri100, tri1000, tri10000, euc, \
-                 fill-SHADER-MODE, terrain, terrain-whole, rock)"
+                 fill-SHADER-MODE, terrain, terrain-whole, rock, demo-textured-lit)"
             );
             std::process::exit(2);
         }

@@ -125,7 +125,7 @@ trait ShaderUser<R> {
 /// The rotating knot and cube.
 fn demo(args: &Args, frames: usize, out_dir: &Path, texture: &Texture<'_>) {
     let assets = DemoAssets::new();
-    let knot_uvs = knot_uvs(6.0, 1.0);
+    let knot_uvs = knot_uvs(KNOT_UV_REPEATS.0, KNOT_UV_REPEATS.1);
     let knot = assets.knot();
     let knot = if args.look.textured() {
         knot.with_uvs(&knot_uvs).expect("one coordinate per vertex")

@@ -32,9 +32,10 @@
 # build as MICRORASTER_ICOUNT_SCENES; the scenes are demo, demo-flat, fill,
 # grid4 and the fragment-shader fills fill-gouraud-exact,
 # fill-nearest-exact, fill-nearest-affine, fill-bilinear-exact and
-# fill-lit-exact (examples/icount_scenes/mod.rs). Without SCENES, the
-# LM3S6965 gets three builds (demo demo-flat fill; grid4; the shader
-# fills): its flash holds only part of the scenes at a time.
+# fill-lit-exact, the small-triangle rock and demo-textured-lit
+# (examples/icount_scenes/mod.rs). Without SCENES, the LM3S6965 gets five
+# builds (demo demo-flat fill; grid4; rock; the shader fills;
+# demo-textured-lit): its flash holds only part of the scenes at a time.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -72,13 +73,14 @@ for board in $BOARDS; do
         *) echo "unknown board $board (lm3s6965evb, mps2-an386 or mps2-an386-v6m)" >&2; exit 1 ;;
     esac
     # The builds per board: every scene at once, except on the LM3S6965,
-    # whose 256 KiB of flash hold neither the demo's knot and grid4's grid
-    # together beside the renderer, nor the fragment-shader renderers beside
-    # the plain one (a build links only its scenes' meshes and code).
+    # whose 256 KiB of flash hold neither the demo's knot, grid4's grid and
+    # the rock together beside the renderer, nor the fragment-shader
+    # renderers beside the plain one (a build links only its scenes' meshes
+    # and code).
     if [ -n "$SCENES" ]; then
         groups=("$SCENES")
     elif [ "$board" = lm3s6965evb ]; then
-        groups=("demo demo-flat fill" "grid4" "$SHADER_SCENES")
+        groups=("demo demo-flat fill" "grid4" "rock" "$SHADER_SCENES" "demo-textured-lit")
     else
         groups=("")
     fi

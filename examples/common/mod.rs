@@ -30,7 +30,8 @@ pub mod scenes;
 // Each example or test that includes this file uses a different subset.
 #[allow(unused_imports)]
 pub use demo_scene::{
-    draws, light, DEMO_CLEAR, KNOT_P, KNOT_Q, KNOT_RADIUS, KNOT_SEGMENTS, KNOT_SIDES, KNOT_TUBE,
+    draws, light, textured_draws, DEMO_CLEAR, KNOT_P, KNOT_Q, KNOT_RADIUS, KNOT_SEGMENTS,
+    KNOT_SIDES, KNOT_TUBE, KNOT_UV_REPEATS,
 };
 
 /// Vertices of the whole demo scene (knot + cube).
@@ -167,22 +168,12 @@ pub fn checker_texels(size: u32) -> Vec<u16> {
         .collect()
 }
 
-/// Texture coordinates for the demo knot: `u_repeats` along the knot and
-/// `v_repeats` around the tube, each a tent (up then back down), so that
-/// they are continuous across the mesh's seams (where a vertex cannot hold
-/// two coordinates) and the texture shows mirrored in each half.
+/// Texture coordinates for the demo knot ([`demo_scene::knot_uv`]).
 pub fn knot_uvs(u_repeats: f32, v_repeats: f32) -> Vec<[I16F16; 2]> {
-    let tent = |k: usize, n: usize, r: f32| {
-        let t = k.min(n - k) as f32 / n as f32;
-        I16F16::from_num(2.0 * t * r)
-    };
     let mut out = Vec::with_capacity(KNOT_SEGMENTS * KNOT_SIDES);
     for i in 0..KNOT_SEGMENTS {
         for j in 0..KNOT_SIDES {
-            out.push([
-                tent(i, KNOT_SEGMENTS, u_repeats),
-                tent(j, KNOT_SIDES, v_repeats),
-            ]);
+            out.push(demo_scene::knot_uv(i, j, u_repeats, v_repeats));
         }
     }
     out

@@ -27,6 +27,40 @@ pub const KNOT_SEGMENTS: usize = 200;
 /// See [`KNOT_SEGMENTS`].
 pub const KNOT_SIDES: usize = 10;
 
+/// Texture repeats along the knot and around its tube
+/// ([`knot_uv`]), as the demo's textured looks map it.
+pub const KNOT_UV_REPEATS: (f32, f32) = (6.0, 1.0);
+
+/// The texture coordinates of knot vertex `(i, j)` (segment, side):
+/// `u_repeats` along the knot and `v_repeats` around the tube, each a tent
+/// (up then back down), so that they are continuous across the mesh's
+/// seams (where a vertex cannot hold two coordinates) and the texture
+/// shows mirrored in each half. A `const fn`, so that a firmware holds
+/// them in flash, the same values as the host's.
+pub const fn knot_uv(i: usize, j: usize, u_repeats: f32, v_repeats: f32) -> [I16F16; 2] {
+    const fn tent(k: usize, n: usize, r: f32) -> I16F16 {
+        let k = if k < n - k { k } else { n - k };
+        fx(2.0 * (k as f32 / n as f32) * r)
+    }
+    [
+        tent(i, KNOT_SEGMENTS, u_repeats),
+        tent(j, KNOT_SIDES, v_repeats),
+    ]
+}
+
+/// The demo's textured and lit look at animation time `t`: [`draws`]
+/// through the scene's shader (`TexturedLit` in the benchmarks), white so
+/// that the texture gives the colour, each draw sampling `texture`.
+pub fn textured_draws<'a>(
+    knot: &'a Mesh<'a>,
+    cube: &'a Mesh<'a>,
+    texture: &'a Texture<'a>,
+    t: f32,
+) -> [Draw<'a>; 2] {
+    draws(knot, cube, t, Shading::Shader)
+        .map(|d| d.color(Rgb888::new(255, 255, 255)).texture(texture))
+}
+
 /// The camera for a `width` x `height` frame; `None` only for a zero height.
 pub fn camera(width: u32, height: u32) -> Option<Camera> {
     let view = Mat4::look_at(

@@ -20,7 +20,13 @@
 //!   `fill-bilinear-exact`, `fill-lit-exact`: the fill quads through the
 //!   `Gouraud`, `Textured` (nearest or bilinear) and `TexturedLit` fragment
 //!   shaders, with the host's 32x32 checker texture, as the host's
-//!   `fill-SHADER-MODE` scenes.
+//!   `fill-SHADER-MODE` scenes;
+//! * `rock`: the host's small-triangle mesh (`examples/rock_scene`, 3,920
+//!   triangles of 5 to 20 pixels), lit, Gouraud; in this workspace's 4,096
+//!   bin entries (the host's has 6,144), so it may take more bin passes;
+//! * `demo-textured-lit`: demo frame 0 through `TexturedLit` with the
+//!   checker texture (nearest, exact perspective) and the demo's light, as
+//!   the host's `demo-textured-lit`.
 //!
 //! A build holds only the scenes named in `MICRORASTER_ICOUNT_SCENES` (all
 //! without it): their meshes, and through [`frame`]'s constant guards,
@@ -41,6 +47,8 @@ use microraster::Profiler;
 #[path = "../demo_scene/mod.rs"]
 mod demo_scene;
 use demo_scene::{checker, fx};
+#[path = "../rock_scene/mod.rs"]
+mod rock_scene;
 
 /// Frame width.
 pub const WIDTH: u32 = 320;
@@ -73,6 +81,22 @@ pub static KNOT: MeshData<KNOT_VERTICES, KNOT_TRIANGLES> = match torus_knot_data
     Ok(m) => m,
     Err(_) => panic!("the demo knot's parameters are valid"),
 };
+
+/// The knot's texture coordinates (`demo_scene::knot_uv`), evaluated by
+/// the compiler into flash (16,000 bytes).
+static KNOT_UVS: [UvFx; KNOT_VERTICES] = {
+    let mut uv = [[I16F16::ZERO; 2]; KNOT_VERTICES];
+    let (u, v) = demo_scene::KNOT_UV_REPEATS;
+    let mut k = 0;
+    while k < KNOT_VERTICES {
+        uv[k] = demo_scene::knot_uv(k / KNOT_SIDES, k % KNOT_SIDES, u, v);
+        k += 1;
+    }
+    uv
+};
+
+/// The rock, evaluated by the compiler into flash (70,608 bytes).
+static ROCK: rock_scene::RockData = rock_scene::rock_data();
 
 /// Pixel position (x right, y down) to a normalised-device-coordinate
 /// vertex at depth `z`, as `examples/common/scenes/mod.rs` computes it.
@@ -228,11 +252,15 @@ pub enum SceneId {
     FillBilinear,
     /// Textured and lit (`TexturedLit`), nearest texel, exact perspective.
     FillLit,
+    /// The small-triangle rock, Gouraud.
+    Rock,
+    /// The demo frame, textured and lit.
+    DemoTexturedLit,
 }
 
 impl SceneId {
     /// Every scene, in the order of the tables.
-    pub const ALL: [SceneId; 9] = [
+    pub const ALL: [SceneId; 11] = [
         Self::Demo,
         Self::DemoFlat,
         Self::Fill,
@@ -242,6 +270,8 @@ impl SceneId {
         Self::FillNearestAffine,
         Self::FillBilinear,
         Self::FillLit,
+        Self::Rock,
+        Self::DemoTexturedLit,
     ];
 
     /// The scene's name, as in the host benchmarks.
@@ -256,6 +286,8 @@ impl SceneId {
             Self::FillNearestAffine => "fill-nearest-affine",
             Self::FillBilinear => "fill-bilinear-exact",
             Self::FillLit => "fill-lit-exact",
+            Self::Rock => "rock",
+            Self::DemoTexturedLit => "demo-textured-lit",
         }
     }
 
@@ -281,7 +313,8 @@ impl SceneId {
 }
 
 /// Whether any fragment-shader scene is built in (they need the texture).
-pub const SHADER_SCENES: bool = SceneId::FillGouraud.built()
+pub const SHADER_SCENES: bool = SceneId::DemoTexturedLit.built()
+    || SceneId::FillGouraud.built()
     || SceneId::FillNearest.built()
     || SceneId::FillNearestAffine.built()
     || SceneId::FillBilinear.built()
@@ -343,6 +376,10 @@ pub const fn built_in(name: &str) -> bool {
 pub struct Meshes {
     knot: Mesh<'static>,
     cube: Mesh<'static>,
+    /// The knot and the cube with texture coordinates.
+    knot_uv: Mesh<'static>,
+    cube_uv: Mesh<'static>,
+    rock: Mesh<'static>,
     fill: Mesh<'static>,
     grid: Mesh<'static>,
     /// The checker texture, when a shader scene is built in.
@@ -356,10 +393,24 @@ impl Meshes {
         // Constants, so that the branches not taken are gone at compile time.
         const DEMO: bool = built_in("demo") || built_in("demo-flat");
         const GRID4: bool = built_in("grid4");
+        const TEXTURED: bool = built_in("demo-textured-lit");
+        const ROCK_SCENE: bool = built_in("rock");
         let empty = || Mesh::new(&[], &[]);
+        let cube = Mesh::new(&CUBE_POSITIONS, &CUBE_TRIANGLES)?.with_normals(&CUBE_NORMALS)?;
         Ok(Self {
             knot: if DEMO { KNOT.mesh()? } else { empty()? },
-            cube: Mesh::new(&CUBE_POSITIONS, &CUBE_TRIANGLES)?.with_normals(&CUBE_NORMALS)?,
+            cube,
+            knot_uv: if TEXTURED {
+                KNOT.mesh()?.with_uvs(&KNOT_UVS)?
+            } else {
+                empty()?
+            },
+            cube_uv: cube.with_uvs(&microraster::shapes::CUBE_UVS)?,
+            rock: if ROCK_SCENE {
+                Mesh::new(&ROCK.positions, &ROCK.triangles)?.with_normals(&ROCK.normals)?
+            } else {
+                empty()?
+            },
             fill: Mesh::new(&FILL.positions, &FILL.triangles)?
                 .with_colors(&FILL.colors)?
                 .with_uvs(&FILL.uvs)?,
@@ -435,6 +486,8 @@ pub fn frame<P: Profiler>(
     const AFFINE: bool = SceneId::FillNearestAffine.built();
     const BILINEAR: bool = SceneId::FillBilinear.built();
     const LIT: bool = SceneId::FillLit.built();
+    const ROCK_SCENE: bool = SceneId::Rock.built();
+    const TEXTURED: bool = SceneId::DemoTexturedLit.built();
     const EXACT: Perspective = Perspective::Exact;
     const AFFINE_MODE: Perspective = Perspective::Affine;
     // A shader fill: the frame's result, returned from its arm.
@@ -463,6 +516,22 @@ pub fn frame<P: Profiler>(
         SceneId::Grid4 if GRID4 => {
             let draws = [Draw::new(&meshes.grid)];
             let s = Scene::new(ndc_camera(), &draws);
+            renderer.render_profiled(ws, &s, sink, profiler)
+        }
+        SceneId::Rock if ROCK_SCENE => {
+            let draws = rock_scene::draws(&meshes.rock);
+            let camera = rock_scene::camera(width, height).ok_or(FrameError::Camera)?;
+            let s = Scene::new(camera, &draws).light(demo_light());
+            renderer.render_profiled(ws, &s, sink, profiler)
+        }
+        SceneId::DemoTexturedLit if TEXTURED => {
+            let texture = meshes.texture.as_ref().ok_or(FrameError::NotBuilt)?;
+            renderer.config_mut().perspective = EXACT;
+            let draws = demo_scene::textured_draws(&meshes.knot_uv, &meshes.cube_uv, texture, t);
+            let camera = demo_camera(width, height).ok_or(FrameError::Camera)?;
+            let s = Scene::new(camera, &draws)
+                .light(demo_light())
+                .shader(&TexturedLit);
             renderer.render_profiled(ws, &s, sink, profiler)
         }
         SceneId::FillGouraud if GOURAUD => fill!(&Gouraud, Filter::Nearest, EXACT),

@@ -54,3 +54,56 @@ impl DemoScene {
         &self.cube
     }
 }
+
+/// The demo frame textured and lit (`demo-textured-lit`): the knot and the
+/// cube through `TexturedLit`, with the 32x32 checker texture (nearest,
+/// exact perspective) times the Lambert-lit vertex colour of the demo's
+/// light; the scene the firmware's `demo-textured-lit` renders too.
+pub struct TexturedDemoScene {
+    knot: Mesh<'static>,
+    cube: Mesh<'static>,
+    texture: Texture<'static>,
+}
+
+impl Default for TexturedDemoScene {
+    fn default() -> Self {
+        Self::new()
+    }
+}
+
+impl TexturedDemoScene {
+    /// Generates the knot and its texture coordinates, and the texture.
+    pub fn new() -> Self {
+        let assets: &'static common::DemoAssets = Box::leak(Box::new(common::DemoAssets::new()));
+        let (u, v) = common::KNOT_UV_REPEATS;
+        let uvs: &'static [_] = Box::leak(common::knot_uvs(u, v).into_boxed_slice());
+        let texels: &'static [u16] = Box::leak(common::checker_texels(32).into_boxed_slice());
+        Self {
+            knot: assets
+                .knot()
+                .with_uvs(uvs)
+                .expect("one coordinate per vertex"),
+            cube: common::textured_cube(),
+            texture: Texture::new(32, 32, Texels::Rgb565(texels)).expect("a 32x32 texture"),
+        }
+    }
+
+    /// Renders frame 0 (animation time 0).
+    pub fn render<S: TileSink<Rgb565>>(
+        &self,
+        r: &mut BenchRenderer,
+        ws: &mut DemoWorkspace,
+        sink: &mut S,
+    ) -> FrameStats
+    where
+        S::Error: core::fmt::Debug,
+    {
+        use microraster::shader::TexturedLit;
+        let draws = common::textured_draws(&self.knot, &self.cube, &self.texture, 0.0);
+        let scene = Scene::new(common::camera(WIDTH, HEIGHT), &draws)
+            .light(common::light())
+            .shader(&TexturedLit);
+        r.render(ws, &scene, sink)
+            .expect("textured demo frame renders")
+    }
+}

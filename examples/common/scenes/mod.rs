@@ -30,7 +30,7 @@ mod terrain;
 #[allow(unused_imports)]
 pub use copies::{Copies, TRIANGLE_SIZES};
 #[allow(unused_imports)]
-pub use demo::DemoScene;
+pub use demo::{DemoScene, TexturedDemoScene};
 #[allow(unused_imports)]
 pub use euc_demo::EucDemo;
 #[allow(unused_imports)]
