@@ -77,14 +77,13 @@ impl TexturedDemoScene {
         let assets: &'static common::DemoAssets = Box::leak(Box::new(common::DemoAssets::new()));
         let (u, v) = common::KNOT_UV_REPEATS;
         let uvs: &'static [_] = Box::leak(common::knot_uvs(u, v).into_boxed_slice());
-        let texels: &'static [u16] = Box::leak(common::checker_texels(32).into_boxed_slice());
         Self {
             knot: assets
                 .knot()
                 .with_uvs(uvs)
                 .expect("one coordinate per vertex"),
             cube: common::textured_cube(),
-            texture: Texture::new(32, 32, Texels::Rgb565(texels)).expect("a 32x32 texture"),
+            texture: super::checker_texture(),
         }
     }
 

@@ -2,7 +2,6 @@
 //! written.
 
 use super::{fx, leak, ndc, ndc_camera, BenchRenderer, DemoWorkspace, HEIGHT, WIDTH};
-use crate::common;
 use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
 use microraster::prelude::*;
 
@@ -51,14 +50,10 @@ impl FillScene {
             .and_then(|m| m.with_colors(leak(colors)))
             .and_then(|m| m.with_uvs(leak(uvs)))
             .expect("fill quads are valid");
-        let texels = leak(common::checker_texels(32));
-        let texture = microraster::texture::Texture::new(
-            32,
-            32,
-            microraster::texture::Texels::Rgb565(texels),
-        )
-        .expect("the checker texture is valid");
-        Self { mesh, texture }
+        Self {
+            mesh,
+            texture: super::checker_texture(),
+        }
     }
 
     /// Renders the quads through fragment shader `shader` (every draw

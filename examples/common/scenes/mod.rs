@@ -104,3 +104,15 @@ fn ndc(px: f32, py: f32, z: f32) -> Vec3Fx {
 fn leak<T>(v: Vec<T>) -> &'static [T] {
     Vec::leak(v)
 }
+
+/// The benchmarks' 32x32 checker texture (`common::checker_texels`),
+/// nearest: what the fill and textured demo scenes sample.
+fn checker_texture() -> microraster::texture::Texture<'static> {
+    use microraster::texture::{Texels, Texture};
+    Texture::new(
+        32,
+        32,
+        Texels::Rgb565(leak(crate::common::checker_texels(32))),
+    )
+    .expect("the checker texture is valid")
+}
