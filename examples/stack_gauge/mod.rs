@@ -1,4 +1,4 @@
-//! Peak stack use of a Cortex-M firmware, measured by painting: [`paint`]
+//! Peak stack use of a firmware, measured by painting: [`paint`]
 //! fills the RAM below the stack pointer with a pattern, and [`peak`] later
 //! finds the lowest word that no longer holds it. The stack has used at
 //! least down to there, so the peak is the distance from the top of RAM
@@ -6,7 +6,14 @@
 //!
 //! cortex-m-rt puts the stack at the top of RAM, growing down towards the
 //! end of the statics (`_stack_end`, after `.bss` and `.uninit`); nothing
-//! else uses the RAM between them in these firmwares (no heap). A function
+//! else uses the RAM between them in these firmwares (no heap). esp-hal's
+//! runtime (the ESP32-C3) and the QEMU RISC-V probe's linker script
+//! (`memory/qemu-riscv32-virt.x`) define the same two symbols with the same
+//! meaning; on RISC-V the lowest [`GUARD`] bytes are left alone, where
+//! esp-hal keeps its stack-overflow canary (`__stack_chk_guard`, 60 bytes
+//! above `_stack_end` by default). The stack pointer is read with one
+//! instruction (`mov` on Arm, `mv` on RISC-V), so no HAL or runtime crate
+//! is needed: the board crates include this file too. A function
 //! that uses stack without writing it (a large array it never fills) would
 //! go unseen, so the figure is a lower bound; the renderer writes its tile
 //! buffer whole at every tile.
@@ -14,6 +21,7 @@
 //! Only a window of [`WINDOW`] bytes under the top is painted and scanned:
 //! the LM3S6965's whole free RAM, and on the MPS2's 4 MiB far more than the
 //! firmware uses, without painting megabytes at every scene.
+#![allow(dead_code)]
 
 /// What free stack holds until something writes it. An odd value, so that
 /// neither a zero, a small count, an address in RAM or flash nor a Thumb
@@ -27,20 +35,51 @@ pub const WINDOW: usize = 64 * 1024;
 /// frame of `paint` itself.
 const MARGIN: usize = 64;
 
+/// Left unpainted above the end of the statics, in bytes: none on Arm; on
+/// RISC-V, room for esp-hal's stack canary, which a debugger may watch.
+#[cfg(target_arch = "riscv32")]
+const GUARD: usize = 256;
+/// Left unpainted above the end of the statics, in bytes.
+#[cfg(not(target_arch = "riscv32"))]
+const GUARD: usize = 0;
+
 extern "C" {
-    /// cortex-m-rt: the initial stack pointer, the top of RAM.
+    /// The runtime's initial stack pointer, the top of RAM.
     static _stack_start: u32;
-    /// cortex-m-rt: the end of the statics, the lowest address the stack
-    /// may reach.
+    /// The runtime's end of the statics, the lowest address the stack may
+    /// reach.
     static _stack_end: u32;
+}
+
+/// The stack pointer, now.
+#[inline(always)]
+fn stack_pointer() -> usize {
+    let sp: usize;
+    // SAFETY: copies the stack pointer to a register; no memory is touched.
+    #[cfg(target_arch = "arm")]
+    unsafe {
+        core::arch::asm!("mov {}, sp", out(reg) sp, options(nomem, nostack, preserves_flags))
+    };
+    // SAFETY: as above.
+    #[cfg(target_arch = "riscv32")]
+    unsafe {
+        core::arch::asm!("mv {}, sp", out(reg) sp, options(nomem, nostack, preserves_flags))
+    };
+    sp
 }
 
 /// The top of the stack, and the lowest address painted and scanned.
 fn bounds() -> (usize, usize) {
     // Only the symbols' addresses are taken, never read through.
     let top = core::ptr::addr_of!(_stack_start) as usize;
-    let end = core::ptr::addr_of!(_stack_end) as usize;
+    let end = core::ptr::addr_of!(_stack_end) as usize + GUARD;
     (top, end.max(top.saturating_sub(WINDOW)))
+}
+
+/// How deep the stack is now, in bytes below its top.
+#[inline(always)]
+pub fn depth() -> usize {
+    bounds().0 - stack_pointer()
 }
 
 /// The bytes the stack may use before it reaches the statics (or the
@@ -57,12 +96,13 @@ pub fn room() -> usize {
 #[inline(never)]
 pub fn paint() {
     let (_, bottom) = bounds();
-    let sp = cortex_m::register::msp::read() as usize;
+    let sp = stack_pointer();
     let start = sp.saturating_sub(MARGIN) & !3;
     let mut p = bottom;
     while p < start {
-        // SAFETY: `p` is word-aligned (both symbols are, by cortex-m-rt's
-        // assertions, and `start` is rounded down) and lies between the end
+        // SAFETY: `p` is word-aligned (both symbols are, by the runtimes'
+        // assertions and alignment, `GUARD` is a multiple of 4, and `start`
+        // is rounded down) and lies between the end
         // of the statics and below the stack pointer, memory that holds no
         // live object: the stack grows down, nothing lives below the stack
         // pointer (no interrupt is enabled to push a frame there), and no
