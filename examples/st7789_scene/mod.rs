@@ -2,7 +2,14 @@
 //! (no_std, no alloc): a lit torus knot of 2,048 triangles turning in the
 //! middle, and a cube orbiting it, passing in front and behind. Kept apart
 //! from the board code so that a host program can render the same frames.
+//!
+//! [`Frames`] is the render loop's body of the Pico 2 and ESP32-C3
+//! firmwares (`boards/`), which the QEMU stack probe
+//! (`examples/stack_probe.rs`) also runs on the same instruction sets: the
+//! code whose peak stack it measures is the boards' own.
 #![allow(dead_code)]
+
+use core::borrow::BorrowMut;
 
 use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
 use fixed::types::I16F16;
@@ -156,6 +163,53 @@ pub fn camera() -> Option<Camera> {
 /// One white light from the upper left, with a dim bluish ambient term.
 pub fn light() -> Light {
     Light::new(Vec3::new(-0.6, 0.8, 0.9)).ambient(Rgb888::new(40, 40, 56))
+}
+
+/// The scene, set up once, and the renderer: what a firmware's frame loop
+/// needs besides its panel and its two tile buffers.
+pub struct Frames<'a> {
+    renderer: PicoRenderer,
+    workspace: &'a mut PicoWorkspace,
+    knot: Mesh<'a>,
+    cube: Mesh<'static>,
+    camera: Camera,
+}
+
+impl<'a> Frames<'a> {
+    /// Generates the knot into `knot` and sets the scene up; `None` if the
+    /// scene's data does not make valid meshes or a camera.
+    pub fn new(knot: &'a mut KnotData, workspace: &'a mut PicoWorkspace) -> Option<Self> {
+        Some(Self {
+            renderer: PicoRenderer::new(config()),
+            workspace,
+            knot: knot.generate()?,
+            cube: cube()?,
+            camera: camera()?,
+        })
+    }
+
+    /// Draws the frame at `time_us` microseconds after start into `tiles`
+    /// in turn, each finished tile handed to `panel` while the next one is
+    /// drawn (`Renderer::render_double_buffered`), and gives the tile
+    /// buffers back. Never inlined: the boards and the stack probe call
+    /// the same function, whose stack use the probe measures from its
+    /// call.
+    #[inline(never)]
+    pub fn draw<B, X>(
+        &mut self,
+        time_us: u64,
+        tiles: [B; 2],
+        panel: &mut X,
+    ) -> ([B; 2], Result<FrameStats, RenderError<X::Error>>)
+    where
+        B: BorrowMut<PicoTile>,
+        X: TileTransfer<B>,
+    {
+        let draws = draws(&self.knot, &self.cube, time_us);
+        let scene = Scene::new(self.camera, &draws).light(light());
+        self.renderer
+            .render_double_buffered(self.workspace, &scene, tiles, panel)
+    }
 }
 
 /// The renderer's settings, in [`Rgb565Be`] for the firmware or

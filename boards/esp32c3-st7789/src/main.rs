@@ -314,11 +314,9 @@ fn main() -> ! {
     };
 
     // The scene: the knot is generated once, into its static.
-    let (Some(knot), Some(cube), Some(camera)) = (KNOT.take().generate(), cube(), camera()) else {
+    let Some(mut frames) = Frames::new(KNOT.take(), WORKSPACE.take()) else {
         fault(&mut led, 4)
     };
-    let workspace = WORKSPACE.take();
-    let renderer = PicoRenderer::new(config());
     let Some(mut tiles) = tiles() else {
         fault(&mut led, 4)
     };
@@ -326,9 +324,7 @@ fn main() -> ! {
     loop {
         // Microseconds since boot.
         let now = Instant::now().duration_since_epoch().as_micros();
-        let draws = draws(&knot, &cube, now);
-        let scene = Scene::new(camera, &draws).light(light());
-        let (back, result) = renderer.render_double_buffered(workspace, &scene, tiles, &mut panel);
+        let (back, result) = frames.draw(now, tiles, &mut panel);
         tiles = back;
         if result.is_err() {
             fault(&mut led, 5);
