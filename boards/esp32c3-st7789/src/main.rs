@@ -34,14 +34,25 @@
 //! (GPIO8, lit when low) toggles once per frame; if the display cannot be
 //! brought up or a frame fails, it blinks a code instead, forever:
 //! 3 = display, 4 = scene set-up, 5 = render.
+//!
+//! The firmware measures its own peak stack: it paints the free RAM under
+//! the stack at start-up and, after every frame, stores how far down the
+//! stack has written (in bytes from the top of the stack) in
+//! `PEAK_STACK_BYTES`, for a debugger to read (`probe-rs attach`, or GDB's
+//! `print PEAK_STACK_BYTES` through the C3's USB-JTAG). `tests/qemu_stack.rs`
+//! measures the same frame code on QEMU's RISC-V `virt` machine
+//! (`examples/stack_probe.rs`).
 
 #![no_std]
 #![no_main]
 
 #[path = "../../../examples/st7789_scene/mod.rs"]
 mod st7789_scene;
+#[path = "../../../examples/stack_gauge/mod.rs"]
+mod stack_gauge;
 
 use core::ptr::NonNull;
+use core::sync::atomic::{AtomicUsize, Ordering};
 use embedded_graphics::primitives::Rectangle;
 use embedded_hal::delay::DelayNs;
 use embedded_hal_bus::spi::ExclusiveDevice;
@@ -102,6 +113,11 @@ static TILE_B: StaticCell<DmaTile> = StaticCell::new();
 /// The descriptors of the transfer in flight.
 static DMA_DESCRIPTORS: ConstStaticCell<InternalMemory<[DmaDescriptor; DESCRIPTORS]>> =
     ConstStaticCell::new(InternalMemory::new([DmaDescriptor::EMPTY; DESCRIPTORS]));
+
+/// The deepest the stack has gone, in bytes below its top, as of the last
+/// frame (`examples/stack_gauge`): for a debugger to read.
+#[no_mangle]
+static PEAK_STACK_BYTES: AtomicUsize = AtomicUsize::new(0);
 
 /// The two tile buffers, once (`None` the second time). Not inlined: the
 /// compiler builds each 4 KiB buffer on the stack before it moves it into
@@ -264,6 +280,8 @@ fn fault(led: &mut Output<'_>, code: u32) -> ! {
 
 #[esp_hal::main]
 fn main() -> ! {
+    // First, before any interrupt can push a frame below the stack pointer.
+    stack_gauge::paint();
     let peripherals = esp_hal::init(esp_hal::Config::default().with_cpu_clock(CpuClock::max()));
     let mut led = Output::new(peripherals.GPIO8, Level::High, OutputConfig::default());
 
@@ -329,6 +347,7 @@ fn main() -> ! {
         if result.is_err() {
             fault(&mut led, 5);
         }
+        PEAK_STACK_BYTES.store(stack_gauge::peak(), Ordering::Relaxed);
         // Lit once the first frame is on the panel, so the panel's
         // power-up contents are never seen; a no-op after that.
         backlight.set_high();

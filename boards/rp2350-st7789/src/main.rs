@@ -30,6 +30,13 @@
 //! brought up or a frame fails, the LED blinks a code instead, forever:
 //! 2 = clocks, 3 = display, 4 = scene set-up, 5 = render.
 //!
+//! The firmware measures its own peak stack: it paints the free RAM under
+//! the stack at start-up and, after every frame, stores how far down the
+//! stack has written (in bytes from the top of RAM) in `PEAK_STACK_BYTES`,
+//! for a debugger to read (`probe-rs attach`, or GDB's
+//! `print PEAK_STACK_BYTES`). `tests/qemu_stack.rs` measures the same
+//! frame code on QEMU's Cortex-M33 (`examples/stack_probe.rs`).
+//!
 //! The RP2350 boots without a second-stage bootloader: its boot ROM looks
 //! for an IMAGE_DEF block in the first 4 KiB of flash (`memory.x` puts it
 //! right after the vector table) and starts the image it describes.
@@ -39,9 +46,12 @@
 
 #[path = "../../../examples/st7789_scene/mod.rs"]
 mod st7789_scene;
+#[path = "../../../examples/stack_gauge/mod.rs"]
+mod stack_gauge;
 
 use core::convert::Infallible;
 use core::mem;
+use core::sync::atomic::{AtomicUsize, Ordering};
 use embedded_dma::ReadBuffer;
 use embedded_graphics::primitives::Rectangle;
 use embedded_hal::delay::DelayNs;
@@ -92,6 +102,11 @@ static WORKSPACE: ConstStaticCell<PicoWorkspace> = ConstStaticCell::new(PicoWork
 // stored in flash as initial data (.data).
 static TILE_A: StaticCell<PicoTile> = StaticCell::new();
 static TILE_B: StaticCell<PicoTile> = StaticCell::new();
+
+/// The deepest the stack has gone, in bytes below the top of RAM, as of
+/// the last frame (`examples/stack_gauge`): for a debugger to read.
+#[no_mangle]
+static PEAK_STACK_BYTES: AtomicUsize = AtomicUsize::new(0);
 
 /// The two tile buffers, once (`None` the second time). Not inlined: the
 /// compiler builds each 4 KiB buffer on the stack before it moves it into
@@ -249,6 +264,8 @@ fn fault(led: &mut impl OutputPin<Error = Infallible>, code: u32) -> ! {
 
 #[hal::entry]
 fn main() -> ! {
+    // First, before any interrupt can push a frame below the stack pointer.
+    stack_gauge::paint();
     // Taken once, at the entry point: never `None` here.
     let Some(mut pac) = pac::Peripherals::take() else {
         park()
@@ -333,6 +350,7 @@ fn main() -> ! {
         if result.is_err() {
             fault(&mut led, 5);
         }
+        PEAK_STACK_BYTES.store(stack_gauge::peak(), Ordering::Relaxed);
         // Lit once the first frame is on the panel, so the panel's
         // power-up contents are never seen; a no-op after that.
         let Ok(()) = backlight.set_high();
