@@ -8,6 +8,11 @@
 //! | `thumbv7m-none-eabi`    | TI LM3S6965EVB (reference)   | `memory.x` (root)     |
 //! | `thumbv6m-none-eabi`    | Raspberry Pi Pico (RP2040)   | `memory/rp2040.x`     |
 //! | `thumbv7em-none-eabihf` | Arm MPS2-AN386 (Cortex-M4F)  | `memory/mps2-an386.x` |
+//! | `thumbv8m.main-none-eabihf` | Arm MPS2-AN505 (Cortex-M33, the stack probe) | `memory/mps2-an505.x` |
+//!
+//! The RISC-V stack probe (`examples/stack_probe.rs` for QEMU's `virt`
+//! machine, `riscv32imc-unknown-none-elf`) links with a whole script of its
+//! own, `memory/qemu-riscv32-virt.x`, given by absolute path.
 //!
 //! A thumbv6m build may instead be for QEMU's MPS2-AN386, which runs the
 //! ARMv6-M instruction stream unchanged (the instruction counts of a
@@ -53,6 +58,7 @@ fn board_map(target: &str, board: Option<&str>) -> Option<&'static str> {
         ("thumbv7m", None) => Some("memory.x"),
         ("thumbv6m", None) => Some("memory/rp2040.x"),
         ("thumbv7em", None) => Some("memory/mps2-an386.x"),
+        ("thumbv8m.main", None) => Some("memory/mps2-an505.x"),
         _ => None,
     }
 }
@@ -84,5 +90,10 @@ fn main() {
         fs::copy(map, out.join("memory.x"))
             .unwrap_or_else(|e| panic!("copying {map} to OUT_DIR/memory.x: {e}"));
         println!("cargo:rustc-link-arg-examples=-L{}", out.display());
+    }
+    if target.starts_with("riscv32") && target.ends_with("-none-elf") {
+        let root = PathBuf::from(env::var_os("CARGO_MANIFEST_DIR").expect("cargo sets it"));
+        let script = root.join("memory/qemu-riscv32-virt.x");
+        println!("cargo:rustc-link-arg-examples=-T{}", script.display());
     }
 }

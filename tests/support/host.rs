@@ -43,6 +43,14 @@ pub const QEMU_ARM: Need<'static> = Need::Program {
               dnf install qemu-system-arm (Fedora) or brew install qemu (macOS)",
 };
 
+/// QEMU's 32-bit RISC-V system emulator (the `virt` machine, for the stack
+/// probe of the ESP32-C3's instruction set).
+pub const QEMU_RISCV32: Need<'static> = Need::Program {
+    name: "qemu-system-riscv32",
+    install: "apt-get install qemu-system-misc (Debian, Ubuntu), \
+              dnf install qemu-system-riscv (Fedora) or brew install qemu (macOS)",
+};
+
 /// Node.js (the emulated Raspberry Pi Pico runs in rp2040js).
 pub const NODE: Need<'static> = Need::Program {
     name: "node",
