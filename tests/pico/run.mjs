@@ -4,6 +4,7 @@
 //
 //   node tests/pico/run.mjs ELF [--frames N] [--out DIR] [--max-cycles C] [--serial]
 //   node tests/pico/run.mjs ELF --bench [--max-cycles C]
+//   ... [--profile FILE]
 //
 // Writes DIR/frame_NNN.rgb565 (what the panel shows after frame N:
 // 240x240 big-endian Rgb565) and DIR/report.json, and prints a line per
@@ -45,6 +46,12 @@
 //           render time. Without, the firmware sends a tile by DMA while
 //           it renders the next: the period is the overlapped frame and
 //           idle what the overlap did not hide.
+//
+// `--profile FILE` charges every cycle after the first frame (with
+// `--bench`, every cycle) to the function whose code
+// holds the PC (the ELF's function symbols; cycles the core spends
+// asleep to `(asleep)`, the stub ROM's routines to `(boot ROM)`), and
+// writes a table of the functions by cycles to FILE, names as mangled.
 
 import { readFileSync, writeFileSync, mkdirSync } from 'node:fs';
 import { join } from 'node:path';
@@ -61,7 +68,15 @@ const SPI = 1;
 const SERIAL = 'MICRORASTER_PICO_SERIAL';
 
 function parseArgs(argv) {
-  const args = { frames: 1, out: null, maxCycles: null, elf: null, serial: false, bench: false };
+  const args = {
+    frames: 1,
+    out: null,
+    maxCycles: null,
+    elf: null,
+    serial: false,
+    bench: false,
+    profile: null,
+  };
   for (let i = 0; i < argv.length; i++) {
     const a = argv[i];
     if (a === '--frames') args.frames = Number(argv[++i]);
@@ -69,6 +84,7 @@ function parseArgs(argv) {
     else if (a === '--max-cycles') args.maxCycles = Number(argv[++i]);
     else if (a === '--serial') args.serial = true;
     else if (a === '--bench') args.bench = true;
+    else if (a === '--profile') args.profile = argv[++i];
     else if (!args.elf && !a.startsWith('--')) args.elf = a;
     else throw new Error(`unknown argument ${a}`);
   }
@@ -115,6 +131,75 @@ function elfSymbols(path, names) {
     if (!(n in found)) throw new Error(`${path} has no symbol ${n}`);
   }
   return found;
+}
+
+/** The function symbols of the ELF at `path`: sorted `{ start, end, name }`. */
+function elfFunctions(path) {
+  const elf = readFileSync(path);
+  const shoff = elf.readUInt32LE(32);
+  const shentsize = elf.readUInt16LE(46);
+  const shnum = elf.readUInt16LE(48);
+  const section = (i) => {
+    const sh = shoff + i * shentsize;
+    return {
+      type: elf.readUInt32LE(sh + 4),
+      offset: elf.readUInt32LE(sh + 16),
+      size: elf.readUInt32LE(sh + 20),
+      link: elf.readUInt32LE(sh + 24),
+      entsize: elf.readUInt32LE(sh + 36),
+    };
+  };
+  const out = [];
+  for (let i = 0; i < shnum; i++) {
+    const symtab = section(i);
+    if (symtab.type !== 2) continue; // SHT_SYMTAB
+    const strtab = section(symtab.link);
+    for (let off = symtab.offset; off < symtab.offset + symtab.size; off += symtab.entsize) {
+      const info = elf.readUInt8(off + 12);
+      const size = elf.readUInt32LE(off + 8);
+      if ((info & 0xf) !== 2) continue; // STT_FUNC
+      const start = (elf.readUInt32LE(off + 4) & ~1) >>> 0;
+      const nameStart = strtab.offset + elf.readUInt32LE(off);
+      const name = elf.toString('latin1', nameStart, elf.indexOf(0, nameStart));
+      out.push({ start, end: start + size, name });
+    }
+  }
+  // A function without a size (hand-written assembly, such as a HAL's
+  // intrinsics) ends where the next one starts.
+  out.sort((a, b) => a.start - b.start);
+  out.forEach((f, i) => {
+    if (f.end === f.start) f.end = out[i + 1]?.start ?? f.start + 1;
+  });
+  return out;
+}
+
+/** The cycles charged to each PC, summed by function into a table. */
+function profileTable(byPc, functions, asleep) {
+  const totals = new Map();
+  const find = (pc) => {
+    let lo = 0;
+    let hi = functions.length - 1;
+    while (lo <= hi) {
+      const mid = (lo + hi) >> 1;
+      const f = functions[mid];
+      if (pc < f.start) hi = mid - 1;
+      else if (pc >= f.end) lo = mid + 1;
+      else return f.name;
+    }
+    return pc < 0x4000 ? '(boot ROM)' : `(0x${pc.toString(16)})`;
+  };
+  for (const [pc, c] of byPc) {
+    const name = find(pc);
+    totals.set(name, (totals.get(name) ?? 0) + c);
+  }
+  if (asleep) totals.set('(asleep)', asleep);
+  const all = [...totals.values()].reduce((a, b) => a + b, 0);
+  const rows = [...totals].sort((a, b) => b[1] - a[1]);
+  const lines = [`total ${Math.round(all)} cycles`];
+  for (const [name, c] of rows) {
+    lines.push(`${Math.round(c).toString().padStart(11)} ${((100 * c) / all).toFixed(2).padStart(6)} %  ${name}`);
+  }
+  return lines.join('\n') + '\n';
 }
 
 // The peak stack, measured as on the QEMU boards (examples/stack_gauge):
@@ -402,17 +487,26 @@ function main() {
   if (args.out) mkdirSync(args.out, { recursive: true });
   const maxCycles = args.maxCycles ?? (bench ? 2e9 : 200e6 + args.frames * 100e6);
   const started = Date.now();
+  // `--profile`: cycles by PC, and asleep, once the first frame is done.
+  const byPc = new Map();
+  let asleep = 0;
+  const profiling = () =>
+    args.profile && (bench || frames.length > 0);
   try {
     while (bench ? !bench.done : frames.length < args.frames) {
+      const profile = profiling();
+      const pc = mcu.core.PC >>> 0;
       if (mcu.core.waiting) {
         if (!clock.nextAlarm) fail('the core sleeps with nothing to wake it');
         const ns = Math.max(clock.nanosToNextAlarm, 0);
         clock.tick(ns);
         cycles += ns / nsPerCycle();
+        if (profile) asleep += ns / nsPerCycle();
       } else {
         const c = mcu.core.executeInstruction();
         cycles += c;
         clock.tick(c * nsPerCycle());
+        if (profile) byPc.set(pc, (byPc.get(pc) ?? 0) + c + charged);
       }
       if (charged) {
         cycles += charged;
@@ -433,6 +527,7 @@ function main() {
     console.error(`pico: ${e.message}\n  at cycle ${Math.round(cycles)}, PC 0x${pc}; last panel commands: ${log}`);
     process.exit(1);
   }
+  if (args.profile) writeFileSync(args.profile, profileTable(byPc, elfFunctions(args.elf), asleep));
   if (bench) {
     bench.print(mcu.clkSys);
     console.log(
