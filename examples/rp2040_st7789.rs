@@ -2,7 +2,7 @@
 //! 2,048 triangles with a cube orbiting it, with microraster, in 32x32
 //! tiles, on a 240x240 ST7789 on SPI1, frame after frame. A DMA channel
 //! sends each finished tile while the core draws the next one
-//! (`Renderer::render_double_buffered` over two tile buffers), so a frame
+//! (`Frame::render_double_buffered` over two tile buffers), so a frame
 //! takes about the longer of the drawing and the sending, not their sum.
 //!
 //! ```text
@@ -369,7 +369,9 @@ mod firmware {
             fault(&mut led, 4)
         };
         let workspace = WORKSPACE.take();
-        let renderer = PicoRenderer::new(config());
+        // No `Renderer`: its own tile buffer would go unused (each frame
+        // is begun with `Frame::begin` and drawn into `tiles`).
+        let config = config();
         let Some(mut tiles) = tiles() else {
             fault(&mut led, 4)
         };
@@ -378,8 +380,10 @@ mod firmware {
             // The timer counts microseconds from its reset above.
             let draws = draws(&knot, &cube, timer.get_counter().ticks());
             let scene = Scene::new(camera, &draws).light(light());
-            let (back, result) =
-                renderer.render_double_buffered(workspace, &scene, tiles, &mut panel);
+            let (back, result) = match PicoFrame::begin(config, workspace, &scene) {
+                Ok(frame) => frame.render_double_buffered(tiles, &mut panel),
+                Err(e) => (tiles, Err(e.for_sink())),
+            };
             tiles = back;
             if result.is_err() {
                 fault(&mut led, 5);

@@ -15,7 +15,7 @@ use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
 use fixed::types::I16F16;
 use microraster::mesh::Vec3Fx;
 use microraster::prelude::*;
-use microraster::render::Triangles;
+use microraster::render::{Frame, Triangles};
 use microraster::shapes::{
     torus_knot, torus_knot_size, CUBE_NORMALS, CUBE_POSITIONS, CUBE_TRIANGLES,
 };
@@ -58,6 +58,9 @@ pub type PicoRenderer = Renderer<Rgb565Be, TILE, TILE, Triangles>;
 /// frames are the firmware's pixel for pixel, each pixel's two bytes in
 /// the MCU's order instead of the wire's.
 pub type Rgb565Renderer = Renderer<Rgb565, TILE, TILE, Triangles>;
+/// A frame of [`PicoRenderer`]'s, begun without a renderer
+/// ([`Frame::begin`]): what the double-buffered firmwares draw.
+pub type PicoFrame<'a> = Frame<'a, Rgb565Be, microraster::shader::NoShader, TILE, TILE, Triangles>;
 /// One of the firmware's two tile buffers: one is drawn into while DMA
 /// sends the other.
 pub type PicoTile = TileBuffer<Rgb565Be, TILE, TILE>;
@@ -165,10 +168,12 @@ pub fn light() -> Light {
     Light::new(Vec3::new(-0.6, 0.8, 0.9)).ambient(Rgb888::new(40, 40, 56))
 }
 
-/// The scene, set up once, and the renderer: what a firmware's frame loop
-/// needs besides its panel and its two tile buffers.
+/// The scene, set up once, and the renderer's settings: what a firmware's
+/// frame loop needs besides its panel and its two tile buffers. It holds
+/// no [`Renderer`] (whose own tile buffer a double-buffered frame never
+/// uses): each frame is begun with [`Frame::begin`].
 pub struct Frames<'a> {
-    renderer: PicoRenderer,
+    config: Config<Rgb565Be>,
     workspace: &'a mut PicoWorkspace,
     knot: Mesh<'a>,
     cube: Mesh<'static>,
@@ -180,7 +185,7 @@ impl<'a> Frames<'a> {
     /// scene's data does not make valid meshes or a camera.
     pub fn new(knot: &'a mut KnotData, workspace: &'a mut PicoWorkspace) -> Option<Self> {
         Some(Self {
-            renderer: PicoRenderer::new(config()),
+            config: config(),
             workspace,
             knot: knot.generate()?,
             cube: cube()?,
@@ -190,7 +195,7 @@ impl<'a> Frames<'a> {
 
     /// Draws the frame at `time_us` microseconds after start into `tiles`
     /// in turn, each finished tile handed to `panel` while the next one is
-    /// drawn (`Renderer::render_double_buffered`), and gives the tile
+    /// drawn (`Frame::render_double_buffered`), and gives the tile
     /// buffers back. Never inlined: the boards and the stack probe call
     /// the same function, whose stack use the probe measures from its
     /// call.
@@ -207,8 +212,10 @@ impl<'a> Frames<'a> {
     {
         let draws = draws(&self.knot, &self.cube, time_us);
         let scene = Scene::new(self.camera, &draws).light(light());
-        self.renderer
-            .render_double_buffered(self.workspace, &scene, tiles, panel)
+        match PicoFrame::begin(self.config, self.workspace, &scene) {
+            Ok(frame) => frame.render_double_buffered(tiles, panel),
+            Err(e) => (tiles, Err(e.for_sink())),
+        }
     }
 }
 

@@ -58,8 +58,24 @@ where
     F: ShaderSet<C>,
     P: Features,
 {
-    /// [`Renderer::begin`](super::Renderer::begin), telling `profiler`
-    /// when the vertex stage starts.
+    /// Begins a frame of `scene` with the settings `config`: what
+    /// [`Renderer::begin`](super::Renderer::begin) does, without a
+    /// renderer. A program that draws only into tile buffers of its own
+    /// ([`render_double_buffered`](Self::render_double_buffered),
+    /// [`render_async`](Self::render_async)) then holds no renderer, and
+    /// no renderer's tile buffer (`TW x TH` pixels it would never use).
+    ///
+    /// Every error is found here, before any tile is drawn.
+    pub fn begin<const V: usize, const B: usize, const T: usize>(
+        config: Config<C>,
+        ws: &'a mut Workspace<V, B, T>,
+        scene: &'a Scene<'a, F>,
+    ) -> Result<Self, RenderError> {
+        Self::begin_profiled(config, ws, scene, &mut ())
+    }
+
+    /// [`begin`](Self::begin), telling `profiler` when the vertex stage
+    /// starts.
     pub(super) fn begin_profiled<Q: Profiler, const V: usize, const B: usize, const T: usize>(
         config: Config<C>,
         ws: &'a mut Workspace<V, B, T>,

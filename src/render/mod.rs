@@ -245,6 +245,6 @@ where
     where
         F: ShaderSet<C>,
     {
-        Frame::begin_profiled(self.config, ws, scene, &mut ())
+        Frame::begin(self.config, ws, scene)
     }
 }

@@ -1,7 +1,7 @@
 //! The async form of double buffering, for executors such as embassy:
 //! [`AsyncTileSink`] and [`Renderer::render_async`].
 
-use crate::render::{FrameStats, Renderer, Workspace};
+use crate::render::{Frame, FrameStats, Renderer, Workspace};
 use crate::scene::Scene;
 use crate::shader::ShaderSet;
 use crate::tile::{TileBuffer, TileView};
@@ -141,11 +141,35 @@ where
         S: AsyncTileSink<C>,
         F: ShaderSet<C>,
     {
-        let mut frame = self.begin(ws, scene).map_err(RenderError::for_sink)?;
+        self.begin(ws, scene)
+            .map_err(RenderError::for_sink)?
+            .render_async(tiles, sink)
+            .await
+    }
+}
+
+impl<C, F, const TW: usize, const TH: usize, P> Frame<'_, C, F, TW, TH, P>
+where
+    C: PixelColor + From<Rgb888> + Into<Rgb888>,
+    F: ShaderSet<C>,
+    P: Features,
+{
+    /// Draws the frame's tiles into `tiles` in turn, each finished tile
+    /// written to `sink` while the next one is drawn: the loop of
+    /// [`Renderer::render_async`], for a frame begun without a renderer
+    /// ([`Frame::begin`]).
+    pub async fn render_async<S>(
+        mut self,
+        tiles: &mut [TileBuffer<C, TW, TH>; 2],
+        sink: &mut S,
+    ) -> Result<FrameStats, RenderError<S::Error>>
+    where
+        S: AsyncTileSink<C>,
+    {
         let [sending, free] = tiles;
         let (mut sending, mut free) = (sending, free);
-        let Some(mut area) = frame.render_next(sending) else {
-            return Ok(frame.stats());
+        let Some(mut area) = self.render_next(sending) else {
+            return Ok(self.stats());
         };
         loop {
             let next = {
@@ -154,7 +178,7 @@ where
                 let mut write = pin!(sink.write_tile(&area, &view));
                 // Start the transfer: one poll, with this task's waker.
                 let first = poll_fn(|cx| Poll::Ready(write.as_mut().poll(cx))).await;
-                let next = frame.render_next(free);
+                let next = self.render_next(free);
                 match first {
                     Poll::Ready(outcome) => outcome,
                     Poll::Pending => write.await,
@@ -163,7 +187,7 @@ where
                 next
             };
             match next {
-                None => return Ok(frame.stats()),
+                None => return Ok(self.stats()),
                 Some(a) => {
                     area = a;
                     core::mem::swap(&mut sending, &mut free);

@@ -18,7 +18,7 @@
 //! even if the driver is leaked, hence `'static`), or any other
 //! [`BorrowMut`] of a [`TileBuffer`] on a host.
 
-use crate::render::{FrameStats, Renderer, Workspace};
+use crate::render::{Frame, FrameStats, Renderer, Workspace};
 use crate::scene::Scene;
 use crate::shader::ShaderSet;
 use crate::tile::TileBuffer;
@@ -135,26 +135,50 @@ where
         B: BorrowMut<TileBuffer<C, TW, TH>>,
         F: ShaderSet<C>,
     {
-        let mut frame = match self.begin(ws, scene) {
-            Ok(frame) => frame,
-            Err(e) => return (tiles, Err(e.for_sink())),
-        };
+        match self.begin(ws, scene) {
+            Ok(frame) => frame.render_double_buffered(tiles, transfer),
+            Err(e) => (tiles, Err(e.for_sink())),
+        }
+    }
+}
+
+impl<C, F, const TW: usize, const TH: usize, P> Frame<'_, C, F, TW, TH, P>
+where
+    C: PixelColor + From<Rgb888> + Into<Rgb888>,
+    F: ShaderSet<C>,
+    P: Features,
+{
+    /// Draws the frame's tiles into `tiles` in turn, each finished tile
+    /// handed to `transfer` while the next one is drawn: the loop of
+    /// [`Renderer::render_double_buffered`], for a frame begun without a
+    /// renderer ([`Frame::begin`]). Gives the buffers back with the
+    /// frame's statistics or the transfer's first error.
+    #[must_use = "the tile buffers come back with the frame's result"]
+    pub fn render_double_buffered<X, B>(
+        mut self,
+        tiles: [B; 2],
+        transfer: &mut X,
+    ) -> ([B; 2], Result<FrameStats, RenderError<X::Error>>)
+    where
+        X: TileTransfer<B>,
+        B: BorrowMut<TileBuffer<C, TW, TH>>,
+    {
         let [mut sending, mut free] = tiles;
-        let Some(mut area) = frame.render_next(sending.borrow_mut()) else {
-            return ([sending, free], Ok(frame.stats()));
+        let Some(mut area) = self.render_next(sending.borrow_mut()) else {
+            return ([sending, free], Ok(self.stats()));
         };
         loop {
             // `sending` holds a finished tile, `free` nothing in flight.
             if let Err((e, back)) = transfer.start(&area, sending) {
                 return ([back, free], Err(RenderError::Sink(e)));
             }
-            let next = frame.render_next(free.borrow_mut());
+            let next = self.render_next(free.borrow_mut());
             let (done, outcome) = transfer.wait();
             if let Err(e) = outcome {
                 return ([done, free], Err(RenderError::Sink(e)));
             }
             match next {
-                None => return ([done, free], Ok(frame.stats())),
+                None => return ([done, free], Ok(self.stats())),
                 Some(a) => {
                     area = a;
                     sending = free;

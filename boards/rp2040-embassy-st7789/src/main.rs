@@ -1,7 +1,7 @@
 //! Firmware for a Raspberry Pi Pico (RP2040) on Embassy: the same lit torus
 //! knot and orbiting cube as `examples/rp2040_st7789.rs`
 //! (`examples/st7789_scene`), rendered by microraster in an async main task
-//! with `Renderer::render_async`, which draws each tile while DMA carries
+//! with `Frame::render_async`, which draws each tile while DMA carries
 //! the previous one over SPI1 (embassy-rp's async `Spi::write`) to a
 //! 240x240 ST7789, frame after frame.
 //!
@@ -212,18 +212,20 @@ async fn main(_spawner: Spawner) {
         fault(&mut led, 4).await
     };
     let workspace = WORKSPACE.take();
-    let renderer = PicoRenderer::new(config());
+    // No `Renderer`: its own tile buffer would go unused (each frame is
+    // begun with `Frame::begin` and drawn into `tiles`).
+    let config = config();
     let tiles = TILES.take();
 
     loop {
         // Microseconds since boot: embassy-time's tick is 1 MHz here.
         let draws = draws(&knot, &cube, Instant::now().as_micros());
         let scene = Scene::new(camera, &draws).light(light());
-        if renderer
-            .render_async(workspace, &scene, tiles, &mut panel)
-            .await
-            .is_err()
-        {
+        let drawn = match PicoFrame::begin(config, workspace, &scene) {
+            Ok(frame) => frame.render_async(tiles, &mut panel).await.is_ok(),
+            Err(_) => false,
+        };
+        if !drawn {
             fault(&mut led, 5).await;
         }
         // Lit once the first frame is on the panel, so the panel's
