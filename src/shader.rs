@@ -50,6 +50,10 @@
 //! [`Shading::Flat`]: crate::scene::Shading::Flat
 //! [`Shading::Gouraud`]: crate::scene::Shading::Gouraud
 
+pub mod span;
+
+pub use span::{Interpolated, SpanInput};
+
 use crate::mesh::Mesh;
 use crate::scene::Draw;
 use crate::texture::Texture;
@@ -252,6 +256,21 @@ pub trait FragmentShader<C> {
 
     /// The colour of a fragment, or `None` to discard it (nothing written).
     fn fragment(&self, f: &Fragment<'_, Self::Varyings>) -> Option<C>;
+
+    /// Colours one span, returning the number of pixels written. The
+    /// default calls [`fragment`](Self::fragment) at each pixel that
+    /// passes the depth test ([`SpanInput::fragments`]), inlined into the
+    /// renderer's loop. Override it to decide once per span what does not
+    /// change along it and hand [`SpanInput::shade`] a per-pixel function
+    /// made for that (see [`span`]); it must colour the span as
+    /// `fragment` would, pixel for pixel.
+    #[inline(always)]
+    fn shade_span(&self, span: SpanInput<'_, C, Self::Varyings>) -> u32
+    where
+        C: Copy + From<Rgb888> + Into<Rgb888>,
+    {
+        span.fragments(Self::INTERPOLATE_COLOR, |f| self.fragment(f))
+    }
 }
 
 // Defined with the scene, whose default shader it is, so that `scene`
