@@ -13,8 +13,9 @@
 //!
 //! At a sample pixel the weights `b1 = B1 / Q`, `b2 = B2 / Q` come from one
 //! 32-bit reciprocal ([`weights`]); then each varying is
-//! `a0 + (b1 (a1 - a0) + b2 (a2 - a0)) / 2^16` in `i64`, and each colour
-//! channel the same in `i32`. Between samples (quasi-perspective modes)
+//! `a0 + (b1 (a1 - a0) + b2 (a2 - a0)) / 2^16` in `i64` (on ARMv6-M, which
+//! has no 64-bit product, the same bits in `i32` halves: [`lerp32`]), and
+//! each colour channel the same in `i32`. Between samples (quasi-perspective modes)
 //! varyings and colour step linearly in wrapping `i32`, exact modulo 2^32,
 //! with steps from a table of reciprocals of the segment length; the next
 //! sample starts again from exact values, so nothing drifts past a
@@ -121,6 +122,28 @@ impl<V: Varyings> PerspectiveSetup<V> {
         self.color[0]
     }
 
+    /// [`values`](Self::values) for weights from [`weights`] (in
+    /// `0..=2^16`). Where the core has a 32x32 to 64-bit multiply that is
+    /// `values` itself; on ARMv6-M (no such instruction: every `i64`
+    /// product is a library call) the same bits in 32-bit arithmetic
+    /// ([`lerp32`]).
+    #[inline(always)]
+    pub(crate) fn values_weighted(&self, w: (i32, i32), interpolate_color: bool) -> (V, [i32; 3]) {
+        if !NARROW_MULTIPLY {
+            return self.values(w, interpolate_color);
+        }
+        let mut out = V::zeroed();
+        let [a0, a1, a2] = [
+            self.var[0].as_slice(),
+            self.var[1].as_slice(),
+            self.var[2].as_slice(),
+        ];
+        for (k, o) in out.as_mut_slice().iter_mut().enumerate() {
+            *o = I16F16::from_bits(lerp32(a0[k].to_bits(), a1[k].to_bits(), a2[k].to_bits(), w));
+        }
+        (out, self.color_at(w, interpolate_color))
+    }
+
     /// The varyings and colour (8.16 per channel) at weights `(b1, b2)`.
     #[inline(always)]
     pub(crate) fn values(&self, (b1, b2): (i32, i32), interpolate_color: bool) -> (V, [i32; 3]) {
@@ -162,6 +185,46 @@ impl<V: Varyings> PerspectiveSetup<V> {
         }
         c
     }
+}
+
+/// Whether the target lacks a 32x32 to 64-bit multiply (ARMv6-M, whose
+/// Thumb-1 has none; every Thumb-2 core has `SMULL`).
+const NARROW_MULTIPLY: bool = cfg!(all(target_arch = "arm", not(target_feature = "thumb2")));
+
+/// `a0 + ((d1 b1 + d2 b2 + 2^15) >> 16)` wrapped to `i32`, with
+/// `d_i = a_i - a0` exact (up to 33 bits) and weights `b` in `0..=2^16`,
+/// in 32-bit arithmetic: the same bits as the `i64` formula of
+/// [`PerspectiveSetup::values`]. Each difference is split as
+/// `d = h 2^16 + l` with `0 <= l < 2^16`; the `h` products are whole units
+/// and only matter modulo 2^32, so they wrap; the `l` products are below
+/// 2^32 each, and their sum's carry into bit 32 is counted by hand.
+#[inline(always)]
+fn lerp32(a0: i32, a1: i32, a2: i32, (b1, b2): (i32, i32)) -> i32 {
+    // The 33-bit differences as (high, low) halves: a wrapping subtract
+    // gives the low 32 bits, the borrow the sign-extension.
+    let split = |a: i32| -> (i32, u32) {
+        let (d, borrow) = a.overflowing_sub(a0);
+        // When it overflowed, the true difference is `d - 2^32` (a < a0)
+        // or `d + 2^32`: its high half is `d >> 16` minus or plus 2^16.
+        let h = (d >> 16).wrapping_add(if borrow {
+            if a < a0 {
+                -(1 << 16)
+            } else {
+                1 << 16
+            }
+        } else {
+            0
+        });
+        (h, d as u32 & 0xFFFF)
+    };
+    let ((h1, l1), (h2, l2)) = (split(a1), split(a2));
+    let (b1, b2) = (b1 as u32, b2 as u32);
+    let (s, c1) = l1.wrapping_mul(b1).overflowing_add(l2.wrapping_mul(b2));
+    let (s, c2) = s.overflowing_add(1 << 15);
+    let low = (s >> 16).wrapping_add((c1 as u32 + c2 as u32) << 16);
+    a0.wrapping_add(h1.wrapping_mul(b1 as i32))
+        .wrapping_add(h2.wrapping_mul(b2 as i32))
+        .wrapping_add(low as i32)
 }
 
 /// The perspective-correct weights `(B1 / Q, B2 / Q)` in 0.16 fixed
@@ -283,7 +346,7 @@ impl<C, V: Varyings> SpanInput<'_, C, V> {
                     } else if affine {
                         p.values((b1 >> 12, b2 >> 12), ic)
                     } else {
-                        p.values(weights(q, b1, b2), ic)
+                        p.values_weighted(weights(q, b1, b2), ic)
                     };
                     let it = Interpolated {
                         x: x0 + k as i32,
@@ -303,7 +366,7 @@ impl<C, V: Varyings> SpanInput<'_, C, V> {
         // Quasi-perspective: exact at the columns x = 0 (mod seg), at the
         // span's first and at its last pixel; linear between.
         let len = color.len() as i32;
-        let (mut var, mut col) = p.values(weights(q, b1, b2), ic);
+        let (mut var, mut col) = p.values_weighted(weights(q, b1, b2), ic);
         let mut k = 0;
         while k < len {
             // Pixels to the next sample: `seg`, or to the last pixel.
@@ -316,7 +379,7 @@ impl<C, V: Varyings> SpanInput<'_, C, V> {
                     b1.wrapping_add(g1.wrapping_mul(l)),
                     b2.wrapping_add(g2.wrapping_mul(l)),
                 );
-                (nvar, ncol) = p.values(w, ic);
+                (nvar, ncol) = p.values_weighted(w, ic);
                 let r = RECIPROCAL[l as usize];
                 for (s, (a, b)) in dv
                     .as_mut_slice()
@@ -402,6 +465,40 @@ mod tests {
                     "q {q} b {b}: {w} vs {exact}"
                 );
             }
+        }
+    }
+
+    /// The 32-bit form of ARMv6-M gives the bits of the `i64` formula,
+    /// extremes included.
+    #[test]
+    fn lerp32_matches_the_wide_formula() {
+        let mut next = crate::testing::rng();
+        let wide = |a0: i32, a1: i32, a2: i32, (b1, b2): (i32, i32)| -> i32 {
+            let base = a0 as i64;
+            let (d1, d2) = (a1 as i64 - base, a2 as i64 - base);
+            (base + ((d1 * b1 as i64 + d2 * b2 as i64 + (1 << 15)) >> 16)) as i32
+        };
+        let edges = [i32::MIN, i32::MIN + 1, -65_536, -1, 0, 1, 65_535, i32::MAX];
+        for _ in 0..300_000 {
+            let mut a = [0i32; 3];
+            for v in &mut a {
+                *v = match next(4) {
+                    0 => edges[next(edges.len() as u64) as usize],
+                    1 => next(1 << 18) as i32 - (1 << 17),
+                    _ => next(1 << 32) as u32 as i32,
+                };
+            }
+            let b1 = next(65_537) as i32;
+            let b2 = match next(3) {
+                0 => 65_536 - b1,
+                _ => next(65_537) as i32,
+            };
+            let w = (b1, b2);
+            assert_eq!(
+                lerp32(a[0], a[1], a[2], w),
+                wide(a[0], a[1], a[2], w),
+                "{a:?} {w:?}"
+            );
         }
     }
 
