@@ -68,10 +68,12 @@ use fixed::types::I16F16;
 /// true value runs along a hyperbola and the linear step misses it by at
 /// most `|Δa| (√r - 1) / (√r + 1)`, where `Δa` is the varying's change
 /// between the samples: nothing for a surface facing the camera (`r = 1`),
-/// 3.3 % of `Δa` for `r = 1.14`, 17 % for `r = 2`. Samples are counted
-/// from a span's first pixel in its tile (and its last is one), so the
-/// quasi-perspective modes can differ by a few pixels between tile sizes
-/// (never between rasterizers or tile orders); exact and affine do not.
+/// 3.3 % of `Δa` for `r = 1.14`, 17 % for `r = 2`. The quasi-perspective
+/// samples are the screen columns that are multiples of 8 or 16, and each
+/// span's ends (the last pixel, or the column just beyond it when that is
+/// such a multiple; see [`span`]), so the image is the same with either
+/// rasterizer, any tile order and any tile width that is a multiple of 16
+/// (a narrower or odd width cuts spans at columns that become samples).
 /// `tests/perspective.rs` holds every mode to an
 /// `f64` reference with this bound; on its floor at a grazing angle the
 /// worst pixel reaches about a third of it. Affine mode is linear over the
@@ -84,9 +86,9 @@ pub enum Perspective {
     /// depth test.
     #[default]
     Exact,
-    /// Every 8th pixel of a span (and its last) is a sample.
+    /// The columns `x ≡ 0 (mod 8)` and each span's ends are samples.
     Quasi8,
-    /// Every 16th pixel of a span (and its last) is a sample.
+    /// The columns `x ≡ 0 (mod 16)` and each span's ends are samples.
     Quasi16,
     /// All `1 / w` treated as equal: varyings are linear in screen space
     /// (textures swim on planes seen at an angle). Two samples per span.

@@ -246,6 +246,15 @@ pub(crate) fn weights(q: i32, b1: i32, b2: i32) -> (i32, i32) {
     (((n1 * r) >> 15) as i32, ((n2 * r) >> 15) as i32)
 }
 
+/// [`weights`] with the sign of `B1` and `B2` kept (the same for
+/// non-negative ones): the quasi-perspective sample one pixel beyond a
+/// span's end may lie a little outside the triangle.
+#[inline(always)]
+pub(crate) fn signed_weights(q: i32, b1: i32, b2: i32) -> (i32, i32) {
+    let (w1, w2) = weights(q, b1.saturating_abs(), b2.saturating_abs());
+    (if b1 < 0 { -w1 } else { w1 }, if b2 < 0 { -w2 } else { w2 })
+}
+
 /// `round(2^24 / l)` for segment lengths `l` of 1 to 16.
 const RECIPROCAL: [i64; 17] = {
     let mut t = [0i64; 17];
@@ -366,20 +375,26 @@ impl<C, V: Varyings> SpanInput<'_, C, V> {
         // Quasi-perspective: exact at the columns x = 0 (mod seg), at the
         // span's first and at its last pixel; linear between.
         let len = color.len() as i32;
-        let (mut var, mut col) = p.values_weighted(weights(q, b1, b2), ic);
+        let (mut var, mut col) = p.values(signed_weights(q, b1, b2), ic);
         let mut k = 0;
         while k < len {
-            // Pixels to the next sample: `seg`, or to the last pixel.
-            let l = seg.min(len - 1 - k);
+            // Pixels to the next sample: the next column that is a
+            // multiple of `seg` (a power of two) if the span reaches it or
+            // ends just before it (a tile cut there leaves the samples
+            // where they were), or else the last pixel.
+            let next = seg - ((x0 + k) & (seg - 1));
+            let l = if next <= len - k { next } else { len - 1 - k };
             let (mut dv, mut dc) = (V::zeroed(), [0i32; 3]);
             let (mut nvar, mut ncol) = (var, col);
             if l > 0 {
-                let w = weights(
+                // One pixel beyond the span's end, the weights may be a
+                // little negative.
+                let w = signed_weights(
                     q.wrapping_add(gq.wrapping_mul(l)),
                     b1.wrapping_add(g1.wrapping_mul(l)),
                     b2.wrapping_add(g2.wrapping_mul(l)),
                 );
-                (nvar, ncol) = p.values_weighted(w, ic);
+                (nvar, ncol) = p.values(w, ic);
                 let r = RECIPROCAL[l as usize];
                 for (s, (a, b)) in dv
                     .as_mut_slice()
@@ -500,6 +515,16 @@ mod tests {
                 "{a:?} {w:?}"
             );
         }
+    }
+
+    #[test]
+    fn signed_weights_keep_the_sign() {
+        assert_eq!(
+            signed_weights(1 << 20, 1 << 18, 0),
+            weights(1 << 20, 1 << 18, 0)
+        );
+        let (p, _) = weights(1 << 20, 1 << 10, 0);
+        assert_eq!(signed_weights(1 << 20, -(1 << 10), 5).0, -p);
     }
 
     #[test]

@@ -25,8 +25,12 @@
 //! varyings and colour from the weights; between samples
 //! ([`Perspective::Quasi8`], [`Perspective::Quasi16`]) the varyings and
 //! colour step linearly by one add each (Hecker's and Quake's
-//! subdivision). The samples are every `N`th pixel from each span's
-//! first, and its last.
+//! subdivision). The samples are the screen columns `x ≡ 0 (mod N)`,
+//! each span's first pixel, and its last unless the column after it is
+//! a multiple of `N` (then that column, one pixel beyond the span, is the
+//! sample). So where a tile's edge at a multiple of `N` cuts a span, both
+//! halves have the samples the whole span has, and the image does not
+//! depend on the tile size (for any tile width that is a multiple of 16).
 //! [`Perspective::Affine`] takes the weights as `B1`, `B2` themselves (all
 //! `1 / w` equal).
 
