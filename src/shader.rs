@@ -56,7 +56,7 @@ pub use span::{Interpolated, SpanInput};
 
 use crate::mesh::Mesh;
 use crate::scene::Draw;
-use crate::texture::Texture;
+use crate::texture::{rgb565_to_rgb888, FromTexel, Sampler, Texture};
 use embedded_graphics::pixelcolor::Rgb888;
 use fixed::types::I16F16;
 
@@ -304,7 +304,7 @@ fn needs_uv_texture(draw: &Draw<'_>) -> Result<(), ShaderError> {
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Textured;
 
-impl<C: From<Rgb888>> FragmentShader<C> for Textured {
+impl<C: FromTexel> FragmentShader<C> for Textured {
     type Varyings = [I16F16; 2];
     const INTERPOLATE_COLOR: bool = false;
     fn check(&self, draw: &Draw<'_>) -> Result<(), ShaderError> {
@@ -319,6 +319,43 @@ impl<C: From<Rgb888>> FragmentShader<C> for Textured {
         let [r, g, b] = f.texture?.sample(f.varyings[0], f.varyings[1]);
         Some(C::from(Rgb888::new(r, g, b)))
     }
+    /// One loop per kind of texture ([`Texture::sampler`]); an `Rgb565`
+    /// texel goes to the target as it is ([`FromTexel`]).
+    #[inline(always)]
+    fn shade_span(&self, span: SpanInput<'_, C, [I16F16; 2]>) -> u32
+    where
+        C: Copy + From<Rgb888> + Into<Rgb888>,
+    {
+        let Some(texture) = span.texture() else {
+            return 0;
+        };
+        match texture.sampler() {
+            Sampler::NearestRgb565(t) => span.shade(false, |p| {
+                let [u, v] = p.varyings;
+                Some(C::from_rgb565(t.nearest(u.to_bits(), v.to_bits())))
+            }),
+            Sampler::BilinearRgb565(t) => span.shade(false, |p| {
+                let [u, v] = p.varyings;
+                Some(rgb(t.bilinear(u.to_bits(), v.to_bits())))
+            }),
+            Sampler::General(t) => span.shade(false, |p| {
+                let [u, v] = p.varyings;
+                Some(rgb(t.sample(u, v)))
+            }),
+        }
+    }
+}
+
+/// A colour from its bytes.
+#[inline(always)]
+fn rgb<C: From<Rgb888>>([r, g, b]: [u8; 3]) -> C {
+    C::from(Rgb888::new(r, g, b))
+}
+
+/// `texel * light / 255` per channel, rounded (see [`mul255`]).
+#[inline(always)]
+fn modulate(t: [u8; 3], c: [u8; 3]) -> [u8; 3] {
+    [mul255(t[0], c[0]), mul255(t[1], c[1]), mul255(t[2], c[2])]
 }
 
 /// The draw's texture modulated by the lit vertex colour (interpolated,
@@ -333,7 +370,7 @@ pub fn mul255(a: u8, b: u8) -> u8 {
     ((p + (p >> 8)) >> 8) as u8
 }
 
-impl<C: From<Rgb888>> FragmentShader<C> for TexturedLit {
+impl<C: FromTexel> FragmentShader<C> for TexturedLit {
     type Varyings = [I16F16; 2];
     fn check(&self, draw: &Draw<'_>) -> Result<(), ShaderError> {
         needs_uv_texture(draw)
@@ -345,12 +382,34 @@ impl<C: From<Rgb888>> FragmentShader<C> for TexturedLit {
     #[inline(always)]
     fn fragment(&self, f: &Fragment<'_, [I16F16; 2]>) -> Option<C> {
         let t = f.texture?.sample(f.varyings[0], f.varyings[1]);
-        let c = f.color;
-        Some(C::from(Rgb888::new(
-            mul255(t[0], c[0]),
-            mul255(t[1], c[1]),
-            mul255(t[2], c[2]),
-        )))
+        Some(rgb(modulate(t, f.color)))
+    }
+    /// One loop per kind of texture ([`Texture::sampler`]). The product is
+    /// taken in 8 bits per channel, as `fragment` takes it: the same
+    /// colours, whatever the target.
+    #[inline(always)]
+    fn shade_span(&self, span: SpanInput<'_, C, [I16F16; 2]>) -> u32
+    where
+        C: Copy + From<Rgb888> + Into<Rgb888>,
+    {
+        let Some(texture) = span.texture() else {
+            return 0;
+        };
+        match texture.sampler() {
+            Sampler::NearestRgb565(t) => span.shade(true, |p| {
+                let [u, v] = p.varyings;
+                let texel = rgb565_to_rgb888(t.nearest(u.to_bits(), v.to_bits()));
+                Some(rgb(modulate(texel, p.rgb())))
+            }),
+            Sampler::BilinearRgb565(t) => span.shade(true, |p| {
+                let [u, v] = p.varyings;
+                Some(rgb(modulate(t.bilinear(u.to_bits(), v.to_bits()), p.rgb())))
+            }),
+            Sampler::General(t) => span.shade(true, |p| {
+                let [u, v] = p.varyings;
+                Some(rgb(modulate(t.sample(u, v), p.rgb())))
+            }),
+        }
     }
 }
 
@@ -378,9 +437,11 @@ impl DepthShade {
     #[inline(always)]
     pub fn grey(&self, depth: u16) -> u8 {
         let d = depth.saturating_sub(self.near) as u32;
-        // d * scale < 2^16 * 2^24 overflows u32: scale down first.
-        let t = ((d as u64 * self.scale as u64) >> 16).min(255) as u8;
-        255 - t
+        // `(d · scale) >> 16` with `d < 2^16`, `scale <= 2^24`: the product
+        // needs 40 bits, so `scale` is split in halves, each product below
+        // 2^32 and the low one's fraction dropped as the whole would be.
+        let t = d * (self.scale >> 16) + ((d * (self.scale & 0xFFFF)) >> 16);
+        255 - t.min(255) as u8
     }
 }
 
@@ -400,6 +461,17 @@ impl<C: From<Rgb888>> FragmentShader<C> for DepthShade {
     fn fragment(&self, f: &Fragment<'_, [I16F16; 0]>) -> Option<C> {
         let g = self.grey(f.depth);
         Some(C::from(Rgb888::new(g, g, g)))
+    }
+    /// Depth only: no weights, no varyings.
+    #[inline(always)]
+    fn shade_span(&self, span: SpanInput<'_, C, [I16F16; 0]>) -> u32
+    where
+        C: Copy + From<Rgb888> + Into<Rgb888>,
+    {
+        span.shade(false, |p| {
+            let g = self.grey(p.depth);
+            Some(rgb([g, g, g]))
+        })
     }
 }
 
@@ -423,11 +495,24 @@ impl<C: From<Rgb888>> FragmentShader<C> for Normals {
     }
     #[inline(always)]
     fn fragment(&self, f: &Fragment<'_, [I16F16; 3]>) -> Option<C> {
-        let c = f
-            .varyings
-            .map(|n| ((n.to_bits().clamp(-65_536, 65_536) + 65_536) * 255 / 131_072) as u8);
-        Some(C::from(Rgb888::new(c[0], c[1], c[2])))
+        Some(rgb(f.varyings.map(normal_byte)))
     }
+    /// The three varyings, no colour.
+    #[inline(always)]
+    fn shade_span(&self, span: SpanInput<'_, C, [I16F16; 3]>) -> u32
+    where
+        C: Copy + From<Rgb888> + Into<Rgb888>,
+    {
+        span.shade(false, |p| Some(rgb(p.varyings.map(normal_byte))))
+    }
+}
+
+/// A normal's component from `-1..=1` to `0..=255`: `(n + 1) · 255 / 2`,
+/// truncated (the clamp makes the sum non-negative, so the division is a
+/// shift).
+#[inline(always)]
+fn normal_byte(n: I16F16) -> u8 {
+    ((n.to_bits().clamp(-65_536, 65_536) + 65_536) as u32 * 255 / 131_072) as u8
 }
 
 /// The provoking vertex's lit colour: what
@@ -446,6 +531,15 @@ impl<C: From<Rgb888>> FragmentShader<C> for Flat {
     fn fragment(&self, f: &Fragment<'_, [I16F16; 0]>) -> Option<C> {
         Some(C::from(Rgb888::new(f.color[0], f.color[1], f.color[2])))
     }
+    /// One colour, converted once per span.
+    #[inline(always)]
+    fn shade_span(&self, span: SpanInput<'_, C, [I16F16; 0]>) -> u32
+    where
+        C: Copy + From<Rgb888> + Into<Rgb888>,
+    {
+        let c = rgb(span.flat_color());
+        span.shade(false, |_| Some(c))
+    }
 }
 
 /// The lit vertex colours interpolated perspective-correct (the
@@ -462,6 +556,14 @@ impl<C: From<Rgb888>> FragmentShader<C> for Gouraud {
     #[inline(always)]
     fn fragment(&self, f: &Fragment<'_, [I16F16; 0]>) -> Option<C> {
         Some(C::from(Rgb888::new(f.color[0], f.color[1], f.color[2])))
+    }
+    /// The weights and the colour, no varyings.
+    #[inline(always)]
+    fn shade_span(&self, span: SpanInput<'_, C, [I16F16; 0]>) -> u32
+    where
+        C: Copy + From<Rgb888> + Into<Rgb888>,
+    {
+        span.shade(true, |p| Some(rgb(p.rgb())))
     }
 }
 
