@@ -24,7 +24,7 @@
 use super::{depth16, Basis, Corners, DepthTest, SpanPos, TriangleSetup, GRADIENT_LIMIT, Z_FRAC};
 use crate::raster::SUBPIXEL_BITS;
 use crate::scene::Blend;
-use crate::shader::span::{Interpolated, SpanInput};
+use crate::shader::span::{Interpolated, PutPixel, SpanInput};
 use crate::shader::{Perspective, Varyings};
 use crate::texture::Texture;
 use crate::vertex::ScreenVertex;
@@ -320,11 +320,7 @@ impl<C, V: Varyings> SpanInput<'_, C, V> {
     /// and depth, which returns whether it wrote. A fragment that fails
     /// the test costs no division. Returns the number written.
     #[inline(always)]
-    pub(crate) fn run(
-        self,
-        ic: bool,
-        mut put: impl FnMut(&Interpolated<V>, &mut C, &mut u16) -> bool,
-    ) -> u32 {
+    pub(crate) fn run(self, ic: bool, mut put: impl PutPixel<V, C>) -> u32 {
         let SpanInput {
             x0,
             color,
@@ -363,7 +359,7 @@ impl<C, V: Varyings> SpanInput<'_, C, V> {
                         varyings,
                         color,
                     };
-                    n += put(&it, c, d) as u32;
+                    n += put.put(&it, c, d) as u32;
                 }
                 z = z.wrapping_add(gz);
                 q = q.wrapping_add(gq);
@@ -422,7 +418,7 @@ impl<C, V: Varyings> SpanInput<'_, C, V> {
                             varyings: var,
                             color: col,
                         };
-                        n += put(&it, c, d) as u32;
+                        n += put.put(&it, c, d) as u32;
                     }
                 }
                 z = z.wrapping_add(gz);

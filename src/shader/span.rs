@@ -153,34 +153,17 @@ impl<'a, C, V: Varyings> SpanInput<'a, C, V> {
     pub fn shade(
         self,
         interpolate_color: bool,
-        mut fragment: impl FnMut(&Interpolated<V>) -> Option<C>,
+        fragment: impl FnMut(&Interpolated<V>) -> Option<C>,
     ) -> u32
     where
         C: Copy + From<Rgb888> + Into<Rgb888>,
     {
-        let blend = self.blend;
-        let write = self.write;
-        self.run(
-            interpolate_color,
-            |it, out: &mut C, d: &mut u16| match fragment(it) {
-                Some(c) => {
-                    *out = match blend {
-                        Blend::Opaque => c,
-                        _ => {
-                            let (s, d): (Rgb888, Rgb888) = (c.into(), (*out).into());
-                            let [r, g, b] =
-                                blend.apply([s.r(), s.g(), s.b()], [d.r(), d.g(), d.b()]);
-                            C::from(Rgb888::new(r, g, b))
-                        }
-                    };
-                    if write {
-                        *d = it.depth;
-                    }
-                    true
-                }
-                None => false,
-            },
-        )
+        let put = Put {
+            fragment,
+            blend: self.blend,
+            write: self.write,
+        };
+        self.run(interpolate_color, put)
     }
 
     /// Colours the span through a per-fragment function: what the default
@@ -219,5 +202,49 @@ impl<'a, C, V: Varyings> SpanInput<'a, C, V> {
         C: Copy + From<Rgb888> + Into<Rgb888>,
     {
         self.fragments(S::INTERPOLATE_COLOR, |f| shader.fragment(f))
+    }
+}
+
+/// What the span loop does at a pixel that passes the depth test: a
+/// trait whose method is always inlined, rather than a closure, because
+/// the loop calls it from two places (the exact and the quasi-perspective
+/// loops), and a closure called twice is left out of line.
+pub(crate) trait PutPixel<V, C> {
+    /// Colours pixel `out` (depth `d`) from `it`; whether it wrote.
+    fn put(&mut self, it: &Interpolated<V>, out: &mut C, d: &mut u16) -> bool;
+}
+
+/// [`SpanInput::shade`]'s pixel: the shader's function, the blend, the
+/// depth write.
+struct Put<F> {
+    fragment: F,
+    blend: Blend,
+    write: bool,
+}
+
+impl<V, C, F> PutPixel<V, C> for Put<F>
+where
+    C: Copy + From<Rgb888> + Into<Rgb888>,
+    F: FnMut(&Interpolated<V>) -> Option<C>,
+{
+    #[inline(always)]
+    fn put(&mut self, it: &Interpolated<V>, out: &mut C, d: &mut u16) -> bool {
+        match (self.fragment)(it) {
+            Some(c) => {
+                *out = match self.blend {
+                    Blend::Opaque => c,
+                    blend => {
+                        let (s, d): (Rgb888, Rgb888) = (c.into(), (*out).into());
+                        let [r, g, b] = blend.apply([s.r(), s.g(), s.b()], [d.r(), d.g(), d.b()]);
+                        C::from(Rgb888::new(r, g, b))
+                    }
+                };
+                if self.write {
+                    *d = it.depth;
+                }
+                true
+            }
+            None => false,
+        }
     }
 }
