@@ -103,7 +103,7 @@ pub mod prelude {
     pub use crate::shade::DepthTest;
     pub use crate::shader::{
         DepthShade, Dithered, Flat, Fragment, FragmentShader, Gouraud, Interpolated, Normals,
-        Perspective, SpanInput, Textured, TexturedLit, VertexInput,
+        Perspective, PixelFn, SpanInput, Textured, TexturedLit, VertexInput,
     };
     pub use crate::sink::{
         AsyncTileSink, FrameBuffer, FrameBufferError, NullSink, Rgb565Be, TileSink, TileTransfer,

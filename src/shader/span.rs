@@ -148,13 +148,24 @@ impl<'a, C, V: Varyings> SpanInput<'a, C, V> {
     /// Colours the span through `fragment`, called with the values at
     /// each pixel that passes the depth test (the colour interpolated only
     /// if `interpolate_color`); `None` writes nothing there. Returns the
-    /// number of pixels written.
+    /// number of pixels written. (A closure that the compiler leaves out
+    /// of line costs a call per pixel: see [`PixelFn`] and
+    /// [`shade_with`](Self::shade_with).)
     #[inline(always)]
     pub fn shade(
         self,
         interpolate_color: bool,
         fragment: impl FnMut(&Interpolated<V>) -> Option<C>,
     ) -> u32
+    where
+        C: Copy + From<Rgb888> + Into<Rgb888>,
+    {
+        self.shade_with(interpolate_color, fragment)
+    }
+
+    /// [`shade`](Self::shade) through a [`PixelFn`].
+    #[inline(always)]
+    pub fn shade_with(self, interpolate_color: bool, fragment: impl PixelFn<V, C>) -> u32
     where
         C: Copy + From<Rgb888> + Into<Rgb888>,
     {
@@ -205,6 +216,27 @@ impl<'a, C, V: Varyings> SpanInput<'a, C, V> {
     }
 }
 
+/// A span shader's colour at one pixel, for [`SpanInput::shade_with`]:
+/// any closure `FnMut(&Interpolated<V>) -> Option<C>` is one.
+///
+/// The span loop calls it from two places (one loop for exact and affine
+/// interpolation, one for quasi-perspective), and the compiler may leave
+/// a closure that is called twice out of line: a call per pixel. A type
+/// of your own whose `pixel` is `#[inline(always)]` is always inlined
+/// into both; the built-in shaders' are such types.
+pub trait PixelFn<V, C> {
+    /// The colour at the pixel with values `it`, or `None` to write
+    /// nothing there.
+    fn pixel(&mut self, it: &Interpolated<V>) -> Option<C>;
+}
+
+impl<V, C, F: FnMut(&Interpolated<V>) -> Option<C>> PixelFn<V, C> for F {
+    #[inline(always)]
+    fn pixel(&mut self, it: &Interpolated<V>) -> Option<C> {
+        self(it)
+    }
+}
+
 /// What the span loop does at a pixel that passes the depth test: a
 /// trait whose method is always inlined, rather than a closure, because
 /// the loop calls it from two places (the exact and the quasi-perspective
@@ -225,11 +257,11 @@ struct Put<F> {
 impl<V, C, F> PutPixel<V, C> for Put<F>
 where
     C: Copy + From<Rgb888> + Into<Rgb888>,
-    F: FnMut(&Interpolated<V>) -> Option<C>,
+    F: PixelFn<V, C>,
 {
     #[inline(always)]
     fn put(&mut self, it: &Interpolated<V>, out: &mut C, d: &mut u16) -> bool {
-        match (self.fragment)(it) {
+        match self.fragment.pixel(it) {
             Some(c) => {
                 *out = match self.blend {
                     Blend::Opaque => c,
