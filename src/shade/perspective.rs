@@ -88,7 +88,11 @@ pub(crate) struct PerspectiveSetup<V> {
     /// `Q`, `B1`, `B2`.
     planes: [WidePlane; 3],
     var: [V; 3],
-    color: [[u8; 3]; 3],
+    /// The provoking vertex's colour.
+    flat: [u8; 3],
+    /// Per channel: `c0 · 2^16 + 2^15` (the rounding bias), `c1 - c0`,
+    /// `c2 - c0`, ready for the span loop.
+    color: [[i32; 3]; 3],
 }
 
 impl<V: Varyings> PerspectiveSetup<V> {
@@ -112,14 +116,22 @@ impl<V: Varyings> PerspectiveSetup<V> {
                 WidePlane::new(&f, [0, 0, q[2]]),
             ],
             var: t.var,
-            color: t.corners.0.map(|v: &ScreenVertex| v.color),
+            flat: t.corners.0[0].color,
+            color: {
+                let [c0, c1, c2] = t.corners.0.map(|v: &ScreenVertex| v.color.map(i32::from));
+                [
+                    c0.map(|c| (c << 16) + (1 << 15)),
+                    [0, 1, 2].map(|k| c1[k] - c0[k]),
+                    [0, 1, 2].map(|k| c2[k] - c0[k]),
+                ]
+            },
         }
     }
 
     /// The provoking vertex's colour.
     #[inline(always)]
     pub(crate) fn flat(&self) -> [u8; 3] {
-        self.color[0]
+        self.flat
     }
 
     /// [`values`](Self::values) for weights from [`weights`] (in
@@ -173,14 +185,10 @@ impl<V: Varyings> PerspectiveSetup<V> {
     fn color_at(&self, (b1, b2): (i32, i32), interpolate_color: bool) -> [i32; 3] {
         let mut c = [0i32; 3];
         if interpolate_color {
-            let [c0, c1, c2] = self.color;
+            let [base, d1, d2] = &self.color;
             for (k, o) in c.iter_mut().enumerate() {
-                let base = c0[k] as i32;
                 // |d| <= 255, |b| < 2^20: below 2^29.
-                *o = (base << 16)
-                    + (c1[k] as i32 - base) * b1
-                    + (c2[k] as i32 - base) * b2
-                    + (1 << 15);
+                *o = base[k] + d1[k] * b1 + d2[k] * b2;
             }
         }
         c
