@@ -102,13 +102,13 @@ pub mod prelude {
     pub use crate::scene::{Blend, Camera, CullMode, Draw, Edges, Light, Scene, Shading};
     pub use crate::shade::DepthTest;
     pub use crate::shader::{
-        DepthShade, Dithered, Flat, Fragment, FragmentShader, Gouraud, Normals, Perspective,
-        ShaderSet, Textured, TexturedLit, VertexInput,
+        DepthShade, Dithered, Flat, Fragment, FragmentShader, Gouraud, Interpolated, Normals,
+        Perspective, PixelFn, ShaderSet, SpanInput, Textured, TexturedLit, VertexInput,
     };
     pub use crate::sink::{
         AsyncTileSink, FrameBuffer, FrameBufferError, NullSink, Rgb565Be, TileSink, TileTransfer,
     };
-    pub use crate::texture::{Filter, Texels, Texture};
+    pub use crate::texture::{Filter, FromTexel, Texels, Texture};
     pub use crate::tile::{TileBuffer, TileOrder, TileView};
     pub use embedded_graphics::pixelcolor::PixelColor;
     pub use embedded_graphics::prelude::{Point, Size};

@@ -50,10 +50,14 @@
 //! [`Shading::Flat`]: crate::scene::Shading::Flat
 //! [`Shading::Gouraud`]: crate::scene::Shading::Gouraud
 
+mod builtin;
 mod set;
+pub mod span;
 
+pub use builtin::{mul255, DepthShade, Flat, Gouraud, Normals, Textured, TexturedLit};
 pub(crate) use set::check as check_in_set;
 pub use set::{ShaderSet, VisitShader};
+pub use span::{Interpolated, PixelFn, SpanInput};
 
 use crate::mesh::Mesh;
 use crate::scene::Draw;
@@ -69,10 +73,12 @@ use fixed::types::I16F16;
 /// true value runs along a hyperbola and the linear step misses it by at
 /// most `|Δa| (√r - 1) / (√r + 1)`, where `Δa` is the varying's change
 /// between the samples: nothing for a surface facing the camera (`r = 1`),
-/// 3.3 % of `Δa` for `r = 1.14`, 17 % for `r = 2`. Samples are counted
-/// from a span's first pixel in its tile (and its last is one), so the
-/// quasi-perspective modes can differ by a few pixels between tile sizes
-/// (never between rasterizers or tile orders); exact and affine do not.
+/// 3.3 % of `Δa` for `r = 1.14`, 17 % for `r = 2`. The quasi-perspective
+/// samples are the screen columns that are multiples of 8 or 16, and each
+/// span's ends (the last pixel, or the column just beyond it when that is
+/// such a multiple; see [`span`]), so the image is the same with either
+/// rasterizer, any tile order and any tile width that is a multiple of 16
+/// (a narrower or odd width cuts spans at columns that become samples).
 /// `tests/perspective.rs` holds every mode to an
 /// `f64` reference with this bound; on its floor at a grazing angle the
 /// worst pixel reaches about a third of it. Affine mode is linear over the
@@ -85,9 +91,9 @@ pub enum Perspective {
     /// depth test.
     #[default]
     Exact,
-    /// Every 8th pixel of a span (and its last) is a sample.
+    /// The columns `x ≡ 0 (mod 8)` and each span's ends are samples.
     Quasi8,
-    /// Every 16th pixel of a span (and its last) is a sample.
+    /// The columns `x ≡ 0 (mod 16)` and each span's ends are samples.
     Quasi16,
     /// All `1 / w` treated as equal: varyings are linear in screen space
     /// (textures swim on planes seen at an angle). Two samples per span.
@@ -260,10 +266,26 @@ pub trait FragmentShader<C> {
 
     /// The colour of a fragment, or `None` to discard it (nothing written).
     fn fragment(&self, f: &Fragment<'_, Self::Varyings>) -> Option<C>;
+
+    /// Colours one span, returning the number of pixels written. The
+    /// default calls [`fragment`](Self::fragment) at each pixel that
+    /// passes the depth test ([`SpanInput::fragments`]), inlined into the
+    /// renderer's loop. Override it to decide once per span what does not
+    /// change along it and hand [`SpanInput::shade`] a per-pixel function
+    /// made for that (see [`span`]); it must colour the span as
+    /// `fragment` would, pixel for pixel.
+    #[inline(always)]
+    fn shade_span(&self, span: SpanInput<'_, C, Self::Varyings>) -> u32
+    where
+        C: Copy + From<Rgb888> + Into<Rgb888>,
+    {
+        span.fragments(Self::INTERPOLATE_COLOR, |f| self.fragment(f))
+    }
 }
 
 /// A shader by reference, so that a [`ShaderSet`] tuple can hold
-/// shaders it borrows: `(&a, &b)`.
+/// shaders it borrows: `(&a, &b)`. Every method forwards, `shade_span`
+/// included, so a borrowed built-in keeps its own span loop.
 impl<C, S: FragmentShader<C> + ?Sized> FragmentShader<C> for &S {
     type Varyings = S::Varyings;
     const INTERPOLATE_COLOR: bool = S::INTERPOLATE_COLOR;
@@ -279,6 +301,13 @@ impl<C, S: FragmentShader<C> + ?Sized> FragmentShader<C> for &S {
     fn fragment(&self, f: &Fragment<'_, Self::Varyings>) -> Option<C> {
         (**self).fragment(f)
     }
+    #[inline(always)]
+    fn shade_span(&self, span: SpanInput<'_, C, Self::Varyings>) -> u32
+    where
+        C: Copy + From<Rgb888> + Into<Rgb888>,
+    {
+        (**self).shade_span(span)
+    }
 }
 
 // Defined with the scene, whose default shader it is, so that `scene`
@@ -293,181 +322,6 @@ impl<C> FragmentShader<C> for NoShader {
     }
     fn fragment(&self, _: &Fragment<'_, [I16F16; 0]>) -> Option<C> {
         None
-    }
-}
-
-fn needs_uv_texture(draw: &Draw<'_>) -> Result<(), ShaderError> {
-    if draw.texture.is_none() {
-        Err(ShaderError::MissingTexture)
-    } else if draw.mesh.uvs().is_none() {
-        Err(ShaderError::MissingUvs)
-    } else {
-        Ok(())
-    }
-}
-
-/// The draw's texture at the interpolated texture coordinates, unlit.
-#[derive(Clone, Copy, Debug, Default)]
-pub struct Textured;
-
-impl<C: From<Rgb888>> FragmentShader<C> for Textured {
-    type Varyings = [I16F16; 2];
-    const INTERPOLATE_COLOR: bool = false;
-    fn check(&self, draw: &Draw<'_>) -> Result<(), ShaderError> {
-        needs_uv_texture(draw)
-    }
-    #[inline(always)]
-    fn vertex(&self, v: &VertexInput<'_>) -> [I16F16; 2] {
-        v.uv()
-    }
-    #[inline(always)]
-    fn fragment(&self, f: &Fragment<'_, [I16F16; 2]>) -> Option<C> {
-        let [r, g, b] = f.texture?.sample(f.varyings[0], f.varyings[1]);
-        Some(C::from(Rgb888::new(r, g, b)))
-    }
-}
-
-/// The draw's texture modulated by the lit vertex colour (interpolated,
-/// perspective-correct): `texel * colour / 255` per channel, rounded.
-#[derive(Clone, Copy, Debug, Default)]
-pub struct TexturedLit;
-
-/// `a * b / 255` rounded to nearest, exact for all bytes.
-#[inline(always)]
-pub fn mul255(a: u8, b: u8) -> u8 {
-    let p = a as u32 * b as u32 + 128;
-    ((p + (p >> 8)) >> 8) as u8
-}
-
-impl<C: From<Rgb888>> FragmentShader<C> for TexturedLit {
-    type Varyings = [I16F16; 2];
-    fn check(&self, draw: &Draw<'_>) -> Result<(), ShaderError> {
-        needs_uv_texture(draw)
-    }
-    #[inline(always)]
-    fn vertex(&self, v: &VertexInput<'_>) -> [I16F16; 2] {
-        v.uv()
-    }
-    #[inline(always)]
-    fn fragment(&self, f: &Fragment<'_, [I16F16; 2]>) -> Option<C> {
-        let t = f.texture?.sample(f.varyings[0], f.varyings[1]);
-        let c = f.color;
-        Some(C::from(Rgb888::new(
-            mul255(t[0], c[0]),
-            mul255(t[1], c[1]),
-            mul255(t[2], c[2]),
-        )))
-    }
-}
-
-/// Depth as grey: white at depth `near`, black at `far` and beyond,
-/// linear between (in the 16-bit depth, which is `z / w`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct DepthShade {
-    near: u16,
-    /// `2^24 / (far - near)`, so a pixel needs one multiply.
-    scale: u32,
-}
-
-impl DepthShade {
-    /// Grey from `near` (white) to `far` (black); `far <= near` is
-    /// treated as `near + 1`.
-    pub const fn new(near: u16, far: u16) -> Self {
-        let span = if far > near { far - near } else { 1 } as u32;
-        Self {
-            near,
-            scale: (1 << 24) / span,
-        }
-    }
-
-    /// The grey of a depth.
-    #[inline(always)]
-    pub fn grey(&self, depth: u16) -> u8 {
-        let d = depth.saturating_sub(self.near) as u32;
-        // d * scale < 2^16 * 2^24 overflows u32: scale down first.
-        let t = ((d as u64 * self.scale as u64) >> 16).min(255) as u8;
-        255 - t
-    }
-}
-
-impl Default for DepthShade {
-    fn default() -> Self {
-        Self::new(0, u16::MAX)
-    }
-}
-
-impl<C: From<Rgb888>> FragmentShader<C> for DepthShade {
-    type Varyings = [I16F16; 0];
-    const INTERPOLATE_COLOR: bool = false;
-    fn vertex(&self, _: &VertexInput<'_>) -> [I16F16; 0] {
-        []
-    }
-    #[inline(always)]
-    fn fragment(&self, f: &Fragment<'_, [I16F16; 0]>) -> Option<C> {
-        let g = self.grey(f.depth);
-        Some(C::from(Rgb888::new(g, g, g)))
-    }
-}
-
-/// The interpolated model-space normal as colour: each component from
-/// `-1..1` to `0..255`.
-#[derive(Clone, Copy, Debug, Default)]
-pub struct Normals;
-
-impl<C: From<Rgb888>> FragmentShader<C> for Normals {
-    type Varyings = [I16F16; 3];
-    const INTERPOLATE_COLOR: bool = false;
-    fn check(&self, draw: &Draw<'_>) -> Result<(), ShaderError> {
-        match draw.mesh.normals() {
-            Some(_) => Ok(()),
-            None => Err(ShaderError::MissingNormals),
-        }
-    }
-    #[inline(always)]
-    fn vertex(&self, v: &VertexInput<'_>) -> [I16F16; 3] {
-        v.normal()
-    }
-    #[inline(always)]
-    fn fragment(&self, f: &Fragment<'_, [I16F16; 3]>) -> Option<C> {
-        let c = f
-            .varyings
-            .map(|n| ((n.to_bits().clamp(-65_536, 65_536) + 65_536) * 255 / 131_072) as u8);
-        Some(C::from(Rgb888::new(c[0], c[1], c[2])))
-    }
-}
-
-/// The provoking vertex's lit colour: what
-/// [`Shading::Flat`](crate::scene::Shading::Flat) draws, through the
-/// fragment-shader path (used for transparent flat draws).
-#[derive(Clone, Copy, Debug, Default)]
-pub struct Flat;
-
-impl<C: From<Rgb888>> FragmentShader<C> for Flat {
-    type Varyings = [I16F16; 0];
-    const INTERPOLATE_COLOR: bool = false;
-    fn vertex(&self, _: &VertexInput<'_>) -> [I16F16; 0] {
-        []
-    }
-    #[inline(always)]
-    fn fragment(&self, f: &Fragment<'_, [I16F16; 0]>) -> Option<C> {
-        Some(C::from(Rgb888::new(f.color[0], f.color[1], f.color[2])))
-    }
-}
-
-/// The lit vertex colours interpolated perspective-correct (the
-/// [`Shading::Gouraud`](crate::scene::Shading::Gouraud) path interpolates
-/// them linearly in screen space, which is faster).
-#[derive(Clone, Copy, Debug, Default)]
-pub struct Gouraud;
-
-impl<C: From<Rgb888>> FragmentShader<C> for Gouraud {
-    type Varyings = [I16F16; 0];
-    fn vertex(&self, _: &VertexInput<'_>) -> [I16F16; 0] {
-        []
-    }
-    #[inline(always)]
-    fn fragment(&self, f: &Fragment<'_, [I16F16; 0]>) -> Option<C> {
-        Some(C::from(Rgb888::new(f.color[0], f.color[1], f.color[2])))
     }
 }
 
@@ -568,16 +422,6 @@ impl<C: Dither, S: FragmentShader<Rgb888>> FragmentShader<C> for Dithered<S> {
 mod tests {
     use super::*;
 
-    #[test]
-    fn mul255_is_exact() {
-        for a in 0..=255u32 {
-            for b in 0..=255u32 {
-                let exact = (a * b * 2 + 255) / 510;
-                assert_eq!(mul255(a as u8, b as u8) as u32, exact, "{a} {b}");
-            }
-        }
-    }
-
     /// Every level of every channel width: the mean over the 16 Bayer
     /// thresholds is within 1/16 level of exact, the extremes are exact,
     /// and no level leaves the range.
@@ -605,18 +449,5 @@ mod tests {
             }
         }
         assert!(seen.iter().all(|&s| s));
-    }
-
-    #[test]
-    fn depth_shade_runs_white_to_black() {
-        let d = DepthShade::new(1000, 3000);
-        assert_eq!(d.grey(0), 255);
-        assert_eq!(d.grey(1000), 255);
-        assert_eq!(d.grey(2000), 128);
-        assert_eq!(d.grey(3000), 0);
-        assert_eq!(d.grey(u16::MAX), 0);
-        let degenerate = DepthShade::new(5, 5);
-        assert_eq!(degenerate.grey(5), 255);
-        assert_eq!(degenerate.grey(6), 0);
     }
 }

@@ -4,7 +4,7 @@ use super::dispatch::{ShaderPass, Shaders};
 use super::Features;
 use crate::raster::scanline::Walker;
 use crate::raster::{hilbert, PixelRect, Rasterizer, Span, SubPoint};
-use crate::shade::perspective::{span_shader, Output, PerspectiveSetup, ShaderTriangle};
+use crate::shade::perspective::{span_input, Output, PerspectiveSetup, ShaderTriangle};
 use crate::shade::{span_flat, span_gouraud, Corners, DepthFn, DepthTest, SpanPos, TriangleSetup};
 use crate::shader::{FragmentShader, Perspective, ShaderSet};
 use crate::texture::Texture;
@@ -235,6 +235,14 @@ where
 {
     let setup = &PerspectiveSetup::new(tri, out.mode == Perspective::Affine);
     each_span(tile, rect, found, |color, depth, sp| {
-        span_shader::<C, F>(setup, &tri.corners, shader, texture, out, color, depth, sp)
+        shader.shade_span(span_input(
+            setup,
+            &tri.corners,
+            texture,
+            out,
+            color,
+            depth,
+            sp,
+        ))
     })
 }

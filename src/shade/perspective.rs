@@ -1,5 +1,6 @@
-//! Span shading through a [`FragmentShader`], with perspective-correct
-//! varyings (the method is in [`crate::shader`]'s docs).
+//! The perspective set-up of a triangle for a fragment shader, and the
+//! span loop behind [`SpanInput`] (the method is in [`crate::shader`]'s
+//! docs, the stepping in [`crate::shader::span`]'s).
 //!
 //! Per triangle and tile: the three `1 / w` are scaled to
 //! `q_i = 2^28 w_min / w_i` (all `2^28` for [`Perspective::Affine`]), and
@@ -12,8 +13,9 @@
 //!
 //! At a sample pixel the weights `b1 = B1 / Q`, `b2 = B2 / Q` come from one
 //! 32-bit reciprocal ([`weights`]); then each varying is
-//! `a0 + (b1 (a1 - a0) + b2 (a2 - a0)) / 2^16` in `i64`, and each colour
-//! channel the same in `i32`. Between samples (quasi-perspective modes)
+//! `a0 + (b1 (a1 - a0) + b2 (a2 - a0)) / 2^16` in `i64` (on ARMv6-M, which
+//! has no 64-bit product, the same bits in `i32` halves: [`lerp32`]), and
+//! each colour channel the same in `i32`. Between samples (quasi-perspective modes)
 //! varyings and colour step linearly in wrapping `i32`, exact modulo 2^32,
 //! with steps from a table of reciprocals of the segment length; the next
 //! sample starts again from exact values, so nothing drifts past a
@@ -22,10 +24,10 @@
 use super::{depth16, Basis, Corners, DepthTest, SpanPos, TriangleSetup, GRADIENT_LIMIT, Z_FRAC};
 use crate::raster::SUBPIXEL_BITS;
 use crate::scene::Blend;
-use crate::shader::{Fragment, FragmentShader, Perspective, Varyings};
+use crate::shader::span::{Interpolated, PutPixel, SpanInput};
+use crate::shader::{Perspective, Varyings};
 use crate::texture::Texture;
 use crate::vertex::ScreenVertex;
-use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
 use fixed::types::I16F16;
 
 /// `1 / w` of the nearest vertex, scaled.
@@ -90,7 +92,11 @@ pub(crate) struct PerspectiveSetup<V> {
     /// `Q`, `B1`, `B2`.
     planes: [WidePlane; 3],
     var: [V; 3],
-    color: [[u8; 3]; 3],
+    /// The provoking vertex's colour.
+    flat: [u8; 3],
+    /// Per channel: `c0 · 2^16 + 2^15` (the rounding bias), `c1 - c0`,
+    /// `c2 - c0`, ready for the span loop.
+    color: [[i32; 3]; 3],
 }
 
 impl<V: Varyings> PerspectiveSetup<V> {
@@ -115,13 +121,49 @@ impl<V: Varyings> PerspectiveSetup<V> {
                 WidePlane::new(&f, [0, 0, q[2]]),
             ],
             var: t.var,
-            color: t.corners.0.map(|v: &ScreenVertex| v.color),
+            flat: t.corners.0[0].color,
+            color: {
+                let [c0, c1, c2] = t.corners.0.map(|v: &ScreenVertex| v.color.map(i32::from));
+                [
+                    c0.map(|c| (c << 16) + (1 << 15)),
+                    [0, 1, 2].map(|k| c1[k] - c0[k]),
+                    [0, 1, 2].map(|k| c2[k] - c0[k]),
+                ]
+            },
         }
+    }
+
+    /// The provoking vertex's colour.
+    #[inline(always)]
+    pub(crate) fn flat(&self) -> [u8; 3] {
+        self.flat
+    }
+
+    /// [`values`](Self::values) for weights from [`weights`] (in
+    /// `0..=2^16`). Where the core has a 32x32 to 64-bit multiply that is
+    /// `values` itself; on ARMv6-M (no such instruction: every `i64`
+    /// product is a library call) the same bits in 32-bit arithmetic
+    /// ([`lerp32`]).
+    #[inline(always)]
+    pub(crate) fn values_weighted(&self, w: (i32, i32), interpolate_color: bool) -> (V, [i32; 3]) {
+        if !NARROW_MULTIPLY {
+            return self.values(w, interpolate_color);
+        }
+        let mut out = V::zeroed();
+        let [a0, a1, a2] = [
+            self.var[0].as_slice(),
+            self.var[1].as_slice(),
+            self.var[2].as_slice(),
+        ];
+        for (k, o) in out.as_mut_slice().iter_mut().enumerate() {
+            *o = I16F16::from_bits(lerp32(a0[k].to_bits(), a1[k].to_bits(), a2[k].to_bits(), w));
+        }
+        (out, self.color_at(w, interpolate_color))
     }
 
     /// The varyings and colour (8.16 per channel) at weights `(b1, b2)`.
     #[inline(always)]
-    fn values(&self, (b1, b2): (i32, i32), interpolate_color: bool) -> (V, [i32; 3]) {
+    pub(crate) fn values(&self, (b1, b2): (i32, i32), interpolate_color: bool) -> (V, [i32; 3]) {
         let mut out = V::zeroed();
         let [a0, a1, a2] = [
             self.var[0].as_slice(),
@@ -139,20 +181,63 @@ impl<V: Varyings> PerspectiveSetup<V> {
             let v = base + ((d1 * b1 as i64 + d2 * b2 as i64 + (1 << 15)) >> 16);
             *o = I16F16::from_bits(v as i32);
         }
+        (out, self.color_at((b1, b2), interpolate_color))
+    }
+
+    /// The colour (8.16 per channel, rounding bias included) at weights
+    /// `(b1, b2)`, or zeros without `interpolate_color`.
+    #[inline(always)]
+    fn color_at(&self, (b1, b2): (i32, i32), interpolate_color: bool) -> [i32; 3] {
         let mut c = [0i32; 3];
         if interpolate_color {
-            let [c0, c1, c2] = self.color;
+            let [base, d1, d2] = &self.color;
             for (k, o) in c.iter_mut().enumerate() {
-                let base = c0[k] as i32;
                 // |d| <= 255, |b| < 2^20: below 2^29.
-                *o = (base << 16)
-                    + (c1[k] as i32 - base) * b1
-                    + (c2[k] as i32 - base) * b2
-                    + (1 << 15);
+                *o = base[k] + d1[k] * b1 + d2[k] * b2;
             }
         }
-        (out, c)
+        c
     }
+}
+
+/// Whether the target lacks a 32x32 to 64-bit multiply (ARMv6-M, whose
+/// Thumb-1 has none; every Thumb-2 core has `SMULL`).
+const NARROW_MULTIPLY: bool = cfg!(all(target_arch = "arm", not(target_feature = "thumb2")));
+
+/// `a0 + ((d1 b1 + d2 b2 + 2^15) >> 16)` wrapped to `i32`, with
+/// `d_i = a_i - a0` exact (up to 33 bits) and weights `b` in `0..=2^16`,
+/// in 32-bit arithmetic: the same bits as the `i64` formula of
+/// [`PerspectiveSetup::values`]. Each difference is split as
+/// `d = h 2^16 + l` with `0 <= l < 2^16`; the `h` products are whole units
+/// and only matter modulo 2^32, so they wrap; the `l` products are below
+/// 2^32 each, and their sum's carry into bit 32 is counted by hand.
+#[inline(always)]
+fn lerp32(a0: i32, a1: i32, a2: i32, (b1, b2): (i32, i32)) -> i32 {
+    // The 33-bit differences as (high, low) halves: a wrapping subtract
+    // gives the low 32 bits, the borrow the sign-extension.
+    let split = |a: i32| -> (i32, u32) {
+        let (d, borrow) = a.overflowing_sub(a0);
+        // When it overflowed, the true difference is `d - 2^32` (a < a0)
+        // or `d + 2^32`: its high half is `d >> 16` minus or plus 2^16.
+        let h = (d >> 16).wrapping_add(if borrow {
+            if a < a0 {
+                -(1 << 16)
+            } else {
+                1 << 16
+            }
+        } else {
+            0
+        });
+        (h, d as u32 & 0xFFFF)
+    };
+    let ((h1, l1), (h2, l2)) = (split(a1), split(a2));
+    let (b1, b2) = (b1 as u32, b2 as u32);
+    let (s, c1) = l1.wrapping_mul(b1).overflowing_add(l2.wrapping_mul(b2));
+    let (s, c2) = s.overflowing_add(1 << 15);
+    let low = (s >> 16).wrapping_add((c1 as u32 + c2 as u32) << 16);
+    a0.wrapping_add(h1.wrapping_mul(b1 as i32))
+        .wrapping_add(h2.wrapping_mul(b2 as i32))
+        .wrapping_add(low as i32)
 }
 
 /// The perspective-correct weights `(B1 / Q, B2 / Q)` in 0.16 fixed
@@ -174,6 +259,15 @@ pub(crate) fn weights(q: i32, b1: i32, b2: i32) -> (i32, i32) {
     (((n1 * r) >> 15) as i32, ((n2 * r) >> 15) as i32)
 }
 
+/// [`weights`] with the sign of `B1` and `B2` kept (the same for
+/// non-negative ones): the quasi-perspective sample one pixel beyond a
+/// span's end may lie a little outside the triangle.
+#[inline(always)]
+pub(crate) fn signed_weights(q: i32, b1: i32, b2: i32) -> (i32, i32) {
+    let (w1, w2) = weights(q, b1.saturating_abs(), b2.saturating_abs());
+    (if b1 < 0 { -w1 } else { w1 }, if b2 < 0 { -w2 } else { w2 })
+}
+
 /// `round(2^24 / l)` for segment lengths `l` of 1 to 16.
 const RECIPROCAL: [i64; 17] = {
     let mut t = [0i64; 17];
@@ -185,12 +279,6 @@ const RECIPROCAL: [i64; 17] = {
     t
 };
 
-/// A colour channel in 8.16, rounded and clamped to a byte.
-#[inline(always)]
-fn byte(c: i32) -> u8 {
-    (c >> 16).clamp(0, 255) as u8
-}
-
 /// How the fragments of a span are tested and written.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Output {
@@ -200,165 +288,179 @@ pub(crate) struct Output {
     pub write: bool,
 }
 
-/// Shades one span through `shader`: depth test first (a fragment that
-/// fails it costs no division and no shader call), then the shader, whose
-/// `None` writes nothing, then the blend with the pixel. The depth test and
-/// write are decided at run time here (one predictable branch per
-/// fragment), so this loop exists once per shader and colour type rather
-/// than once per depth test too. Returns the number of fragments written.
+/// The [`SpanInput`] of span `sp` of triangle `t` set up as `p`, on the
+/// tile rows `color` and `depth`.
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
-pub(crate) fn span_shader<C, S: FragmentShader<C>>(
-    p: &PerspectiveSetup<S::Varyings>,
+pub(crate) fn span_input<'a, C, V: Varyings>(
+    p: &'a PerspectiveSetup<V>,
     t: &Corners<'_>,
-    shader: &S,
-    texture: Option<&Texture<'_>>,
+    texture: Option<&'a Texture<'a>>,
     out: Output,
-    color: &mut [C],
-    depth: &mut [u16],
+    color: &'a mut [C],
+    depth: &'a mut [u16],
     sp: SpanPos,
-) -> u32
-where
-    C: Copy + From<Rgb888> + Into<Rgb888>,
-{
+) -> SpanInput<'a, C, V> {
     let SpanPos { ox, j, x0, x1 } = sp;
-    let Output {
-        mode,
-        blend,
-        test,
-        write,
-    } = out;
-    let mut z = (p.depth.start(t, x0, j)[0] as u32) << (16 - Z_FRAC);
-    let gz = (p.depth.steps()[0] as u32) << (16 - Z_FRAC);
     let [pq, p1, p2] = &p.planes;
-    let mut q = pq.at(x0, j, 1, Q_MAX);
-    let mut b1 = p1.at(x0, j, -Q_MAX, Q_MAX);
-    let mut b2 = p2.at(x0, j, -Q_MAX, Q_MAX);
-    let (gq, g1, g2) = (pq.step(), p1.step(), p2.step());
     let (a, b) = ((x0 - ox) as usize, (x1 - ox) as usize);
-    let (color, depth) = (&mut color[a..b], &mut depth[a..b]);
-    let (flat, draw) = (p.color[0], p.draw);
-    let mut n = 0;
-    let emit = |x: i32, zz: u16, var, c: [i32; 3], out: &mut C, d: &mut u16| -> bool {
-        let frag = Fragment {
-            draw,
-            x,
-            y: j,
-            depth: zz,
-            color: if S::INTERPOLATE_COLOR {
-                [byte(c[0]), byte(c[1]), byte(c[2])]
-            } else {
-                flat
-            },
-            varyings: var,
-            texture,
-        };
-        match shader.fragment(&frag) {
-            Some(c) => {
-                *out = match blend {
-                    Blend::Opaque => c,
-                    _ => {
-                        let (s, d): (Rgb888, Rgb888) = (c.into(), (*out).into());
-                        let [r, g, b] = blend.apply([s.r(), s.g(), s.b()], [d.r(), d.g(), d.b()]);
-                        C::from(Rgb888::new(r, g, b))
+    SpanInput {
+        draw: p.draw,
+        x0,
+        y: j,
+        color: &mut color[a..b],
+        depth: &mut depth[a..b],
+        texture,
+        setup: p,
+        z: (p.depth.start(t, x0, j)[0] as u32) << (16 - Z_FRAC),
+        gz: (p.depth.steps()[0] as u32) << (16 - Z_FRAC),
+        planes: [
+            pq.at(x0, j, 1, Q_MAX),
+            p1.at(x0, j, -Q_MAX, Q_MAX),
+            p2.at(x0, j, -Q_MAX, Q_MAX),
+        ],
+        steps: [pq.step(), p1.step(), p2.step()],
+        mode: out.mode,
+        blend: out.blend,
+        test: out.test,
+        write: out.write,
+    }
+}
+
+impl<C, V: Varyings> SpanInput<'_, C, V> {
+    /// The span loop: for each pixel that passes the depth test, the
+    /// values there (weights and varyings only if there are varyings or
+    /// `ic`, the colour only if `ic`), then `put` with the pixel's colour
+    /// and depth, which returns whether it wrote. A fragment that fails
+    /// the test costs no division. Returns the number written.
+    #[inline(always)]
+    pub(crate) fn run(self, ic: bool, mut put: impl PutPixel<V, C>) -> u32 {
+        let SpanInput {
+            x0,
+            color,
+            depth,
+            setup: p,
+            mut z,
+            gz,
+            planes: [mut q, mut b1, mut b2],
+            steps: [gq, g1, g2],
+            mode,
+            test,
+            ..
+        } = self;
+        let mut n = 0;
+        // A shader that reads neither varyings nor colour needs no
+        // weights: every pixel is then a depth test and the shader.
+        let weighted = V::LEN > 0 || ic;
+        let seg = if weighted { mode.segment() as i32 } else { 0 };
+        if seg <= 1 {
+            // Exact or affine: the weights at every pixel (affine: `Q` is
+            // constant, so they are a shift of `B1`, `B2`).
+            let affine = seg == 0;
+            for (k, (c, d)) in color.iter_mut().zip(depth.iter_mut()).enumerate() {
+                let zz = depth16(z);
+                if test.passes(zz, *d) {
+                    let (varyings, color) = if !weighted {
+                        (V::zeroed(), [0; 3])
+                    } else if affine {
+                        p.values((b1 >> 12, b2 >> 12), ic)
+                    } else {
+                        p.values_weighted(weights(q, b1, b2), ic)
+                    };
+                    let it = Interpolated {
+                        x: x0 + k as i32,
+                        depth: zz,
+                        varyings,
+                        color,
+                    };
+                    n += put.put(&it, c, d) as u32;
+                }
+                z = z.wrapping_add(gz);
+                q = q.wrapping_add(gq);
+                b1 = b1.wrapping_add(g1);
+                b2 = b2.wrapping_add(g2);
+            }
+            return n;
+        }
+        // Quasi-perspective: exact at the columns x = 0 (mod seg), at the
+        // span's first and at its last pixel; linear between.
+        let len = color.len() as i32;
+        let (mut var, mut col) = p.values(signed_weights(q, b1, b2), ic);
+        let mut k = 0;
+        while k < len {
+            // Pixels to the next sample: the next column that is a
+            // multiple of `seg` (a power of two) if the span reaches it or
+            // ends just before it (a tile cut there leaves the samples
+            // where they were), or else the last pixel.
+            let next = seg - ((x0 + k) & (seg - 1));
+            let l = if next <= len - k { next } else { len - 1 - k };
+            let (mut dv, mut dc) = (V::zeroed(), [0i32; 3]);
+            let (mut nvar, mut ncol) = (var, col);
+            if l > 0 {
+                // One pixel beyond the span's end, the weights may be a
+                // little negative.
+                let w = signed_weights(
+                    q.wrapping_add(gq.wrapping_mul(l)),
+                    b1.wrapping_add(g1.wrapping_mul(l)),
+                    b2.wrapping_add(g2.wrapping_mul(l)),
+                );
+                (nvar, ncol) = p.values(w, ic);
+                let r = RECIPROCAL[l as usize];
+                for (s, (a, b)) in dv
+                    .as_mut_slice()
+                    .iter_mut()
+                    .zip(var.as_slice().iter().zip(nvar.as_slice()))
+                {
+                    *s = I16F16::from_bits(segment_step(a.to_bits(), b.to_bits(), r));
+                }
+                if ic {
+                    for ch in 0..3 {
+                        dc[ch] = segment_step(col[ch], ncol[ch], r);
                     }
-                };
-                if write {
-                    *d = zz;
                 }
-                true
             }
-            None => false,
-        }
-    };
-    // A shader that reads neither varyings nor colour needs no weights:
-    // every pixel is then a depth test and the shader.
-    let weighted = S::Varyings::LEN > 0 || S::INTERPOLATE_COLOR;
-    let seg = if weighted { mode.segment() as usize } else { 0 };
-    if seg <= 1 {
-        // Exact or affine: the weights at every pixel (affine: `Q` is
-        // constant, so they are a shift of `B1`, `B2`).
-        let affine = seg == 0;
-        for (k, (c, d)) in color.iter_mut().zip(depth.iter_mut()).enumerate() {
-            let zz = depth16(z);
-            if test.passes(zz, *d) {
-                let w = if !weighted {
-                    (0, 0)
-                } else if affine {
-                    (b1 >> 12, b2 >> 12)
-                } else {
-                    weights(q, b1, b2)
-                };
-                let (var, col) = p.values(w, S::INTERPOLATE_COLOR);
-                n += emit(x0 + k as i32, zz, var, col, c, d) as u32;
-            }
-            z = z.wrapping_add(gz);
-            q = q.wrapping_add(gq);
-            b1 = b1.wrapping_add(g1);
-            b2 = b2.wrapping_add(g2);
-        }
-        return n;
-    }
-    // Quasi-perspective: exact at pixels 0, seg, 2 seg, ... and the last;
-    // linear between.
-    let len = color.len();
-    let (mut var, mut col) = p.values(weights(q, b1, b2), S::INTERPOLATE_COLOR);
-    let mut k = 0;
-    while k < len {
-        let l = seg.min(len - 1 - k);
-        let (mut dv, mut dc) = (S::Varyings::zeroed(), [0i32; 3]);
-        let (mut nvar, mut ncol) = (var, col);
-        if l > 0 {
-            let li = l as i32;
-            let w = weights(
-                q.wrapping_add(gq.wrapping_mul(li)),
-                b1.wrapping_add(g1.wrapping_mul(li)),
-                b2.wrapping_add(g2.wrapping_mul(li)),
-            );
-            (nvar, ncol) = p.values(w, S::INTERPOLATE_COLOR);
-            let r = RECIPROCAL[l];
-            let step = |from: i32, to: i32| -> i32 {
-                // Differences below 2^32 times 2^24: no overflow; the
-                // result wraps to i32 like the values it steps.
-                (((to as i64 - from as i64) * r + (1 << 23)) >> 24) as i32
-            };
-            for (s, (a, b)) in dv
-                .as_mut_slice()
-                .iter_mut()
-                .zip(var.as_slice().iter().zip(nvar.as_slice()))
-            {
-                *s = I16F16::from_bits(step(a.to_bits(), b.to_bits()));
-            }
-            if S::INTERPOLATE_COLOR {
+            // Pixels k..k + l step from the exact values at k; the last
+            // pixel of the span (l = 0) is drawn from exact values too.
+            let stop = if l == 0 { k + 1 } else { k + l };
+            for m in k as usize..stop as usize {
+                let zz = depth16(z);
+                if let (Some(c), Some(d)) = (color.get_mut(m), depth.get_mut(m)) {
+                    if test.passes(zz, *d) {
+                        let it = Interpolated {
+                            x: x0 + m as i32,
+                            depth: zz,
+                            varyings: var,
+                            color: col,
+                        };
+                        n += put.put(&it, c, d) as u32;
+                    }
+                }
+                z = z.wrapping_add(gz);
+                for (a, s) in var.as_mut_slice().iter_mut().zip(dv.as_slice()) {
+                    *a = I16F16::from_bits(a.to_bits().wrapping_add(s.to_bits()));
+                }
                 for ch in 0..3 {
-                    dc[ch] = step(col[ch], ncol[ch]);
+                    col[ch] = col[ch].wrapping_add(dc[ch]);
                 }
             }
+            let li = stop - k;
+            q = q.wrapping_add(gq.wrapping_mul(li));
+            b1 = b1.wrapping_add(g1.wrapping_mul(li));
+            b2 = b2.wrapping_add(g2.wrapping_mul(li));
+            (var, col) = (nvar, ncol);
+            k = stop;
         }
-        // Pixels k..k + l step from the exact values at k; the last pixel
-        // of the span (l = 0) is drawn from exact values too.
-        let stop = if l == 0 { k + 1 } else { k + l };
-        for m in k..stop {
-            let zz = depth16(z);
-            if test.passes(zz, depth[m]) {
-                n += emit(x0 + m as i32, zz, var, col, &mut color[m], &mut depth[m]) as u32;
-            }
-            z = z.wrapping_add(gz);
-            for (a, s) in var.as_mut_slice().iter_mut().zip(dv.as_slice()) {
-                *a = I16F16::from_bits(a.to_bits().wrapping_add(s.to_bits()));
-            }
-            for ch in 0..3 {
-                col[ch] = col[ch].wrapping_add(dc[ch]);
-            }
-        }
-        let li = (stop - k) as i32;
-        q = q.wrapping_add(gq.wrapping_mul(li));
-        b1 = b1.wrapping_add(g1.wrapping_mul(li));
-        b2 = b2.wrapping_add(g2.wrapping_mul(li));
-        (var, col) = (nvar, ncol);
-        k = stop;
+        n
     }
-    n
+}
+
+/// The step per pixel from `from` to `to` over a segment whose length's
+/// reciprocal is `r` (2^24 / l), rounded: the differences are below 2^32,
+/// times 2^24, so nothing overflows; the result wraps to `i32` like the
+/// values it steps.
+#[inline(always)]
+fn segment_step(from: i32, to: i32, r: i64) -> i32 {
+    (((to as i64 - from as i64) * r + (1 << 23)) >> 24) as i32
 }
 
 #[cfg(test)]
@@ -389,6 +491,50 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// The 32-bit form of ARMv6-M gives the bits of the `i64` formula,
+    /// extremes included.
+    #[test]
+    fn lerp32_matches_the_wide_formula() {
+        let mut next = crate::testing::rng();
+        let wide = |a0: i32, a1: i32, a2: i32, (b1, b2): (i32, i32)| -> i32 {
+            let base = a0 as i64;
+            let (d1, d2) = (a1 as i64 - base, a2 as i64 - base);
+            (base + ((d1 * b1 as i64 + d2 * b2 as i64 + (1 << 15)) >> 16)) as i32
+        };
+        let edges = [i32::MIN, i32::MIN + 1, -65_536, -1, 0, 1, 65_535, i32::MAX];
+        for _ in 0..300_000 {
+            let mut a = [0i32; 3];
+            for v in &mut a {
+                *v = match next(4) {
+                    0 => edges[next(edges.len() as u64) as usize],
+                    1 => next(1 << 18) as i32 - (1 << 17),
+                    _ => next(1 << 32) as u32 as i32,
+                };
+            }
+            let b1 = next(65_537) as i32;
+            let b2 = match next(3) {
+                0 => 65_536 - b1,
+                _ => next(65_537) as i32,
+            };
+            let w = (b1, b2);
+            assert_eq!(
+                lerp32(a[0], a[1], a[2], w),
+                wide(a[0], a[1], a[2], w),
+                "{a:?} {w:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn signed_weights_keep_the_sign() {
+        assert_eq!(
+            signed_weights(1 << 20, 1 << 18, 0),
+            weights(1 << 20, 1 << 18, 0)
+        );
+        let (p, _) = weights(1 << 20, 1 << 10, 0);
+        assert_eq!(signed_weights(1 << 20, -(1 << 10), 5).0, -p);
     }
 
     #[test]

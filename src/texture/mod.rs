@@ -122,6 +122,7 @@
 mod axis;
 mod bilinear;
 mod fetch;
+mod sampler;
 // The tests (in a file of their own) run on the host, with std: its
 // names they use are imported here, under the same `cfg(test)`.
 #[cfg(test)]
@@ -133,6 +134,7 @@ mod tests;
 
 use axis::Axis;
 use fixed::types::I16F16;
+pub use sampler::{FromTexel, Pow2Rgb565, Sampler};
 
 /// The largest width or height accepted by [`Texture::new`]: 32,768 texels.
 ///

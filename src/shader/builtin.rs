@@ -1,0 +1,395 @@
+//! The built-in shaders, each with a span loop of its own
+//! ([`FragmentShader::shade_span`]): what does not change along a span
+//! (the texture's kind, the colour) is decided before it, and the
+//! per-pixel work is a [`PixelFn`] whose `pixel` is always inlined.
+//! `fragment` stays the definition, and `tests/span_shaders.rs` holds
+//! every span loop to it, pixel for pixel.
+
+use super::{Fragment, FragmentShader, Interpolated, PixelFn, ShaderError, SpanInput, VertexInput};
+use crate::scene::Draw;
+use crate::texture::{rgb565_to_rgb888, FromTexel, Pow2Rgb565, Sampler, Texture};
+use embedded_graphics::pixelcolor::Rgb888;
+use fixed::types::I16F16;
+
+fn needs_uv_texture(draw: &Draw<'_>) -> Result<(), ShaderError> {
+    if draw.texture.is_none() {
+        Err(ShaderError::MissingTexture)
+    } else if draw.mesh.uvs().is_none() {
+        Err(ShaderError::MissingUvs)
+    } else {
+        Ok(())
+    }
+}
+
+/// The draw's texture at the interpolated texture coordinates, unlit.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Textured;
+
+impl<C: FromTexel> FragmentShader<C> for Textured {
+    type Varyings = [I16F16; 2];
+    const INTERPOLATE_COLOR: bool = false;
+    fn check(&self, draw: &Draw<'_>) -> Result<(), ShaderError> {
+        needs_uv_texture(draw)
+    }
+    #[inline(always)]
+    fn vertex(&self, v: &VertexInput<'_>) -> [I16F16; 2] {
+        v.uv()
+    }
+    #[inline(always)]
+    fn fragment(&self, f: &Fragment<'_, [I16F16; 2]>) -> Option<C> {
+        let [r, g, b] = f.texture?.sample(f.varyings[0], f.varyings[1]);
+        Some(C::from(Rgb888::new(r, g, b)))
+    }
+    /// One loop per kind of texture ([`Texture::sampler`]); an `Rgb565`
+    /// texel goes to the target as it is ([`FromTexel`]).
+    #[inline(always)]
+    fn shade_span(&self, span: SpanInput<'_, C, [I16F16; 2]>) -> u32
+    where
+        C: Copy + From<Rgb888> + Into<Rgb888>,
+    {
+        let Some(texture) = span.texture() else {
+            return 0;
+        };
+        match texture.sampler() {
+            Sampler::NearestRgb565(t) => span.shade_with(false, Unlit(Nearest565(t))),
+            Sampler::BilinearRgb565(t) => span.shade_with(false, Unlit(Bilinear565(t))),
+            Sampler::General(t) => span.shade_with(false, Unlit(t)),
+        }
+    }
+}
+
+/// A colour from its bytes.
+#[inline(always)]
+fn rgb<C: From<Rgb888>>([r, g, b]: [u8; 3]) -> C {
+    C::from(Rgb888::new(r, g, b))
+}
+
+/// `texel * light / 255` per channel, rounded (see [`mul255`]).
+#[inline(always)]
+fn modulate(t: [u8; 3], c: [u8; 3]) -> [u8; 3] {
+    [mul255(t[0], c[0]), mul255(t[1], c[1]), mul255(t[2], c[2])]
+}
+
+/// The draw's texture modulated by the lit vertex colour (interpolated,
+/// perspective-correct): `texel * colour / 255` per channel, rounded.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct TexturedLit;
+
+/// `a * b / 255` rounded to nearest, exact for all bytes.
+#[inline(always)]
+pub fn mul255(a: u8, b: u8) -> u8 {
+    let p = a as u32 * b as u32 + 128;
+    ((p + (p >> 8)) >> 8) as u8
+}
+
+impl<C: FromTexel> FragmentShader<C> for TexturedLit {
+    type Varyings = [I16F16; 2];
+    fn check(&self, draw: &Draw<'_>) -> Result<(), ShaderError> {
+        needs_uv_texture(draw)
+    }
+    #[inline(always)]
+    fn vertex(&self, v: &VertexInput<'_>) -> [I16F16; 2] {
+        v.uv()
+    }
+    #[inline(always)]
+    fn fragment(&self, f: &Fragment<'_, [I16F16; 2]>) -> Option<C> {
+        let t = f.texture?.sample(f.varyings[0], f.varyings[1]);
+        Some(rgb(modulate(t, f.color)))
+    }
+    /// One loop per kind of texture ([`Texture::sampler`]). The product is
+    /// taken in 8 bits per channel, as `fragment` takes it: the same
+    /// colours, whatever the target.
+    #[inline(always)]
+    fn shade_span(&self, span: SpanInput<'_, C, [I16F16; 2]>) -> u32
+    where
+        C: Copy + From<Rgb888> + Into<Rgb888>,
+    {
+        let Some(texture) = span.texture() else {
+            return 0;
+        };
+        match texture.sampler() {
+            Sampler::NearestRgb565(t) => span.shade_with(true, Lit(Nearest565(t))),
+            Sampler::BilinearRgb565(t) => span.shade_with(true, Lit(Bilinear565(t))),
+            Sampler::General(t) => span.shade_with(true, Lit(t)),
+        }
+    }
+}
+
+/// Depth as grey: white at depth `near`, black at `far` and beyond,
+/// linear between (in the 16-bit depth, which is `z / w`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct DepthShade {
+    near: u16,
+    /// `2^24 / (far - near)`, so a pixel needs one multiply.
+    scale: u32,
+}
+
+impl DepthShade {
+    /// Grey from `near` (white) to `far` (black); `far <= near` is
+    /// treated as `near + 1`.
+    pub const fn new(near: u16, far: u16) -> Self {
+        let span = if far > near { far - near } else { 1 } as u32;
+        Self {
+            near,
+            scale: (1 << 24) / span,
+        }
+    }
+
+    /// The grey of a depth.
+    #[inline(always)]
+    pub fn grey(&self, depth: u16) -> u8 {
+        let d = depth.saturating_sub(self.near) as u32;
+        // `(d · scale) >> 16` with `d < 2^16`, `scale <= 2^24`: the product
+        // needs 40 bits, so `scale` is split in halves, each product below
+        // 2^32 and the low one's fraction dropped as the whole would be.
+        let t = d * (self.scale >> 16) + ((d * (self.scale & 0xFFFF)) >> 16);
+        255 - t.min(255) as u8
+    }
+}
+
+impl Default for DepthShade {
+    fn default() -> Self {
+        Self::new(0, u16::MAX)
+    }
+}
+
+impl<C: From<Rgb888>> FragmentShader<C> for DepthShade {
+    type Varyings = [I16F16; 0];
+    const INTERPOLATE_COLOR: bool = false;
+    fn vertex(&self, _: &VertexInput<'_>) -> [I16F16; 0] {
+        []
+    }
+    #[inline(always)]
+    fn fragment(&self, f: &Fragment<'_, [I16F16; 0]>) -> Option<C> {
+        let g = self.grey(f.depth);
+        Some(C::from(Rgb888::new(g, g, g)))
+    }
+    /// Depth only: no weights, no varyings.
+    #[inline(always)]
+    fn shade_span(&self, span: SpanInput<'_, C, [I16F16; 0]>) -> u32
+    where
+        C: Copy + From<Rgb888> + Into<Rgb888>,
+    {
+        span.shade_with(false, *self)
+    }
+}
+
+/// The interpolated model-space normal as colour: each component from
+/// `-1..1` to `0..255`.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Normals;
+
+impl<C: From<Rgb888>> FragmentShader<C> for Normals {
+    type Varyings = [I16F16; 3];
+    const INTERPOLATE_COLOR: bool = false;
+    fn check(&self, draw: &Draw<'_>) -> Result<(), ShaderError> {
+        match draw.mesh.normals() {
+            Some(_) => Ok(()),
+            None => Err(ShaderError::MissingNormals),
+        }
+    }
+    #[inline(always)]
+    fn vertex(&self, v: &VertexInput<'_>) -> [I16F16; 3] {
+        v.normal()
+    }
+    #[inline(always)]
+    fn fragment(&self, f: &Fragment<'_, [I16F16; 3]>) -> Option<C> {
+        Some(rgb(f.varyings.map(normal_byte)))
+    }
+    /// The three varyings, no colour.
+    #[inline(always)]
+    fn shade_span(&self, span: SpanInput<'_, C, [I16F16; 3]>) -> u32
+    where
+        C: Copy + From<Rgb888> + Into<Rgb888>,
+    {
+        span.shade_with(false, Normals)
+    }
+}
+
+/// A normal's component from `-1..=1` to `0..=255`: `(n + 1) · 255 / 2`,
+/// truncated (the clamp makes the sum non-negative, so the division is a
+/// shift).
+#[inline(always)]
+fn normal_byte(n: I16F16) -> u8 {
+    ((n.to_bits().clamp(-65_536, 65_536) + 65_536) as u32 * 255 / 131_072) as u8
+}
+
+/// The provoking vertex's lit colour: what
+/// [`Shading::Flat`](crate::scene::Shading::Flat) draws, through the
+/// fragment-shader path (used for transparent flat draws).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Flat;
+
+impl<C: From<Rgb888>> FragmentShader<C> for Flat {
+    type Varyings = [I16F16; 0];
+    const INTERPOLATE_COLOR: bool = false;
+    fn vertex(&self, _: &VertexInput<'_>) -> [I16F16; 0] {
+        []
+    }
+    #[inline(always)]
+    fn fragment(&self, f: &Fragment<'_, [I16F16; 0]>) -> Option<C> {
+        Some(C::from(Rgb888::new(f.color[0], f.color[1], f.color[2])))
+    }
+    /// One colour, converted once per span.
+    #[inline(always)]
+    fn shade_span(&self, span: SpanInput<'_, C, [I16F16; 0]>) -> u32
+    where
+        C: Copy + From<Rgb888> + Into<Rgb888>,
+    {
+        let c = rgb(span.flat_color());
+        span.shade_with(false, Constant(c))
+    }
+}
+
+/// The lit vertex colours interpolated perspective-correct (the
+/// [`Shading::Gouraud`](crate::scene::Shading::Gouraud) path interpolates
+/// them linearly in screen space, which is faster).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Gouraud;
+
+impl<C: From<Rgb888>> FragmentShader<C> for Gouraud {
+    type Varyings = [I16F16; 0];
+    fn vertex(&self, _: &VertexInput<'_>) -> [I16F16; 0] {
+        []
+    }
+    #[inline(always)]
+    fn fragment(&self, f: &Fragment<'_, [I16F16; 0]>) -> Option<C> {
+        Some(C::from(Rgb888::new(f.color[0], f.color[1], f.color[2])))
+    }
+    /// The weights and the colour, no varyings.
+    #[inline(always)]
+    fn shade_span(&self, span: SpanInput<'_, C, [I16F16; 0]>) -> u32
+    where
+        C: Copy + From<Rgb888> + Into<Rgb888>,
+    {
+        span.shade_with(true, Gouraud)
+    }
+}
+
+/// Where a textured shader's texels come from, decided once per span:
+/// the colour at raw 16.16 coordinates `(u, v)`, in 8 bits per channel
+/// and in the target's format.
+trait Texels {
+    fn rgb(&self, u: i32, v: i32) -> [u8; 3];
+    #[inline(always)]
+    fn target<C: FromTexel>(&self, u: i32, v: i32) -> C {
+        rgb(self.rgb(u, v))
+    }
+}
+
+/// [`Sampler::NearestRgb565`]: the texel's bits go to the target as they
+/// are where it is `Rgb565` ([`FromTexel`]).
+#[derive(Clone, Copy)]
+struct Nearest565<'t>(Pow2Rgb565<'t>);
+
+impl Texels for Nearest565<'_> {
+    #[inline(always)]
+    fn rgb(&self, u: i32, v: i32) -> [u8; 3] {
+        rgb565_to_rgb888(self.0.nearest(u, v))
+    }
+    #[inline(always)]
+    fn target<C: FromTexel>(&self, u: i32, v: i32) -> C {
+        C::from_rgb565(self.0.nearest(u, v))
+    }
+}
+
+/// [`Sampler::BilinearRgb565`].
+#[derive(Clone, Copy)]
+struct Bilinear565<'t>(Pow2Rgb565<'t>);
+
+impl Texels for Bilinear565<'_> {
+    #[inline(always)]
+    fn rgb(&self, u: i32, v: i32) -> [u8; 3] {
+        self.0.bilinear(u, v)
+    }
+}
+
+/// [`Sampler::General`]: [`Texture::sample`].
+impl Texels for &Texture<'_> {
+    #[inline(always)]
+    fn rgb(&self, u: i32, v: i32) -> [u8; 3] {
+        self.sample(I16F16::from_bits(u), I16F16::from_bits(v))
+    }
+}
+
+/// [`Textured`]'s pixel.
+struct Unlit<T>(T);
+
+impl<C: FromTexel, T: Texels> PixelFn<[I16F16; 2], C> for Unlit<T> {
+    #[inline(always)]
+    fn pixel(&mut self, p: &Interpolated<[I16F16; 2]>) -> Option<C> {
+        let [u, v] = p.varyings;
+        Some(self.0.target(u.to_bits(), v.to_bits()))
+    }
+}
+
+/// [`TexturedLit`]'s pixel.
+struct Lit<T>(T);
+
+impl<C: From<Rgb888>, T: Texels> PixelFn<[I16F16; 2], C> for Lit<T> {
+    #[inline(always)]
+    fn pixel(&mut self, p: &Interpolated<[I16F16; 2]>) -> Option<C> {
+        let [u, v] = p.varyings;
+        Some(rgb(modulate(self.0.rgb(u.to_bits(), v.to_bits()), p.rgb())))
+    }
+}
+
+impl<C: From<Rgb888>> PixelFn<[I16F16; 0], C> for DepthShade {
+    #[inline(always)]
+    fn pixel(&mut self, p: &Interpolated<[I16F16; 0]>) -> Option<C> {
+        let g = self.grey(p.depth);
+        Some(rgb([g, g, g]))
+    }
+}
+
+impl<C: From<Rgb888>> PixelFn<[I16F16; 3], C> for Normals {
+    #[inline(always)]
+    fn pixel(&mut self, p: &Interpolated<[I16F16; 3]>) -> Option<C> {
+        Some(rgb(p.varyings.map(normal_byte)))
+    }
+}
+
+impl<C: From<Rgb888>> PixelFn<[I16F16; 0], C> for Gouraud {
+    #[inline(always)]
+    fn pixel(&mut self, p: &Interpolated<[I16F16; 0]>) -> Option<C> {
+        Some(rgb(p.rgb()))
+    }
+}
+
+/// [`Flat`]'s pixel: one colour, converted once per span.
+struct Constant<C>(C);
+
+impl<C: Copy> PixelFn<[I16F16; 0], C> for Constant<C> {
+    #[inline(always)]
+    fn pixel(&mut self, _: &Interpolated<[I16F16; 0]>) -> Option<C> {
+        Some(self.0)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn mul255_is_exact() {
+        for a in 0..=255u32 {
+            for b in 0..=255u32 {
+                let exact = (a * b * 2 + 255) / 510;
+                assert_eq!(mul255(a as u8, b as u8) as u32, exact, "{a} {b}");
+            }
+        }
+    }
+
+    #[test]
+    fn depth_shade_runs_white_to_black() {
+        let d = DepthShade::new(1000, 3000);
+        assert_eq!(d.grey(0), 255);
+        assert_eq!(d.grey(1000), 255);
+        assert_eq!(d.grey(2000), 128);
+        assert_eq!(d.grey(3000), 0);
+        assert_eq!(d.grey(u16::MAX), 0);
+        let degenerate = DepthShade::new(5, 5);
+        assert_eq!(degenerate.grey(5), 255);
+        assert_eq!(degenerate.grey(6), 0);
+    }
+}

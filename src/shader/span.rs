@@ -1,0 +1,292 @@
+//! Span shaders: a triangle's run of pixels in one tile row, coloured in
+//! one call.
+//!
+//! The renderer hands [`FragmentShader::shade_span`] a [`SpanInput`]: the
+//! span's colour and depth rows, where it lies, the draw's texture, and
+//! the interpolation state at its first pixel (depth, the perspective
+//! planes `Q`, `B1`, `B2` of [`crate::shader`]'s docs) with its step per
+//! pixel. The default `shade_span` runs [`SpanInput::fragments`], which
+//! calls [`FragmentShader::fragment`] at every pixel that passes the depth
+//! test: since the renderer is generic over the shader, that call is
+//! inlined into the loop, and a per-fragment shader pays no call per pixel.
+//!
+//! A shader that overrides `shade_span` (every built-in does) decides
+//! once per span what does not change along it (which texture format,
+//! filter and wrap; whether the target can take a texel as it is stored)
+//! and hands [`SpanInput::shade`] a per-pixel function specialised for
+//! that: the stepping, depth test, perspective division and write stay in
+//! the renderer's loop, and only what the shader needs is computed.
+//!
+//! # The stepping
+//!
+//! Depth and the planes `Q`, `B1`, `B2` step by one add per pixel. At a
+//! *sample* pixel the weights `b1 = B1 / Q`, `b2 = B2 / Q` come from one
+//! 32-bit reciprocal ([`Perspective::Exact`]: every pixel), and the
+//! varyings and colour from the weights; between samples
+//! ([`Perspective::Quasi8`], [`Perspective::Quasi16`]) the varyings and
+//! colour step linearly by one add each (Hecker's and Quake's
+//! subdivision). The samples are the screen columns `x ≡ 0 (mod N)`,
+//! each span's first pixel, and its last unless the column after it is
+//! a multiple of `N` (then that column, one pixel beyond the span, is the
+//! sample). So where a tile's edge at a multiple of `N` cuts a span, both
+//! halves have the samples the whole span has, and the image does not
+//! depend on the tile size (for any tile width that is a multiple of 16).
+//! [`Perspective::Affine`] takes the weights as `B1`, `B2` themselves (all
+//! `1 / w` equal).
+
+use crate::scene::Blend;
+use crate::shade::perspective::PerspectiveSetup;
+use crate::shade::DepthTest;
+use crate::shader::{Fragment, FragmentShader, Perspective, Varyings};
+use crate::texture::Texture;
+use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
+
+/// The values at one pixel of a span, as [`SpanInput::shade`]'s
+/// per-pixel function gets them.
+#[derive(Clone, Copy, Debug)]
+pub struct Interpolated<V> {
+    /// Screen column of the pixel.
+    pub x: i32,
+    /// Its depth, 0 (near) to 65535 (far).
+    pub depth: u16,
+    /// The varyings, interpolated.
+    pub varyings: V,
+    /// The lit vertex colour, interpolated (perspective-correct): each
+    /// channel in 8.16 fixed point, rounding bias included, not yet
+    /// clamped (see [`Interpolated::rgb`]). Zeros unless the span was
+    /// shaded with colour interpolation on.
+    pub color: [i32; 3],
+}
+
+impl<V> Interpolated<V> {
+    /// [`Interpolated::color`] as bytes: rounded and clamped.
+    #[inline(always)]
+    pub fn rgb(&self) -> [u8; 3] {
+        self.color.map(byte)
+    }
+}
+
+/// A colour channel in 8.16 (rounding bias included) clamped to a byte.
+#[inline(always)]
+pub(crate) fn byte(c: i32) -> u8 {
+    (c >> 16).clamp(0, 255) as u8
+}
+
+/// One span of a triangle in a tile row, handed to
+/// [`FragmentShader::shade_span`]: the pixels `x()..x() + len()` of row
+/// `y()`, and everything needed to colour them.
+///
+/// A shader colours it with [`shade`](Self::shade) (a function of the
+/// interpolated values per pixel) or [`fragments`](Self::fragments) (a
+/// function of a [`Fragment`]); either tests depth first, interpolates
+/// only for the pixels that pass, and writes colour (blended as the draw
+/// says) and depth for those the function does not discard.
+#[derive(Debug)]
+pub struct SpanInput<'a, C, V> {
+    /// Index of the triangle's draw in the scene.
+    pub(crate) draw: usize,
+    pub(crate) x0: i32,
+    pub(crate) y: i32,
+    pub(crate) color: &'a mut [C],
+    pub(crate) depth: &'a mut [u16],
+    pub(crate) texture: Option<&'a Texture<'a>>,
+    pub(crate) setup: &'a PerspectiveSetup<V>,
+    /// Depth as `z << 2` (see `shade::depth16`) and its step.
+    pub(crate) z: u32,
+    pub(crate) gz: u32,
+    /// `Q`, `B1`, `B2` at the first pixel, and their steps.
+    pub(crate) planes: [i32; 3],
+    pub(crate) steps: [i32; 3],
+    pub(crate) mode: Perspective,
+    pub(crate) blend: Blend,
+    pub(crate) test: DepthTest,
+    pub(crate) write: bool,
+}
+
+impl<'a, C, V: Varyings> SpanInput<'a, C, V> {
+    /// Index of the draw in the scene (see [`Fragment::draw`]).
+    #[inline(always)]
+    pub fn draw(&self) -> usize {
+        self.draw
+    }
+
+    /// Screen column of the span's first pixel.
+    #[inline(always)]
+    pub fn x(&self) -> i32 {
+        self.x0
+    }
+
+    /// Screen row of the span.
+    #[inline(always)]
+    pub fn y(&self) -> i32 {
+        self.y
+    }
+
+    /// Number of pixels.
+    #[inline(always)]
+    pub fn len(&self) -> usize {
+        self.color.len()
+    }
+
+    /// Whether the span has no pixel (never, as the renderer hands them).
+    #[inline(always)]
+    pub fn is_empty(&self) -> bool {
+        self.color.is_empty()
+    }
+
+    /// The draw's texture, if it has one.
+    #[inline(always)]
+    pub fn texture(&self) -> Option<&'a Texture<'a>> {
+        self.texture
+    }
+
+    /// How the varyings are interpolated along the span.
+    #[inline(always)]
+    pub fn perspective(&self) -> Perspective {
+        self.mode
+    }
+
+    /// The provoking vertex's lit colour (what
+    /// [`Fragment::color`] holds without colour interpolation).
+    #[inline(always)]
+    pub fn flat_color(&self) -> [u8; 3] {
+        self.setup.flat()
+    }
+
+    /// Colours the span through `fragment`, called with the values at
+    /// each pixel that passes the depth test (the colour interpolated only
+    /// if `interpolate_color`); `None` writes nothing there. Returns the
+    /// number of pixels written. (A closure that the compiler leaves out
+    /// of line costs a call per pixel: see [`PixelFn`] and
+    /// [`shade_with`](Self::shade_with).)
+    #[inline(always)]
+    pub fn shade(
+        self,
+        interpolate_color: bool,
+        fragment: impl FnMut(&Interpolated<V>) -> Option<C>,
+    ) -> u32
+    where
+        C: Copy + From<Rgb888> + Into<Rgb888>,
+    {
+        self.shade_with(interpolate_color, fragment)
+    }
+
+    /// [`shade`](Self::shade) through a [`PixelFn`].
+    #[inline(always)]
+    pub fn shade_with(self, interpolate_color: bool, fragment: impl PixelFn<V, C>) -> u32
+    where
+        C: Copy + From<Rgb888> + Into<Rgb888>,
+    {
+        let put = Put {
+            fragment,
+            blend: self.blend,
+            write: self.write,
+        };
+        self.run(interpolate_color, put)
+    }
+
+    /// Colours the span through a per-fragment function: what the default
+    /// [`FragmentShader::shade_span`] does with
+    /// [`FragmentShader::fragment`]. `interpolate_color` is the shader's
+    /// [`FragmentShader::INTERPOLATE_COLOR`]: without it, every fragment
+    /// gets the provoking vertex's colour.
+    #[inline(always)]
+    pub fn fragments(
+        self,
+        interpolate_color: bool,
+        mut fragment: impl FnMut(&Fragment<'_, V>) -> Option<C>,
+    ) -> u32
+    where
+        C: Copy + From<Rgb888> + Into<Rgb888>,
+    {
+        let (y, texture, flat) = (self.y, self.texture, self.flat_color());
+        let draw = self.draw;
+        self.shade(interpolate_color, |it| {
+            fragment(&Fragment {
+                draw,
+                x: it.x,
+                y,
+                depth: it.depth,
+                color: if interpolate_color { it.rgb() } else { flat },
+                varyings: it.varyings,
+                texture,
+            })
+        })
+    }
+
+    /// [`FragmentShader::shade_span`] as `shader`'s default would run it,
+    /// even if `shader` overrides it: the reference that the specialised
+    /// span loops are tested against.
+    #[inline(always)]
+    pub fn fragments_of<S: FragmentShader<C, Varyings = V>>(self, shader: &S) -> u32
+    where
+        C: Copy + From<Rgb888> + Into<Rgb888>,
+    {
+        self.fragments(S::INTERPOLATE_COLOR, |f| shader.fragment(f))
+    }
+}
+
+/// A span shader's colour at one pixel, for [`SpanInput::shade_with`]:
+/// any closure `FnMut(&Interpolated<V>) -> Option<C>` is one.
+///
+/// The span loop calls it from two places (one loop for exact and affine
+/// interpolation, one for quasi-perspective), and the compiler may leave
+/// a closure that is called twice out of line: a call per pixel. A type
+/// of your own whose `pixel` is `#[inline(always)]` is always inlined
+/// into both; the built-in shaders' are such types.
+pub trait PixelFn<V, C> {
+    /// The colour at the pixel with values `it`, or `None` to write
+    /// nothing there.
+    fn pixel(&mut self, it: &Interpolated<V>) -> Option<C>;
+}
+
+impl<V, C, F: FnMut(&Interpolated<V>) -> Option<C>> PixelFn<V, C> for F {
+    #[inline(always)]
+    fn pixel(&mut self, it: &Interpolated<V>) -> Option<C> {
+        self(it)
+    }
+}
+
+/// What the span loop does at a pixel that passes the depth test: a
+/// trait whose method is always inlined, rather than a closure, because
+/// the loop calls it from two places (the exact and the quasi-perspective
+/// loops), and a closure called twice is left out of line.
+pub(crate) trait PutPixel<V, C> {
+    /// Colours pixel `out` (depth `d`) from `it`; whether it wrote.
+    fn put(&mut self, it: &Interpolated<V>, out: &mut C, d: &mut u16) -> bool;
+}
+
+/// [`SpanInput::shade`]'s pixel: the shader's function, the blend, the
+/// depth write.
+struct Put<F> {
+    fragment: F,
+    blend: Blend,
+    write: bool,
+}
+
+impl<V, C, F> PutPixel<V, C> for Put<F>
+where
+    C: Copy + From<Rgb888> + Into<Rgb888>,
+    F: PixelFn<V, C>,
+{
+    #[inline(always)]
+    fn put(&mut self, it: &Interpolated<V>, out: &mut C, d: &mut u16) -> bool {
+        match self.fragment.pixel(it) {
+            Some(c) => {
+                *out = match self.blend {
+                    Blend::Opaque => c,
+                    blend => {
+                        let (s, d): (Rgb888, Rgb888) = (c.into(), (*out).into());
+                        let [r, g, b] = blend.apply([s.r(), s.g(), s.b()], [d.r(), d.g(), d.b()]);
+                        C::from(Rgb888::new(r, g, b))
+                    }
+                };
+                if self.write {
+                    *d = it.depth;
+                }
+                true
+            }
+            None => false,
+        }
+    }
+}

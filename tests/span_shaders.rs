@@ -1,0 +1,263 @@
+//! The built-in shaders' own span loops against the per-fragment path:
+//! random triangles in perspective, random textures (every format, size,
+//! filter and wrap), every perspective mode, opaque and blended, into
+//! `Rgb565`, `Rgb888` and `Gray8` tiles. Each built-in is rendered once as
+//! it is (its `shade_span`) and once wrapped in `PerFragment`, which keeps
+//! the trait's default `shade_span` (its `fragment` at every pixel): the
+//! images must be the same, pixel for pixel.
+
+mod support;
+
+use embedded_graphics::pixelcolor::{Gray8, PixelColor, Rgb565, Rgb888};
+use fixed::types::I16F16;
+use microraster::mesh::Vec3Fx;
+use microraster::prelude::*;
+use microraster::scene::Draw as SceneDraw;
+use microraster::shader::{Fragment, ShaderError, VertexInput};
+use microraster::texture::{FromTexel, Wrap};
+use proptest::prelude::*;
+use support::Capture;
+
+const W: u32 = 48;
+const H: u32 = 40;
+
+/// Shader `S` through the default, per-fragment `shade_span`.
+struct PerFragment<S>(S);
+
+impl<C, S: FragmentShader<C>> FragmentShader<C> for PerFragment<S> {
+    type Varyings = S::Varyings;
+    const INTERPOLATE_COLOR: bool = S::INTERPOLATE_COLOR;
+    fn check(&self, draw: &SceneDraw<'_>) -> Result<(), ShaderError> {
+        self.0.check(draw)
+    }
+    fn vertex(&self, v: &VertexInput<'_>) -> S::Varyings {
+        self.0.vertex(v)
+    }
+    fn fragment(&self, f: &Fragment<'_, S::Varyings>) -> Option<C> {
+        self.0.fragment(f)
+    }
+}
+
+/// One random case: triangles, their attributes, a texture and the modes.
+#[derive(Clone, Debug)]
+struct Case {
+    positions: Vec<[f32; 3]>,
+    uvs: Vec<[f32; 2]>,
+    normals: Vec<[f32; 3]>,
+    colors: Vec<[u8; 3]>,
+    /// log2 or plain sides (`pow2` chooses), format 0..4, filter, wraps.
+    side: [u32; 2],
+    pow2: bool,
+    format: u8,
+    bilinear: bool,
+    wrap: [u8; 2],
+    texels: Vec<u16>,
+    /// Perspective mode (low two bits); bit 2 forces the fast texture.
+    mode: u8,
+    blend: u8,
+}
+
+fn case() -> impl Strategy<Value = Case> {
+    let tris = 1usize..5;
+    tris.prop_flat_map(|n| {
+        let v = n * 3;
+        (
+            prop::collection::vec(
+                (-1.5f32..1.5, -1.2f32..1.2, -6.0f32..-0.6).prop_map(|(x, y, z)| [x, y, z]),
+                v,
+            ),
+            prop::collection::vec((-2.0f32..3.0, -2.0f32..3.0).prop_map(|(u, v)| [u, v]), v),
+            prop::collection::vec(
+                (-1.2f32..1.2, -1.2f32..1.2, -1.2f32..1.2).prop_map(|(x, y, z)| [x, y, z]),
+                v,
+            ),
+            prop::collection::vec(any::<[u8; 3]>(), v),
+            [1u32..6, 1u32..6],
+            any::<bool>(),
+            0u8..4,
+            any::<bool>(),
+            [0u8..3, 0u8..3],
+            prop::collection::vec(any::<u16>(), 1024),
+            0u8..8,
+            0u8..3,
+        )
+            .prop_map(
+                |(
+                    positions,
+                    uvs,
+                    normals,
+                    colors,
+                    side,
+                    pow2,
+                    format,
+                    bilinear,
+                    wrap,
+                    texels,
+                    mode,
+                    blend,
+                )| Case {
+                    positions,
+                    uvs,
+                    normals,
+                    colors,
+                    side,
+                    pow2,
+                    format,
+                    bilinear,
+                    wrap,
+                    texels,
+                    mode,
+                    blend,
+                },
+            )
+    })
+}
+
+fn fx(v: f32) -> I16F16 {
+    I16F16::from_num(v)
+}
+
+fn camera() -> Camera {
+    Camera::new(
+        Mat4::look_at(
+            Vec3::new(0.0, 0.0, 0.5),
+            Vec3::new(0.0, 0.0, -3.0),
+            Vec3::new(0.0, 1.0, 0.0),
+        )
+        .unwrap(),
+        Mat4::perspective(1.2, W as f32 / H as f32, 0.2, 20.0).unwrap(),
+    )
+}
+
+/// Renders `c` with shader `s` into a `C` frame.
+fn render<C, S>(c: &Case, s: &S) -> Vec<C>
+where
+    C: PixelColor + From<Rgb888> + Into<Rgb888> + Default + core::fmt::Debug,
+    S: FragmentShader<C>,
+{
+    // Half the cases take the specialised loops' texture: `Rgb565`,
+    // power-of-two sides, repeated.
+    let mut c = c.clone();
+    if c.mode & 4 != 0 {
+        (c.format, c.pow2, c.wrap) = (0, true, [0, 0]);
+    }
+    let c = &c;
+    let positions: Vec<Vec3Fx> = c.positions.iter().map(|p| p.map(fx)).collect();
+    let uvs: Vec<[I16F16; 2]> = c.uvs.iter().map(|p| p.map(fx)).collect();
+    let normals: Vec<Vec3Fx> = c.normals.iter().map(|p| p.map(fx)).collect();
+    let colors: Vec<Rgb888> = c
+        .colors
+        .iter()
+        .map(|&[r, g, b]| Rgb888::new(r, g, b))
+        .collect();
+    let tris: Vec<[u16; 3]> = (0..c.positions.len() as u16 / 3)
+        .map(|t| [3 * t, 3 * t + 1, 3 * t + 2])
+        .collect();
+    let mesh = Mesh::new(&positions, &tris)
+        .unwrap()
+        .with_uvs(&uvs)
+        .unwrap()
+        .with_normals(&normals)
+        .unwrap()
+        .with_colors(&colors)
+        .unwrap();
+    let (w, h) = if c.pow2 {
+        (1 << c.side[0], 1 << c.side[1])
+    } else {
+        (c.side[0] * 5 + 1, c.side[1] * 3 + 2)
+    };
+    let n = (w * h) as usize;
+    let bytes: Vec<u8> = c.texels.iter().map(|&t| t as u8).collect();
+    let palette: Vec<u16> = c.texels[..16].to_vec();
+    let texels = match c.format {
+        0 => Texels::Rgb565(&c.texels[..n]),
+        1 => Texels::Gray8(&bytes[..n]),
+        2 => Texels::Indexed8 {
+            indices: &bytes[..n],
+            palette: &c.texels[..256],
+        },
+        _ => {
+            let nibbles: Vec<u8> = bytes.iter().map(|b| b & 0x77).collect();
+            let stride = (w as usize).div_ceil(2);
+            let indices = nibbles[..stride * h as usize].to_vec().leak();
+            Texels::Indexed4 {
+                indices,
+                palette: palette.leak(),
+            }
+        }
+    };
+    let wrap = |k: u8| match k {
+        0 => Wrap::Repeat,
+        1 => Wrap::MirroredRepeat,
+        _ => Wrap::ClampToEdge,
+    };
+    let texture = Texture::new(w, h, texels)
+        .unwrap()
+        .filter(if c.bilinear {
+            Filter::Bilinear
+        } else {
+            Filter::Nearest
+        })
+        .wrap_uv(wrap(c.wrap[0]), wrap(c.wrap[1]));
+    let blend = match c.blend {
+        0 => Blend::Opaque,
+        1 => Blend::Alpha(100),
+        _ => Blend::Additive,
+    };
+    let draws = [Draw::new(&mesh)
+        .shading(Shading::Shader)
+        .texture(&texture)
+        .blend(blend)];
+    let scene = Scene::new(camera(), &draws).shader(s);
+    let mode = [
+        Perspective::Exact,
+        Perspective::Quasi8,
+        Perspective::Quasi16,
+        Perspective::Affine,
+    ][c.mode as usize & 3];
+    let config = Config::new(Size::new(W, H), C::default())
+        .cull(CullMode::None)
+        .perspective(mode);
+    let mut r: Renderer<C, 16, 16> = Renderer::new(config);
+    let mut ws: Box<Workspace<64, 1024, 32>> = Box::new(Workspace::new());
+    let mut frame = Capture::new(Size::new(W, H), C::default());
+    r.render(&mut ws, &scene, &mut frame).unwrap();
+    frame.pixels
+}
+
+/// Shader `s`'s span loop and its per-fragment path agree on `c`, in `C`.
+fn agree<C, S>(c: &Case, s: S) -> Result<(), TestCaseError>
+where
+    C: PixelColor + From<Rgb888> + Into<Rgb888> + Default + core::fmt::Debug,
+    S: FragmentShader<C>,
+{
+    let fast = render::<C, S>(c, &s);
+    let slow = render::<C, PerFragment<S>>(c, &PerFragment(s));
+    let differ = fast.iter().zip(&slow).filter(|(a, b)| a != b).count();
+    prop_assert_eq!(differ, 0, "{} pixels differ", differ);
+    Ok(())
+}
+
+fn every_builtin<C>(c: &Case) -> Result<(), TestCaseError>
+where
+    C: PixelColor + FromTexel + Into<Rgb888> + Default + core::fmt::Debug,
+{
+    agree::<C, _>(c, Textured)?;
+    agree::<C, _>(c, TexturedLit)?;
+    agree::<C, _>(c, Gouraud)?;
+    agree::<C, _>(c, Flat)?;
+    agree::<C, _>(c, Normals)?;
+    agree::<C, _>(c, DepthShade::new(30_000, 64_000))?;
+    Ok(())
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 96, ..ProptestConfig::default() })]
+
+    #[test]
+    fn span_loops_match_the_per_fragment_path(c in case()) {
+        every_builtin::<Rgb565>(&c)?;
+        every_builtin::<Rgb888>(&c)?;
+        every_builtin::<Gray8>(&c)?;
+    }
+}
