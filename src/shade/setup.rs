@@ -137,8 +137,9 @@ impl Basis {
     pub(super) fn with_small(v: &[SubPoint; 3], small_setup: bool) -> Self {
         let (x1, y1) = (v[1].x as i64 - v[0].x as i64, v[1].y as i64 - v[0].y as i64);
         let (x2, y2) = (v[2].x as i64 - v[0].x as i64, v[2].y as i64 - v[0].y as i64);
-        // Twice the signed area, as `crate::raster::signed_area2`.
-        let area2 = x1 * y2 - x2 * y1;
+        // Twice the signed area, as `crate::raster::signed_area2` (the
+        // vertices lie within the guard band).
+        let area2 = crate::raster::signed_area2_banded(v);
         // Callers never set up a zero-area triangle (it has no spans); the
         // fallback only keeps this total.
         let area = NonZeroU64::new(area2.unsigned_abs()).unwrap_or(NonZeroU64::MIN);
