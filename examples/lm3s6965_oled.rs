@@ -38,12 +38,11 @@ mod stack_gauge;
 mod firmware {
     use crate::oled_scene::*;
     use cortex_m_rt::entry;
-    use cortex_m_semihosting::{debug, hprintln};
+    use cortex_m_semihosting::{debug, hio};
     use embedded_graphics::pixelcolor::{Gray4, GrayColor};
     use embedded_graphics::prelude::*;
     use embedded_graphics::primitives::Rectangle;
     use microraster::prelude::*;
-    use panic_semihosting as _;
     use static_cell::ConstStaticCell;
 
     // Built in place in RAM (.bss), never moved through the stack: together
@@ -254,30 +253,105 @@ mod firmware {
             #[cfg(not(feature = "assets"))]
             let draws = [draw(&mesh, frame)];
             let scene = Scene::new(camera, &draws).light(light());
+            let mut line = Line::new();
+            line.str("frame ").num(frame);
             match renderer.render(workspace, &scene, &mut oled) {
-                Ok(s) => hprintln!(
-                    "frame {}: {} of {} triangles drawn, {} pixels shaded, {} tiles; \
-                     peak stack {} B of {} B free",
-                    frame,
-                    s.drawn,
-                    s.triangles_in,
-                    s.pixels_shaded,
-                    s.tiles,
-                    crate::stack_gauge::peak(),
-                    crate::stack_gauge::room()
-                ),
-                Err(e) => {
-                    hprintln!("frame {}: render error: {:?}", frame, e);
+                Ok(s) => {
+                    line.str(": ").num(s.drawn).str(" of ").num(s.triangles_in);
+                    line.str(" triangles drawn, ").num(s.pixels_shaded);
+                    line.str(" pixels shaded, ")
+                        .num(s.tiles)
+                        .str(" tiles; peak stack ");
+                    line.num(crate::stack_gauge::peak() as u32).str(" B of ");
+                    line.num(crate::stack_gauge::room() as u32).str(" B free");
+                    line.print();
+                }
+                Err(_) => {
+                    line.str(": render error").print();
                     debug::exit(debug::EXIT_FAILURE);
                 }
             }
             frame += 1;
             if Some(frame) == frames {
-                hprintln!("done");
+                Line::new().str("done").print();
                 loop {
                     cortex_m::asm::wfi();
                 }
             }
+        }
+    }
+
+    /// One line of output, built without `core::fmt`: the firmware prints
+    /// only text and unsigned numbers, and formatting machinery (with the
+    /// panic handler's message formatting) took about 7 KB of its flash.
+    struct Line {
+        buf: [u8; 128],
+        len: usize,
+    }
+
+    impl Line {
+        fn new() -> Self {
+            Line {
+                buf: [0; 128],
+                len: 0,
+            }
+        }
+
+        /// Appends `s` (cut at the buffer's end).
+        fn str(&mut self, s: &str) -> &mut Self {
+            self.bytes(s.as_bytes())
+        }
+
+        /// Appends `bytes` (cut at the buffer's end).
+        #[inline(never)]
+        fn bytes(&mut self, bytes: &[u8]) -> &mut Self {
+            for &b in bytes {
+                if let Some(slot) = self.buf.get_mut(self.len) {
+                    *slot = b;
+                    self.len += 1;
+                }
+            }
+            self
+        }
+
+        /// Appends `n` in decimal.
+        #[inline(never)]
+        fn num(&mut self, mut n: u32) -> &mut Self {
+            let mut digits = [0u8; 10];
+            let mut k = digits.len();
+            loop {
+                k -= 1;
+                digits[k] = b'0' + (n % 10) as u8;
+                n /= 10;
+                if n == 0 {
+                    break;
+                }
+            }
+            self.bytes(digits.get(k..).unwrap_or(&[]))
+        }
+
+        /// Writes the line and a newline to the host's stdout.
+        #[inline(never)]
+        fn print(&mut self) {
+            self.str("\n");
+            if let Ok(mut out) = hio::hstdout() {
+                let _ = out.write_all(&self.buf[..self.len]);
+            }
+        }
+    }
+
+    /// Prints where the panic happened (not its message, which would link
+    /// `core::fmt`) and ends the QEMU run with a failure.
+    #[panic_handler]
+    fn panic(info: &core::panic::PanicInfo) -> ! {
+        let mut line = Line::new();
+        line.str("panicked");
+        if let Some(at) = info.location() {
+            line.str(" at ").str(at.file()).str(":").num(at.line());
+        }
+        line.print();
+        loop {
+            debug::exit(debug::EXIT_FAILURE);
         }
     }
 }

@@ -166,9 +166,10 @@ struct Lambert {
 impl Lambert {
     #[inline(always)]
     fn shade(&self, n: crate::mesh::Vec3Fx, base: [u8; 3]) -> [u8; 3] {
-        let d = n[0].to_bits() as i64 * self.dir[0] as i64
-            + n[1].to_bits() as i64 * self.dir[1] as i64
-            + n[2].to_bits() as i64 * self.dir[2] as i64;
+        use crate::math::mul_wide;
+        let d = mul_wide(n[0].to_bits(), self.dir[0])
+            + mul_wide(n[1].to_bits(), self.dir[1])
+            + mul_wide(n[2].to_bits(), self.dir[2]);
         // n·l in 1/256 steps, floored, clamped to [0, 1].
         let ndotl = (d >> 24).clamp(0, 256) as u32;
         let mut out = [0u8; 3];
@@ -394,18 +395,21 @@ impl Viewport {
         let half = w as u64 / 2;
         // div_round(n, w), for |n| < 2^48.
         let round = |n: i64| -> i64 {
-            let q = d.div(n.unsigned_abs() + half) as i64;
+            let q = d.div_split(n.unsigned_abs() + half) as i64;
             if n < 0 {
                 -q
             } else {
                 q
             }
         };
-        let x = self.half_w + round(p[0] as i64 * self.half_w);
-        let y = self.half_h - round(p[1] as i64 * self.half_h);
+        // Half a viewport side in sub-pixels is at most 2^15: the products
+        // are of two i32 (a library call each on ARMv6-M as i64 x i64).
+        let (hw, hh) = (self.half_w as i32, self.half_h as i32);
+        let x = self.half_w + round(crate::math::mul_wide(p[0], hw));
+        let y = self.half_h - round(crate::math::mul_wide(p[1], hh));
         // div_round(n, 2w) = floor((|n| + w) / (2w)) = floor((|n| + w) / w) / 2.
         let n = (p[2] as i64 + w) * 65_535;
-        let z = (d.div(n.unsigned_abs() + w as u64) >> 1) as i64;
+        let z = (d.div_split(n.unsigned_abs() + w as u64) >> 1) as i64;
         let z = if n < 0 { -z } else { z }.clamp(0, 65_535);
         (SubPoint::new(x as i32, y as i32), z as u16)
     }

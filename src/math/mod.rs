@@ -29,10 +29,12 @@
 mod cast;
 mod divisor;
 mod trig;
+mod wide;
 
 pub use cast::{f32_to_i32, f32_to_i64, f32_to_u64, f32_to_u8};
 pub(crate) use divisor::Divisor;
 pub use trig::{sin_cos, sqrt, tan};
+pub(crate) use wide::mul_wide;
 
 use fixed::types::I16F16;
 
@@ -467,9 +469,9 @@ impl FixedMat4 {
             // in release. A partial sum that overflows is more than 2^61
             // away from zero whatever the remaining terms (each below 2^62,
             // the translation below 2^47), far outside 16.16: `None`.
-            let acc = (m[0][r] as i64 * p[0] as i64)
-                .checked_add(m[1][r] as i64 * p[1] as i64)?
-                .checked_add(m[2][r] as i64 * p[2] as i64)?
+            let acc = mul_wide(m[0][r], p[0])
+                .checked_add(mul_wide(m[1][r], p[1]))?
+                .checked_add(mul_wide(m[2][r], p[2]))?
                 .checked_add((m[3][r] as i64) << 16)?;
             *o = i32::try_from(acc.checked_add(1 << 15)? >> 16).ok()?;
         }
@@ -498,9 +500,9 @@ impl FixedMat4 {
     #[inline(always)]
     pub fn transform_w_unchecked(&self, p: [i32; 3]) -> i32 {
         let m = &self.m;
-        let acc = (m[0][3] as i64 * p[0] as i64)
-            .wrapping_add(m[1][3] as i64 * p[1] as i64)
-            .wrapping_add(m[2][3] as i64 * p[2] as i64)
+        let acc = mul_wide(m[0][3], p[0])
+            .wrapping_add(mul_wide(m[1][3], p[1]))
+            .wrapping_add(mul_wide(m[2][3], p[2]))
             .wrapping_add((m[3][3] as i64) << 16);
         (acc.wrapping_add(1 << 15) >> 16) as i32
     }
@@ -516,9 +518,9 @@ impl FixedMat4 {
         for (r, o) in out.iter_mut().enumerate() {
             // Within the bound nothing wraps; wrapping arithmetic only
             // spares the checks.
-            let acc = (m[0][r] as i64 * p[0] as i64)
-                .wrapping_add(m[1][r] as i64 * p[1] as i64)
-                .wrapping_add(m[2][r] as i64 * p[2] as i64)
+            let acc = mul_wide(m[0][r], p[0])
+                .wrapping_add(mul_wide(m[1][r], p[1]))
+                .wrapping_add(mul_wide(m[2][r], p[2]))
                 .wrapping_add((m[3][r] as i64) << 16);
             *o = (acc.wrapping_add(1 << 15) >> 16) as i32;
         }

@@ -229,8 +229,8 @@ impl Walker {
         if a.y > b.y {
             core::mem::swap(&mut a, &mut b);
         }
-        let cross = (b.x as i64 - a.x as i64) * (c.y as i64 - a.y as i64)
-            - (c.x as i64 - a.x as i64) * (b.y as i64 - a.y as i64);
+        // Within the guard band the edge vectors fit i32.
+        let cross = super::signed_area2_banded(&[a, b, c]);
         if cross == 0 || clip.is_empty() {
             return None;
         }

@@ -5,7 +5,7 @@ use super::vertex_stage::{with_lighting, SetupFn};
 use super::Features;
 use crate::cull::Frustum;
 use crate::light::Lighting;
-use crate::raster::{first_centre_at_or_after, signed_area2, PixelRect, SubPoint};
+use crate::raster::{first_centre_at_or_after, signed_area2_banded, PixelRect, SubPoint};
 
 use crate::scene::{Blend, CullMode, Draw, Light, Shading};
 use crate::vertex::{DrawSetup, ScreenVertex, Viewport, MUST_CLIP, REJECT_MASK};
@@ -240,7 +240,8 @@ impl FrameState<'_> {
                 SubPoint::new(sv[1].x, sv[1].y),
                 SubPoint::new(sv[2].x, sv[2].y),
             ];
-            let area2 = signed_area2(&v);
+            // Screen vertices lie within the guard band.
+            let area2 = signed_area2_banded(&v);
             if !self.keeps(area2) {
                 Fate::Culled
             } else {

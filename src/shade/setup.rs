@@ -137,8 +137,9 @@ impl Basis {
     pub(super) fn with_small(v: &[SubPoint; 3], small_setup: bool) -> Self {
         let (x1, y1) = (v[1].x as i64 - v[0].x as i64, v[1].y as i64 - v[0].y as i64);
         let (x2, y2) = (v[2].x as i64 - v[0].x as i64, v[2].y as i64 - v[0].y as i64);
-        // Twice the signed area, as `crate::raster::signed_area2`.
-        let area2 = x1 * y2 - x2 * y1;
+        // Twice the signed area, as `crate::raster::signed_area2` (the
+        // vertices lie within the guard band).
+        let area2 = crate::raster::signed_area2_banded(v);
         // Callers never set up a zero-area triangle (it has no spans); the
         // fallback only keeps this total.
         let area = NonZeroU64::new(area2.unsigned_abs()).unwrap_or(NonZeroU64::MIN);
@@ -218,15 +219,8 @@ impl Basis {
     }
 
     /// The plane constant `k` of an attribute whose value at vertex 0 is
-    /// `value`, for gradients within ±[`GRADIENT_LIMIT`].
-    #[inline(always)]
-    pub(super) fn constant(&self, value: i64, frac: u32, (gx, gy): (i64, i64)) -> i64 {
-        let base = (value << frac) + (1i64 << (frac - 1));
-        base + ((gx * self.ox + gy * self.oy) >> SUBPIXEL_BITS)
-    }
-
-    /// [`constant`](Self::constant) in wrapping arithmetic: the same value
-    /// for gradients within ±[`GRADIENT_LIMIT`], no overflow check beyond.
+    /// `value`, in wrapping arithmetic: exact for gradients within
+    /// ±[`GRADIENT_LIMIT`], no overflow check beyond.
     #[inline(always)]
     pub(super) fn constant_wrapping(&self, value: i64, frac: u32, (gx, gy): (i64, i64)) -> i64 {
         let base = (value << frac) + (1i64 << (frac - 1));
@@ -315,7 +309,7 @@ impl TriangleSetup {
             let g = f.gradients(values, frac);
             range |= (g.0 + GRADIENT_LIMIT) as u64 | (g.1 + GRADIENT_LIMIT) as u64;
             // Wrapping to i32 keeps everything `Plane::at` needs. Within
-            // ±LIMIT `constant` cannot overflow; beyond, its wrapped value
+            // ±LIMIT the constant does not wrap; beyond, its wrapped value
             // is not used (a wide triangle's starts come from `wide_start`).
             let k = f.constant_wrapping(values[0], frac, g);
             *p = Plane {
@@ -404,22 +398,67 @@ impl TriangleSetup {
 /// had to be clamped to ±[`GRADIENT_LIMIT`]: the planes set up again with
 /// the clamped gradients and evaluated in `i64`, which cannot overflow
 /// (`|gx i| < 2^52`, `|k| < 2^59`), then clamped to each attribute's range.
-/// Rare enough to redo the set-up for every span.
+/// Rare enough to redo the set-up for every span, and small rather than
+/// fast: [`Basis`]'s gradients and constants written out with plain 64-bit
+/// divisions (the same quotients as its reciprocal and its 32-bit
+/// divisions), one attribute at a time, which saves about a kilobyte of
+/// flash on 32-bit targets.
 #[cold]
 #[inline(never)]
 pub(super) fn wide_start(t: &Corners<'_>, i: i32, j: i32) -> [i32; 4] {
-    let f = Basis::new(&t.points());
-    let mut out = [0; 4];
-    for (a, o) in out.iter_mut().enumerate() {
-        let (values, frac) = t.values(a);
-        let (gx, gy) = f.gradients(values, frac);
-        let g = (
-            gx.clamp(-GRADIENT_LIMIT, GRADIENT_LIMIT),
-            gy.clamp(-GRADIENT_LIMIT, GRADIENT_LIMIT),
-        );
-        let k = f.constant(values[0], frac, g);
-        let (lo, hi) = if a == 0 { (Z_LO, Z_HI) } else { (C_LO, C_HI) };
-        *o = (g.0 * i as i64 + g.1 * j as i64 + k).clamp(lo as i64, hi as i64) as i32;
-    }
-    out
+    let v = t.points();
+    let (x1, y1) = (v[1].x as i64 - v[0].x as i64, v[1].y as i64 - v[0].y as i64);
+    let (x2, y2) = (v[2].x as i64 - v[0].x as i64, v[2].y as i64 - v[0].y as i64);
+    let area2 = x1 * y2 - x2 * y1;
+    // As in `Basis`: edge vectors negated for a positive denominator (a
+    // wide triangle is never degenerate; the fallback keeps this total).
+    let s = if area2 < 0 { -1 } else { 1 };
+    let w = Wide {
+        basis: [s * x1, s * y1, s * x2, s * y2],
+        area: NonZeroU64::new(area2.unsigned_abs()).unwrap_or(NonZeroU64::MIN),
+        o: (
+            HALF_PIXEL as i64 - v[0].x as i64,
+            HALF_PIXEL as i64 - v[0].y as i64,
+        ),
+        at: (i as i64, j as i64),
+    };
+    [0, 1, 2, 3].map(|a| wide_value(&w, t, a))
+}
+
+/// What [`wide_start`]'s attributes share: the edge vectors `x1, y1, x2,
+/// y2` and twice the absolute area, as in [`Basis`], the first pixel
+/// centre's offset from vertex 0 and the pixel.
+struct Wide {
+    basis: [i64; 4],
+    area: NonZeroU64,
+    o: (i64, i64),
+    at: (i64, i64),
+}
+
+/// Attribute `a` of [`wide_start`] (as [`Corners::values`] numbers them),
+/// clamped to its range.
+#[cold]
+#[inline(never)]
+fn wide_value(w: &Wide, t: &Corners<'_>, a: usize) -> i32 {
+    let [x1, y1, x2, y2] = w.basis;
+    let ((ox, oy), (i, j), area) = (w.o, w.at, w.area);
+    let (values, frac) = t.values(a);
+    let (lo, hi) = if a == 0 { (Z_LO, Z_HI) } else { (C_LO, C_HI) };
+    let half = area.get() / 2;
+    // `Basis::div_round` with a plain division: |n| < 2^57, half < 2^39.
+    let div_round = |n: i64| {
+        let q = ((n.unsigned_abs() + half) / area) as i64;
+        if n >= 0 {
+            q
+        } else {
+            -q
+        }
+    };
+    let (d1, d2) = (values[1] - values[0], values[2] - values[0]);
+    let shift = frac + SUBPIXEL_BITS;
+    let gx = div_round((d1 * y2 - d2 * y1) << shift).clamp(-GRADIENT_LIMIT, GRADIENT_LIMIT);
+    let gy = div_round((d2 * x1 - d1 * x2) << shift).clamp(-GRADIENT_LIMIT, GRADIENT_LIMIT);
+    // `Basis::constant`.
+    let k = (values[0] << frac) + (1i64 << (frac - 1)) + ((gx * ox + gy * oy) >> SUBPIXEL_BITS);
+    (gx * i + gy * j + k).clamp(lo as i64, hi as i64) as i32
 }
