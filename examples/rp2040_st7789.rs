@@ -51,10 +51,13 @@ fn main() {
 }
 
 #[cfg(target_os = "none")]
+mod board_support;
+#[cfg(target_os = "none")]
 mod st7789_scene;
 
 #[cfg(target_os = "none")]
 mod firmware {
+    use crate::board_support;
     use crate::st7789_scene::*;
     use core::convert::Infallible;
     use core::mem;
@@ -250,20 +253,6 @@ mod firmware {
         }
     }
 
-    /// The timer's delays made "at least": rp2040-hal's `Timer` counts
-    /// whole ticks of its 1 MHz counter from the one it starts in, so a
-    /// delay can end up to 1 us early. That matters for the panel's reset
-    /// pulse (mipidsi holds RES low for the 10 us minimum of the ST7789's
-    /// datasheet, no more): one more tick makes every set-up delay at
-    /// least what mipidsi asks for.
-    struct AtLeast(Timer);
-
-    impl embedded_hal::delay::DelayNs for AtLeast {
-        fn delay_ns(&mut self, ns: u32) {
-            self.0.delay_us(ns.div_ceil(1_000).saturating_add(1));
-        }
-    }
-
     /// Sleeps forever: for the one state in which not even the LED can be
     /// reached.
     fn park() -> ! {
@@ -272,18 +261,10 @@ mod firmware {
         }
     }
 
-    /// Blinks `code` times, pauses, and again, forever: what the firmware
-    /// does instead of panicking when the board cannot be brought up.
+    /// The board's fault blink (`board_support::fault`), timed by busy
+    /// loops.
     fn fault(led: &mut impl OutputPin<Error = Infallible>, code: u32) -> ! {
-        loop {
-            for _ in 0..code {
-                let Ok(()) = led.set_high();
-                cortex_m::asm::delay(BLINK_CYCLES);
-                let Ok(()) = led.set_low();
-                cortex_m::asm::delay(BLINK_CYCLES);
-            }
-            cortex_m::asm::delay(4 * BLINK_CYCLES);
-        }
+        board_support::fault(led, code, false, |n| cortex_m::asm::delay(n * BLINK_CYCLES))
     }
 
     #[rp2040_hal::entry]
@@ -336,7 +317,7 @@ mod firmware {
         // need inverted colours. mipidsi draws no pixel here, so its pixel
         // buffer can be tiny.
         {
-            let mut delay = AtLeast(timer);
+            let mut delay = board_support::AtLeast(timer);
             let mut scratch = [0; 4];
             let Ok(device) = ExclusiveDevice::new(&mut spi, &mut cs, timer);
             let interface = SpiInterface::new(device, &mut dc, &mut scratch);

@@ -46,6 +46,8 @@
 #![no_std]
 #![no_main]
 
+#[path = "../../../examples/board_support/mod.rs"]
+mod board_support;
 #[path = "../../../examples/st7789_scene/mod.rs"]
 mod st7789_scene;
 #[path = "../../../examples/stack_gauge/mod.rs"]
@@ -263,19 +265,11 @@ impl TileTransfer<&'static mut Tile> for Panel {
     }
 }
 
-/// Blinks `code` times, pauses, and again, forever: what the firmware does
-/// instead of panicking when the board cannot be brought up.
+/// The board's fault blink (`board_support::fault`; the LED is lit by a
+/// low pin).
 fn fault(led: &mut Output<'_>, code: u32) -> ! {
     let mut delay = Delay::new();
-    loop {
-        for _ in 0..code {
-            led.set_low();
-            delay.delay_ms(200);
-            led.set_high();
-            delay.delay_ms(200);
-        }
-        delay.delay_ms(800);
-    }
+    board_support::fault(led, code, true, |n| delay.delay_ms(200 * n))
 }
 
 #[esp_hal::main]

@@ -44,6 +44,8 @@
 #![no_std]
 #![no_main]
 
+#[path = "../../../examples/board_support/mod.rs"]
+mod board_support;
 #[path = "../../../examples/st7789_scene/mod.rs"]
 mod st7789_scene;
 #[path = "../../../examples/stack_gauge/mod.rs"]
@@ -54,7 +56,6 @@ use core::mem;
 use core::sync::atomic::{AtomicUsize, Ordering};
 use embedded_dma::ReadBuffer;
 use embedded_graphics::primitives::Rectangle;
-use embedded_hal::delay::DelayNs;
 use embedded_hal::digital::{OutputPin, StatefulOutputPin};
 use embedded_hal::spi::{SpiBus, MODE_3};
 use embedded_hal_bus::spi::ExclusiveDevice;
@@ -227,19 +228,6 @@ where
     }
 }
 
-/// The timer's delays made "at least": rp235x-hal's `Timer` counts whole
-/// ticks of its 1 MHz counter from the one it starts in, so a delay can end
-/// up to 1 us early. That matters for the panel's reset pulse (mipidsi
-/// holds RES low for the 10 us minimum of the ST7789's datasheet, no more):
-/// one more tick makes every set-up delay at least what mipidsi asks for.
-struct AtLeast<D>(D);
-
-impl<D: DelayNs> DelayNs for AtLeast<D> {
-    fn delay_ns(&mut self, ns: u32) {
-        self.0.delay_us(ns.div_ceil(1_000).saturating_add(1));
-    }
-}
-
 /// Sleeps forever: for the one state in which not even the LED can be
 /// reached.
 fn park() -> ! {
@@ -248,18 +236,9 @@ fn park() -> ! {
     }
 }
 
-/// Blinks `code` times, pauses, and again, forever: what the firmware does
-/// instead of panicking when the board cannot be brought up.
+/// The board's fault blink (`board_support::fault`), timed by busy loops.
 fn fault(led: &mut impl OutputPin<Error = Infallible>, code: u32) -> ! {
-    loop {
-        for _ in 0..code {
-            let Ok(()) = led.set_high();
-            hal::arch::delay(BLINK_CYCLES);
-            let Ok(()) = led.set_low();
-            hal::arch::delay(BLINK_CYCLES);
-        }
-        hal::arch::delay(4 * BLINK_CYCLES);
-    }
+    board_support::fault(led, code, false, |n| hal::arch::delay(n * BLINK_CYCLES))
 }
 
 #[hal::entry]
@@ -313,7 +292,7 @@ fn main() -> ! {
     // dropped. 240x240 ST7789 panels are IPS panels that need inverted
     // colours. mipidsi draws no pixel here, so its pixel buffer can be tiny.
     {
-        let mut delay = AtLeast(timer);
+        let mut delay = board_support::AtLeast(timer);
         let mut scratch = [0; 4];
         let Ok(device) = ExclusiveDevice::new(&mut spi, &mut cs, timer);
         let interface = SpiInterface::new(device, &mut dc, &mut scratch);

@@ -1,0 +1,46 @@
+//! What the synchronous board firmwares share besides the scene
+//! (`examples/st7789_scene`): the panel's set-up delays made "at least",
+//! and the fault blink that stands in for a panic. `no_std`, and generic
+//! over embedded-hal's traits, so the Pico (rp2040-hal), Pico 2
+//! (rp235x-hal) and ESP32-C3 (esp-hal) firmwares include the same file.
+#![allow(dead_code)]
+
+use embedded_hal::delay::DelayNs;
+use embedded_hal::digital::{OutputPin, PinState};
+
+/// A delay made "at least": the RP2040's and RP2350's `Timer` count whole
+/// ticks of a 1 MHz counter from the one they start in, so a delay can end
+/// up to 1 us early. That matters for the panel's reset pulse (mipidsi
+/// holds RES low for the 10 us minimum of the ST7789's datasheet, no
+/// more): one more tick makes every set-up delay at least what mipidsi
+/// asks for.
+pub struct AtLeast<D>(pub D);
+
+impl<D: DelayNs> DelayNs for AtLeast<D> {
+    fn delay_ns(&mut self, ns: u32) {
+        self.0.delay_us(ns.div_ceil(1_000).saturating_add(1));
+    }
+}
+
+/// Blinks `code` times, pauses, and again, forever: what a firmware does
+/// instead of panicking when the board cannot be brought up. `wait(n)`
+/// waits `n` blink units (a busy loop: a fault can come before any timer
+/// runs); `active_low` for an LED lit by a low pin.
+pub fn fault<P: OutputPin>(
+    led: &mut P,
+    code: u32,
+    active_low: bool,
+    mut wait: impl FnMut(u32),
+) -> ! {
+    let (on, off) = (PinState::from(!active_low), PinState::from(active_low));
+    loop {
+        for _ in 0..code {
+            // A pin that fails to switch leaves nothing better to do.
+            let _ = led.set_state(on);
+            wait(1);
+            let _ = led.set_state(off);
+            wait(1);
+        }
+        wait(4);
+    }
+}
