@@ -209,7 +209,14 @@ fn transform<F>(
         // or not; a draw wholly outside the frustum is then not
         // transformed (its vertices cannot overflow what is never
         // computed), and binning skips it the same way.
-        let setup = make(draw, view_proj, lighting, eye).map_err(|e| draw_error(di, e))?;
+        // Read in place: moving the set-up out of its `Result` would keep
+        // a second copy of it (about 600 bytes, its `LightSetup`) on the
+        // stack, on the frame's deepest path.
+        let made = make(draw, view_proj, lighting, eye);
+        let setup = match &made {
+            Ok(setup) => setup,
+            Err(e) => return Err(draw_error(di, *e)),
+        };
         let out = &mut vertices[base..base + draw.mesh.vertex_count()];
         base += draw.mesh.vertex_count();
         let frustum = match cull {
