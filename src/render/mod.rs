@@ -21,7 +21,7 @@
 //!
 //! # How triangles reach their tiles
 //!
-//! The vertex stage writes one 16-byte [`ScreenVertex`](crate::vertex::ScreenVertex) per mesh vertex
+//! The vertex stage writes one 12-byte [`ScreenVertex`](crate::vertex::ScreenVertex) per mesh vertex
 //! into the [`Workspace`]'s vertex buffer, once per frame. Triangles are
 //! never stored set up: a set-up triangle (edges plus attribute planes) is
 //! about 150 bytes, which for 4,000 triangles would be several times the RAM
