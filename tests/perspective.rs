@@ -111,7 +111,7 @@ fn render<const TW: usize, const TH: usize>(perspective: Perspective, raster: Ra
     assert_eq!(stats.clipped, 0, "the test scene needs no clipping");
     let screen = ws.vertices()[..4]
         .iter()
-        .map(|v| [v.x as f64 / 16.0, v.y as f64 / 16.0])
+        .map(|v| [v.x() as f64 / 16.0, v.y() as f64 / 16.0])
         .collect();
     Frame { probe, screen }
 }

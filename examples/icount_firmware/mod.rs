@@ -15,7 +15,7 @@ use microraster::{FrameStats, Profiler, Stage};
 use panic_semihosting as _;
 use static_cell::ConstStaticCell;
 
-// About 41 KB, built in place and never moved through the stack; the
+// About 33 KB, built in place and never moved through the stack; the
 // 4 KB renderer lives on the stack of `measure`.
 static WORKSPACE: ConstStaticCell<BenchWorkspace> = ConstStaticCell::new(BenchWorkspace::new());
 static TEXELS: ConstStaticCell<[u16; 32 * 32]> = ConstStaticCell::new([0; 32 * 32]);

@@ -58,7 +58,7 @@ pub const HEIGHT: u32 = 240;
 /// The renderer of every scene: 32x32 tiles of `Rgb565` (4,112 bytes).
 pub type BenchRenderer = Renderer<Rgb565, 32, 32>;
 /// The workspace of every scene: 2,048 vertices, 4,096 bin entries, all 80
-/// tiles in one pass (41,120 bytes).
+/// tiles in one pass (33,088 bytes).
 pub type BenchWorkspace = Workspace<2048, 4096, 80>;
 
 /// The demo's background (`examples/common/mod.rs`).

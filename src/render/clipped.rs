@@ -3,7 +3,7 @@
 use super::binning::{Fate, Tally};
 use super::state::{covering, grow, margin, meet, FrameState, SetupCache};
 use crate::clip::{clip_triangle, MAX_CLIPPED_VERTICES};
-use crate::raster::{signed_area2, PixelRect, SubPoint};
+use crate::raster::{signed_area2, PixelRect};
 use crate::vertex::ScreenVertex;
 
 impl FrameState<'_> {
@@ -25,11 +25,7 @@ impl FrameState<'_> {
         let mut r = PixelRect::new(i32::MAX, i32::MAX, i32::MIN, i32::MIN);
         let fate = self.clipped_pieces(d, idx, any, flat, cache, &mut |piece, _| {
             let sv = &piece.sv;
-            let b = covering(&[
-                SubPoint::new(sv[0].x, sv[0].y),
-                SubPoint::new(sv[1].x, sv[1].y),
-                SubPoint::new(sv[2].x, sv[2].y),
-            ]);
+            let b = covering(&[sv[0].xy(), sv[1].xy(), sv[2].xy()]);
             r = PixelRect::new(
                 r.x0.min(b.x0),
                 r.y0.min(b.y0),
@@ -77,17 +73,19 @@ impl FrameState<'_> {
         let project = |k: usize| -> ScreenVertex {
             let (p, z) = self.viewport.project(&poly[k].pos);
             let c = poly[k].color;
-            ScreenVertex {
-                x: p.x,
-                y: p.y,
+            // Inside the guard band up to clipping round-off: within
+            // `(K + 1.07) * 2^15 < 2^18` sub-pixels, in the 24-bit fields.
+            ScreenVertex::new(
+                p.x,
+                p.y,
                 z,
-                outcode: 0,
-                color: [
+                0,
+                [
                     c[0].clamp(0, 255) as u8,
                     c[1].clamp(0, 255) as u8,
                     c[2].clamp(0, 255) as u8,
                 ],
-            }
+            )
         };
         // Project once. Snapping to the sub-pixel grid can make the
         // polygon very slightly concave, so facing is decided once, from the
@@ -100,7 +98,7 @@ impl FrameState<'_> {
             // Cannot fail: `poly` has the same capacity.
             let _ = proj.push(project(k));
         }
-        let xy = |v: &ScreenVertex| SubPoint::new(v.x, v.y);
+        let xy = |v: &ScreenVertex| v.xy();
         let mut total = 0i64;
         for k in 2..proj.len() {
             total += signed_area2(&[xy(&proj[0]), xy(&proj[k - 1]), xy(&proj[k])]);

@@ -73,7 +73,7 @@ where
     C: PixelColor + From<Rgb888> + Into<Rgb888>,
     F: ShaderSet<C>,
 {
-    let v = sv.map(|v| SubPoint::new(v.x, v.y));
+    let v = sv.map(ScreenVertex::xy);
     let count = (to.shaders.find)(&v, to.rect, &mut to.found);
     if count == 0 {
         return 0;
@@ -106,7 +106,7 @@ where
     F: ShaderSet<C>,
     G: FragmentShader<C>,
 {
-    let v = tri.corners.0.map(|v| SubPoint::new(v.x, v.y));
+    let v = tri.corners.0.map(|v| v.xy());
     let count = (pass.find)(&v, to.rect, &mut to.found);
     if count == 0 {
         return 0;

@@ -25,6 +25,7 @@ use crate::shade::{DLessEqual, DepthTest};
 use crate::shader::ShaderSet;
 use crate::sink::rectangle;
 use crate::tile::{TileBuffer, TileGrid, TileOrder};
+use crate::vertex::ScreenVertex;
 use embedded_graphics::pixelcolor::{PixelColor, Rgb888};
 use embedded_graphics::primitives::Rectangle;
 
@@ -89,6 +90,31 @@ where
             tails,
         } = ws;
         let done = vertex_stage::run::<C, F, P, Q>(&config, scene, &mut vertices[..], profiler)?;
+        Ok(Self::assemble(
+            config,
+            &vertices[..],
+            bins,
+            heads,
+            tails,
+            scene,
+            done,
+        ))
+    }
+
+    /// The frame [`begin_profiled`](Self::begin_profiled) returns, once the
+    /// vertex stage is done. Out of line, so that its locals (the frame's
+    /// state and sorted-draw tables, about 600 bytes) are not on the stack
+    /// while the vertex stage runs, on the frame's deepest path.
+    #[inline(never)]
+    fn assemble(
+        config: Config<C>,
+        vertices: &'a [ScreenVertex],
+        bins: &'a mut [u16],
+        heads: &'a mut [u16],
+        tails: &'a mut [u16],
+        scene: &'a Scene<'a, F>,
+        done: vertex_stage::Transformed,
+    ) -> Self {
         let size = config.size;
         let grid =
             TileGrid::new(size.width, size.height, TW as u32, TH as u32).ordered(config.tile_order);
@@ -112,12 +138,12 @@ where
             cull_draws: config.frustum_cull,
             frame: PixelRect::new(0, 0, size.width as i32, size.height as i32),
         };
-        Ok(Self {
+        Self {
             config,
             state,
             shaders: &scene.shaders,
             grid,
-            bins: Bins::new(&mut bins[..], &mut heads[..], &mut tails[..]),
+            bins: Bins::new(bins, heads, tails),
             t0: 0,
             len: 0,
             next: 0,
@@ -130,7 +156,7 @@ where
                 ..FrameStats::default()
             },
             features: core::marker::PhantomData,
-        })
+        }
     }
 
     /// Renders the next tile into `tile` and returns the part of the

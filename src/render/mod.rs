@@ -21,7 +21,7 @@
 //!
 //! # How triangles reach their tiles
 //!
-//! The vertex stage writes one 16-byte [`ScreenVertex`](crate::vertex::ScreenVertex) per mesh vertex
+//! The vertex stage writes one 12-byte [`ScreenVertex`](crate::vertex::ScreenVertex) per mesh vertex
 //! into the [`Workspace`]'s vertex buffer, once per frame. Triangles are
 //! never stored set up: a set-up triangle (edges plus attribute planes) is
 //! about 150 bytes, which for 4,000 triangles would be several times the RAM
@@ -190,8 +190,14 @@ where
         Q: Profiler,
         F: ShaderSet<C>,
     {
-        let mut frame = Frame::<C, F, TW, TH, P>::begin_profiled(self.config, ws, scene, profiler)
-            .map_err(RenderError::for_sink)?;
+        // The frame is used where `begin_profiled` returned it, inside its
+        // `Result`: moving it out would take a second copy of its 1.3 KB
+        // (the sorted-draw tables, the set-up cache) on this stack.
+        let mut begun = Frame::<C, F, TW, TH, P>::begin_profiled(self.config, ws, scene, profiler);
+        let frame = match &mut begun {
+            Ok(frame) => frame,
+            Err(e) => return Err(e.for_sink()),
+        };
         while let Some(area) = frame.render_next_profiled(&mut self.tile, profiler) {
             profiler.enter(Stage::Sink);
             sink.write_tile(&area, &self.tile.view(&area))

@@ -228,18 +228,14 @@ impl FrameState<'_> {
             &verts[idx[1] as usize],
             &verts[idx[2] as usize],
         ];
-        let and = sv[0].outcode & sv[1].outcode & sv[2].outcode;
-        let any = sv[0].outcode | sv[1].outcode | sv[2].outcode;
+        let and = sv[0].outcode() & sv[1].outcode() & sv[2].outcode();
+        let any = sv[0].outcode() | sv[1].outcode() | sv[2].outcode();
         let fate = if and & REJECT_MASK != 0 {
             Fate::Rejected
         } else if any & MUST_CLIP != 0 {
             return self.classify_clipped(d, idx, any, sv[0].color, margin, cache, tally);
         } else {
-            let v = [
-                SubPoint::new(sv[0].x, sv[0].y),
-                SubPoint::new(sv[1].x, sv[1].y),
-                SubPoint::new(sv[2].x, sv[2].y),
-            ];
+            let v = [sv[0].xy(), sv[1].xy(), sv[2].xy()];
             // Screen vertices lie within the guard band.
             let area2 = signed_area2_banded(&v);
             if !self.keeps(area2) {

@@ -6,7 +6,7 @@ use super::fill::{fill, fill_shaded, Target};
 use super::state::{FrameState, SetupCache};
 use super::Features;
 use crate::raster::line::{draw_line, draw_point, DepthMode, LinePoint};
-use crate::raster::{PixelRect, Span, SubPoint};
+use crate::raster::{PixelRect, Span};
 use crate::scene::{Blend, Shading};
 use crate::shade::perspective::{Output, ShaderTriangle};
 use crate::shade::Corners;
@@ -58,7 +58,7 @@ where
             &cur.verts[idx[1] as usize],
             &cur.verts[idx[2] as usize],
         ];
-        let any = sv[0].outcode | sv[1].outcode | sv[2].outcode;
+        let any = sv[0].outcode() | sv[1].outcode() | sv[2].outcode();
         if P::LINES && cur.lines {
             n += job.lines(&cur, idx, any);
             if matches!(cur.shading, Shading::Wireframe | Shading::Points(_)) {
@@ -71,7 +71,7 @@ where
             let key = if any & MUST_CLIP != 0 {
                 0
             } else {
-                sv[0].z.max(sv[1].z).max(sv[2].z)
+                sv[0].z().max(sv[1].z()).max(sv[2].z())
             };
             // `t < MAX_TRIANGLES`, so it fits u16. A full list is drawn
             // (sorted) and emptied first: a tile with more transparent
@@ -175,7 +175,7 @@ where
             let idx = cur.triangles.get(t - cur.first);
             let any = idx
                 .iter()
-                .fold(0, |a, &i| a | cur.verts[i as usize].outcode);
+                .fold(0, |a, &i| a | cur.verts[i as usize].outcode());
             n += self.transparent::<P>(&cur, idx, any);
         }
         later.clear();
@@ -228,8 +228,8 @@ where
         let mut n = 0;
         if let Shading::Points(size) = draw.shading {
             for v in sv {
-                if v.outcode & MUST_CLIP == 0 {
-                    let p = LinePoint::new(SubPoint::new(v.x, v.y), v.z, v.color);
+                if v.outcode() & MUST_CLIP == 0 {
+                    let p = LinePoint::new(v.xy(), v.z(), v.color);
                     n += draw_point(tile, rect, mode, &p, size as u32);
                 }
             }
@@ -244,7 +244,7 @@ where
                 }
                 None => v.color,
             };
-            LinePoint::new(SubPoint::new(v.x, v.y), v.z, color)
+            LinePoint::new(v.xy(), v.z(), color)
         };
         let interpolate = style.color.is_none();
         if any & MUST_CLIP == 0 {

@@ -68,6 +68,27 @@ pub(super) fn with_lighting<R>(
     f(lighting.or(simple.as_ref()))
 }
 
+/// Checks the scene's lights, once per frame (with an identity model
+/// matrix), so that per draw only the draw's own matrix can fail. Out of
+/// line, so that the `LightSetup` it builds (about 560 bytes) is not on
+/// the stack while the vertex stage runs.
+#[inline(never)]
+fn check_lights(
+    light: Option<&Light>,
+    lighting: Option<&Lighting<'_>>,
+    eye: Vec3,
+) -> Result<(), RenderError> {
+    with_lighting(light, lighting, |lighting| match lighting {
+        Some(l) => LightSetup::<MAX_LIGHTS>::new(l, &Mat4::IDENTITY, eye)
+            .map(|_| ())
+            .map_err(|e| match e {
+                LightError::BadMatrix => RenderError::BadCamera,
+                e => RenderError::Light(e),
+            }),
+        None => Ok(()),
+    })
+}
+
 /// Checks `scene` against `config` and the vertex buffer's capacity, then
 /// runs the vertex stage into `vertices`. Every error of a frame is found
 /// here.
@@ -99,21 +120,7 @@ where
         return Err(RenderError::BadCamera);
     }
     let eye = scene.camera.eye();
-    // The lights are checked once here (with an identity model matrix), so
-    // that per draw only the draw's own matrix can fail.
-    with_lighting(
-        scene.light.as_ref(),
-        scene.lighting,
-        |lighting| match lighting {
-            Some(l) => LightSetup::<MAX_LIGHTS>::new(l, &Mat4::IDENTITY, eye)
-                .map(|_| ())
-                .map_err(|e| match e {
-                    LightError::BadMatrix => RenderError::BadCamera,
-                    e => RenderError::Light(e),
-                }),
-            None => Ok(()),
-        },
-    )?;
+    check_lights(scene.light.as_ref(), scene.lighting, eye)?;
 
     // Capacities first, so nothing is half done.
     let needed: usize = scene.draws.iter().map(|d| d.mesh.vertex_count()).sum();
@@ -209,7 +216,14 @@ fn transform<F>(
         // or not; a draw wholly outside the frustum is then not
         // transformed (its vertices cannot overflow what is never
         // computed), and binning skips it the same way.
-        let setup = make(draw, view_proj, lighting, eye).map_err(|e| draw_error(di, e))?;
+        // Read in place: moving the set-up out of its `Result` would keep
+        // a second copy of it (about 600 bytes, its `LightSetup`) on the
+        // stack, on the frame's deepest path.
+        let made = make(draw, view_proj, lighting, eye);
+        let setup = match &made {
+            Ok(setup) => setup,
+            Err(e) => return Err(draw_error(di, *e)),
+        };
         let out = &mut vertices[base..base + draw.mesh.vertex_count()];
         base += draw.mesh.vertex_count();
         let frustum = match cull {

@@ -7,7 +7,7 @@ pub const MAX_TRIANGLES: usize = 1 << 16;
 
 /// The per-frame memory of the renderer, sized at compile time.
 ///
-/// * `VERTICES`: capacity of the vertex buffer, 16 bytes each; at least the
+/// * `VERTICES`: capacity of the vertex buffer, 12 bytes each; at least the
 ///   total vertex count of all draws of a frame
 ///   ([`FrameStats::vertex_slots`](super::FrameStats::vertex_slots); for
 ///   an imported model, the importer's `*_VERTEX_COUNT` constants).
@@ -76,13 +76,7 @@ impl<const V: usize, const B: usize, const T: usize> Workspace<V, B, T> {
         #[allow(clippy::let_unit_value)]
         let () = Self::VALID;
         Self {
-            vertices: [ScreenVertex {
-                x: 0,
-                y: 0,
-                z: 0,
-                outcode: 0,
-                color: [0; 3],
-            }; V],
+            vertices: [ScreenVertex::new(0, 0, 0, 0, [0; 3]); V],
             bins: [0; B],
             // All zeros, so that a `static` workspace lives in `.bss` and
             // costs no flash (each pass sets the tails up anyway).

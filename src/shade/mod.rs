@@ -535,17 +535,15 @@ mod tests {
                     v.swap(0, 2);
                 }
             }
-            let sv = [0, 1, 2].map(|k| ScreenVertex {
-                x: v[k].x,
-                y: v[k].y,
-                z: next(65_536) as u16,
-                outcode: 0,
-                color: [next(256) as u8, next(256) as u8, next(256) as u8],
+            let sv = [0, 1, 2].map(|k| {
+                let z = next(65_536) as u16;
+                let color = [next(256) as u8, next(256) as u8, next(256) as u8];
+                ScreenVertex::new(v[k].x, v[k].y, z, 0, color)
             });
             let vals = [0, 1, 2, 3].map(|a| {
                 [0, 1, 2].map(|k| {
                     if a == 0 {
-                        sv[k].z as i64
+                        sv[k].z() as i64
                     } else {
                         sv[k].color[a - 1] as i64
                     }

@@ -267,7 +267,7 @@ impl Corners<'_> {
     /// The screen positions.
     #[inline(always)]
     pub(super) fn points(&self) -> [SubPoint; 3] {
-        self.0.map(|v| SubPoint::new(v.x, v.y))
+        self.0.map(|v| v.xy())
     }
 
     /// The values of attribute `a` (0 depth, 1 to 3 red, green, blue) at
@@ -275,7 +275,7 @@ impl Corners<'_> {
     #[inline(always)]
     pub(super) fn values(&self, a: usize) -> ([i64; 3], u32) {
         if a == 0 {
-            (self.0.map(|v| v.z as i64), Z_FRAC)
+            (self.0.map(|v| v.z() as i64), Z_FRAC)
         } else {
             (self.0.map(|v| v.color[a - 1] as i64), C_FRAC)
         }
