@@ -27,7 +27,6 @@ use crate::scene::Blend;
 use crate::shader::span::{Interpolated, PutPixel, SpanInput};
 use crate::shader::{Perspective, Varyings};
 use crate::texture::Texture;
-use crate::vertex::ScreenVertex;
 use fixed::types::I16F16;
 
 /// `1 / w` of the nearest vertex, scaled.
@@ -57,6 +56,7 @@ struct WidePlane {
 }
 
 impl WidePlane {
+    #[inline(always)]
     fn new(f: &Basis, values: [i64; 3]) -> Self {
         let (gx, gy) = f.gradients(values, 0);
         let (gx, gy) = (
@@ -102,19 +102,32 @@ pub(crate) struct PerspectiveSetup<V> {
 impl<V: Varyings> PerspectiveSetup<V> {
     #[inline(always)]
     pub(crate) fn new(t: &ShaderTriangle<'_, V>, affine: bool) -> Self {
+        // The arrays are written out rather than mapped: each `map` was
+        // an out-of-line call per triangle and tile.
         let f = Basis::new(&t.corners.points());
         let q = if affine {
             [Q_ONE; 3]
         } else {
             // Vertices reaching the shader have w >= W_MIN - 1 > 0 (the
             // clipper's round-off); `max(1)` only keeps this total.
-            let w = t.w.map(|w| (w as i64).max(1));
+            let w = [
+                (t.w[0] as i64).max(1),
+                (t.w[1] as i64).max(1),
+                (t.w[2] as i64).max(1),
+            ];
             let wmin = w[0].min(w[1]).min(w[2]);
-            w.map(|w| (wmin << 28) / w)
+            [
+                (wmin << 28) / w[0],
+                (wmin << 28) / w[1],
+                (wmin << 28) / w[2],
+            ]
         };
+        let [v0, v1, v2] = t.corners.0;
+        let (c0, c1, c2) = (v0.color, v1.color, v2.color);
+        let d = |a: [u8; 3], k: usize| a[k] as i32 - c0[k] as i32;
         Self {
             draw: t.draw,
-            depth: TriangleSetup::new(&t.corners, false),
+            depth: TriangleSetup::with_basis(&f, &t.corners, false),
             planes: [
                 WidePlane::new(&f, q),
                 WidePlane::new(&f, [0, q[1], 0]),
@@ -122,14 +135,15 @@ impl<V: Varyings> PerspectiveSetup<V> {
             ],
             var: t.var,
             flat: t.corners.0[0].color,
-            color: {
-                let [c0, c1, c2] = t.corners.0.map(|v: &ScreenVertex| v.color.map(i32::from));
+            color: [
                 [
-                    c0.map(|c| (c << 16) + (1 << 15)),
-                    [0, 1, 2].map(|k| c1[k] - c0[k]),
-                    [0, 1, 2].map(|k| c2[k] - c0[k]),
-                ]
-            },
+                    ((c0[0] as i32) << 16) + (1 << 15),
+                    ((c0[1] as i32) << 16) + (1 << 15),
+                    ((c0[2] as i32) << 16) + (1 << 15),
+                ],
+                [d(c1, 0), d(c1, 1), d(c1, 2)],
+                [d(c2, 0), d(c2, 1), d(c2, 2)],
+            ],
         }
     }
 

@@ -297,7 +297,13 @@ impl TriangleSetup {
     /// only computed for `gouraud` (flat shading needs only depth).
     #[inline(always)]
     pub(crate) fn new(t: &Corners<'_>, gouraud: bool) -> Self {
-        let f = Basis::new(&t.points());
+        Self::with_basis(&Basis::new(&t.points()), t, gouraud)
+    }
+
+    /// [`TriangleSetup::new`] on the triangle's [`Basis`] `f`, which the
+    /// perspective set-up shares.
+    #[inline(always)]
+    pub(super) fn with_basis(f: &Basis, t: &Corners<'_>, gouraud: bool) -> Self {
         let n = if gouraud { 4 } else { 1 };
         let mut planes = [Plane::default(); 4];
         // Or-ing `gradient + LIMIT` over all gradients: below 2^41 only if
