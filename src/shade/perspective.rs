@@ -147,9 +147,9 @@ impl<V: Varyings> PerspectiveSetup<V> {
             ];
             let wmin = w[0].min(w[1]).min(w[2]);
             [
-                (wmin << 28) / w[0],
-                (wmin << 28) / w[1],
-                (wmin << 28) / w[2],
+                scale_q(wmin, w[0]),
+                scale_q(wmin, w[1]),
+                scale_q(wmin, w[2]),
             ]
         };
         let [v0, v1, v2] = t.corners.0;
@@ -265,6 +265,41 @@ impl<V: Varyings> PerspectiveSetup<V> {
         }
         c
     }
+}
+
+/// `(wmin << 28) / w` for `1 <= wmin <= w < 2^31`: a vertex's `1 / w`
+/// scaled so that the nearest is [`Q_ONE`]. A 64-bit host divides; a
+/// 32-bit core, where a 64-bit division is a library call, takes the same
+/// quotient by long division in 32-bit steps of `k` bits, `k` the leading
+/// zeros of `w` (so every partial dividend `r 2^k < w 2^k` fits `u32`):
+/// two or three divisions for the usual `w` of 2^16 to 2^21.
+#[inline(always)]
+fn scale_q(wmin: i64, w: i64) -> i64 {
+    if cfg!(target_pointer_width = "64") || !(1..=w).contains(&wmin) || w >= 1 << 31 {
+        return (wmin << 28) / w;
+    }
+    scale_q32(wmin as u32, w as u32)
+}
+
+/// [`scale_q`] on a 32-bit core, for `1 <= wmin <= w < 2^31`.
+#[cfg_attr(target_pointer_width = "64", allow(dead_code))]
+#[inline(always)]
+fn scale_q32(wmin: u32, w: u32) -> i64 {
+    let mut r = wmin;
+    if r == w {
+        return Q_ONE;
+    }
+    // r < w < 2^31: at least one leading zero.
+    let k = w.leading_zeros();
+    let (mut q, mut left) = (0u32, 28);
+    while left > 0 {
+        let s = k.min(left);
+        let part = r << s;
+        q = (q << s) | (part / w);
+        r = part % w;
+        left -= s;
+    }
+    q as i64
 }
 
 /// Whether the target lacks a 32x32 to 64-bit multiply (ARMv6-M, whose
@@ -643,6 +678,37 @@ mod tests {
             });
         }
         assert!(checked > 100_000, "{checked} span starts");
+    }
+
+    /// The 32-bit long division of `scale_q` gives the 64-bit quotient.
+    #[test]
+    fn scale_q_matches_the_division() {
+        let mut next = crate::testing::rng();
+        let edges = [
+            1i64,
+            2,
+            3,
+            65_535,
+            65_536,
+            (1 << 30) - 1,
+            1 << 30,
+            (1 << 31) - 1,
+        ];
+        for _ in 0..300_000 {
+            let w = match next(3) {
+                0 => edges[next(edges.len() as u64) as usize],
+                1 => 1 + next(1 << 22) as i64,
+                _ => 1 + next((1 << 31) - 1) as i64,
+            };
+            let wmin = match next(3) {
+                0 => w,
+                1 => 1 + next(w as u64) as i64,
+                _ => (w - next(16) as i64).max(1),
+            };
+            let expected = (wmin << 28) / w;
+            assert_eq!(scale_q32(wmin as u32, w as u32), expected, "{wmin} / {w}");
+            assert_eq!(scale_q(wmin, w), expected, "{wmin} / {w}");
+        }
     }
 
     #[test]
