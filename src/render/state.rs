@@ -180,20 +180,27 @@ impl FrameState<'_> {
 
     /// The fixed-point set-up of draw `d`, from `cache` or computed again
     /// (and cached). `None` cannot happen: the vertex stage accepted the
-    /// draw, and the set-up is deterministic.
-    #[inline(never)]
-    pub(super) fn setup(&self, d: usize, cache: &mut SetupCache) -> Option<DrawSetup> {
-        match cache {
-            Some((c, s)) if *c == d => Some(*s),
-            _ => {
-                let s = with_lighting(self.light.as_ref(), self.lighting, |lighting| {
-                    (self.make_setup)(&self.draws[d], &self.view_proj, lighting, self.eye)
-                })
-                .ok()?;
-                *cache = Some((d, s));
-                Some(s)
-            }
+    /// draw, and the set-up is deterministic. Borrowed from the cache, not
+    /// copied: the set-up is a few hundred bytes, and the shader path asks
+    /// for it once per triangle and tile (a copy was about 90 x86
+    /// instructions of `memcpy` each time).
+    #[inline(always)]
+    pub(super) fn setup<'c>(&self, d: usize, cache: &'c mut SetupCache) -> Option<&'c DrawSetup> {
+        if !matches!(cache, Some((c, _)) if *c == d) {
+            self.setup_again(d, cache)?;
         }
+        cache.as_ref().map(|(_, s)| s)
+    }
+
+    /// [`setup`](Self::setup) when the cache holds another draw's.
+    #[inline(never)]
+    fn setup_again(&self, d: usize, cache: &mut SetupCache) -> Option<()> {
+        let s = with_lighting(self.light.as_ref(), self.lighting, |lighting| {
+            (self.make_setup)(&self.draws[d], &self.view_proj, lighting, self.eye)
+        })
+        .ok()?;
+        *cache = Some((d, s));
+        Some(())
     }
 
     /// Whether a triangle or polygon of twice signed screen area `area2`

@@ -311,13 +311,16 @@ where
         let frame = self.frame;
         let draw = &frame.draws[cur.draw];
         let mesh = draw.mesh;
-        let var = idx.map(|i| {
+        // Written out rather than `idx.map`: the map was left out of line,
+        // a call per triangle and tile.
+        let vertex = |i: u32| {
             shader.vertex(&VertexInput {
                 draw: cur.draw,
                 index: i as usize,
                 mesh,
             })
-        });
+        };
+        let var = [vertex(idx[0]), vertex(idx[1]), vertex(idx[2])];
         let sv = [
             &cur.verts[idx[0] as usize],
             &cur.verts[idx[1] as usize],
@@ -351,7 +354,11 @@ where
         let tri = ShaderTriangle {
             draw: cur.draw,
             corners: Corners(sv),
-            w: idx.map(|i| setup.clip_w(mesh, i as usize)),
+            w: [
+                setup.clip_w(mesh, idx[0] as usize),
+                setup.clip_w(mesh, idx[1] as usize),
+                setup.clip_w(mesh, idx[2] as usize),
+            ],
             var,
         };
         fill_shaded(&mut self.to, &tri, draw.texture, &pass)

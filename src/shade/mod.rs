@@ -412,6 +412,32 @@ mod tests {
 
     /// Gradients of small triangles through the 32-bit divisions against
     /// the 64-bit ones, for depth, colour and the perspective weights.
+    /// The 32-bit long division of the perspective planes' gradients
+    /// gives the 64-bit quotient, extremes included.
+    #[test]
+    fn small_wide_division_matches() {
+        let mut next = crate::testing::rng();
+        for k in 0..200_000u64 {
+            let area = match k % 4 {
+                0 => 1,
+                1 => (1 << 21) - 1,
+                _ => 1 + next((1 << 21) - 1) as u32,
+            };
+            let small = Small {
+                area: NonZeroU32::new(area).unwrap(),
+                half: area / 2,
+            };
+            let n = match k % 3 {
+                0 => (1i64 << 43) - 1 - next(1 << 20) as i64,
+                _ => next(1 << 43) as i64,
+            };
+            let n = if k % 2 == 0 { n } else { -n };
+            let q = ((n.unsigned_abs() + (area / 2) as u64) / area as u64) as i64;
+            let q = if n < 0 { -q } else { q };
+            assert_eq!(small.div_round_wide(n), q, "{n} / {area}");
+        }
+    }
+
     #[test]
     fn small_gradients_match() {
         let mut next = crate::testing::rng();

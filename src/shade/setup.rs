@@ -125,6 +125,35 @@ impl Small {
     }
 }
 
+impl Small {
+    /// `n / area` rounded to nearest, ties away from zero (as
+    /// [`Basis::div_round`]), for `|n| < 2^43` and `area < 2^21`: the
+    /// perspective planes' numerators, whose values reach 2^28. Long
+    /// division in 32-bit steps of 11 bits (every partial dividend is
+    /// below `area 2^11 < 2^32`): four divisions, each one instruction on a
+    /// Cortex-M3/M4, where a 64-bit division is a library call.
+    #[inline(always)]
+    pub(super) fn div_round_wide(&self, n: i64) -> i64 {
+        let d = self.area;
+        // Below 2^43 + 2^20 < 2^44: four chunks of 11 bits.
+        let a = n.unsigned_abs() + self.half as u64;
+        let top = (a >> 33) as u32;
+        let mut q = (top / d) as u64;
+        let mut r = top % d;
+        for shift in [22, 11, 0] {
+            let part = (r << 11) | ((a >> shift) as u32 & 0x7FF);
+            q = (q << 11) | (part / d) as u64;
+            r = part % d;
+        }
+        let q = q as i64;
+        if n < 0 {
+            -q
+        } else {
+            q
+        }
+    }
+}
+
 impl Basis {
     #[inline(always)]
     pub(super) fn new(v: &[SubPoint; 3]) -> Self {
@@ -209,6 +238,15 @@ impl Basis {
                 return (
                     small.div_round(d1 * y2 - d2 * y1, shift),
                     small.div_round(d2 * x1 - d1 * x2, shift),
+                );
+            }
+            if frac == 0 && d1.abs() <= 1 << 28 && d2.abs() <= 1 << 28 {
+                // The perspective planes (values up to 2^28, no fraction
+                // bits): numerators below 2^39 before the shift of 4, so
+                // within `div_round_wide`'s 2^43.
+                return (
+                    small.div_round_wide((d1 * self.y2 - d2 * self.y1) << shift),
+                    small.div_round_wide((d2 * self.x1 - d1 * self.x2) << shift),
                 );
             }
         }
@@ -297,7 +335,13 @@ impl TriangleSetup {
     /// only computed for `gouraud` (flat shading needs only depth).
     #[inline(always)]
     pub(crate) fn new(t: &Corners<'_>, gouraud: bool) -> Self {
-        let f = Basis::new(&t.points());
+        Self::with_basis(&Basis::new(&t.points()), t, gouraud)
+    }
+
+    /// [`TriangleSetup::new`] on the triangle's [`Basis`] `f`, which the
+    /// perspective set-up shares.
+    #[inline(always)]
+    pub(super) fn with_basis(f: &Basis, t: &Corners<'_>, gouraud: bool) -> Self {
         let n = if gouraud { 4 } else { 1 };
         let mut planes = [Plane::default(); 4];
         // Or-ing `gradient + LIMIT` over all gradients: below 2^41 only if
