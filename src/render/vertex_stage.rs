@@ -105,12 +105,16 @@ where
         scene.light.as_ref(),
         scene.lighting,
         |lighting| match lighting {
-            Some(l) => LightSetup::<MAX_LIGHTS>::new(l, &Mat4::IDENTITY, eye)
-                .map(|_| ())
-                .map_err(|e| match e {
-                    LightError::BadMatrix => RenderError::BadCamera,
-                    e => RenderError::Light(e),
-                }),
+            // Without the general lighting, the same checks and errors
+            // without its conversions.
+            Some(l) => match P::LIGHTING {
+                true => LightSetup::<MAX_LIGHTS>::new(l, &Mat4::IDENTITY, eye).map(|_| ()),
+                false => crate::light::check_lighting(l, eye, MAX_LIGHTS),
+            }
+            .map_err(|e| match e {
+                LightError::BadMatrix => RenderError::BadCamera,
+                e => RenderError::Light(e),
+            }),
             None => Ok(()),
         },
     )?;
