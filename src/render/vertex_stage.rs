@@ -5,6 +5,7 @@ use super::{Config, Features, Path, Profiler, RenderError, Stage, MAX_LIGHTS, MA
 use crate::cull::Frustum;
 use crate::light::{DirectionalLight, LightError, LightSetup, Lighting};
 use crate::math::{Mat4, Vec3};
+use crate::mesh::Indices;
 use crate::scene::Draw;
 use crate::scene::{Blend, Light, Scene, Shading};
 use crate::shade::DepthTest;
@@ -152,6 +153,9 @@ where
             matches!(d.shading, Shading::Wireframe | Shading::Points(_)) || d.edges.is_some();
         if lines && !P::LINES {
             return Err(unsupported(Path::Lines));
+        }
+        if matches!(d.mesh.triangles(), Indices::U32(_)) && !P::U32_INDICES {
+            return Err(unsupported(Path::U32Indices));
         }
         if d.blend != Blend::Opaque && !P::BLEND {
             return Err(unsupported(Path::Blend));
