@@ -364,12 +364,6 @@ impl<'a> Mesh<'a> {
                 }
             }
         }
-        let extent = positions
-            .iter()
-            .flatten()
-            .map(|c| c.to_bits().unsigned_abs())
-            .max()
-            .unwrap_or(0);
         let mut bounds = [[i32::MAX; 3], [i32::MIN; 3]];
         for p in positions {
             for k in 0..3 {
@@ -379,6 +373,12 @@ impl<'a> Mesh<'a> {
         }
         if positions.is_empty() {
             bounds = [[0; 3]; 2];
+        }
+        // The largest coordinate magnitude is at a bound (one pass over
+        // the positions instead of two; the same value).
+        let mut extent = 0;
+        for (lo, hi) in bounds[0].iter().zip(&bounds[1]) {
+            extent = extent.max(lo.unsigned_abs()).max(hi.unsigned_abs());
         }
         Ok(Self {
             positions,
@@ -567,6 +567,38 @@ mod tests {
 
     fn fx(v: i32) -> I16F16 {
         I16F16::from_num(v)
+    }
+
+    /// The extent is the largest coordinate magnitude, as the two-pass
+    /// maximum over every coordinate found it.
+    #[test]
+    fn extent_is_the_largest_magnitude() {
+        let mut x = 0x2545_f491_4f6c_dd1du64;
+        for n in 0..200usize {
+            let mut p = [[I16F16::ZERO; 3]; 7];
+            for v in p.iter_mut().take(n % 8) {
+                for c in v.iter_mut() {
+                    x ^= x << 13;
+                    x ^= x >> 7;
+                    x ^= x << 17;
+                    let bits = match x % 5 {
+                        0 => i32::MIN,
+                        1 => i32::MAX,
+                        _ => (x >> 32) as i32 >> (x % 31),
+                    };
+                    *c = I16F16::from_bits(bits);
+                }
+            }
+            let p = &p[..(n % 8).min(7)];
+            let want = p
+                .iter()
+                .flatten()
+                .map(|c| c.to_bits().unsigned_abs())
+                .max()
+                .unwrap_or(0);
+            let tris: [[u16; 3]; 0] = [];
+            assert_eq!(Mesh::new(p, &tris).unwrap().extent(), want);
+        }
     }
 
     fn p(x: i32, y: i32, z: i32) -> Vec3Fx {

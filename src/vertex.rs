@@ -268,6 +268,11 @@ pub struct DrawSetup {
 /// [`LightSetup::shade`] as a function pointer.
 type GeneralShade = fn(&LightSetup<MAX_LIGHTS>, &Material, [u8; 3], [i32; 3], [i32; 3]) -> [u8; 3];
 
+fn rgb(c: embedded_graphics::pixelcolor::Rgb888) -> [u8; 3] {
+    use embedded_graphics::prelude::RgbColor;
+    [c.r(), c.g(), c.b()]
+}
+
 /// One directional light in model space (see
 /// [`LightSetup::single_directional`]).
 #[derive(Clone, Copy, Debug)]
@@ -278,6 +283,14 @@ struct Lambert {
 }
 
 impl Lambert {
+    fn new((dir, color, ambient): ([i32; 3], [u8; 3], [u8; 3])) -> Self {
+        Lambert {
+            dir,
+            color: color.map(u32::from),
+            ambient: ambient.map(u32::from),
+        }
+    }
+
     #[inline(always)]
     fn shade(&self, n: crate::mesh::Vec3Fx, base: [u8; 3]) -> [u8; 3] {
         use crate::math::mul_wide;
@@ -331,36 +344,38 @@ impl DrawSetup {
         let mvp = (*view_proj * *m)
             .to_fixed_normalized()
             .ok_or(VertexError::BadMatrix)?;
-        let light = match lighting {
-            // The renderer checked the lights themselves (with an identity
-            // model matrix): what is left to fail is this draw's matrix.
-            Some(l) => Some(LightSetup::new(l, m, eye).map_err(|_| VertexError::BadMatrix)?),
-            None => None,
-        };
         use embedded_graphics::prelude::RgbColor;
-        let m = &draw.material;
-        let white = [m.ambient, m.diffuse]
+        let material = &draw.material;
+        let white = [material.ambient, material.diffuse]
             .iter()
             .all(|c| (c.r() & c.g() & c.b()) == 255);
-        let dark = (m.specular.r() | m.specular.g() | m.specular.b()) == 0;
-        let lambert = match &light {
-            Some(l) if white && dark => {
-                l.single_directional().map(|(dir, color, ambient)| Lambert {
-                    dir,
-                    color: color.map(u32::from),
-                    ambient: ambient.map(u32::from),
-                })
+        let dark = (material.specular.r() | material.specular.g() | material.specular.b()) == 0;
+        // The renderer checked the lights themselves (with an identity
+        // model matrix): what is left to fail is this draw's matrix.
+        let (light, lambert) = match lighting {
+            Some(l) if GENERAL => {
+                let light = LightSetup::new(l, m, eye).map_err(|_| VertexError::BadMatrix)?;
+                let lambert = match white && dark {
+                    true => light.single_directional().map(Lambert::new),
+                    false => None,
+                };
+                (Some(light), lambert)
             }
-            _ => None,
+            Some(l) => (None, Self::one_light(l, m, eye, white && dark)?),
+            None => (None, None),
         };
         let general: Option<GeneralShade> = match (&light, &lambert) {
             (Some(_), None) if GENERAL => Some(|l, m, b, p, n| l.shade(m, b, p, n)),
-            // Unlit vertices (no normals) need no lighting at all.
-            (Some(_), None) if draw.mesh.normals().is_some() => {
-                return Err(VertexError::GeneralLighting)
-            }
             _ => None,
         };
+        // Unlit vertices (no normals) need no lighting at all.
+        if lighting.is_some()
+            && lambert.is_none()
+            && general.is_none()
+            && draw.mesh.normals().is_some()
+        {
+            return Err(VertexError::GeneralLighting);
+        }
         Ok(Self {
             mvp,
             bounded: mvp.bounded(draw.mesh.extent()),
@@ -370,6 +385,37 @@ impl DrawSetup {
             material: draw.material,
             color: [draw.color.r(), draw.color.g(), draw.color.b()],
         })
+    }
+
+    /// The fast path's set-up without the general lighting's code: for
+    /// one directional light and nothing else (no fog), on a white, matte
+    /// material (`plain`), the light in the draw's model space; otherwise
+    /// none. The draw's matrix is checked as [`LightSetup::new`] checks it
+    /// (for a single light, with the same errors; for more, the checks that
+    /// do not depend on point lights' ranges and fog).
+    #[inline(never)]
+    fn one_light(
+        lighting: &Lighting<'_>,
+        model: &Mat4,
+        eye: Vec3,
+        plain: bool,
+    ) -> Result<Option<Lambert>, VertexError> {
+        let bad = |_| VertexError::BadMatrix;
+        match (lighting.directional, lighting.point.is_empty()) {
+            ([sun], true) => {
+                let dir = crate::light::one_light(sun.direction, model, eye).map_err(bad)?;
+                let fog = lighting.fog != crate::light::Fog::None;
+                Ok((plain && !fog)
+                    .then(|| Lambert::new((dir, rgb(sun.color), rgb(lighting.ambient)))))
+            }
+            _ => {
+                crate::light::model_checks(model, eye).map_err(bad)?;
+                for (i, l) in lighting.directional.iter().enumerate() {
+                    crate::light::directional(i, l.direction, model, false).map_err(bad)?;
+                }
+                Ok(None)
+            }
+        }
     }
 
     /// The clip-space position and lit colour of vertex `i` of `mesh`, the

@@ -124,6 +124,26 @@ fn a_path_left_out_is_a_typed_error() {
         );
         render::<All, _>(&scene, config).unwrap();
     }
+    // `u32` indices: the same cube through them is refused without them.
+    let tris32: Vec<[u32; 3]> = cube.triangles().iter().collect();
+    let cube32 = Mesh::new_u32(cube.positions(), &tris32).unwrap();
+    let cube32 = match cube.normals() {
+        Some(n) => cube32.with_normals(n).unwrap(),
+        None => cube32,
+    };
+    let d = [base, Draw::new(&cube32).transform(base.transform)];
+    let scene = Scene::new(cam, &d);
+    assert_eq!(
+        render::<Triangles, _>(&scene, config).unwrap_err(),
+        RenderError::Unsupported {
+            draw: Some(1),
+            path: Path::U32Indices
+        }
+    );
+    let (wide, _) = render::<All, _>(&scene, config).unwrap();
+    let d = [base, base];
+    let (narrow, _) = render::<Triangles, _>(&Scene::new(cam, &d), config).unwrap();
+    assert!(wide == narrow, "u32 indices draw as u16 ones");
     let d = [base];
     let scene = Scene::new(cam, &d);
     assert_eq!(

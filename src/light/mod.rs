@@ -226,6 +226,7 @@ use std::{format, println, string::String, vec::Vec};
 mod tests;
 
 pub use setup::LightSetup;
+pub(crate) use setup::{check_lighting, directional, model_checks, one_light};
 
 use crate::math::Vec3;
 use embedded_graphics::pixelcolor::Rgb888;

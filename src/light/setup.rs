@@ -178,51 +178,19 @@ impl Core {
                 max: lights.len(),
             });
         }
-        if !model.is_finite() {
-            return Err(LightError::BadMatrix);
-        }
+        let (model_scale, eye) = model_space(model, eye)?;
+        let eye = to_raw(eye).ok_or(LightError::BadMatrix)?;
         let m = &model.m;
         let t = Vec3::new(m[3][0], m[3][1], m[3][2]);
         let to_model = |p: Vec3| model.inverse_transform_vector(p - t);
-        // World units per model unit (exact for a uniform scale).
-        let axis = |c: usize| Vec3::new(m[c][0], m[c][1], m[c][2]);
-        let model_scale =
-            sqrt((axis(0).dot(axis(0)) + axis(1).dot(axis(1)) + axis(2).dot(axis(2))) / 3.0);
-        if !(model_scale.is_finite() && model_scale > 0.0) {
-            return Err(LightError::BadMatrix);
-        }
-        if !eye.is_finite() {
-            return Err(LightError::BadMatrix);
-        }
-        // None for a singular matrix, too.
-        let eye = to_model(eye)
-            .and_then(to_raw)
-            .ok_or(LightError::BadMatrix)?;
 
         let coarse = lighting.directional.len() == 1 && lighting.point.is_empty();
         let mut slots = lights.iter_mut();
         for (i, l) in lighting.directional.iter().enumerate() {
-            if l.direction.normalize().is_none() {
-                return Err(LightError::BadDirection { light: i });
-            }
-            let local = model
-                .inverse_transform_vector(l.direction)
-                .and_then(|v| v.normalize())
-                .ok_or(LightError::BadMatrix)?;
-            let fx = |v: f32| {
-                let x = v * 65536.0;
-                if coarse {
-                    // Truncated, as the vertex stage converts scene::Light.
-                    crate::math::f32_to_i32(x)
-                } else {
-                    crate::math::f32_to_i32(x + if x < 0.0 { -0.5 } else { 0.5 })
-                }
-            };
+            let dir = directional(i, l.direction, model, coarse)?;
             if let Some(slot) = slots.next() {
                 *slot = FixedLight {
-                    source: Source::Directional {
-                        dir: [fx(local.x), fx(local.y), fx(local.z)],
-                    },
+                    source: Source::Directional { dir },
                     color: rgb(l.color),
                 };
             }
@@ -290,5 +258,147 @@ impl Core {
             fog_color: rgb(lighting.fog_color),
             coarse,
         })
+    }
+}
+
+/// The checks every set-up makes of a draw's model matrix and the eye, in
+/// [`Core::new`]'s order: the model scale (world units per model unit) and
+/// the eye in model space, not yet known to fit raw 16.16.
+fn model_space(model: &Mat4, eye: Vec3) -> Result<(f32, Vec3), LightError> {
+    if !model.is_finite() {
+        return Err(LightError::BadMatrix);
+    }
+    let m = &model.m;
+    let t = Vec3::new(m[3][0], m[3][1], m[3][2]);
+    // World units per model unit (exact for a uniform scale).
+    let axis = |c: usize| Vec3::new(m[c][0], m[c][1], m[c][2]);
+    let model_scale =
+        sqrt((axis(0).dot(axis(0)) + axis(1).dot(axis(1)) + axis(2).dot(axis(2))) / 3.0);
+    if !(model_scale.is_finite() && model_scale > 0.0) {
+        return Err(LightError::BadMatrix);
+    }
+    if !eye.is_finite() {
+        return Err(LightError::BadMatrix);
+    }
+    // None for a singular matrix, too.
+    let eye = model
+        .inverse_transform_vector(eye - t)
+        .ok_or(LightError::BadMatrix)?;
+    Ok((model_scale, eye))
+}
+
+/// Directional light `i` (direction `direction`, world space) in the model
+/// space of `model`: its unit direction in Q16, truncated when `coarse`
+/// (one directional light and nothing else), rounded otherwise.
+pub(crate) fn directional(
+    i: usize,
+    direction: Vec3,
+    model: &Mat4,
+    coarse: bool,
+) -> Result<[i32; 3], LightError> {
+    if direction.normalize().is_none() {
+        return Err(LightError::BadDirection { light: i });
+    }
+    let local = model
+        .inverse_transform_vector(direction)
+        .and_then(|v| v.normalize())
+        .ok_or(LightError::BadMatrix)?;
+    let fx = |v: f32| {
+        let x = v * 65536.0;
+        if coarse {
+            // Truncated, as the vertex stage converts scene::Light.
+            crate::math::f32_to_i32(x)
+        } else {
+            crate::math::f32_to_i32(x + if x < 0.0 { -0.5 } else { 0.5 })
+        }
+    };
+    Ok([fx(local.x), fx(local.y), fx(local.z)])
+}
+
+/// Whether `to_raw(v)` is `Some`.
+fn fits_raw(v: Vec3) -> bool {
+    const LIMIT: f32 = (1u64 << 60) as f32;
+    [v.x, v.y, v.z]
+        .iter()
+        .all(|&c| !(c * 65536.0).is_nan() && (c * 65536.0).abs() <= LIMIT)
+}
+
+/// The set-up of a draw lit by one directional light (direction
+/// `direction`, world space) and nothing else, without the general
+/// lighting's code: its unit direction in the model space of `model`, Q16,
+/// truncated, as [`LightSetup::single_directional`] gives it, with the
+/// errors [`LightSetup::new`] gives for a [`Lighting`] of that one light.
+pub(crate) fn one_light(direction: Vec3, model: &Mat4, eye: Vec3) -> Result<[i32; 3], LightError> {
+    model_checks(model, eye)?;
+    directional(0, direction, model, true)
+}
+
+/// The checks of a draw's matrix and the eye that [`LightSetup::new`]
+/// makes whatever the lights.
+pub(crate) fn model_checks(model: &Mat4, eye: Vec3) -> Result<(), LightError> {
+    let (_, eye) = model_space(model, eye)?;
+    match fits_raw(eye) {
+        true => Ok(()),
+        false => Err(LightError::BadMatrix),
+    }
+}
+
+/// Checks `lighting` as [`LightSetup::new`] with at most `max` lights, an
+/// identity model matrix and the eye `eye` does, with the same errors, but
+/// converts nothing: the check of a frame's lights in a renderer that does
+/// not link the general lighting.
+pub(crate) fn check_lighting(
+    lighting: &Lighting<'_>,
+    eye: Vec3,
+    max: usize,
+) -> Result<(), LightError> {
+    let count = lighting
+        .directional
+        .len()
+        .saturating_add(lighting.point.len());
+    if count > max {
+        return Err(LightError::TooManyLights { count, max });
+    }
+    let identity = Mat4::IDENTITY;
+    let (scale, eye) = model_space(&identity, eye)?;
+    if !fits_raw(eye) {
+        return Err(LightError::BadMatrix);
+    }
+    for (i, l) in lighting.directional.iter().enumerate() {
+        directional(i, l.direction, &identity, true)?;
+    }
+    for (i, l) in lighting.point.iter().enumerate() {
+        // In the identity's model space a finite position stays finite.
+        if !l.position.is_finite() {
+            return Err(LightError::BadPosition { light: i });
+        }
+        if !(l.range.is_finite() && l.range > 0.0) {
+            return Err(LightError::BadRange { light: i });
+        }
+        let r = l.range / scale;
+        if r.is_nan() || r * 65536.0 > (1u64 << 59) as f32 {
+            return Err(LightError::BadRange { light: i });
+        }
+    }
+    // `Scale::from_f32` refuses only what is not finite or is negative.
+    let fog_scale = match lighting.fog {
+        Fog::None => return Ok(()),
+        Fog::Linear { start, end } => {
+            let width = end - start;
+            if !(start.is_finite() && end.is_finite() && width > 0.0 && width.is_finite()) {
+                return Err(LightError::BadFog);
+            }
+            scale / width
+        }
+        Fog::Exponential { density } => {
+            if !(density.is_finite() && density >= 0.0) {
+                return Err(LightError::BadFog);
+            }
+            density * scale * core::f32::consts::LOG2_E
+        }
+    };
+    match fog_scale.is_finite() && fog_scale >= 0.0 {
+        true => Ok(()),
+        false => Err(LightError::BadFog),
     }
 }

@@ -1079,3 +1079,115 @@ fn scale_applies_like_f64() {
     assert_eq!(Scale::from_f32(f32::NAN), None);
     assert_eq!(Scale::from_f32(1.0).unwrap().apply(1 << 15, -15), 1);
 }
+
+/// The set-ups without the general lighting's code (`check_lighting` for a
+/// frame's lights, `one_light` and `model_checks` per draw) give the
+/// general set-up's results and errors, edge cases included.
+#[test]
+fn checks_without_conversions_agree_with_the_general_setup() {
+    let specials = [
+        0.0,
+        -0.0,
+        1.0,
+        -2.5,
+        1e-30,
+        1e-45,
+        3e38,
+        -3e38,
+        1e13,
+        2e13,
+        1.8e13,
+        f32::INFINITY,
+        f32::NEG_INFINITY,
+        f32::NAN,
+    ];
+    let mut rng = Rng(0x5eed_1234_abcd_0042);
+    let mut pick = |rng: &mut Rng| -> f32 {
+        if rng.next().is_multiple_of(3) {
+            specials[(rng.next() % specials.len() as u64) as usize]
+        } else {
+            rng.log(1e-6, 1e15) as f32
+                * if rng.next().is_multiple_of(2) {
+                    1.0
+                } else {
+                    -1.0
+                }
+        }
+    };
+    let mut agreed = [0usize; 2];
+    for case in 0..20_000 {
+        let v = |rng: &mut Rng, pick: &mut dyn FnMut(&mut Rng) -> f32| {
+            Vec3::new(pick(rng), pick(rng), pick(rng))
+        };
+        let eye = if case % 4 == 0 {
+            v(&mut rng, &mut pick)
+        } else {
+            Vec3::new(0.0, 1.0, 5.0)
+        };
+        let dirs = [
+            DirectionalLight::new(v(&mut rng, &mut pick), 0.5),
+            DirectionalLight::new(Vec3::new(0.3, -1.0, 0.2), 0.7),
+        ];
+        let points = [
+            PointLight::new(v(&mut rng, &mut pick), 0.8, pick(&mut rng)),
+            PointLight::new(Vec3::new(1.0, 2.0, 3.0), 0.8, pick(&mut rng)),
+        ];
+        let fog = match rng.next() % 4 {
+            0 => Fog::None,
+            1 => Fog::Linear {
+                start: pick(&mut rng),
+                end: pick(&mut rng),
+            },
+            2 => Fog::Exponential {
+                density: pick(&mut rng),
+            },
+            _ => Fog::Linear {
+                start: 1.0,
+                end: 1.0 + pick(&mut rng).abs(),
+            },
+        };
+        let nd = (rng.next() % 3) as usize;
+        let np = (rng.next() % 3) as usize;
+        let mut lighting = Lighting::new(0.2)
+            .directional(&dirs[..nd])
+            .point(&points[..np]);
+        lighting.fog = fog;
+        let max = [1, 8][(rng.next() % 2) as usize];
+        let general = match max {
+            1 => LightSetup::<1>::new(&lighting, &Mat4::IDENTITY, eye).map(|_| ()),
+            _ => LightSetup::<8>::new(&lighting, &Mat4::IDENTITY, eye).map(|_| ()),
+        };
+        assert_eq!(
+            check_lighting(&lighting, eye, max),
+            general,
+            "{lighting:?} eye {eye:?}"
+        );
+
+        // One light under a draw's matrix.
+        let model = match rng.next() % 4 {
+            0 => Mat4::scale(v(&mut rng, &mut pick)),
+            1 => Mat4::translation(v(&mut rng, &mut pick)),
+            2 => Mat4::rotation_y(pick(&mut rng)) * Mat4::scale(Vec3::new(2.0, 2.0, 2.0)),
+            _ => Mat4::IDENTITY,
+        };
+        let one = Lighting::new(0.2).directional(&dirs[..1]);
+        let general: Result<LightSetup<8>, _> = LightSetup::new(&one, &model, eye);
+        let fast = one_light(dirs[0].direction, &model, eye);
+        match general {
+            Ok(s) => {
+                let (dir, _, _) = s.single_directional().unwrap();
+                assert_eq!(fast, Ok(dir), "{model:?} eye {eye:?}");
+                agreed[0] += 1;
+            }
+            Err(e) => {
+                assert_eq!(fast, Err(e), "{model:?} eye {eye:?}");
+                agreed[1] += 1;
+            }
+        }
+        let unlit = Lighting::new(0.2);
+        let general: Result<LightSetup<8>, _> = LightSetup::new(&unlit, &model, eye);
+        assert_eq!(model_checks(&model, eye), general.map(|_| ()));
+    }
+    // Both outcomes were exercised.
+    assert!(agreed.iter().all(|&n| n > 1_000), "{agreed:?}");
+}

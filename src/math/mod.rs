@@ -430,6 +430,10 @@ impl Mat4 {
 
 impl core::ops::Mul for Mat4 {
     type Output = Mat4;
+    /// Out of line: a frame takes a few products (camera, each draw's
+    /// model-view-projection), and on a core without an FPU each inlined
+    /// copy is 1.3 KB of soft-float calls.
+    #[inline(never)]
     fn mul(self, rhs: Mat4) -> Mat4 {
         let mut out = [[0.0f32; 4]; 4];
         for (c, out_col) in out.iter_mut().enumerate() {

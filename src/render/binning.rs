@@ -97,9 +97,11 @@ pub(super) fn bin_pass<const TW: usize, const TH: usize, const HILBERT: bool, P:
                 Indices::U16(tris) => bin_triangles::<TW, TH, u16>(
                     &ctx, &tris[run], HILBERT, &mut t, bins, cache, tally,
                 ),
-                Indices::U32(tris) => {
+                Indices::U32(tris) if P::U32_INDICES => {
                     bin_wide::<TW, TH>(&ctx, &tris[run], HILBERT, &mut t, bins, cache, tally)
                 }
+                // Refused by the vertex stage (Path::U32Indices).
+                Indices::U32(_) => t += len,
             }
         }
     }

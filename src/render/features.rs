@@ -73,6 +73,11 @@ pub trait Features {
     /// [`Scene::light`](crate::scene::Scene::light)) on the default
     /// material.
     const LIGHTING: bool = true;
+    /// Meshes with `u32` vertex indices ([`Mesh::new_u32`]); without it
+    /// only `u16` meshes are binned, and a draw of a `u32` mesh is refused.
+    ///
+    /// [`Mesh::new_u32`]: crate::mesh::Mesh::new_u32
+    const U32_INDICES: bool = true;
 }
 
 /// Every path (the default).
@@ -82,8 +87,8 @@ pub struct All;
 impl Features for All {}
 
 /// Flat and Gouraud triangles only, with the scanline rasterizer, the
-/// default depth test, one directional light and no frustum culling: the
-/// smallest firmware.
+/// default depth test, one directional light, `u16` mesh indices and no
+/// frustum culling: the smallest firmware.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Triangles;
 
@@ -96,6 +101,7 @@ impl Features for Triangles {
     const SORT: bool = false;
     const DEPTH_TESTS: bool = false;
     const LIGHTING: bool = false;
+    const U32_INDICES: bool = false;
 }
 
 /// A path a [`Features`] type can leave out, named in
@@ -114,6 +120,8 @@ pub enum Path {
     DepthTests,
     /// [`Features::LIGHTING`].
     Lighting,
+    /// [`Features::U32_INDICES`].
+    U32Indices,
 }
 
 impl core::fmt::Display for Path {
@@ -125,6 +133,7 @@ impl core::fmt::Display for Path {
             Path::Sort => "sorted draws",
             Path::DepthTests => "depth tests other than LessEqual with writes",
             Path::Lighting => "the general lighting",
+            Path::U32Indices => "u32 mesh indices",
         })
     }
 }

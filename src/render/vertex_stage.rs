@@ -5,6 +5,7 @@ use super::{Config, Features, Path, Profiler, RenderError, Stage, MAX_LIGHTS, MA
 use crate::cull::Frustum;
 use crate::light::{DirectionalLight, LightError, LightSetup, Lighting};
 use crate::math::{Mat4, Vec3};
+use crate::mesh::Indices;
 use crate::scene::Draw;
 use crate::scene::{Blend, Light, Scene, Shading};
 use crate::shade::DepthTest;
@@ -73,18 +74,22 @@ pub(super) fn with_lighting<R>(
 /// line, so that the `LightSetup` it builds (about 560 bytes) is not on
 /// the stack while the vertex stage runs.
 #[inline(never)]
-fn check_lights(
+fn check_lights<P: Features>(
     light: Option<&Light>,
     lighting: Option<&Lighting<'_>>,
     eye: Vec3,
 ) -> Result<(), RenderError> {
     with_lighting(light, lighting, |lighting| match lighting {
-        Some(l) => LightSetup::<MAX_LIGHTS>::new(l, &Mat4::IDENTITY, eye)
-            .map(|_| ())
-            .map_err(|e| match e {
-                LightError::BadMatrix => RenderError::BadCamera,
-                e => RenderError::Light(e),
-            }),
+        // Without the general lighting, the same checks and errors
+        // without its conversions.
+        Some(l) => match P::LIGHTING {
+            true => LightSetup::<MAX_LIGHTS>::new(l, &Mat4::IDENTITY, eye).map(|_| ()),
+            false => crate::light::check_lighting(l, eye, MAX_LIGHTS),
+        }
+        .map_err(|e| match e {
+            LightError::BadMatrix => RenderError::BadCamera,
+            e => RenderError::Light(e),
+        }),
         None => Ok(()),
     })
 }
@@ -120,7 +125,7 @@ where
         return Err(RenderError::BadCamera);
     }
     let eye = scene.camera.eye();
-    check_lights(scene.light.as_ref(), scene.lighting, eye)?;
+    check_lights::<P>(scene.light.as_ref(), scene.lighting, eye)?;
 
     // Capacities first, so nothing is half done.
     let needed: usize = scene.draws.iter().map(|d| d.mesh.vertex_count()).sum();
@@ -155,6 +160,9 @@ where
             matches!(d.shading, Shading::Wireframe | Shading::Points(_)) || d.edges.is_some();
         if lines && !P::LINES {
             return Err(unsupported(Path::Lines));
+        }
+        if matches!(d.mesh.triangles(), Indices::U32(_)) && !P::U32_INDICES {
+            return Err(unsupported(Path::U32Indices));
         }
         if d.blend != Blend::Opaque && !P::BLEND {
             return Err(unsupported(Path::Blend));
