@@ -101,6 +101,16 @@ mod firmware {
     #[used]
     static MICRORASTER_PICO_SERIAL: u8 = 0;
 
+    /// 0 in every build: each frame shows the animation at the timer's
+    /// time. Any other value `N`: frame `k` shows the animation at `k N`
+    /// microseconds (the timer runs all the same), so that two runs of the
+    /// emulator's harness, with and without `--serial`, draw the very same
+    /// frames and their cycles compare exactly (`tests/pico/run.mjs
+    /// --frame-us N` sets it in the image it loads). In flash, read once.
+    #[no_mangle]
+    #[used]
+    static MICRORASTER_PICO_FRAME_US: u32 = 0;
+
     /// The Pico's crystal.
     const XTAL_HZ: u32 = 12_000_000;
     /// The SPI clock asked for: the RP2040's fastest (the 125 MHz
@@ -338,6 +348,8 @@ mod firmware {
         // may have changed it in the image).
         // SAFETY: a valid, aligned `'static` byte that nothing writes.
         let serial = unsafe { core::ptr::read_volatile(&MICRORASTER_PICO_SERIAL) } != 0;
+        // SAFETY: as for the byte above, a valid, aligned `'static` word.
+        let frame_us = unsafe { core::ptr::read_volatile(&MICRORASTER_PICO_FRAME_US) } as u64;
         let mut panel = Panel {
             link: Link::Idle(dma.ch0, spi),
             dc,
@@ -357,9 +369,16 @@ mod firmware {
             fault(&mut led, 4)
         };
 
+        let mut frame = 0u64;
         loop {
             // The timer counts microseconds from its reset above.
-            let draws = draws(&knot, &cube, timer.get_counter().ticks());
+            let now = timer.get_counter().ticks();
+            let time_us = match frame_us {
+                0 => now,
+                step => frame * step,
+            };
+            frame += 1;
+            let draws = draws(&knot, &cube, time_us);
             let scene = Scene::new(camera, &draws).light(light());
             let (back, result) = match PicoFrame::begin(config, workspace, &scene) {
                 Ok(frame) => frame.render_double_buffered(tiles, &mut panel),

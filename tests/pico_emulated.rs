@@ -112,8 +112,15 @@ fn pico_harness_models() {
 /// Runs the firmware `elf` in the harness for `frames` frames, writing the
 /// panel's frames and report.json to `out`, and returns the report and its
 /// frames. `serial`: with `--serial`, each tile sent before the next is
-/// drawn.
-fn run_pico(elf: &Path, frames: usize, serial: bool, out: &Path) -> (String, Vec<Frame>) {
+/// drawn. `frame_us`: with `--frame-us`, frame k drawn at k times that many
+/// microseconds of animation (the rp2040-hal firmware has the setting).
+fn run_pico(
+    elf: &Path,
+    frames: usize,
+    serial: bool,
+    frame_us: Option<u32>,
+    out: &Path,
+) -> (String, Vec<Frame>) {
     let _ = std::fs::remove_dir_all(out);
     let started = Instant::now();
     let mut command = Command::new("node");
@@ -125,6 +132,9 @@ fn run_pico(elf: &Path, frames: usize, serial: bool, out: &Path) -> (String, Vec
         .arg(out);
     if serial {
         command.arg("--serial");
+    }
+    if let Some(us) = frame_us {
+        command.args(["--frame-us", &us.to_string()]);
     }
     let run = command.output().expect("node runs");
     let stdout = String::from_utf8_lossy(&run.stdout);
@@ -207,8 +217,10 @@ fn pico_firmware_in_rp2040js_matches_host_render() {
     let elf = build_example("rp2040_st7789");
     let out = root().join("target/pico-e2e/panel");
     let serial_out = root().join("target/pico-e2e/serial");
-    let (report, overlapped) = run_pico(&elf, frames, false, &out);
-    let (_, serial) = run_pico(&elf, frames, true, &serial_out);
+    // The same animation times in both runs (frame k at k / 4 s), so that
+    // the serial run's render is the overlapped run's.
+    let (report, overlapped) = run_pico(&elf, frames, false, Some(250_000), &out);
+    let (_, serial) = run_pico(&elf, frames, true, Some(250_000), &serial_out);
 
     // The stack, painted before reset and read back after the last frame,
     // stayed clear of the statics (RAM is 256 KiB; a stack that reached
@@ -221,9 +233,9 @@ fn pico_firmware_in_rp2040js_matches_host_render() {
     );
 
     // The overlap, from frame 1 on (frame 0 also holds the knot's
-    // generation and the panel's wait after DISPON). The two runs' frames
-    // are a few milliseconds of animation apart, about the same work. The
-    // test asserts that the overlap happens (the frame is shorter than
+    // generation and the panel's wait after DISPON). The two runs draw the
+    // same frames (`--frame-us`), so the render alone is exactly the
+    // overlapped frame's work. The test asserts that the overlap happens (the frame is shorter than
     // render + transfer); how close it comes to max(render, transfer) is a
     // measurement, printed here and kept in BENCHMARKS.md, not a pass
     // mark: it moves with the render's speed and the scene's tiles.
@@ -289,7 +301,7 @@ fn embassy_pico_firmware_in_rp2040js_matches_host_render() {
         .and_then(|n| n.parse().ok())
         .unwrap_or(2);
     let out = root().join("target/pico-e2e/embassy");
-    let (report, reported) = run_pico(Path::new(&elf), frames, false, &out);
+    let (report, reported) = run_pico(Path::new(&elf), frames, false, None, &out);
     let statics = field(&report, "static_ram_bytes");
     let stack = field(&report, "peak_stack_bytes");
     assert!(

@@ -2,7 +2,7 @@
 // rp2040js with the stub boot ROM (bootrom.mjs) and an ST7789 on SPI1
 // (st7789.mjs), until it has drawn the frames asked for.
 //
-//   node tests/pico/run.mjs ELF [--frames N] [--out DIR] [--max-cycles C] [--serial]
+//   node tests/pico/run.mjs ELF [--frames N] [--out DIR] [--max-cycles C] [--serial] [--frame-us N]
 //   node tests/pico/run.mjs ELF --bench [--max-cycles C]
 //   ... [--profile FILE]
 //
@@ -19,6 +19,11 @@
 // in the image it loads: the firmware then waits for each tile to leave
 // the wire before it draws the next, instead of drawing it while DMA sends
 // the previous one. That run's idle wire is the render alone.
+//
+// `--frame-us N` sets the firmware's flash word `MICRORASTER_PICO_FRAME_US`:
+// frame k then shows the animation at k N microseconds, whatever the
+// frames took, so that a run with `--serial` and one without draw the same
+// frames and their cycles compare exactly.
 //
 // `--bench` runs the benchmark firmware `examples/rp2040_bench.rs` instead,
 // which renders scenes into a `NullSink` and marks each frame with `bkpt`s
@@ -66,6 +71,8 @@ const PIN_RES = 12;
 const SPI = 1;
 /** The firmware's flash byte that `--serial` sets. */
 const SERIAL = 'MICRORASTER_PICO_SERIAL';
+/** The firmware's flash word that `--frame-us` sets. */
+const FRAME_US = 'MICRORASTER_PICO_FRAME_US';
 
 function parseArgs(argv) {
   const args = {
@@ -74,6 +81,7 @@ function parseArgs(argv) {
     maxCycles: null,
     elf: null,
     serial: false,
+    frameUs: 0,
     bench: false,
     profile: null,
   };
@@ -83,14 +91,15 @@ function parseArgs(argv) {
     else if (a === '--out') args.out = argv[++i];
     else if (a === '--max-cycles') args.maxCycles = Number(argv[++i]);
     else if (a === '--serial') args.serial = true;
+    else if (a === '--frame-us') args.frameUs = Number(argv[++i]);
     else if (a === '--bench') args.bench = true;
     else if (a === '--profile') args.profile = argv[++i];
     else if (!args.elf && !a.startsWith('--')) args.elf = a;
     else throw new Error(`unknown argument ${a}`);
   }
-  if (!args.elf || !(args.frames >= 1)) {
+  if (!args.elf || !(args.frames >= 1) || !(Number.isInteger(args.frameUs) && args.frameUs >= 0 && args.frameUs < 2 ** 32)) {
     throw new Error(
-      'usage: node run.mjs ELF [--frames N] [--out DIR] [--max-cycles C] [--serial], or node run.mjs ELF --bench [--max-cycles C]',
+      'usage: node run.mjs ELF [--frames N] [--out DIR] [--max-cycles C] [--serial] [--frame-us N], or node run.mjs ELF --bench [--max-cycles C]',
     );
   }
   return args;
@@ -367,6 +376,16 @@ function main() {
     if (mcu.flash[at - 0x10000000] !== 0) throw new Error(`${SERIAL} is not 0 in the image`);
     mcu.flash[at - 0x10000000] = 1;
   }
+  if (args.frameUs) {
+    // A word of .rodata, in flash: frame k is drawn at k * N microseconds.
+    const { [FRAME_US]: at } = elfSymbols(args.elf, [FRAME_US]);
+    if (at < 0x10000000 || at + 4 > 0x10000000 + mcu.flash.length || at % 4) {
+      throw new Error(`${FRAME_US} at 0x${at.toString(16)} is not a word in flash`);
+    }
+    const word = new DataView(mcu.flash.buffer, mcu.flash.byteOffset + at - 0x10000000, 4);
+    if (word.getUint32(0, true) !== 0) throw new Error(`${FRAME_US} is not 0 in the image`);
+    word.setUint32(0, args.frameUs, true);
+  }
   const stack = elfSymbols(args.elf, ['_stack_start', '_stack_end']);
   if (stack._stack_end % 4 || stack._stack_start % 4 || stack._stack_end >= stack._stack_start) {
     throw new Error(`stack bounds 0x${stack._stack_end.toString(16)}..0x${stack._stack_start.toString(16)}`);
@@ -437,7 +456,10 @@ function main() {
         periodStart = cyclesNow();
         periodSpi = wire.busyCycles;
       }
-      frameStart = { time_us: lastTimeUs, cycle: cyclesNow() };
+      // The animation time the frame shows: the firmware's last timer
+      // reading, or with --frame-us, the frame's index times N.
+      const timeUs = args.frameUs ? frames.length * args.frameUs : lastTimeUs;
+      frameStart = { time_us: timeUs, cycle: cyclesNow() };
     }
     if (coveredCount === WIDTH * HEIGHT && panel.windowFilled()) {
       const end = cyclesNow();
