@@ -154,8 +154,9 @@ impl ScreenVertex {
         }
     }
 
-    /// [`new`](Self::new) for any coordinates: `None` if `x` or `y` is
-    /// outside [`COORD_MIN`]`..=`[`COORD_MAX`].
+    /// A vertex at `(x, y)` sub-pixels, depth `z`, with outcode `outcode`
+    /// and lit colour `color`, or `None` if `x` or `y` is outside
+    /// [`COORD_MIN`]`..=`[`COORD_MAX`] (the fields' 24 bits).
     pub const fn try_new(x: i32, y: i32, z: u16, outcode: u8, color: [u8; 3]) -> Option<Self> {
         if COORD_MIN <= x && x <= COORD_MAX && COORD_MIN <= y && y <= COORD_MAX {
             Some(Self::new(x, y, z, outcode, color))
