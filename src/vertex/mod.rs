@@ -4,9 +4,9 @@
 //! Per frame (and per draw) the `f32` matrices of the [`Scene`](crate::scene::Scene) are combined,
 //! normalized (divided by their largest element: clip coordinates are
 //! homogeneous, so this leaves the picture alone but makes it independent
-//! of the scene's units, see [`Mat4::normalized`]) and converted once to
-//! 16.16 ([`FixedMat4`]); the world-space lights are
-//! moved into the draw's model space ([`LightSetup`], see [`crate::light`]),
+//! of the scene's units, see [`Mat4::normalized`](crate::math::Mat4::normalized)) and converted once to
+//! 16.16 ([`FixedMat4`](crate::math::FixedMat4)); the world-space lights are
+//! moved into the draw's model space ([`LightSetup`](crate::light::LightSetup), see [`crate::light`]),
 //! so per vertex the stage needs only integer multiply-adds: 12 products for
 //! the position, a few per light, and 3 quotients by `w` for the
 //! perspective divide, which share one divisor (on a 32-bit core, one
@@ -16,8 +16,8 @@
 //!
 //! The transform's sums of products are checked for overflow only for a
 //! draw whose matrix and mesh could overflow them: the mesh knows its
-//! largest coordinate ([`Mesh::extent`]), so [`DrawSetup::new`] decides once
-//! per draw whether any vertex could ([`FixedMat4::bounded`]).
+//! largest coordinate ([`Mesh::extent`](crate::mesh::Mesh::extent)), so [`DrawSetup::new`] decides once
+//! per draw whether any vertex could ([`FixedMat4::bounded`](crate::math::FixedMat4::bounded)).
 //!
 //! # Outcodes and the guard band
 //!
@@ -42,12 +42,12 @@
 //! `[-1, 1]` to `[height, 0]` (screen y grows downwards), both rounded to the
 //! nearest 1/16 pixel. NDC z in `[-1, 1]` maps to depth `0..=65535`.
 
-use crate::light::{LightSetup, Lighting, Material};
-use crate::math::Vec3;
-use crate::math::{Divisor, FixedMat4, Mat4};
-use crate::mesh::Mesh;
+mod setup;
+
+pub use setup::{DrawSetup, VertexError, MAX_LIGHTS};
+
+use crate::math::Divisor;
 use crate::raster::{SubPoint, SUBPIXEL};
-use crate::scene::Draw;
 use core::num::NonZeroU64;
 
 /// Outside `x >= -w`.
@@ -226,258 +226,6 @@ pub struct ClipVertex {
 /// The barycentric weight 1 of [`ClipVertex::bary`].
 pub const BARY_ONE: i32 = 1 << 30;
 
-/// Why the vertex stage refused a draw.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum VertexError {
-    /// A matrix (model, view or projection, or their product) has a
-    /// non-finite element, or the product cannot be represented in 16.16
-    /// even normalized ([`Mat4::to_fixed_normalized`]: zero or nearly so,
-    /// or a row lost next to the largest element).
-    BadMatrix,
-    /// A transformed vertex left the 16.16 range of clip space.
-    OutOfRange {
-        /// Index of the vertex within its mesh.
-        vertex: usize,
-    },
-    /// The draw needs the general lighting (more than one light, a point
-    /// light, fog, or a material other than white and matte), which the
-    /// renderer does not link
-    /// ([`Features::LIGHTING`](crate::render::Features::LIGHTING)).
-    GeneralLighting,
-}
-
-/// Everything the vertex stage needs for one draw, in fixed point.
-#[derive(Clone, Copy, Debug)]
-pub struct DrawSetup {
-    mvp: FixedMat4,
-    /// `mvp` cannot overflow on this draw's mesh (see
-    /// [`FixedMat4::bounded`]), so vertices take the unchecked transform.
-    bounded: bool,
-    light: Option<LightSetup<MAX_LIGHTS>>,
-    /// The same lighting when it is one directional light on a white
-    /// material without highlights or fog: a dozen instructions per vertex
-    /// instead of the general loop, same colours.
-    lambert: Option<Lambert>,
-    /// The general lighting loop, when the set-up links it and the fast
-    /// path does not apply: through a pointer, so that a set-up made
-    /// without it (`with_lighting::<false>`) does not link it at all.
-    general: Option<GeneralShade>,
-    material: Material,
-    color: [u8; 3],
-}
-
-/// [`LightSetup::shade`] as a function pointer.
-type GeneralShade = fn(&LightSetup<MAX_LIGHTS>, &Material, [u8; 3], [i32; 3], [i32; 3]) -> [u8; 3];
-
-fn rgb(c: embedded_graphics::pixelcolor::Rgb888) -> [u8; 3] {
-    use embedded_graphics::prelude::RgbColor;
-    [c.r(), c.g(), c.b()]
-}
-
-/// One directional light in model space (see
-/// [`LightSetup::single_directional`]).
-#[derive(Clone, Copy, Debug)]
-struct Lambert {
-    dir: [i32; 3],
-    color: [u32; 3],
-    ambient: [u32; 3],
-}
-
-impl Lambert {
-    fn new((dir, color, ambient): ([i32; 3], [u8; 3], [u8; 3])) -> Self {
-        Lambert {
-            dir,
-            color: color.map(u32::from),
-            ambient: ambient.map(u32::from),
-        }
-    }
-
-    #[inline(always)]
-    fn shade(&self, n: crate::mesh::Vec3Fx, base: [u8; 3]) -> [u8; 3] {
-        use crate::math::mul_wide;
-        let d = mul_wide(n[0].to_bits(), self.dir[0])
-            + mul_wide(n[1].to_bits(), self.dir[1])
-            + mul_wide(n[2].to_bits(), self.dir[2]);
-        // n·l in 1/256 steps, floored, clamped to [0, 1].
-        let ndotl = (d >> 24).clamp(0, 256) as u32;
-        let mut out = [0u8; 3];
-        for c in 0..3 {
-            let k = self.ambient[c] * 256 + self.color[c] * ndotl; // <= 2^17
-            out[c] = ((base[c] as u32 * k + 32_640) / 65_280).min(255) as u8;
-        }
-        out
-    }
-}
-
-/// Most lights (directional and point together) a frame's
-/// [`Lighting`] may hold: the size of the per-draw set-up, which lives on
-/// the stack while a frame renders (56 bytes per light).
-pub const MAX_LIGHTS: usize = 8;
-
-impl DrawSetup {
-    /// Converts a draw's `f32` set-up to fixed point. Deterministic: the
-    /// same inputs always give the same bits, which the tile loop relies on
-    /// when it redoes this for clipped triangles.
-    pub fn new(
-        draw: &Draw<'_>,
-        view_proj: &Mat4,
-        lighting: Option<&Lighting<'_>>,
-        eye: Vec3,
-    ) -> Result<Self, VertexError> {
-        Self::with_lighting::<true>(draw, view_proj, lighting, eye)
-    }
-
-    /// [`new`](Self::new), linking the general lighting loop only with
-    /// `GENERAL`; without it, a draw that needs more than the fast path
-    /// (one directional light on a white, matte material) is
-    /// [`VertexError::GeneralLighting`].
-    pub fn with_lighting<const GENERAL: bool>(
-        draw: &Draw<'_>,
-        view_proj: &Mat4,
-        lighting: Option<&Lighting<'_>>,
-        eye: Vec3,
-    ) -> Result<Self, VertexError> {
-        let m = &draw.transform;
-        if !m.is_finite() {
-            return Err(VertexError::BadMatrix);
-        }
-        // Normalized: the same picture whatever the scene's units.
-        let mvp = (*view_proj * *m)
-            .to_fixed_normalized()
-            .ok_or(VertexError::BadMatrix)?;
-        use embedded_graphics::prelude::RgbColor;
-        let material = &draw.material;
-        let white = [material.ambient, material.diffuse]
-            .iter()
-            .all(|c| (c.r() & c.g() & c.b()) == 255);
-        let dark = (material.specular.r() | material.specular.g() | material.specular.b()) == 0;
-        // The renderer checked the lights themselves (with an identity
-        // model matrix): what is left to fail is this draw's matrix.
-        let (light, lambert) = match lighting {
-            Some(l) if GENERAL => {
-                let light = LightSetup::new(l, m, eye).map_err(|_| VertexError::BadMatrix)?;
-                let lambert = match white && dark {
-                    true => light.single_directional().map(Lambert::new),
-                    false => None,
-                };
-                (Some(light), lambert)
-            }
-            Some(l) => (None, Self::one_light(l, m, eye, white && dark)?),
-            None => (None, None),
-        };
-        let general: Option<GeneralShade> = match (&light, &lambert) {
-            (Some(_), None) if GENERAL => Some(|l, m, b, p, n| l.shade(m, b, p, n)),
-            _ => None,
-        };
-        // Unlit vertices (no normals) need no lighting at all.
-        if lighting.is_some()
-            && lambert.is_none()
-            && general.is_none()
-            && draw.mesh.normals().is_some()
-        {
-            return Err(VertexError::GeneralLighting);
-        }
-        Ok(Self {
-            mvp,
-            bounded: mvp.bounded(draw.mesh.extent()),
-            light,
-            lambert,
-            general,
-            material: draw.material,
-            color: [draw.color.r(), draw.color.g(), draw.color.b()],
-        })
-    }
-
-    /// The fast path's set-up without the general lighting's code: for
-    /// one directional light and nothing else (no fog), on a white, matte
-    /// material (`plain`), the light in the draw's model space; otherwise
-    /// none. The draw's matrix is checked as [`LightSetup::new`] checks it
-    /// (for a single light, with the same errors; for more, the checks that
-    /// do not depend on point lights' ranges and fog).
-    #[inline(never)]
-    fn one_light(
-        lighting: &Lighting<'_>,
-        model: &Mat4,
-        eye: Vec3,
-        plain: bool,
-    ) -> Result<Option<Lambert>, VertexError> {
-        let bad = |_| VertexError::BadMatrix;
-        match (lighting.directional, lighting.point.is_empty()) {
-            ([sun], true) => {
-                let dir = crate::light::one_light(sun.direction, model, eye).map_err(bad)?;
-                let fog = lighting.fog != crate::light::Fog::None;
-                Ok((plain && !fog)
-                    .then(|| Lambert::new((dir, rgb(sun.color), rgb(lighting.ambient)))))
-            }
-            _ => {
-                crate::light::model_checks(model, eye).map_err(bad)?;
-                for (i, l) in lighting.directional.iter().enumerate() {
-                    crate::light::directional(i, l.direction, model, false).map_err(bad)?;
-                }
-                Ok(None)
-            }
-        }
-    }
-
-    /// The clip-space position and lit colour of vertex `i` of `mesh`, the
-    /// mesh of the draw this was set up for.
-    #[inline(always)]
-    pub fn clip_vertex(&self, mesh: &Mesh<'_>, i: usize) -> Result<ClipVertex, VertexError> {
-        let p = mesh.positions()[i];
-        let p = [p[0].to_bits(), p[1].to_bits(), p[2].to_bits()];
-        let pos = if self.bounded {
-            self.mvp.transform_point_bounded(p)
-        } else {
-            self.mvp
-                .transform_point(p)
-                .ok_or(VertexError::OutOfRange { vertex: i })?
-        };
-        let base = match mesh.colors() {
-            Some(c) => {
-                use embedded_graphics::prelude::RgbColor;
-                [c[i].r(), c[i].g(), c[i].b()]
-            }
-            None => self.color,
-        };
-        let color = match (&self.light, mesh.normals()) {
-            (_, Some(n)) if self.lambert.is_some() => match &self.lambert {
-                Some(l) => l.shade(n[i], base),
-                None => base,
-            },
-            (Some(l), Some(n)) => match self.general {
-                Some(shade) => {
-                    let n = n[i];
-                    shade(
-                        l,
-                        &self.material,
-                        base,
-                        p,
-                        [n[0].to_bits(), n[1].to_bits(), n[2].to_bits()],
-                    )
-                }
-                None => base,
-            },
-            _ => base,
-        };
-        Ok(ClipVertex {
-            pos,
-            color: [color[0] as i32, color[1] as i32, color[2] as i32],
-            bary: [0; 2],
-        })
-    }
-
-    /// The clip-space `w` of vertex `i` of `mesh`, exactly as
-    /// [`clip_vertex`](Self::clip_vertex) computes it, for a vertex that
-    /// the vertex stage already transformed without error (then the
-    /// unchecked sum equals the checked one).
-    #[inline(always)]
-    pub fn clip_w(&self, mesh: &Mesh<'_>, i: usize) -> i32 {
-        let p = mesh.positions()[i];
-        self.mvp
-            .transform_w_unchecked([p[0].to_bits(), p[1].to_bits(), p[2].to_bits()])
-    }
-}
-
 /// The outcode of a clip-space position.
 #[inline(always)]
 pub fn outcode(p: &[i32; 4]) -> u8 {
@@ -612,38 +360,6 @@ pub(crate) fn div_round(n: i64, d: i64) -> i64 {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// The fast path of one directional light gives the general
-    /// lighting's colours, for any normal, colour and light.
-    #[test]
-    fn lambert_fast_path_matches_the_light_setup() {
-        use crate::light::{DirectionalLight, Lighting};
-        use embedded_graphics::pixelcolor::Rgb888;
-        let mut next = crate::testing::rng();
-        for _ in 0..200 {
-            let mut f = || next(2001) as f32 / 1000.0 - 1.0;
-            let dir = Vec3::new(f(), f(), f() + 0.01);
-            let model = Mat4::rotation_y(f() * 3.0) * Mat4::rotation_x(f() * 3.0);
-            let mut c = || Rgb888::new(next(256) as u8, next(256) as u8, next(256) as u8);
-            let one = [DirectionalLight::new(dir, c())];
-            let lighting = Lighting::new(c()).directional(&one);
-            let setup: LightSetup<MAX_LIGHTS> =
-                LightSetup::new(&lighting, &model, Vec3::new(0.0, 0.0, 5.0)).unwrap();
-            let (dir, color, ambient) = setup.single_directional().unwrap();
-            let fast = Lambert {
-                dir,
-                color: color.map(u32::from),
-                ambient: ambient.map(u32::from),
-            };
-            for _ in 0..500 {
-                let n = [0; 3]
-                    .map(|_| fixed::types::I16F16::from_bits(next(1 << 18) as i32 - (1 << 17)));
-                let base = [next(256) as u8, next(256) as u8, next(256) as u8];
-                let general = setup.shade(&Material::new(), base, [0; 3], n.map(|v| v.to_bits()));
-                assert_eq!(fast.shade(n, base), general, "{n:?} {base:?}");
-            }
-        }
-    }
 
     /// Every field comes back out of a [`ScreenVertex`] unchanged: x and
     /// y over their whole 24-bit range (every 97th value, the extremes and
