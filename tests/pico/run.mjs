@@ -106,44 +106,10 @@ function parseArgs(argv) {
 }
 
 /**
- * The value of each of `names` in the ELF's symbol table (`.symtab`), by
- * name; a missing one is an error.
+ * Every entry of the ELF's symbol table (`.symtab`) at `path`:
+ * `{ name, value, size, info }`.
  */
-function elfSymbols(path, names) {
-  const elf = readFileSync(path);
-  const shoff = elf.readUInt32LE(32);
-  const shentsize = elf.readUInt16LE(46);
-  const shnum = elf.readUInt16LE(48);
-  const section = (i) => {
-    const sh = shoff + i * shentsize;
-    return {
-      type: elf.readUInt32LE(sh + 4),
-      offset: elf.readUInt32LE(sh + 16),
-      size: elf.readUInt32LE(sh + 20),
-      link: elf.readUInt32LE(sh + 24),
-      entsize: elf.readUInt32LE(sh + 36),
-    };
-  };
-  const found = {};
-  for (let i = 0; i < shnum; i++) {
-    const symtab = section(i);
-    if (symtab.type !== 2) continue; // SHT_SYMTAB
-    const strtab = section(symtab.link);
-    for (let off = symtab.offset; off < symtab.offset + symtab.size; off += symtab.entsize) {
-      const start = strtab.offset + elf.readUInt32LE(off);
-      const end = elf.indexOf(0, start);
-      const name = elf.toString('latin1', start, end);
-      if (names.includes(name)) found[name] = elf.readUInt32LE(off + 4);
-    }
-  }
-  for (const n of names) {
-    if (!(n in found)) throw new Error(`${path} has no symbol ${n}`);
-  }
-  return found;
-}
-
-/** The function symbols of the ELF at `path`: sorted `{ start, end, name }`. */
-function elfFunctions(path) {
+function elfSymbolTable(path) {
   const elf = readFileSync(path);
   const shoff = elf.readUInt32LE(32);
   const shentsize = elf.readUInt16LE(46);
@@ -164,14 +130,40 @@ function elfFunctions(path) {
     if (symtab.type !== 2) continue; // SHT_SYMTAB
     const strtab = section(symtab.link);
     for (let off = symtab.offset; off < symtab.offset + symtab.size; off += symtab.entsize) {
-      const info = elf.readUInt8(off + 12);
-      const size = elf.readUInt32LE(off + 8);
-      if ((info & 0xf) !== 2) continue; // STT_FUNC
-      const start = (elf.readUInt32LE(off + 4) & ~1) >>> 0;
       const nameStart = strtab.offset + elf.readUInt32LE(off);
-      const name = elf.toString('latin1', nameStart, elf.indexOf(0, nameStart));
-      out.push({ start, end: start + size, name });
+      out.push({
+        name: elf.toString('latin1', nameStart, elf.indexOf(0, nameStart)),
+        value: elf.readUInt32LE(off + 4),
+        size: elf.readUInt32LE(off + 8),
+        info: elf.readUInt8(off + 12),
+      });
     }
+  }
+  return out;
+}
+
+/**
+ * The value of each of `names` in the ELF's symbol table, by name; a
+ * missing one is an error.
+ */
+function elfSymbols(path, names) {
+  const found = {};
+  for (const sym of elfSymbolTable(path)) {
+    if (names.includes(sym.name)) found[sym.name] = sym.value;
+  }
+  for (const n of names) {
+    if (!(n in found)) throw new Error(`${path} has no symbol ${n}`);
+  }
+  return found;
+}
+
+/** The function symbols of the ELF at `path`: sorted `{ start, end, name }`. */
+function elfFunctions(path) {
+  const out = [];
+  for (const { name, value, size, info } of elfSymbolTable(path)) {
+    if ((info & 0xf) !== 2) continue; // STT_FUNC
+    const start = (value & ~1) >>> 0;
+    out.push({ start, end: start + size, name });
   }
   // A function without a size (hand-written assembly, such as a HAL's
   // intrinsics) ends where the next one starts.
