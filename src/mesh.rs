@@ -179,7 +179,12 @@ impl Indices<'_> {
     #[inline(always)]
     pub fn get(&self, t: usize) -> [u32; 3] {
         match self {
-            Indices::U16(tris) => tris[t].map(u32::from),
+            Indices::U16(tris) => {
+                // Not `map`: a call per triangle where the optimiser does
+                // not inline it (the `size` profile).
+                let [a, b, c] = tris[t];
+                [a as u32, b as u32, c as u32]
+            }
             Indices::U32(tris) => tris[t],
         }
     }

@@ -73,7 +73,7 @@ where
     C: PixelColor + From<Rgb888> + Into<Rgb888>,
     F: ShaderSet<C>,
 {
-    let v = sv.map(ScreenVertex::xy);
+    let v = [sv[0].xy(), sv[1].xy(), sv[2].xy()];
     let count = (to.shaders.find)(&v, to.rect, &mut to.found);
     if count == 0 {
         return 0;

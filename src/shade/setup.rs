@@ -233,7 +233,12 @@ impl Basis {
             if d1.abs() < 1 << 16 && d2.abs() < 1 << 16 {
                 // |d| < 2^16 and edge vectors below 2^10: the numerators
                 // are below 2^27, and the shift at most 20.
-                let [x1, y1, x2, y2] = [self.x1, self.y1, self.x2, self.y2].map(|c| c as i32);
+                let [x1, y1, x2, y2] = [
+                    self.x1 as i32,
+                    self.y1 as i32,
+                    self.x2 as i32,
+                    self.y2 as i32,
+                ];
                 let (d1, d2) = (d1 as i32, d2 as i32);
                 return (
                     small.div_round(d1 * y2 - d2 * y1, shift),
@@ -305,17 +310,25 @@ impl Corners<'_> {
     /// The screen positions.
     #[inline(always)]
     pub(super) fn points(&self) -> [SubPoint; 3] {
-        self.0.map(|v| v.xy())
+        // Written out, as in `values`: `[T; 3]::map` is a call per use
+        // where the optimiser does not inline it (the `size` profile).
+        let [a, b, c] = self.0;
+        [a.xy(), b.xy(), c.xy()]
     }
 
     /// The values of attribute `a` (0 depth, 1 to 3 red, green, blue) at
     /// the three vertices, and its fraction bits.
     #[inline(always)]
     pub(super) fn values(&self, a: usize) -> ([i64; 3], u32) {
+        let [u, v, w] = &self.0;
         if a == 0 {
-            (self.0.map(|v| v.z() as i64), Z_FRAC)
+            ([u.z() as i64, v.z() as i64, w.z() as i64], Z_FRAC)
         } else {
-            (self.0.map(|v| v.color[a - 1] as i64), C_FRAC)
+            let c = a - 1;
+            (
+                [u.color[c] as i64, v.color[c] as i64, w.color[c] as i64],
+                C_FRAC,
+            )
         }
     }
 }
@@ -342,29 +355,46 @@ impl TriangleSetup {
     /// perspective set-up shares.
     #[inline(always)]
     pub(super) fn with_basis(f: &Basis, t: &Corners<'_>, gouraud: bool) -> Self {
-        let n = if gouraud { 4 } else { 1 };
-        let mut planes = [Plane::default(); 4];
         // Or-ing `gradient + LIMIT` over all gradients: below 2^41 only if
         // every one is within ±LIMIT (2^40 itself is sent to the wide path
         // too, which gives the same values).
         let mut range = 0u64;
-        for (a, p) in planes.iter_mut().enumerate().take(n) {
-            let (values, frac) = t.values(a);
-            let g = f.gradients(values, frac);
-            range |= (g.0 + GRADIENT_LIMIT) as u64 | (g.1 + GRADIENT_LIMIT) as u64;
-            // Wrapping to i32 keeps everything `Plane::at` needs. Within
-            // ±LIMIT the constant does not wrap; beyond, its wrapped value
-            // is not used (a wide triangle's starts come from `wide_start`).
-            let k = f.constant_wrapping(values[0], frac, g);
-            *p = Plane {
-                gx: g.0 as i32,
-                gy: g.1 as i32,
-                k: k as i32,
-            };
-        }
+        // Written out rather than a loop over the attributes: each plane's
+        // shifts are then constants and the shared values stay in
+        // registers, also where the optimiser would not unroll a loop (the
+        // `size` profile, BENCHMARKS.md).
+        let z = Self::plane(f, t, 0, &mut range);
+        let planes = if gouraud {
+            [
+                z,
+                Self::plane(f, t, 1, &mut range),
+                Self::plane(f, t, 2, &mut range),
+                Self::plane(f, t, 3, &mut range),
+            ]
+        } else {
+            [z, Plane::default(), Plane::default(), Plane::default()]
+        };
         Self {
             planes,
             wide: range >= 2 * GRADIENT_LIMIT as u64,
+        }
+    }
+
+    /// The plane of attribute `a` (see [`Corners::values`]) over the
+    /// basis `f`, its gradients or-ed into `range` (offset by the limit).
+    #[inline(always)]
+    fn plane(f: &Basis, t: &Corners<'_>, a: usize, range: &mut u64) -> Plane {
+        let (values, frac) = t.values(a);
+        let g = f.gradients(values, frac);
+        *range |= (g.0 + GRADIENT_LIMIT) as u64 | (g.1 + GRADIENT_LIMIT) as u64;
+        // Wrapping to i32 keeps everything `Plane::at` needs. Within ±LIMIT
+        // the constant does not wrap; beyond, its wrapped value is not used
+        // (a wide triangle's starts come from `wide_start`).
+        let k = f.constant_wrapping(values[0], frac, g);
+        Plane {
+            gx: g.0 as i32,
+            gy: g.1 as i32,
+            k: k as i32,
         }
     }
 
