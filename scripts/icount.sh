@@ -7,6 +7,7 @@
 #   SCENES="fill grid4" scripts/icount.sh
 #   BOARDS=lm3s6965evb scripts/icount.sh
 #   TRACE=1 SCENES=demo BOARDS=mps2-an386-v6m scripts/icount.sh
+#   PROFILE=size SCENES=demo BOARDS=lm3s6965evb scripts/icount.sh
 #
 # With TRACE=1 the firmware runs once under QEMU's execution trace instead
 # (-d in_asm,exec,nochain, through scripts/icount-trace.awk; about a minute
@@ -25,7 +26,8 @@
 # Cargo.toml leaves the RP2040's HAL out), in a target directory of its own
 # so that it and the Pico firmware do not rebuild each other.
 #
-# For each board, builds examples/icount.rs in release for its target, runs
+# For each board, builds examples/icount.rs in release (or the cargo
+# profile PROFILE names, e.g. size: Cargo.toml) for its target, runs
 # it twice in QEMU and checks that both runs print the same thing, then
 # prints its tables and the firmware's flash, static RAM (llvm-size -A of
 # the linked ELF) and peak stack (which the firmware measures). SCENES (names separated by spaces) is passed to the
@@ -43,6 +45,7 @@ BOARDS=${BOARDS:-lm3s6965evb mps2-an386 mps2-an386-v6m}
 SHADER_SCENES="fill-gouraud-exact fill-nearest-exact fill-nearest-affine fill-bilinear-exact fill-lit-exact"
 SCENES=${SCENES:-}
 TARGET_DIR=${CARGO_TARGET_DIR:-target}
+PROFILE=${PROFILE:-release}
 OUT=$TARGET_DIR/icount
 mkdir -p "$OUT"
 
@@ -87,12 +90,12 @@ for board in $BOARDS; do
     for group in "${groups[@]}"; do
         if [ -n "$group" ]; then
             MICRORASTER_ICOUNT_SCENES="$group" CARGO_TARGET_DIR=$dir \
-                cargo build "${config[@]}" --release --example icount --target "$target" >&2
+                cargo build "${config[@]}" --profile "$PROFILE" --example icount --target "$target" >&2
         else
             env -u MICRORASTER_ICOUNT_SCENES CARGO_TARGET_DIR="$dir" \
-                cargo build "${config[@]}" --release --example icount --target "$target" >&2
+                cargo build "${config[@]}" --profile "$PROFILE" --example icount --target "$target" >&2
         fi
-        elf=$dir/$target/release/examples/icount
+        elf=$dir/$target/$PROFILE/examples/icount
         if [ -n "${TRACE:-}" ]; then
             nm="$(dirname "$size")/llvm-nm"
             # The helpers' entry addresses, Thumb bit cleared.
@@ -162,7 +165,7 @@ done
 
 [ -z "${TRACE:-}" ] || exit 0
 echo
-echo "## Footprint (release: llvm-size -A; peak stack measured by the firmware)"
+echo "## Footprint ($PROFILE: llvm-size -A; peak stack measured by the firmware)"
 echo
 echo "| firmware | target | flash | static RAM | peak stack (deepest scene) | total RAM |"
 echo "|---|---|---|---|---|---|"

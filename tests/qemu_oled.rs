@@ -24,7 +24,9 @@ use std::process::{Command, Stdio};
 use std::sync::mpsc;
 use std::time::{Duration, Instant};
 
-/// Builds the firmware so that it stops after one frame.
+/// Builds the firmware so that it stops after one frame, with the `size`
+/// profile it is flashed with (README): the pixels must not depend on how
+/// the code was optimised.
 fn build_firmware() -> PathBuf {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let target_dir = root.join("target").join("qemu-e2e");
@@ -33,7 +35,8 @@ fn build_firmware() -> PathBuf {
         .current_dir(root)
         .args([
             "build",
-            "--release",
+            "--profile",
+            "size",
             "--example",
             "lm3s6965_oled",
             "--target",
@@ -49,7 +52,7 @@ fn build_firmware() -> PathBuf {
         .status()
         .expect("cargo runs");
     assert!(status.success(), "the firmware builds");
-    target_dir.join("thumbv7m-none-eabi/release/examples/lm3s6965_oled")
+    target_dir.join("thumbv7m-none-eabi/size/examples/lm3s6965_oled")
 }
 
 /// Sends one monitor command and reads until the next prompt.
