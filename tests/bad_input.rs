@@ -762,25 +762,8 @@ fn render_rgb565<const V: usize, const B: usize, const T: usize>(
     first.expect("at least one combination")
 }
 
-fn assert_same(
-    name: &str,
-    (img, stats): &(Vec<Rgb565>, FrameStats),
-    (ref_img, ref_stats): &(Vec<Rgb565>, FrameStats),
-) {
-    let diff = img.iter().zip(ref_img).filter(|(a, b)| a != b).count();
-    assert_eq!(diff, 0, "{name}: {diff} pixels differ");
-    let key = |s: &FrameStats| {
-        (
-            s.triangles_in,
-            s.culled,
-            s.rejected,
-            s.clipped,
-            s.drawn,
-            s.pixels_shaded,
-            s.tiles,
-        )
-    };
-    assert_eq!(key(stats), key(ref_stats), "{name}: {stats:?}");
+fn assert_same(name: &str, img: &(Vec<Rgb565>, FrameStats), reference: &(Vec<Rgb565>, FrameStats)) {
+    support::assert_same_frame(name, img, reference, true);
 }
 
 #[test]
@@ -813,53 +796,48 @@ fn tiny_bin_pool_renders_the_demo_scene_identically() {
 fn tiny_bin_pool_renders_clipped_triangles_identically() {
     // The demo scene plus a floor through the near plane and a wall far
     // beyond the guard band: clipped triangles in every pass and rescan.
-    let assets = common::DemoAssets::new();
-    let (knot, cube) = (assets.knot(), common::cube());
-    let extras = common::ClippedExtras::new();
-    let (floor, wall) = (extras.floor(), extras.wall());
-    let d = common::clipped_draws(&knot, &cube, &floor, &wall);
-    let size = Size::new(150, 110);
-    let scene = Scene::new(common::camera(size.width, size.height), &d).light(common::light());
-    let mut r: Renderer<Rgb565, 32, 32> = Renderer::new(
-        Config::new(size, common::DEMO_CLEAR)
-            .cull(CullMode::None)
-            .rasterizer(Rasterizer::Hilbert)
-            .tile_order(TileOrder::Hilbert),
-    );
-    let hilbert_tiny = {
-        let mut cap = Capture::new(size, Rgb565::new(31, 0, 31));
-        let mut ws: Box<Workspace<2100, 8, 2>> = Box::new(Workspace::new());
-        let stats = r.render(&mut ws, &scene, &mut cap).unwrap();
-        (cap.pixels, stats)
-    };
-    r.config_mut().rasterizer = Rasterizer::Scanline;
-    r.config_mut().tile_order = TileOrder::RowMajor;
-    let run = |r: &mut Renderer<Rgb565, 32, 32>, big: bool| {
-        let mut cap = Capture::new(size, Rgb565::new(31, 0, 31));
-        let stats = if big {
-            let mut ws: Box<Workspace<2100, 16384, 64>> = Box::new(Workspace::new());
-            r.render(&mut ws, &scene, &mut cap).unwrap()
-        } else {
+    common::with_clipped_scene(|scene, size| {
+        let mut r: Renderer<Rgb565, 32, 32> = Renderer::new(
+            Config::new(size, common::DEMO_CLEAR)
+                .cull(CullMode::None)
+                .rasterizer(Rasterizer::Hilbert)
+                .tile_order(TileOrder::Hilbert),
+        );
+        let hilbert_tiny = {
+            let mut cap = Capture::new(size, Rgb565::new(31, 0, 31));
             let mut ws: Box<Workspace<2100, 8, 2>> = Box::new(Workspace::new());
-            r.render(&mut ws, &scene, &mut cap).unwrap()
+            let stats = r.render(&mut ws, scene, &mut cap).unwrap();
+            (cap.pixels, stats)
         };
-        assert!(cap.writes.iter().all(|&n| n == 1));
-        (cap.pixels, stats)
-    };
-    let big = run(&mut r, true);
-    assert!(big.1.clipped >= 3, "{:?}", big.1);
-    let tiny = run(&mut r, false);
-    assert!(
-        tiny.1.bin_passes > 1 && tiny.1.rescanned_tiles > 0,
-        "{:?}",
-        tiny.1
-    );
-    assert_same("clipped scene, Workspace<2100, 8, 2>", &tiny, &big);
-    assert_same(
-        "clipped scene, Hilbert rasterizer and tiles, Workspace<2100, 8, 2>",
-        &hilbert_tiny,
-        &big,
-    );
+        r.config_mut().rasterizer = Rasterizer::Scanline;
+        r.config_mut().tile_order = TileOrder::RowMajor;
+        let run = |r: &mut Renderer<Rgb565, 32, 32>, big: bool| {
+            let mut cap = Capture::new(size, Rgb565::new(31, 0, 31));
+            let stats = if big {
+                let mut ws: Box<Workspace<2100, 16384, 64>> = Box::new(Workspace::new());
+                r.render(&mut ws, scene, &mut cap).unwrap()
+            } else {
+                let mut ws: Box<Workspace<2100, 8, 2>> = Box::new(Workspace::new());
+                r.render(&mut ws, scene, &mut cap).unwrap()
+            };
+            assert!(cap.writes.iter().all(|&n| n == 1));
+            (cap.pixels, stats)
+        };
+        let big = run(&mut r, true);
+        assert!(big.1.clipped >= 3, "{:?}", big.1);
+        let tiny = run(&mut r, false);
+        assert!(
+            tiny.1.bin_passes > 1 && tiny.1.rescanned_tiles > 0,
+            "{:?}",
+            tiny.1
+        );
+        assert_same("clipped scene, Workspace<2100, 8, 2>", &tiny, &big);
+        assert_same(
+            "clipped scene, Hilbert rasterizer and tiles, Workspace<2100, 8, 2>",
+            &hilbert_tiny,
+            &big,
+        );
+    });
 }
 
 /// One tile holding 65,536 triangles with a pool of 65,535 entries: the

@@ -39,20 +39,8 @@ fn render<const TW: usize, const TH: usize, const V: usize, const B: usize, cons
 
 /// Same pixels and statistics (but the pass counts and, across tile
 /// shapes, the tile count).
-fn assert_same(name: &str, (img, stats): &Picture, (ref_img, ref_stats): &Picture) {
-    let diff = img.iter().zip(ref_img).filter(|(a, b)| a != b).count();
-    assert_eq!(diff, 0, "{name}: {diff} pixels differ");
-    let key = |s: &FrameStats| {
-        (
-            s.triangles_in,
-            s.culled,
-            s.rejected,
-            s.clipped,
-            s.drawn,
-            s.pixels_shaded,
-        )
-    };
-    assert_eq!(key(stats), key(ref_stats), "{name}: {stats:?}");
+fn assert_same(name: &str, img: &Picture, reference: &Picture) {
+    support::assert_same_frame(name, img, reference, false);
 }
 
 /// Renders `scene` with 32x32 tiles and every pool in `pools`, and with a
@@ -101,14 +89,9 @@ fn demo_renders_the_same_with_every_pool_and_tile() {
 
 #[test]
 fn clipped_scene_renders_the_same_with_every_pool_and_tile() {
-    let assets = common::DemoAssets::new();
-    let (knot, cube) = (assets.knot(), common::cube());
-    let extras = common::ClippedExtras::new();
-    let (floor, wall) = (extras.floor(), extras.wall());
-    let d = common::clipped_draws(&knot, &cube, &floor, &wall);
-    let size = Size::new(150, 110);
-    let scene = Scene::new(common::camera(size.width, size.height), &d).light(common::light());
-    let reference = render::<32, 32, 2100, 16384, 64>(&scene, size, CullMode::None);
-    assert!(reference.1.clipped >= 3, "{:?}", reference.1);
-    check("clipped scene", &scene, size, CullMode::None);
+    common::with_clipped_scene(|scene, size| {
+        let reference = render::<32, 32, 2100, 16384, 64>(scene, size, CullMode::None);
+        assert!(reference.1.clipped >= 3, "{:?}", reference.1);
+        check("clipped scene", scene, size, CullMode::None);
+    });
 }

@@ -158,6 +158,20 @@ pub fn clipped_draws<'a>(
     ]
 }
 
+/// The clipped scene at 150x110 (the demo's knot and cube, Gouraud, at
+/// time 2.1, with [`ClippedExtras`]' floor and wall; no culling needed to
+/// see the clipped triangles), handed to `f` with its size.
+pub fn with_clipped_scene<R>(f: impl FnOnce(&Scene<'_>, Size) -> R) -> R {
+    let assets = DemoAssets::new();
+    let (knot, cube) = (assets.knot(), cube());
+    let extras = ClippedExtras::new();
+    let (floor, wall) = (extras.floor(), extras.wall());
+    let d = clipped_draws(&knot, &cube, &floor, &wall);
+    let size = Size::new(150, 110);
+    let scene = Scene::new(camera(size.width, size.height), &d).light(light());
+    f(&scene, size)
+}
+
 /// A procedural `size` x `size` Rgb565 texture (row-major, as
 /// `Texels::Rgb565` reads): a checkerboard of 8-texel squares, warm and
 /// cool, shaded by a diagonal gradient, with a bright border one texel wide

@@ -100,6 +100,32 @@ impl<C: PixelColor> DrawTarget for Capture<C> {
     }
 }
 
+/// Asserts that two renders of one scene agree: no pixel differs, and
+/// neither does what the frame statistics count of triangles and pixels,
+/// nor (with `same_tiles`) the number of tiles. The binning passes may
+/// differ (they depend on the pool and the visiting order).
+pub fn assert_same_frame<C: PixelColor>(
+    name: &str,
+    (img, stats): &(Vec<C>, microraster::FrameStats),
+    (ref_img, ref_stats): &(Vec<C>, microraster::FrameStats),
+    same_tiles: bool,
+) {
+    let diff = img.iter().zip(ref_img).filter(|(a, b)| a != b).count();
+    assert_eq!(diff, 0, "{name}: {diff} pixels differ");
+    let key = |s: &microraster::FrameStats| {
+        (
+            s.triangles_in,
+            s.culled,
+            s.rejected,
+            s.clipped,
+            s.drawn,
+            s.pixels_shaded,
+            if same_tiles { s.tiles } else { 0 },
+        )
+    };
+    assert_eq!(key(stats), key(ref_stats), "{name}: {stats:?}");
+}
+
 pub fn golden_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("tests")
