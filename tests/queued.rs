@@ -78,6 +78,8 @@ struct Queue<'t> {
     book: Shared,
     fail_start: Option<usize>,
     fail_wait: Option<usize>,
+    /// Give the newest tile back first, against the contract.
+    newest_first: bool,
     started: usize,
     waited: usize,
 }
@@ -92,6 +94,7 @@ impl<'t> Queue<'t> {
             book: book.clone(),
             fail_start: None,
             fail_wait: None,
+            newest_first: false,
             started: 0,
             waited: 0,
         }
@@ -123,14 +126,14 @@ impl<'t> TileTransfer<Buffer<'t>> for Queue<'t> {
     }
 
     fn wait(&mut self) -> (Buffer<'t>, Result<(), WireError>) {
-        let (tile, area) = self.queue.pop_front().expect("wait with nothing in flight");
+        let (tile, area) = match self.newest_first {
+            false => self.queue.pop_front(),
+            true => self.queue.pop_back(),
+        }
+        .expect("wait with nothing in flight");
         let mut book = self.book.borrow_mut();
         book.calls.push('w');
-        assert_eq!(
-            book.in_flight.pop_front(),
-            Some(tile.id),
-            "the oldest first"
-        );
+        book.in_flight.retain(|&id| id != tile.id);
         let k = self.waited;
         self.waited += 1;
         if self.fail_wait == Some(k) {
@@ -328,4 +331,28 @@ fn scene_errors_come_back_before_any_transfer_with_every_buffer() {
     assert!(matches!(result, Err(RenderError::VertexCapacity { .. })));
     assert_eq!(back.map(|b| b.id), [0, 1, 2]);
     assert!(book.borrow().calls.is_empty());
+}
+
+/// A driver that breaks the FIFO contract, giving the newest tile back
+/// first, still gets every tile once and gives every buffer back, and
+/// the renderer never draws into a buffer in flight.
+#[test]
+fn buffers_given_back_out_of_order_are_used_all_the_same() {
+    let cube = cube();
+    let d = [Draw::new(&cube)];
+    let size = Size::new(160, 96);
+    let scene = scene_of(&d, size);
+    let renderer: Renderer<Rgb565, 32, 32> = Renderer::new(Config::new(size, Rgb565::BLACK));
+    let mut ws: Box<Workspace<2048, 1024, 16>> = Box::new(Workspace::new());
+    let book: Shared = Rc::default();
+    let mut store: Box<[Tile; 4]> = Box::new(core::array::from_fn(|_| Tile::new(Rgb565::BLACK)));
+    let mut queue = Queue::new(size, 3, &book);
+    queue.newest_first = true;
+    let (back, result) =
+        renderer.render_queued(&mut ws, &scene, buffers(&mut store, &book), &mut queue);
+    assert_eq!(result.unwrap().tiles, 15);
+    assert_eq!(ids(&back), [0, 1, 2, 3], "every buffer back");
+    assert!(queue.queue.is_empty(), "nothing in flight");
+    assert_eq!((queue.started, queue.waited), (15, 15));
+    assert_eq!(book.borrow().most, 3);
 }

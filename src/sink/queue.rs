@@ -137,8 +137,11 @@ where
         let mut next = 0;
         let mut in_flight = 0;
         let outcome = loop {
-            // Always a buffer here: at most the `N - 1` others are in
-            // flight. (Were it not, the frame would end here: no panic.)
+            // Always a buffer here, whatever order the driver gives them
+            // back in: slot `next` holds one of the `N` to begin with, and
+            // once `N - 1` are in flight, the wait before each start
+            // fills the slot after. (Were it empty, the frame would end
+            // here rather than panic.)
             let Some(mut tile) = slots[next].take() else {
                 break Ok(());
             };
@@ -174,9 +177,9 @@ where
             in_flight -= 1;
             outcome = outcome.and(result);
         }
-        // Every slot is full now, each buffer having come back; a slot
-        // that were not would take one more buffer from the driver, not
-        // panic.
+        // Every slot is full now: `N` buffers came back into `N` slots. (A
+        // slot that were not would take one more buffer from the driver
+        // rather than panic.)
         let tiles = slots.map(|slot| slot.unwrap_or_else(|| transfer.wait().0));
         let result = match outcome {
             Ok(()) => Ok(self.stats()),
