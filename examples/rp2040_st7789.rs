@@ -1,9 +1,12 @@
 //! Firmware for a Raspberry Pi Pico (RP2040): renders a lit torus knot of
 //! 2,048 triangles with a cube orbiting it, with microraster, in 32x32
 //! tiles, on a 240x240 ST7789 on SPI1, frame after frame. A DMA channel
-//! sends each finished tile while the core draws the next one
-//! (`Frame::render_double_buffered` over two tile buffers), so a frame
-//! takes about the longer of the drawing and the sending, not their sum.
+//! sends the finished tiles while the core draws the next ones
+//! (`Frame::render_queued` over four tile buffers, up to three tiles on
+//! the wire): the channel's completion interrupt starts the next queued
+//! tile by itself, so the core draws ahead through cheap tiles while the
+//! wire catches up during dear ones, and a frame takes about the longer
+//! of the drawing and the sending, not their sum.
 //!
 //! ```text
 //! cargo build --release --example rp2040_st7789 --target thumbv6m-none-eabi
@@ -24,8 +27,9 @@
 //!
 //! mipidsi brings the panel up (reset, SLPOUT, MADCTL, INVON, COLMOD,
 //! NORON, DISPON); from then on the firmware drives the bus itself. Per
-//! tile: the window's CASET/RASET/RAMWR from the core (DC low for each
-//! command byte, high for its parameters), then the tile's pixels by DMA
+//! tile: the window's CASET/RASET/RAMWR (DC low for each command byte,
+//! high for its parameters), from `start` if the bus is free, else from
+//! `DMA_IRQ_0` once the tile before is sent, then the tile's pixels by DMA
 //! (DMA channel 0, paced by SPI1's TX DREQ), already in the panel's
 //! big-endian byte order (`Rgb565Be`): no per-pixel pass before sending.
 //! CS stays low from the end of the set-up on: the panel is the bus's only
@@ -59,12 +63,15 @@ mod st7789_scene;
 mod firmware {
     use crate::board_support;
     use crate::st7789_scene::*;
+    use core::cell::RefCell;
     use core::convert::Infallible;
     use core::mem;
+    use critical_section::Mutex;
     use embedded_dma::ReadBuffer;
     use embedded_hal::digital::{OutputPin, StatefulOutputPin};
     use embedded_hal::spi::{SpiBus, MODE_3};
     use embedded_hal_bus::spi::ExclusiveDevice;
+    use heapless::Deque;
     use microraster::prelude::*;
     use microraster::sink::wire::{wire_bytes, Window};
     use mipidsi::interface::SpiInterface;
@@ -74,9 +81,12 @@ mod firmware {
     use panic_halt as _;
     use rp2040_hal::clocks::{init_clocks_and_plls, Clock};
     use rp2040_hal::dma::single_buffer::{self, Transfer};
-    use rp2040_hal::dma::{DMAExt, SingleChannel, WriteTarget};
+    use rp2040_hal::dma::{Channel, DMAExt, SingleChannel, CH0};
     use rp2040_hal::fugit::RateExtU32;
-    use rp2040_hal::gpio::{FunctionSpi, PinState, Pins};
+    use rp2040_hal::gpio::bank0::{Gpio10, Gpio11, Gpio8};
+    use rp2040_hal::gpio::{FunctionSioOutput, FunctionSpi, Pin, PinState, Pins, PullDown};
+    use rp2040_hal::pac::interrupt;
+    use rp2040_hal::spi::Enabled;
     use rp2040_hal::{pac, Sio, Spi, Timer, Watchdog};
     use static_cell::{ConstStaticCell, StaticCell};
 
@@ -123,23 +133,35 @@ mod firmware {
     // Built in place in RAM (.bss), never moved through the stack.
     static KNOT: ConstStaticCell<KnotData> = ConstStaticCell::new(KnotData::new());
     static WORKSPACE: ConstStaticCell<PicoWorkspace> = ConstStaticCell::new(PicoWorkspace::new());
-    // The two tile buffers. `'static`, as a DMA transfer's buffer must be:
-    // a transfer that was leaked must not go on reading freed memory.
-    // Built at start-up (see `tiles`), so that they take RAM (.bss) and no
+    /// How many tile buffers (colour and depth, 4,120 B each with its
+    /// cell): up to `TILES - 1` finished tiles wait on the wire while the
+    /// core draws the next, so that a run of cheap tiles (background) is
+    /// drawn ahead while the wire catches up during the dear ones. In
+    /// rp2040js (BENCHMARKS.md), frames 1 to 11 take 1.051x max(render,
+    /// transfer) with 3, 1.043x with 4, 1.038x with 5 and 1.035x with 6:
+    /// 4 is the fewest under the 1.05x aimed at.
+    const TILES: usize = 4;
+
+    // The tile buffers. `'static`, as a DMA transfer's buffer must be: a
+    // transfer that was leaked must not go on reading freed memory. Built
+    // at start-up (see `tiles`), so that they take RAM (.bss) and no
     // flash: a `const` tile buffer holds the farthest depth, not zeros,
     // and would be stored in flash as initial data (.data).
-    static TILE_A: StaticCell<PicoTile> = StaticCell::new();
-    static TILE_B: StaticCell<PicoTile> = StaticCell::new();
+    static TILE_BUFFERS: [StaticCell<PicoTile>; TILES] = [const { StaticCell::new() }; TILES];
 
-    /// The two tile buffers, once (`None` the second time). Not inlined: the
+    /// The tile buffers, once (`None` the second time). Not inlined: the
     /// compiler builds each 4 KiB buffer on the stack before it moves it
     /// into its static, and here that stack is given back before the first
     /// frame instead of staying in `main`'s frame under every render. (The
     /// buffers' first colour is never seen: each tile is cleared first.)
     #[inline(never)]
-    fn tiles() -> Option<[&'static mut PicoTile; 2]> {
+    fn tiles() -> Option<[&'static mut PicoTile; TILES]> {
         let new = || PicoTile::new(Rgb565Be::new(0, 0, 0));
-        Some([TILE_A.try_init_with(new)?, TILE_B.try_init_with(new)?])
+        let tiles: heapless::Vec<_, TILES> = TILE_BUFFERS
+            .iter()
+            .map(|cell| cell.try_init_with(new))
+            .collect::<Option<_>>()?;
+        tiles.into_array().ok()
     }
 
     /// A finished tile, packed into one block of wire bytes, as the DMA
@@ -163,7 +185,7 @@ mod firmware {
     // buffer is `'static` and borrowed exclusively by `self`, so nothing
     // else writes or frees it while the DMA channel reads it: the channel's
     // `Transfer` owns `self` until it is done, and only then gives the
-    // buffer back (`TileTransfer::wait`).
+    // buffer back (to the queue of finished tiles that `wait` empties).
     unsafe impl ReadBuffer for TileBytes {
         type Word = u8;
 
@@ -172,56 +194,60 @@ mod firmware {
         }
     }
 
-    /// Where the bus is: free, carrying a tile by DMA, or (in serial mode)
-    /// done with a tile that `wait` has not yet given back.
-    enum Link<CH: SingleChannel, S: WriteTarget<TransmittedWord = u8>> {
-        Idle(CH, S),
-        Sending(Transfer<CH, TileBytes, S>),
-        Sent(CH, TileBytes, S),
+    // SAFETY: the raw pointer is the only thing that keeps `TileBytes`
+    // from being `Send`, and it points into the buffer that `self` borrows
+    // exclusively. Sending it moves that exclusive borrow, here between
+    // the core's thread and the DMA interrupt on the one core, through the
+    // critical section of `WIRE`.
+    unsafe impl Send for TileBytes {}
+
+    /// SPI1 as the firmware sets it up: TX on GP11, SCK on GP10, bytes.
+    type Bus = Spi<
+        Enabled,
+        pac::SPI1,
+        (
+            Pin<Gpio11, FunctionSpi, PullDown>,
+            Pin<Gpio10, FunctionSpi, PullDown>,
+        ),
+        8,
+    >;
+    /// The panel's DC pin, GP8.
+    type Dc = Pin<Gpio8, FunctionSioOutput, PullDown>;
+
+    /// Where the bus is: free, or carrying a tile by DMA.
+    enum Link {
+        Idle(Channel<CH0>, Bus),
+        Sending(Transfer<Channel<CH0>, TileBytes, Bus>),
         /// Only while a transition is under way.
         Taken,
     }
 
-    /// Why a tile could not be started.
-    #[derive(Debug)]
-    enum PanelError {
-        /// A transfer was still in flight.
-        Busy,
-        /// The tile's window lies outside the panel's addresses.
-        Window,
+    /// The wire, shared by the core (`Panel::start` queues a tile) and the
+    /// DMA-completion interrupt (which gives the tile sent back and starts
+    /// the next queued one): so the wire moves on to the next tile while
+    /// the core draws, however long that takes.
+    struct Wire {
+        link: Link,
+        dc: Dc,
+        /// Tiles drawn and packed, to be sent in this order.
+        queued: Deque<(Window, TileBytes), TILES>,
+        /// Tiles sent (their last byte in the SPI's FIFO), oldest first,
+        /// for `Panel::wait` to give back.
+        sent: Deque<&'static mut PicoTile, TILES>,
     }
 
-    /// The panel, past its set-up, as a [`TileTransfer`]: the window
-    /// commands of each tile from the core, then its pixels by DMA.
-    struct Panel<CH: SingleChannel, S: WriteTarget<TransmittedWord = u8>, DC> {
-        link: Link<CH, S>,
-        dc: DC,
-        /// Wait for every tile to be on the wire (`MICRORASTER_PICO_SERIAL`).
-        serial: bool,
-    }
-
-    impl<CH, S, DC> TileTransfer<&'static mut PicoTile> for Panel<CH, S, DC>
-    where
-        CH: SingleChannel,
-        S: WriteTarget<TransmittedWord = u8> + SpiBus<u8, Error = Infallible>,
-        DC: OutputPin<Error = Infallible>,
-    {
-        type Error = PanelError;
-
-        fn start(
-            &mut self,
-            area: &Rectangle,
-            tile: &'static mut PicoTile,
-        ) -> Result<(), (PanelError, &'static mut PicoTile)> {
-            let Some(window) = Window::new(area, Point::zero()) else {
-                return Err((PanelError::Window, tile));
+    impl Wire {
+        /// If the bus is free, sends the next queued tile: its window
+        /// commands from the core, then its pixels by DMA.
+        fn send_next(&mut self) {
+            let Link::Idle(..) = self.link else {
+                return;
             };
-            let (channel, mut spi) = match mem::replace(&mut self.link, Link::Taken) {
-                Link::Idle(channel, spi) => (channel, spi),
-                busy => {
-                    self.link = busy;
-                    return Err((PanelError::Busy, tile));
-                }
+            let Some((window, bytes)) = self.queued.pop_front() else {
+                return;
+            };
+            let Link::Idle(channel, mut spi) = mem::replace(&mut self.link, Link::Taken) else {
+                return;
             };
             // A finished DMA transfer has only put its last bytes into the
             // SPI's FIFO: DC changes only once the SPI is idle (`flush`),
@@ -235,31 +261,131 @@ mod firmware {
                 let Ok(()) = spi.write(parameters);
             }
             // After RAMWR, DC high: the pixels, by DMA, paced by SPI1's TX
-            // DREQ (the FIFO's room).
-            let bytes = TileBytes::new(tile, area);
-            let transfer = single_buffer::Config::new(channel, bytes, spi).start();
-            self.link = if self.serial {
-                let (channel, bytes, mut spi) = transfer.wait();
-                let Ok(()) = spi.flush();
-                Link::Sent(channel, bytes, spi)
-            } else {
-                Link::Sending(transfer)
+            // DREQ (the FIFO's room); the channel raises DMA_IRQ_0 when
+            // done (`enable_irq0` at start-up, but in serial mode).
+            self.link = Link::Sending(single_buffer::Config::new(channel, bytes, spi).start());
+        }
+
+        /// If the tile on the wire has been sent, moves it to `sent` and
+        /// frees the bus. `flush`: also wait for the SPI to be idle.
+        fn finish(&mut self, flush: bool) {
+            let transfer = match mem::replace(&mut self.link, Link::Taken) {
+                Link::Sending(transfer) if transfer.is_done() => transfer,
+                other => {
+                    self.link = other;
+                    return;
+                }
             };
+            let (channel, bytes, mut spi) = transfer.wait();
+            if flush {
+                let Ok(()) = spi.flush();
+            }
+            self.link = Link::Idle(channel, spi);
+            // Never full: it holds the tiles in flight, fewer than TILES.
+            let _ = self.sent.push_back(bytes.tile);
+        }
+    }
+
+    /// The wire, once `main` has set it up.
+    static WIRE: Mutex<RefCell<Option<Wire>>> = Mutex::new(RefCell::new(None));
+
+    /// The channel's transfer is done: hands its tile to `Panel::wait` and
+    /// starts the next queued tile, so that the wire idles only while the
+    /// queue is empty.
+    #[interrupt]
+    fn DMA_IRQ_0() {
+        critical_section::with(|cs| {
+            if let Some(wire) = WIRE.borrow_ref_mut(cs).as_mut() {
+                if let Link::Sending(transfer) = &mut wire.link {
+                    // Clears the channel's interrupt, which would fire again.
+                    transfer.check_irq0();
+                }
+                wire.finish(false);
+                wire.send_next();
+            }
+        });
+    }
+
+    /// Why a tile could not be started.
+    #[derive(Debug)]
+    enum PanelError {
+        /// The queue was full: more tiles in flight than buffers.
+        Busy,
+        /// The tile's window lies outside the panel's addresses.
+        Window,
+    }
+
+    /// The panel, past its set-up, as a [`TileTransfer`] with a queue: a
+    /// tile started while another is on the wire waits in `WIRE`, and the
+    /// DMA interrupt sends it.
+    struct Panel {
+        /// Tiles started and not yet given back by `wait`.
+        in_flight: usize,
+        /// Wait for every tile to be on the wire (`MICRORASTER_PICO_SERIAL`).
+        serial: bool,
+    }
+
+    impl TileTransfer<&'static mut PicoTile> for Panel {
+        type Error = PanelError;
+
+        fn start(
+            &mut self,
+            area: &Rectangle,
+            tile: &'static mut PicoTile,
+        ) -> Result<(), (PanelError, &'static mut PicoTile)> {
+            let Some(window) = Window::new(area, Point::zero()) else {
+                return Err((PanelError::Window, tile));
+            };
+            // Packed here, by the core, before the interrupt may send it.
+            let bytes = TileBytes::new(tile, area);
+            critical_section::with(|cs| {
+                let mut wire = WIRE.borrow_ref_mut(cs);
+                let Some(wire) = wire.as_mut() else {
+                    return Err((PanelError::Busy, bytes.tile));
+                };
+                if let Err((_, bytes)) = wire.queued.push_back((window, bytes)) {
+                    return Err((PanelError::Busy, bytes.tile));
+                }
+                wire.send_next();
+                if self.serial {
+                    // No interrupt in serial mode: the tile leaves the wire
+                    // before the next is drawn.
+                    while let Link::Sending(transfer) = &wire.link {
+                        if transfer.is_done() {
+                            break;
+                        }
+                    }
+                    wire.finish(true);
+                }
+                Ok(())
+            })?;
+            self.in_flight += 1;
             Ok(())
         }
 
         fn wait(&mut self) -> (&'static mut PicoTile, Result<(), PanelError>) {
-            let (channel, bytes, spi) = match mem::replace(&mut self.link, Link::Taken) {
-                // Done once the channel has written the last byte into the
-                // FIFO; the next `start` waits for the FIFO to drain.
-                Link::Sending(transfer) => transfer.wait(),
-                Link::Sent(channel, bytes, spi) => (channel, bytes, spi),
-                // `render_double_buffered` waits only after a successful
-                // start, so there is always a buffer to give back here.
-                Link::Idle(..) | Link::Taken => park(),
-            };
-            self.link = Link::Idle(channel, spi);
-            (bytes.tile, Ok(()))
+            // `render_queued` waits only with a tile in flight, so there is
+            // always a buffer to give back here.
+            if self.in_flight == 0 {
+                park();
+            }
+            loop {
+                let sent = critical_section::with(|cs| {
+                    let sent = WIRE.borrow_ref_mut(cs).as_mut()?.sent.pop_front();
+                    if sent.is_none() {
+                        // Sleeps until the DMA interrupt is pending, which
+                        // runs once the critical section ends: no interrupt
+                        // is missed between the look and the sleep. (`WIRE`
+                        // is not borrowed meanwhile.)
+                        cortex_m::asm::wfi();
+                    }
+                    sent
+                });
+                if let Some(tile) = sent {
+                    self.in_flight -= 1;
+                    return (tile, Ok(()));
+                }
+            }
         }
     }
 
@@ -350,9 +476,27 @@ mod firmware {
         let serial = unsafe { core::ptr::read_volatile(&MICRORASTER_PICO_SERIAL) } != 0;
         // SAFETY: as for the byte above, a valid, aligned `'static` word.
         let frame_us = unsafe { core::ptr::read_volatile(&MICRORASTER_PICO_FRAME_US) } as u64;
+        let mut channel = dma.ch0;
+        if !serial {
+            channel.enable_irq0();
+        }
+        critical_section::with(|cs| {
+            WIRE.replace(
+                cs,
+                Some(Wire {
+                    link: Link::Idle(channel, spi),
+                    dc,
+                    queued: Deque::new(),
+                    sent: Deque::new(),
+                }),
+            )
+        });
+        // SAFETY: the interrupt's handler, `DMA_IRQ_0`, shares nothing with
+        // this thread but `WIRE`, through its critical sections, which mask
+        // every interrupt; unmasking cannot break them.
+        unsafe { cortex_m::peripheral::NVIC::unmask(pac::Interrupt::DMA_IRQ_0) };
         let mut panel = Panel {
-            link: Link::Idle(dma.ch0, spi),
-            dc,
+            in_flight: 0,
             serial,
         };
 
@@ -381,7 +525,7 @@ mod firmware {
             let draws = draws(&knot, &cube, time_us);
             let scene = Scene::new(camera, &draws).light(light());
             let (back, result) = match PicoFrame::begin(config, workspace, &scene) {
-                Ok(frame) => frame.render_double_buffered(tiles, &mut panel),
+                Ok(frame) => frame.render_queued(tiles, &mut panel),
                 Err(e) => (tiles, Err(e.for_sink())),
             };
             tiles = back;

@@ -15,7 +15,9 @@
 //! or [`AsyncTileSink`] for
 //! [`Renderer::render_async`](crate::Renderer::render_async); both draw
 //! the next tile into a second buffer while the previous one is on the
-//! wire. [`Rgb565Be`] draws tiles in an SPI panel's byte order, and
+//! wire. A driver that moves on to the next queued tile by itself (a
+//! DMA-completion interrupt) lets the core draw further ahead, over `N`
+//! buffers: [`Renderer::render_queued`](crate::Renderer::render_queued). [`Rgb565Be`] draws tiles in an SPI panel's byte order, and
 //! [`wire`] has the window commands that precede a tile's pixels.
 //!
 //! | file | what |
@@ -23,11 +25,13 @@
 //! | `sink.rs` | [`TileSink`], every `DrawTarget` as one, [`NullSink`] |
 //! | `sink/framebuffer.rs` | [`FrameBuffer`]: tiles placed in a whole frame |
 //! | `sink/transfer.rs` | [`TileTransfer`] and the double-buffered frame loop |
+//! | `sink/queue.rs` | the frame loop over `N` buffers, `N - 1` tiles in flight |
 //! | `sink/async_sink.rs` | [`AsyncTileSink`] and the async frame loop |
 //! | `sink/wire.rs` | [`Rgb565Be`], [`wire::Window`]: the panel's wire format |
 
 mod async_sink;
 mod framebuffer;
+mod queue;
 mod transfer;
 pub mod wire;
 

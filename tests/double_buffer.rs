@@ -23,7 +23,7 @@ use microraster::shader::Dithered;
 use microraster::sink::wire::{self, Window, CASET, RAMWR, RASET};
 use std::cell::RefCell;
 use std::rc::Rc;
-use support::Capture;
+use support::{Capture, Order};
 
 type Tile<C> = TileBuffer<C, 32, 32>;
 
@@ -148,17 +148,6 @@ impl<C: PixelColor> FlatPixels<C> for Tile<C> {
     }
 }
 
-/// A sink that records the order of the tiles it receives.
-struct Order<C>(Vec<Rectangle>, Capture<C>);
-
-impl<C: PixelColor> TileSink<C> for Order<C> {
-    type Error = core::convert::Infallible;
-    fn write_tile(&mut self, area: &Rectangle, tile: &TileView<'_, C>) -> Result<(), Self::Error> {
-        self.0.push(*area);
-        self.1.write_tile(area, tile)
-    }
-}
-
 /// `render`'s tiles in order and its frame.
 fn reference<C, const B: usize, const T: usize>(
     scene: &Scene<'_, impl ShaderSet<C>>,
@@ -169,7 +158,7 @@ where
 {
     let mut renderer: Renderer<C, 32, 32> = Renderer::new(config);
     let mut ws: Box<Workspace<2048, B, T>> = Box::new(Workspace::new());
-    let mut sink = Order(Vec::new(), Capture::new(config.size, config.clear_color));
+    let mut sink = Order::new(config.size, config.clear_color);
     let stats = renderer.render(&mut ws, scene, &mut sink).unwrap();
     (sink.0, sink.1, stats)
 }

@@ -8,25 +8,9 @@ mod support;
 
 use common::*;
 use embedded_graphics::pixelcolor::Rgb565;
-use embedded_graphics::primitives::Rectangle;
 use microraster::prelude::*;
-use microraster::{TileBuffer, TileSink, TileView};
-use support::Capture;
-
-/// A sink that keeps the order of the tiles it receives.
-struct Order(Vec<Rectangle>, Capture<Rgb565>);
-
-impl TileSink<Rgb565> for Order {
-    type Error = core::convert::Infallible;
-    fn write_tile(
-        &mut self,
-        area: &Rectangle,
-        tile: &TileView<'_, Rgb565>,
-    ) -> Result<(), Self::Error> {
-        self.0.push(*area);
-        self.1.write_tile(area, tile)
-    }
-}
+use microraster::TileBuffer;
+use support::Order;
 
 /// The scene rendered both ways with a workspace of `B` bin entries and
 /// `T` tiles per pass; returns the statistics after checking that they,
@@ -38,7 +22,7 @@ fn both_ways<const B: usize, const T: usize>(
     let size = config.size;
     let mut renderer: Renderer<Rgb565, 32, 32> = Renderer::new(config);
     let mut ws: Box<Workspace<2048, B, T>> = Box::new(Workspace::new());
-    let mut reference = Order(Vec::new(), Capture::new(size, Rgb565::new(31, 0, 31)));
+    let mut reference = Order::new(size, Rgb565::new(31, 0, 31));
     let expected = renderer.render(&mut ws, scene, &mut reference).unwrap();
 
     // Two buffers in turn, as a caller with one tile on the wire would.
@@ -46,7 +30,7 @@ fn both_ways<const B: usize, const T: usize>(
         TileBuffer::new(Rgb565::new(0, 63, 0)),
         TileBuffer::new(Rgb565::new(0, 0, 31)),
     ];
-    let mut got = Order(Vec::new(), Capture::new(size, Rgb565::new(31, 0, 31)));
+    let mut got = Order::new(size, Rgb565::new(31, 0, 31));
     let mut frame = renderer.begin(&mut ws, scene).unwrap();
     assert_eq!(frame.tile_count(), reference.0.len());
     let mut k = 0;

@@ -63,6 +63,7 @@ where
     /// [`Renderer::begin`](super::Renderer::begin) does, without a
     /// renderer. A program that draws only into tile buffers of its own
     /// ([`render_double_buffered`](Self::render_double_buffered),
+    /// [`render_queued`](Self::render_queued),
     /// [`render_async`](Self::render_async)) then holds no renderer, and
     /// no renderer's tile buffer (`TW x TH` pixels it would never use).
     ///

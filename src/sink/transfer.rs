@@ -37,6 +37,16 @@ use embedded_graphics::primitives::Rectangle;
 /// `start(tile 0)`, draw tile 1, `wait`, `start(tile 1)`, draw tile 2,
 /// `wait`, …, `start(last tile)`, `wait`.
 ///
+/// [`Renderer::render_queued`] over `N` buffers keeps up to `N - 1` tiles
+/// in flight: it calls `start` while others are, and a driver used with
+/// `N > 2` must accept that, queue the tile and send the queued tiles one
+/// after the other in the order they were started, without the core (a
+/// DMA-completion interrupt starts the next one, say). `wait` then gives
+/// back the oldest tile in flight, once it is sent: first in, first out.
+/// (`render_queued` puts a buffer that comes back out of order to use all
+/// the same, but the tiles on the panel are the driver's business.) With
+/// `N = 2` the calls are those of `render_double_buffered`.
+///
 /// An implementation for a DMA channel takes the tile's pixels with
 /// [`TileBuffer::pack`] (they are then one contiguous block; for
 /// [`Rgb565Be`](super::Rgb565Be) pixels,
@@ -46,8 +56,9 @@ use embedded_graphics::primitives::Rectangle;
 /// buffer until the channel is done.
 ///
 /// The buffer always comes back, with the error if there is one, so a
-/// failed transfer loses no buffer: the caller gets both back from
-/// [`Renderer::render_double_buffered`] whatever happens.
+/// failed transfer loses no buffer: the caller gets them all back from
+/// [`Renderer::render_double_buffered`] and
+/// [`Renderer::render_queued`] whatever happens.
 pub trait TileTransfer<B> {
     /// The driver's error, returned as [`RenderError::Sink`].
     type Error;
@@ -56,14 +67,16 @@ pub trait TileTransfer<B> {
     /// frame (the buffer's top-left `area.size` pixels, as
     /// [`TileBuffer::view`] reads them), and returns without waiting for
     /// the bytes to be on the wire. The transfer keeps `tile` until
-    /// [`wait`](Self::wait) gives it back.
+    /// [`wait`](Self::wait) gives it back. Called with fewer than `N - 1`
+    /// tiles in flight for `N` buffers: none for two.
     ///
-    /// On an error nothing is in flight and `tile` comes back with it.
+    /// On an error `tile` comes back with it and is not in flight; the
+    /// tiles in flight before are still waited for.
     fn start(&mut self, area: &Rectangle, tile: B) -> Result<(), (Self::Error, B)>;
 
-    /// Waits until the transfer in flight is done, and gives its buffer
-    /// back with its outcome. Called only after a successful
-    /// [`start`](Self::start).
+    /// Waits until the oldest transfer in flight is done, and gives its
+    /// buffer back with its outcome. Called only with a tile in flight
+    /// (after a successful [`start`](Self::start) not yet waited for).
     fn wait(&mut self) -> (B, Result<(), Self::Error>);
 }
 

@@ -48,9 +48,9 @@
 //   spi:    how long the SPI was sending in that period (transfer);
 //   idle:   period - spi, when the wire was idle. With `--serial` (the
 //           firmware renders a tile, then sends it, tile after tile) the
-//           render time. Without, the firmware sends a tile by DMA while
-//           it renders the next: the period is the overlapped frame and
-//           idle what the overlap did not hide.
+//           render time. Without, the firmware sends the tiles it has
+//           drawn by DMA while it renders the next: the period is the
+//           overlapped frame and idle what the overlap did not hide.
 //
 // `--profile FILE` charges every cycle after the first frame (with
 // `--bench`, every cycle) to the function whose code

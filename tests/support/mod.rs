@@ -126,6 +126,31 @@ pub fn assert_same_frame<C: PixelColor>(
     assert_eq!(key(stats), key(ref_stats), "{name}: {stats:?}");
 }
 
+/// A sink that keeps the order of the tiles it receives, and the frame
+/// they make.
+pub struct Order<C>(
+    pub Vec<embedded_graphics::primitives::Rectangle>,
+    pub Capture<C>,
+);
+
+impl<C: PixelColor> Order<C> {
+    pub fn new(size: Size, background: C) -> Self {
+        Self(Vec::new(), Capture::new(size, background))
+    }
+}
+
+impl<C: PixelColor> microraster::TileSink<C> for Order<C> {
+    type Error = core::convert::Infallible;
+    fn write_tile(
+        &mut self,
+        area: &embedded_graphics::primitives::Rectangle,
+        tile: &microraster::TileView<'_, C>,
+    ) -> Result<(), Self::Error> {
+        self.0.push(*area);
+        self.1.write_tile(area, tile)
+    }
+}
+
 pub fn golden_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("tests")

@@ -1,0 +1,358 @@
+//! Queued streaming: a frame sent through `render_queued` over `N` tile
+//! buffers, to a fake DMA queue whose tiles complete only later (each
+//! tile's pixels are read from its buffer when it is waited for, oldest
+//! first), delivers every tile once, in visiting order, with the pixels
+//! of `Renderer::render`; never more than `N - 1` tiles are in flight, a
+//! buffer is never drawn into while it is, and every error gives all `N`
+//! buffers back with nothing left in flight.
+
+#[path = "../examples/common/mod.rs"]
+mod common;
+mod support;
+
+use common::*;
+use embedded_graphics::pixelcolor::{Rgb565, RgbColor};
+use microraster::prelude::*;
+use std::cell::RefCell;
+use std::collections::VecDeque;
+use std::rc::Rc;
+use support::{Capture, Order};
+
+type Tile = TileBuffer<Rgb565, 32, 32>;
+
+/// What the queue saw, shared with the buffer handles.
+#[derive(Default)]
+struct Book {
+    /// The ids of the buffers in flight, oldest first.
+    in_flight: VecDeque<usize>,
+    /// The most tiles ever in flight at once.
+    most: usize,
+    /// Each draw, as the id of the buffer drawn into.
+    draws: Vec<usize>,
+    /// Each call, in order: `s` a start, `w` a wait, `d` a draw.
+    calls: String,
+}
+
+type Shared = Rc<RefCell<Book>>;
+
+/// A buffer handle that checks, each time the renderer draws into it,
+/// that it is not in flight.
+struct Buffer<'t> {
+    id: usize,
+    tile: &'t mut Tile,
+    book: Shared,
+}
+
+impl core::borrow::Borrow<Tile> for Buffer<'_> {
+    fn borrow(&self) -> &Tile {
+        self.tile
+    }
+}
+
+impl core::borrow::BorrowMut<Tile> for Buffer<'_> {
+    fn borrow_mut(&mut self) -> &mut Tile {
+        let mut book = RefCell::borrow_mut(&self.book);
+        assert!(
+            !book.in_flight.contains(&self.id),
+            "buffer {} drawn into while in flight",
+            self.id
+        );
+        book.draws.push(self.id);
+        book.calls.push('d');
+        self.tile
+    }
+}
+
+#[derive(Debug, PartialEq, Eq)]
+struct WireError(usize);
+
+/// A DMA queue on the host: `start` packs the tile and queues it; a tile
+/// "arrives" only when it is waited for, oldest first, read from its
+/// buffer then, so a buffer drawn into while in flight would show.
+struct Queue<'t> {
+    queue: VecDeque<(Buffer<'t>, Rectangle)>,
+    /// The most tiles this driver takes in flight (`N - 1`).
+    depth: usize,
+    frame: Capture<Rgb565>,
+    order: Vec<Rectangle>,
+    book: Shared,
+    fail_start: Option<usize>,
+    fail_wait: Option<usize>,
+    /// Give the newest tile back first, against the contract.
+    newest_first: bool,
+    started: usize,
+    waited: usize,
+}
+
+impl<'t> Queue<'t> {
+    fn new(size: Size, depth: usize, book: &Shared) -> Self {
+        Self {
+            queue: VecDeque::new(),
+            depth,
+            frame: Capture::new(size, Rgb565::new(31, 0, 31)),
+            order: Vec::new(),
+            book: book.clone(),
+            fail_start: None,
+            fail_wait: None,
+            newest_first: false,
+            started: 0,
+            waited: 0,
+        }
+    }
+}
+
+impl<'t> TileTransfer<Buffer<'t>> for Queue<'t> {
+    type Error = WireError;
+
+    fn start(&mut self, area: &Rectangle, tile: Buffer<'t>) -> Result<(), (WireError, Buffer<'t>)> {
+        let mut book = self.book.borrow_mut();
+        book.calls.push('s');
+        assert!(
+            self.queue.len() < self.depth,
+            "a start with N - 1 tiles in flight"
+        );
+        let k = self.started;
+        if self.fail_start == Some(k) {
+            return Err((WireError(k), tile));
+        }
+        self.started += 1;
+        let packed = tile.tile.pack(area).len();
+        assert_eq!(packed, (area.size.width * area.size.height) as usize);
+        book.in_flight.push_back(tile.id);
+        book.most = book.most.max(book.in_flight.len());
+        self.order.push(*area);
+        self.queue.push_back((tile, *area));
+        Ok(())
+    }
+
+    fn wait(&mut self) -> (Buffer<'t>, Result<(), WireError>) {
+        let (tile, area) = match self.newest_first {
+            false => self.queue.pop_front(),
+            true => self.queue.pop_back(),
+        }
+        .expect("wait with nothing in flight");
+        let mut book = self.book.borrow_mut();
+        book.calls.push('w');
+        book.in_flight.retain(|&id| id != tile.id);
+        let k = self.waited;
+        self.waited += 1;
+        if self.fail_wait == Some(k) {
+            return (tile, Err(WireError(k)));
+        }
+        // The bytes go out now, from the packed block.
+        let whole = Rectangle::new(Point::zero(), Size::new(32, 32));
+        let block: Vec<Rgb565> = tile.tile.view(&whole).pixels().collect();
+        let n = (area.size.width * area.size.height) as usize;
+        let width = area.size.width as usize;
+        for (i, &c) in block[..n].iter().enumerate() {
+            let x = area.top_left.x as u32 + (i % width) as u32;
+            let y = area.top_left.y as u32 + (i / width) as u32;
+            let at = (y * self.frame.size.width + x) as usize;
+            self.frame.pixels[at] = c;
+            self.frame.writes[at] += 1;
+        }
+        (tile, Ok(()))
+    }
+}
+
+/// `N` buffers, each a distinct colour to begin with, under ids `0..N`.
+fn buffers<'t, const N: usize>(store: &'t mut [Tile; N], book: &Shared) -> [Buffer<'t>; N] {
+    let mut it = store.iter_mut().enumerate();
+    core::array::from_fn(|_| {
+        let (id, tile) = it.next().unwrap();
+        Buffer {
+            id,
+            tile,
+            book: book.clone(),
+        }
+    })
+}
+
+fn ids<const N: usize>(back: &[Buffer<'_>; N]) -> Vec<usize> {
+    let mut ids: Vec<usize> = back.iter().map(|b| b.id).collect();
+    ids.sort();
+    ids
+}
+
+/// The scene through `render_queued` over `N` buffers: every tile once,
+/// in `render`'s order and with its pixels and statistics, at most
+/// `N - 1` in flight (and that many reached), the buffers in turn.
+fn queued<const N: usize, const B: usize, const T: usize>(
+    scene: &Scene<'_>,
+    config: Config<Rgb565>,
+) -> FrameStats {
+    let mut renderer: Renderer<Rgb565, 32, 32> = Renderer::new(config);
+    let mut ws: Box<Workspace<2048, B, T>> = Box::new(Workspace::new());
+    let mut sink = Order::new(config.size, config.clear_color);
+    let stats = renderer.render(&mut ws, scene, &mut sink).unwrap();
+
+    let book: Shared = Rc::default();
+    let mut store: Box<[Tile; N]> = Box::new(core::array::from_fn(|k| {
+        Tile::new(Rgb565::new(k as u8, 63, 0))
+    }));
+    let mut queue = Queue::new(config.size, N - 1, &book);
+    let (back, result) =
+        renderer.render_queued(&mut ws, scene, buffers(&mut store, &book), &mut queue);
+    assert_eq!(result.unwrap(), stats, "the same statistics");
+    assert_eq!(ids(&back), (0..N).collect::<Vec<_>>(), "every buffer back");
+    assert!(queue.queue.is_empty(), "nothing in flight");
+    assert_eq!(queue.order, sink.0, "every tile once, in visiting order");
+    queue.frame.assert_once_and_equal(&sink.1);
+
+    let book = book.borrow();
+    assert_eq!(
+        book.most,
+        (N - 1).min(sink.0.len()),
+        "up to N - 1 in flight"
+    );
+    // Tile k from buffer k % N (the last draw finds no tile).
+    for (k, &id) in book.draws.iter().enumerate() {
+        assert_eq!(id, k % N, "draw {k}");
+    }
+    assert_eq!(book.draws.len(), sink.0.len() + 1);
+    // Draw, wait only with N - 1 in flight, start; at the end the last
+    // (empty) draw and the waits for what is still in flight.
+    let n = sink.0.len();
+    let mut want = String::new();
+    for k in 0..n {
+        want.push('d');
+        want.push_str(if k >= N - 1 { "ws" } else { "s" });
+    }
+    want.push('d');
+    want.push_str(&"w".repeat(n.min(N - 1)));
+    assert_eq!(book.calls, want);
+    stats
+}
+
+fn scene_of<'a>(draws: &'a [Draw<'a>], size: Size) -> Scene<'a> {
+    Scene::new(camera(size.width, size.height), draws).light(light())
+}
+
+#[test]
+fn queued_frames_match_render_for_every_depth() {
+    let assets = DemoAssets::new();
+    let (knot, cube) = (assets.knot(), cube());
+    let d = draws(&knot, &cube, 0.7, Shading::Gouraud);
+    // Not a multiple of the tile size: edge tiles are packed and short.
+    let size = Size::new(317, 233);
+    let scene = scene_of(&d, size);
+    let config = Config::new(size, Rgb565::new(2, 4, 6));
+    let s = queued::<3, 8192, 80>(&scene, config);
+    assert_eq!((s.bin_passes, s.tiles), (1, 80));
+    assert!(s.pixels_shaded > 10_000, "{s:?}");
+    queued::<2, 8192, 80>(&scene, config);
+    queued::<4, 8192, 80>(&scene, config.tile_order(TileOrder::Hilbert));
+    queued::<6, 8192, 80>(&scene, config);
+    // Many binning passes, and more buffers than tiles.
+    let s = queued::<5, 8192, 7>(&scene, config);
+    assert!(s.bin_passes >= 12, "{s:?}");
+    queued::<4, 64, 80>(&scene, config.tile_order(TileOrder::Hilbert));
+    let small = Size::new(40, 30);
+    queued::<8, 8192, 80>(
+        &scene_of(&d, small),
+        Config::new(small, Rgb565::new(2, 4, 6)),
+    );
+}
+
+/// A frame over `N` buffers whose transfer fails at tile `k`'s start or
+/// wait: the error comes back typed, no tile is started after it, every
+/// tile started is waited for, and all `N` buffers come back. Returns
+/// the tiles started and the calls.
+fn failing<const N: usize>(fail_start: Option<usize>, fail_wait: Option<usize>) -> (usize, String) {
+    let cube = cube();
+    let d = [Draw::new(&cube)];
+    let size = Size::new(160, 96); // 15 tiles
+    let renderer: Renderer<Rgb565, 32, 32> = Renderer::new(Config::new(size, Rgb565::BLACK));
+    let mut ws: Box<Workspace<2048, 1024, 16>> = Box::new(Workspace::new());
+    let book: Shared = Rc::default();
+    let mut store: Box<[Tile; N]> = Box::new(core::array::from_fn(|_| Tile::new(Rgb565::BLACK)));
+    let mut queue = Queue::new(size, N - 1, &book);
+    queue.fail_start = fail_start;
+    queue.fail_wait = fail_wait;
+    let (back, result) = renderer.render_queued(
+        &mut ws,
+        &scene_of(&d, size),
+        buffers(&mut store, &book),
+        &mut queue,
+    );
+    let k = fail_start.or(fail_wait).unwrap();
+    assert_eq!(result, Err(RenderError::Sink(WireError(k))));
+    assert_eq!(ids(&back), (0..N).collect::<Vec<_>>(), "every buffer back");
+    assert!(queue.queue.is_empty(), "nothing left in flight");
+    assert_eq!(
+        queue.waited, queue.started,
+        "every tile started is waited for"
+    );
+    let calls = book.borrow().calls.clone();
+    (queue.started, calls)
+}
+
+#[test]
+fn a_failed_transfer_gives_every_buffer_back() {
+    // `d` draw, `w` wait, `s` start (also a failed one).
+    let calls =
+        |parts: &[(&str, usize)]| -> String { parts.iter().map(|(p, n)| p.repeat(*n)).collect() };
+    // Tile 5's start fails, after tile 2 was waited for to make room:
+    // tiles 3 and 4 are still waited for, nothing more is drawn.
+    let want = calls(&[("ds", 3), ("dws", 3), ("w", 2)]);
+    assert_eq!(failing::<4>(Some(5), None), (5, want));
+    // The first start.
+    assert_eq!(failing::<3>(Some(0), None), (0, "ds".into()));
+    // Tile 2's wait fails, to make room for tile 7: tile 7 is never
+    // started, tiles 3 to 6 are waited for.
+    let want = calls(&[("ds", 5), ("dws", 2), ("dw", 1), ("w", 4)]);
+    assert_eq!(failing::<6>(None, Some(2)), (7, want));
+    // Tile 12's wait, among those at the end of the frame (15 tiles): the
+    // two after it are still waited for.
+    let want = calls(&[("ds", 3), ("dws", 12), ("dwww", 1)]);
+    assert_eq!(failing::<4>(None, Some(12)), (15, want));
+    // Two buffers: the calls of `render_double_buffered` (tile 5 drawn,
+    // never started).
+    let want = calls(&[("ds", 1), ("dws", 4), ("dw", 1)]);
+    assert_eq!(failing::<2>(None, Some(4)), (5, want));
+}
+
+#[test]
+fn scene_errors_come_back_before_any_transfer_with_every_buffer() {
+    let cube = cube();
+    let d = [Draw::new(&cube)];
+    let size = Size::new(64, 64);
+    let renderer: Renderer<Rgb565, 32, 32> = Renderer::new(Config::new(size, Rgb565::BLACK));
+    let mut ws: Workspace<4, 64, 4> = Workspace::new();
+    let book: Shared = Rc::default();
+    let mut store: Box<[Tile; 3]> = Box::new(core::array::from_fn(|_| Tile::new(Rgb565::BLACK)));
+    let mut queue = Queue::new(size, 2, &book);
+    let (back, result) = renderer.render_queued(
+        &mut ws,
+        &scene_of(&d, size),
+        buffers(&mut store, &book),
+        &mut queue,
+    );
+    assert!(matches!(result, Err(RenderError::VertexCapacity { .. })));
+    assert_eq!(back.map(|b| b.id), [0, 1, 2]);
+    assert!(book.borrow().calls.is_empty());
+}
+
+/// A driver that breaks the FIFO contract, giving the newest tile back
+/// first, still gets every tile once and gives every buffer back, and
+/// the renderer never draws into a buffer in flight.
+#[test]
+fn buffers_given_back_out_of_order_are_used_all_the_same() {
+    let cube = cube();
+    let d = [Draw::new(&cube)];
+    let size = Size::new(160, 96);
+    let scene = scene_of(&d, size);
+    let renderer: Renderer<Rgb565, 32, 32> = Renderer::new(Config::new(size, Rgb565::BLACK));
+    let mut ws: Box<Workspace<2048, 1024, 16>> = Box::new(Workspace::new());
+    let book: Shared = Rc::default();
+    let mut store: Box<[Tile; 4]> = Box::new(core::array::from_fn(|_| Tile::new(Rgb565::BLACK)));
+    let mut queue = Queue::new(size, 3, &book);
+    queue.newest_first = true;
+    let (back, result) =
+        renderer.render_queued(&mut ws, &scene, buffers(&mut store, &book), &mut queue);
+    assert_eq!(result.unwrap().tiles, 15);
+    assert_eq!(ids(&back), [0, 1, 2, 3], "every buffer back");
+    assert!(queue.queue.is_empty(), "nothing in flight");
+    assert_eq!((queue.started, queue.waited), (15, 15));
+    assert_eq!(book.borrow().most, 3);
+}
