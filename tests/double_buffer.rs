@@ -230,32 +230,28 @@ fn demo<'a>(knot: &'a Mesh<'a>, cube: &'a Mesh<'a>, t: f32) -> [Draw<'a>; 2] {
 
 #[test]
 fn double_buffered_frames_match_render_in_both_tile_orders() {
-    let assets = DemoAssets::new();
-    let (knot, cube) = (assets.knot(), cube());
-    let d = demo(&knot, &cube, 0.7);
     // Not a multiple of the tile size: the right column's tiles are
     // packed, the bottom row's are short.
     let size = Size::new(317, 233);
-    let scene = Scene::new(camera(size.width, size.height), &d).light(light());
-    let config = Config::new(size, Rgb565::new(2, 4, 6));
-    let s = double_buffered::<8192, 80>(&scene, config);
-    assert_eq!((s.bin_passes, s.tiles), (1, 80));
-    assert!(s.pixels_shaded > 10_000, "{s:?}");
-    double_buffered::<8192, 80>(&scene, config.tile_order(TileOrder::Hilbert));
+    with_demo_scene(0.7, size, |scene| {
+        let config = Config::new(size, Rgb565::new(2, 4, 6));
+        let s = double_buffered::<8192, 80>(scene, config);
+        assert_eq!((s.bin_passes, s.tiles), (1, 80));
+        assert!(s.pixels_shaded > 10_000, "{s:?}");
+        double_buffered::<8192, 80>(scene, config.tile_order(TileOrder::Hilbert));
+    });
 }
 
 #[test]
 fn double_buffered_frames_match_render_over_many_passes() {
-    let assets = DemoAssets::new();
-    let (knot, cube) = (assets.knot(), cube());
-    let d = demo(&knot, &cube, 1.3);
     let size = Size::new(317, 233);
-    let scene = Scene::new(camera(size.width, size.height), &d).light(light());
-    let config = Config::new(size, Rgb565::new(2, 4, 6));
-    let s = double_buffered::<8192, 7>(&scene, config);
-    assert!(s.bin_passes >= 12, "{s:?}");
-    let s = double_buffered::<64, 80>(&scene, config.tile_order(TileOrder::Hilbert));
-    assert!(s.bin_passes > 12 && s.rescanned_tiles > 0, "{s:?}");
+    with_demo_scene(1.3, size, |scene| {
+        let config = Config::new(size, Rgb565::new(2, 4, 6));
+        let s = double_buffered::<8192, 7>(scene, config);
+        assert!(s.bin_passes >= 12, "{s:?}");
+        let s = double_buffered::<64, 80>(scene, config.tile_order(TileOrder::Hilbert));
+        assert!(s.bin_passes > 12 && s.rescanned_tiles > 0, "{s:?}");
+    });
 }
 
 /// A double-buffered frame whose transfer fails at tile `k`'s start or
@@ -438,17 +434,15 @@ fn async_frame<const B: usize, const T: usize>(
 
 #[test]
 fn async_frames_match_render() {
-    let assets = DemoAssets::new();
-    let (knot, cube) = (assets.knot(), cube());
-    let d = demo(&knot, &cube, 0.4);
     let size = Size::new(317, 233);
-    let scene = Scene::new(camera(size.width, size.height), &d).light(light());
-    let config = Config::new(size, Rgb565::new(2, 4, 6));
-    for pends in [0, 1, 2, 3] {
-        async_frame::<8192, 80>(&scene, config, pends);
-    }
-    async_frame::<8192, 80>(&scene, config.tile_order(TileOrder::Hilbert), 2);
-    async_frame::<64, 80>(&scene, config, 2);
+    with_demo_scene(0.4, size, |scene| {
+        let config = Config::new(size, Rgb565::new(2, 4, 6));
+        for pends in [0, 1, 2, 3] {
+            async_frame::<8192, 80>(scene, config, pends);
+        }
+        async_frame::<8192, 80>(scene, config.tile_order(TileOrder::Hilbert), 2);
+        async_frame::<64, 80>(scene, config, 2);
+    });
 }
 
 #[test]
@@ -519,40 +513,38 @@ fn wire_format_tiles_are_rgb565_byte_swapped() {
 
 #[test]
 fn the_wire_bytes_of_a_packed_tile_are_the_frame_in_panel_order() {
-    let assets = DemoAssets::new();
-    let (knot, cube) = (assets.knot(), cube());
     let size = Size::new(100, 70); // edge tiles 4 wide, 6 high
-    let d = demo(&knot, &cube, 0.2);
-    let scene = Scene::new(camera(size.width, size.height), &d).light(light());
-    let (_, native, _) =
-        reference::<Rgb565, 8192, 80>(&scene, Config::new(size, Rgb565::new(1, 2, 3)));
+    with_demo_scene(0.2, size, |scene| {
+        let (_, native, _) =
+            reference::<Rgb565, 8192, 80>(scene, Config::new(size, Rgb565::new(1, 2, 3)));
 
-    let renderer: Renderer<Rgb565Be, 32, 32> =
-        Renderer::new(Config::new(size, Rgb565::new(1, 2, 3).into()));
-    let mut ws: Box<Workspace<2048, 8192, 80>> = Box::new(Workspace::new());
-    let mut tile = Tile::new(Rgb565Be::BLACK);
-    let mut frame = renderer.begin(&mut ws, &scene).unwrap();
-    let mut panel = vec![0u8; (size.width * size.height * 2) as usize];
-    while let Some(area) = frame.render_next(&mut tile) {
-        let full_width = area.size.width == 32;
-        assert_eq!(tile.view(&area).contiguous().is_some(), full_width);
-        let (ptr, len) = wire::wire_bytes(tile.pack(&area));
-        assert_eq!(len, (2 * area.size.width * area.size.height) as usize);
-        // What the DMA channel reads.
-        let bytes = unsafe { core::slice::from_raw_parts(ptr, len) };
-        let row = 2 * area.size.width as usize;
-        for (j, line) in bytes.chunks(row).enumerate() {
-            let y = area.top_left.y as usize + j;
-            let at = 2 * (y * size.width as usize + area.top_left.x as usize);
-            panel[at..at + row].copy_from_slice(line);
+        let renderer: Renderer<Rgb565Be, 32, 32> =
+            Renderer::new(Config::new(size, Rgb565::new(1, 2, 3).into()));
+        let mut ws: Box<Workspace<2048, 8192, 80>> = Box::new(Workspace::new());
+        let mut tile = Tile::new(Rgb565Be::BLACK);
+        let mut frame = renderer.begin(&mut ws, scene).unwrap();
+        let mut panel = vec![0u8; (size.width * size.height * 2) as usize];
+        while let Some(area) = frame.render_next(&mut tile) {
+            let full_width = area.size.width == 32;
+            assert_eq!(tile.view(&area).contiguous().is_some(), full_width);
+            let (ptr, len) = wire::wire_bytes(tile.pack(&area));
+            assert_eq!(len, (2 * area.size.width * area.size.height) as usize);
+            // What the DMA channel reads.
+            let bytes = unsafe { core::slice::from_raw_parts(ptr, len) };
+            let row = 2 * area.size.width as usize;
+            for (j, line) in bytes.chunks(row).enumerate() {
+                let y = area.top_left.y as usize + j;
+                let at = 2 * (y * size.width as usize + area.top_left.x as usize);
+                panel[at..at + row].copy_from_slice(line);
+            }
         }
-    }
-    let expected: Vec<u8> = native
-        .pixels
-        .iter()
-        .flat_map(|c| c.into_storage().to_be_bytes())
-        .collect();
-    assert!(panel == expected, "the panel's bytes differ");
+        let expected: Vec<u8> = native
+            .pixels
+            .iter()
+            .flat_map(|c| c.into_storage().to_be_bytes())
+            .collect();
+        assert!(panel == expected, "the panel's bytes differ");
+    });
 }
 
 #[test]

@@ -46,42 +46,34 @@ fn both_ways<const B: usize, const T: usize>(
     expected
 }
 
-fn demo<'a>(knot: &'a Mesh<'a>, cube: &'a Mesh<'a>, t: f32) -> [Draw<'a>; 2] {
-    draws(knot, cube, t, Shading::Gouraud)
-}
-
 #[test]
 fn tiles_on_demand_match_render_in_one_pass() {
-    let assets = DemoAssets::new();
-    let (knot, cube) = (assets.knot(), cube());
-    let d = demo(&knot, &cube, 0.7);
     let size = Size::new(320, 240);
-    let scene = Scene::new(camera(size.width, size.height), &d).light(light());
-    let config = Config::new(size, Rgb565::new(2, 4, 6));
-    let s = both_ways::<8192, 80>(&scene, config);
-    assert_eq!((s.bin_passes, s.rescanned_tiles), (1, 0));
-    assert!(s.pixels_shaded > 10_000, "{s:?}");
-    // Along the Hilbert curve too.
-    both_ways::<8192, 80>(&scene, config.tile_order(TileOrder::Hilbert));
+    with_demo_scene(0.7, size, |scene| {
+        let config = Config::new(size, Rgb565::new(2, 4, 6));
+        let s = both_ways::<8192, 80>(scene, config);
+        assert_eq!((s.bin_passes, s.rescanned_tiles), (1, 0));
+        assert!(s.pixels_shaded > 10_000, "{s:?}");
+        // Along the Hilbert curve too.
+        both_ways::<8192, 80>(scene, config.tile_order(TileOrder::Hilbert));
+    });
 }
 
 #[test]
 fn tiles_on_demand_match_render_over_many_passes_and_rescans() {
-    let assets = DemoAssets::new();
-    let (knot, cube) = (assets.knot(), cube());
-    let d = demo(&knot, &cube, 1.3);
     let size = Size::new(317, 233);
-    let scene = Scene::new(camera(size.width, size.height), &d).light(light());
-    let config = Config::new(size, Rgb565::new(2, 4, 6));
-    // Few tiles per pass.
-    let s = both_ways::<8192, 7>(&scene, config);
-    assert!(s.bin_passes >= 12, "{s:?}");
-    // A pool so small that passes give up tiles and some tiles alone
-    // overflow it.
-    let s = both_ways::<64, 80>(&scene, config);
-    assert!(s.bin_passes > 12 && s.rescanned_tiles > 0, "{s:?}");
-    let s = both_ways::<64, 80>(&scene, config.tile_order(TileOrder::Hilbert));
-    assert!(s.rescanned_tiles > 0, "{s:?}");
+    with_demo_scene(1.3, size, |scene| {
+        let config = Config::new(size, Rgb565::new(2, 4, 6));
+        // Few tiles per pass.
+        let s = both_ways::<8192, 7>(scene, config);
+        assert!(s.bin_passes >= 12, "{s:?}");
+        // A pool so small that passes give up tiles and some tiles alone
+        // overflow it.
+        let s = both_ways::<64, 80>(scene, config);
+        assert!(s.bin_passes > 12 && s.rescanned_tiles > 0, "{s:?}");
+        let s = both_ways::<64, 80>(scene, config.tile_order(TileOrder::Hilbert));
+        assert!(s.rescanned_tiles > 0, "{s:?}");
+    });
 }
 
 #[test]

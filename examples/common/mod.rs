@@ -158,6 +158,16 @@ pub fn clipped_draws<'a>(
     ]
 }
 
+/// The demo scene (knot and cube, Gouraud, lit) at animation time `t`,
+/// framed for `size`, handed to `f`.
+pub fn with_demo_scene<R>(t: f32, size: Size, f: impl FnOnce(&Scene<'_>) -> R) -> R {
+    let assets = DemoAssets::new();
+    let (knot, cube) = (assets.knot(), cube());
+    let d = draws(&knot, &cube, t, Shading::Gouraud);
+    let scene = Scene::new(camera(size.width, size.height), &d).light(light());
+    f(&scene)
+}
+
 /// The clipped scene at 150x110 (the demo's knot and cube, Gouraud, at
 /// time 2.1, with [`ClippedExtras`]' floor and wall; no culling needed to
 /// see the clipped triangles), handed to `f` with its size.
