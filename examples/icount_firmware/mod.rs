@@ -19,6 +19,8 @@ use static_cell::ConstStaticCell;
 // 4 KB renderer lives on the stack of `measure`.
 static WORKSPACE: ConstStaticCell<BenchWorkspace> = ConstStaticCell::new(BenchWorkspace::new());
 static TEXELS: ConstStaticCell<[u16; 32 * 32]> = ConstStaticCell::new([0; 32 * 32]);
+/// The shader scenes' texture in flash (see `icount_scenes::TEXTURE_IN_FLASH`).
+static FLASH_TEXELS: [u16; 32 * 32] = crate::icount_scenes::CHECKER_TEXELS;
 
 /// The board this build is for.
 #[cfg(target_abi = "eabihf")]
@@ -327,11 +329,22 @@ fn run() -> Result<(), Error> {
     }
 
     // The shader scenes' texture, in RAM (2 KiB), only when one of them
-    // is built in.
+    // is built in; or, built with `MICRORASTER_ICOUNT_TEXTURE_IN_FLASH`,
+    // the same texels from flash.
     let texels: Option<&'static [u16]> = if crate::icount_scenes::SHADER_SCENES {
         let t = TEXELS.take();
         crate::icount_scenes::checker_texels(t);
-        Some(t)
+        if crate::icount_scenes::TEXTURE_IN_FLASH {
+            if *t != FLASH_TEXELS {
+                return Err(Error::Setup(
+                    "the texture in flash differs from the computed one",
+                ));
+            }
+            hprintln!("texture: in flash");
+            Some(&FLASH_TEXELS)
+        } else {
+            Some(t)
+        }
     } else {
         None
     };

@@ -329,6 +329,44 @@ pub fn checker_texels(out: &mut [u16; 32 * 32]) {
     }
 }
 
+/// The same checker as [`checker_texels`], computed at compile time: the
+/// texture of a build with `MICRORASTER_ICOUNT_TEXTURE_IN_FLASH` set, read
+/// from flash (the firmware checks at start-up that the two agree).
+pub const CHECKER_TEXELS: [u16; 32 * 32] = {
+    let mut t = [0u16; 32 * 32];
+    let mut i = 0;
+    while i < t.len() {
+        t[i] = checker_texel_const(i as u32 % 32, i as u32 / 32, 32);
+        i += 1;
+    }
+    t
+};
+
+/// [`checker::checker_texel`] as a `const fn`: embedded-graphics' `Rgb888`
+/// to `Rgb565` channel conversion written out (`value · (max << 24) / 255`,
+/// rounded).
+const fn checker_texel_const(x: u32, y: u32, size: u32) -> u16 {
+    let shade = (x + y) * 96 / (2 * size);
+    let (r, g, b) = if x == 0 || y == 0 {
+        (250, 240, 200)
+    } else if ((x / 8) + (y / 8)) % 2 == 0 {
+        (150 + shade, 70 + shade / 2, 40)
+    } else {
+        (30, 90 + shade / 2, 140 + shade)
+    };
+    ((channel(r, 31) << 11) | (channel(g, 63) << 5) | channel(b, 31)) as u16
+}
+
+/// An 8-bit channel to `0..=max`, as embedded-graphics converts it.
+const fn channel(v: u32, max: u32) -> u32 {
+    (v * ((max << 24) / 255) + (1 << 23)) >> 24
+}
+
+/// Whether the shader scenes read their texture from flash
+/// ([`CHECKER_TEXELS`]) rather than from RAM (set at build time by
+/// `MICRORASTER_ICOUNT_TEXTURE_IN_FLASH`).
+pub const TEXTURE_IN_FLASH: bool = option_env!("MICRORASTER_ICOUNT_TEXTURE_IN_FLASH").is_some();
+
 /// The scenes named at build time in `MICRORASTER_ICOUNT_SCENES`
 /// (separated by spaces or commas), or `""` for all of them.
 pub const SCENE_LIST: &str = match option_env!("MICRORASTER_ICOUNT_SCENES") {

@@ -234,6 +234,7 @@ where
     F: FragmentShader<C>,
 {
     let setup = &PerspectiveSetup::new(tri, out.mode == Perspective::Affine);
+    let opaque = out.opaque();
     each_span(tile, rect, found, |color, depth, sp| {
         shader.shade_span(span_input(
             setup,
@@ -243,6 +244,7 @@ where
             color,
             depth,
             sp,
+            opaque,
         ))
     })
 }

@@ -24,7 +24,7 @@
 use super::{depth16, Basis, Corners, DepthTest, SpanPos, TriangleSetup, GRADIENT_LIMIT, Z_FRAC};
 use crate::raster::SUBPIXEL_BITS;
 use crate::scene::Blend;
-use crate::shader::span::{Interpolated, PutPixel, SpanInput};
+use crate::shader::span::{Interpolated, PixelFn, PutPixel, SpanInput};
 use crate::shader::{Perspective, Varyings};
 use crate::texture::Texture;
 use fixed::types::I16F16;
@@ -361,6 +361,37 @@ pub(crate) fn weights(q: i32, b1: i32, b2: i32) -> (i32, i32) {
     (((n1 * r) >> 15) as i32, ((n2 * r) >> 15) as i32)
 }
 
+/// [`SpanInput::opaque_shift`] for a span of `len` pixels starting at
+/// `planes` (`Q`, `B1`, `B2`) with `steps`.
+#[inline(always)]
+fn span_shift(planes: [i32; 3], steps: [i32; 3], len: usize) -> Option<u32> {
+    // In `i32`, checked: a span whose ends overflow takes the other loop.
+    let last = i32::try_from(len.saturating_sub(1)).ok()?;
+    let end = |a: i32, g: i32| g.checked_mul(last).and_then(|d| a.checked_add(d));
+    let [q, b1, b2] = planes;
+    let [gq, g1, g2] = steps;
+    let qe = end(q, gq)?;
+    if q < 1 || qe < 1 || q.leading_zeros() != qe.leading_zeros() {
+        return None;
+    }
+    let (b1e, b2e) = (end(b1, g1)?, end(b2, g2)?);
+    let within = |b: i32, q: i32| 0 <= b && b <= q;
+    (within(b1, q) && within(b2, q) && within(b1e, qe) && within(b2e, qe))
+        .then(|| (32 - q.leading_zeros()).saturating_sub(16))
+}
+
+/// [`weights`] where its clamps change nothing and `Q`'s normalising
+/// shift `sh` is known: `1 <= Q < 2^31`, `0 <= B1, B2 <= Q`
+/// ([`span_shift`]), so `qn > 0` and each product is at most 2^31.
+#[inline(always)]
+fn shifted_weights(q: i32, b1: i32, b2: i32, sh: u32) -> (i32, i32) {
+    let qn = (q as u32) >> sh;
+    let r = (1u32 << 31) / qn;
+    let w1 = (((b1 as u32) >> sh) * r) >> 15;
+    let w2 = (((b2 as u32) >> sh) * r) >> 15;
+    (w1 as i32, w2 as i32)
+}
+
 /// [`weights`] with the sign of `B1` and `B2` kept (the same for
 /// non-negative ones): the quasi-perspective sample one pixel beyond a
 /// span's end may lie a little outside the triangle.
@@ -390,6 +421,16 @@ pub(crate) struct Output {
     pub write: bool,
 }
 
+impl Output {
+    /// Whether the spans take the opaque loops
+    /// ([`SpanInput::run_opaque`]): an opaque draw with the default depth
+    /// test and depth writes. Decided once per triangle and tile.
+    #[inline(always)]
+    pub(crate) fn opaque(&self) -> bool {
+        self.blend == Blend::Opaque && self.write && self.test == DepthTest::LessEqual
+    }
+}
+
 /// The [`SpanInput`] of span `sp` of triangle `t` set up as `p`, on the
 /// tile rows `color` and `depth`.
 #[allow(clippy::too_many_arguments)]
@@ -402,6 +443,7 @@ pub(crate) fn span_input<'a, C, V: Varyings>(
     color: &'a mut [C],
     depth: &'a mut [u16],
     sp: SpanPos,
+    opaque: bool,
 ) -> SpanInput<'a, C, V> {
     let SpanPos { ox, j, x0, x1 } = sp;
     let [pq, p1, p2] = &p.planes;
@@ -435,10 +477,75 @@ pub(crate) fn span_input<'a, C, V: Varyings>(
         blend: out.blend,
         test: out.test,
         write: out.write,
+        opaque,
     }
 }
 
 impl<C, V: Varyings> SpanInput<'_, C, V> {
+    /// For an exact-mode span: the shift that normalises `Q` to 16
+    /// significant bits in [`weights`], if it is the same at every pixel
+    /// and none of `weights`' clamps changes a value there; `None`
+    /// otherwise. That holds when, at both ends of the span, `Q` is in
+    /// `1..2^31` with the same number of bits and `0 <= B1, B2 <= Q`: the
+    /// planes are linear along the span (their wrapping steps are exact
+    /// while the values stay in `i32`), so what holds at its ends holds
+    /// between, and `B >> sh <= Q >> sh` follows from `B <= Q`. Checked in
+    /// `i64`, once per span.
+    #[inline(always)]
+    pub(crate) fn opaque_shift(&self) -> Option<u32> {
+        span_shift(self.planes, self.steps, self.color.len())
+    }
+
+    /// The span loop of an opaque draw with the default depth test
+    /// (`LessEqual`) and depth writes: [`run`](Self::run) with the test,
+    /// the write and the blend known, so nothing but the depth comparison
+    /// branches per pixel. Exact mode (`AFFINE` false) takes the weights
+    /// with the span's shift `sh` ([`opaque_shift`](Self::opaque_shift)):
+    /// the bits of [`weights`], without its clamps and normalisation. A
+    /// shader that reads neither varyings nor colour runs with `AFFINE`.
+    #[inline(always)]
+    pub(crate) fn run_opaque<const AFFINE: bool>(
+        self,
+        ic: bool,
+        mut fragment: impl PixelFn<V, C>,
+        sh: u32,
+    ) -> u32 {
+        let (x0, p, gz) = (self.x0, self.setup, self.gz);
+        let [mut q, mut b1, mut b2] = self.planes;
+        let [gq, g1, g2] = self.steps;
+        let mut z = self.z;
+        let weighted = V::LEN > 0 || ic;
+        let mut n = 0;
+        for (k, (c, d)) in self.color.iter_mut().zip(self.depth.iter_mut()).enumerate() {
+            let zz = depth16(z);
+            if zz <= *d {
+                let (varyings, color) = if !weighted {
+                    (V::zeroed(), [0; 3])
+                } else if AFFINE {
+                    p.values((b1 >> 12, b2 >> 12), ic)
+                } else {
+                    p.values_weighted(shifted_weights(q, b1, b2, sh), ic)
+                };
+                let it = Interpolated {
+                    x: x0 + k as i32,
+                    depth: zz,
+                    varyings,
+                    color,
+                };
+                if let Some(out) = fragment.pixel(&it) {
+                    *c = out;
+                    *d = zz;
+                    n += 1;
+                }
+            }
+            z = z.wrapping_add(gz);
+            q = q.wrapping_add(gq);
+            b1 = b1.wrapping_add(g1);
+            b2 = b2.wrapping_add(g2);
+        }
+        n
+    }
+
     /// The span loop: for each pixel that passes the depth test, the
     /// values there (weights and varyings only if there are varyings or
     /// `ic`, the colour only if `ic`), then `put` with the pixel's colour
@@ -602,6 +709,40 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// Where `span_shift` allows a span, `shifted_weights` gives the bits
+    /// of `weights` at each of its pixels; and it allows the usual spans.
+    #[test]
+    fn shifted_weights_match_where_allowed() {
+        let mut next = crate::testing::rng();
+        let mut allowed = 0;
+        for n in 0..40_000 {
+            let len = 1 + next(64) as usize;
+            let bits = 1 + next(30);
+            let q = next(1 << bits) as i32 + if n % 5 == 0 { -2 } else { 1 };
+            let b1 = next(q.max(1) as u64 + 2) as i32 - 1;
+            let b2 = next((q.max(1) - b1.max(0)) as u64 + 2) as i32 - 1;
+            let g =
+                |next: &mut dyn FnMut(u64) -> u64| (next(1 << 16) as i32 - (1 << 15)) >> next(12);
+            let steps = [g(&mut next), g(&mut next), g(&mut next)];
+            let Some(sh) = span_shift([q, b1, b2], steps, len) else {
+                continue;
+            };
+            allowed += 1;
+            let [mut q, mut b1, mut b2] = [q, b1, b2];
+            for _ in 0..len {
+                assert_eq!(
+                    shifted_weights(q, b1, b2, sh),
+                    weights(q, b1, b2),
+                    "{q} {b1} {b2}"
+                );
+                q = q.wrapping_add(steps[0]);
+                b1 = b1.wrapping_add(steps[1]);
+                b2 = b2.wrapping_add(steps[2]);
+            }
+        }
+        assert!(allowed > 5_000, "{allowed} spans allowed");
     }
 
     /// The 32-bit form of ARMv6-M gives the bits of the `i64` formula,

@@ -51,9 +51,9 @@ impl<C: FromTexel> FragmentShader<C> for Textured {
             return 0;
         };
         match texture.sampler() {
-            Sampler::NearestRgb565(t) => span.shade_with(false, Unlit(Nearest565(t))),
-            Sampler::BilinearRgb565(t) => span.shade_with(false, Unlit(Bilinear565(t))),
-            Sampler::General(t) => span.shade_with(false, Unlit(t)),
+            Sampler::NearestRgb565(t) => span.shade_unspecialised(false, Unlit(Nearest565(t))),
+            Sampler::BilinearRgb565(t) => span.shade_unspecialised(false, Unlit(Bilinear565(t))),
+            Sampler::General(t) => span.shade_unspecialised(false, Unlit(t)),
         }
     }
 }
@@ -110,7 +110,7 @@ impl<C: FromTexel> FragmentShader<C> for TexturedLit {
         match texture.sampler() {
             Sampler::NearestRgb565(t) => span.shade_with(true, Lit(Nearest565(t))),
             Sampler::BilinearRgb565(t) => span.shade_with(true, Lit(Bilinear565(t))),
-            Sampler::General(t) => span.shade_with(true, Lit(t)),
+            Sampler::General(t) => span.shade_unspecialised(true, Lit(t)),
         }
     }
 }
