@@ -32,6 +32,18 @@ impl Reciprocal {
         }
     }
 
+    /// The reciprocal of `d`, the same as [`new`](Self::new), with the
+    /// 64-bit division of divisors from 2^16 up done by long division in
+    /// 32-bit steps ([`max_div_long`]): for the vertex stage's `w`, mostly
+    /// of 2^16 to 2^22.
+    #[inline(always)]
+    pub(crate) fn new_long(d: NonZeroU64) -> Self {
+        Self {
+            d: d.get(),
+            r: max_div_long(d),
+        }
+    }
+
     /// `floor(m / d)`, for `m < 2^63`.
     #[inline(always)]
     pub(crate) fn div(&self, m: u64) -> u64 {
@@ -84,6 +96,57 @@ pub(crate) fn max_div(d: NonZeroU64) -> u64 {
     }
 }
 
+/// [`max_div`] by long division in 32-bit steps where the 64-bit division
+/// is a library call (about 190 instructions on a Cortex-M3): the upper
+/// word of the quotient is `floor((2^32 - 1) / d)`, the lower one comes
+/// from its remainder in digits of `k` bits, `k` the leading zeros of `d`
+/// (so every partial dividend `rem 2^k + (2^k - 1)`, with `rem < d`, fits
+/// `u32`). That is three divisions below 2^16 (two 16-bit digits), up to
+/// four below 2^21, a single instruction each on a Cortex-M3/M4. The
+/// quotient is the same. Divisors of 2^28 and more (seven or more digits)
+/// keep the 64-bit division, and so does ARMv6-M from 2^16 up: there each
+/// 32-bit division is a call of about 110 instructions too, and the
+/// `demo` frame's vertex stage measured 54,000 instructions slower.
+#[inline(always)]
+#[cfg_attr(target_pointer_width = "64", allow(dead_code))]
+pub(crate) fn max_div_long(d: NonZeroU64) -> u64 {
+    let limit = if super::wide::SPLIT { 1 << 16 } else { 1 << 28 };
+    match u32::try_from(d.get()) {
+        Ok(small) if small < limit => {
+            // `small` is d, not zero.
+            let d = core::num::NonZeroU32::new(small).unwrap_or(core::num::NonZeroU32::MIN);
+            let high = u32::MAX / d;
+            let mut rem = u32::MAX - high * d.get();
+            // The next digit, of `s` bits (1 <= s < 32): rem < d <
+            // 2^(32 - s), so the partial dividend fits u32 and its
+            // quotient is below 2^s.
+            let mut digit = |s: u32| {
+                let part = (rem << s) | (u32::MAX >> (32 - s));
+                let digit = part / d;
+                rem = part - digit * d.get();
+                digit
+            };
+            let low = if small < 1 << 16 {
+                // Two digits, without the loop.
+                let top = digit(16);
+                top << 16 | digit(16)
+            } else {
+                // 4..=15 bits a digit.
+                let k = small.leading_zeros();
+                let (mut low, mut left) = (0u32, 32u32);
+                while left > 0 {
+                    let s = k.min(left);
+                    low = (low << s) | digit(s);
+                    left -= s;
+                }
+                low
+            };
+            (high as u64) << 32 | low as u64
+        }
+        _ => u64::MAX / d,
+    }
+}
+
 /// A divisor used for many dividends, divided by as a 64-bit CPU does best:
 /// with its division instruction.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -95,6 +158,12 @@ impl Hardware {
     /// The divisor `d`.
     #[inline(always)]
     pub(crate) fn new(d: NonZeroU64) -> Self {
+        Self(d)
+    }
+
+    /// The same as [`new`](Self::new) (see [`Reciprocal::new_long`]).
+    #[inline(always)]
+    pub(crate) fn new_long(d: NonZeroU64) -> Self {
         Self(d)
     }
 
@@ -131,6 +200,20 @@ mod tests {
         for d in (1u64..=70_000).chain([u32::MAX as u64, 1 << 40, u64::MAX]) {
             let nz = NonZeroU64::new(d).unwrap();
             assert_eq!(max_div(nz), u64::MAX / d, "{d}");
+            assert_eq!(max_div_long(nz), u64::MAX / d, "{d}");
+        }
+        // Every digit width, around each power of two, and at random.
+        for b in 16..64 {
+            for d in (1u64 << b) - 300..=(1u64 << b).saturating_add(300) {
+                let nz = NonZeroU64::new(d).unwrap();
+                assert_eq!(max_div_long(nz), u64::MAX / d, "{d}");
+            }
+        }
+        let mut next = crate::testing::rng();
+        for _ in 0..2_000_000 {
+            let d = ((next(1 << 32) << 32 | next(1 << 32)) >> next(64)).max(1);
+            let nz = NonZeroU64::new(d).unwrap();
+            assert_eq!(max_div_long(nz), u64::MAX / d, "{d}");
         }
     }
 
@@ -167,6 +250,8 @@ mod tests {
                 continue;
             };
             let (r, h) = (Reciprocal::new(nz), Hardware::new(nz));
+            assert_eq!(Reciprocal::new_long(nz), r);
+            assert_eq!(Hardware::new_long(nz), h);
             for _ in 0..4 {
                 let m = next() >> (1 + next() % 63);
                 assert_eq!(r.div(m), m / d, "{m} / {d}");

@@ -299,8 +299,9 @@ impl Viewport {
     #[inline(always)]
     pub fn project(&self, p: &[i32; 4]) -> (SubPoint, u16) {
         let w = (p[3] as i64).max(1);
-        // `w >= 1`, so this never falls back.
-        let d = Divisor::new(NonZeroU64::new(w as u64).unwrap_or(NonZeroU64::MIN));
+        // `w >= 1`, so this never falls back. By long division: `w` is
+        // mostly 2^16 to 2^22, where the set-up's `new` divides in 64 bits.
+        let d = Divisor::new_long(NonZeroU64::new(w as u64).unwrap_or(NonZeroU64::MIN));
         let half = w as u64 / 2;
         // div_round(n, w), for |n| < 2^48.
         let round = |n: i64| -> i64 {
