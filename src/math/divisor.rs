@@ -147,6 +147,134 @@ pub(crate) fn max_div_long(d: NonZeroU64) -> u64 {
     }
 }
 
+/// The vertex stage's divisor `w` on ARMv6-M: [`Short`]'s 32-bit
+/// reciprocal when it applies (`8 <= w < 2^31` and the dividend below
+/// `2^(30 + bits of w)`: every vertex inside the guard band), else
+/// [`Reciprocal`]'s out of line. Without a 32 x 32 -> 64-bit multiply,
+/// `Short`'s three products a quotient cost much less than the seven of
+/// [`Reciprocal::div_split`]; on the Cortex-M3, whose `umlal` makes the
+/// 64-bit multiply-high cheap, it measured slower (see `Viewport::project`).
+/// The quotients are the same.
+#[derive(Clone, Copy, Debug)]
+#[cfg_attr(
+    not(all(target_arch = "arm", not(target_has_atomic = "32"))),
+    allow(dead_code)
+)]
+pub(crate) struct ShortOrLong {
+    d: NonZeroU64,
+    short: Option<Short>,
+}
+
+#[cfg_attr(
+    not(all(target_arch = "arm", not(target_has_atomic = "32"))),
+    allow(dead_code)
+)]
+impl ShortOrLong {
+    /// The divisor `d`.
+    #[inline(always)]
+    pub(crate) fn new_long(d: NonZeroU64) -> Self {
+        Self {
+            d,
+            short: Short::new(d),
+        }
+    }
+
+    /// `floor(m / d)`, for `m < 2^63`.
+    #[inline(always)]
+    pub(crate) fn div_split(&self, m: u64) -> u64 {
+        match self.short {
+            Some(s) if m >> s.bits == 0 => s.div(m) as u64,
+            _ => div_long(self.d, m),
+        }
+    }
+}
+
+/// `floor(m / d)` outside [`Short`]'s range, through [`Reciprocal`].
+#[inline(never)]
+#[cold]
+#[cfg_attr(
+    not(all(target_arch = "arm", not(target_has_atomic = "32"))),
+    allow(dead_code)
+)]
+fn div_long(d: NonZeroU64, m: u64) -> u64 {
+    Reciprocal::new_long(d).div_split(m)
+}
+
+/// Exact division by `d` (`8 <= d < 2^31`, of `l` bits) of dividends below
+/// `2^K`, `K = 30 + l`, through the 32-bit reciprocal `r = floor(2^K / d)
+/// <= 2^31`: per quotient two 32 x 32 -> 64-bit products for the estimate
+/// `floor(m r / 2^K)` and one for the correction, where [`Reciprocal`]'s
+/// 64-bit multiply-high takes four and its remainder three. The estimate
+/// undershoots `m / d` by less than `m / 2^K < 1` (as `r > 2^K / d - 1`)
+/// and never overshoots it, so it is `floor(m / d)` or one less, which the
+/// remainder test corrects. The reciprocal itself is a long division of
+/// `2^K`: `2^31 / d`, then the remaining `l - 1` zero bits in digits of as
+/// many bits as `d` has leading zeros (so every partial dividend fits
+/// `u32`): two or three divisions for `d` of 2^7 to 2^22.
+#[derive(Clone, Copy, Debug)]
+#[cfg_attr(
+    not(all(target_arch = "arm", not(target_has_atomic = "32"))),
+    allow(dead_code)
+)]
+struct Short {
+    d: u32,
+    r: u32,
+    /// `K`.
+    bits: u32,
+}
+
+#[cfg_attr(
+    not(all(target_arch = "arm", not(target_has_atomic = "32"))),
+    allow(dead_code)
+)]
+impl Short {
+    /// `d`'s reciprocal, if `8 <= d < 2^31`.
+    #[inline(always)]
+    fn new(d: NonZeroU64) -> Option<Self> {
+        let d = u32::try_from(d.get())
+            .ok()
+            .filter(|d| (8..1 << 31).contains(d))?;
+        let nz = core::num::NonZeroU32::new(d)?;
+        // k in 1..=28. d < 2^31: the first digit is `2^31 / d`, then
+        // `l - 1` zero bits are left to bring down, l = 32 - k.
+        let k = d.leading_zeros();
+        let mut r = (1u32 << 31) / nz;
+        let mut rem = (1u32 << 31) - r * d;
+        let mut left = 31 - k;
+        while left > 0 {
+            // rem < d < 2^(32 - k): `rem << s` fits u32 and its quotient is
+            // one digit of s bits; r stays below 2^32 (r <= 2^31).
+            let s = k.min(left);
+            let part = rem << s;
+            let digit = part / nz;
+            rem = part - digit * d;
+            r = (r << s) | digit;
+            left -= s;
+        }
+        Some(Self { d, r, bits: 62 - k })
+    }
+
+    /// `floor(m / d)`, for `m < 2^K`.
+    #[inline(always)]
+    fn div(&self, m: u64) -> u32 {
+        // Only ARMv6-M divides here: its products from 16-bit halves.
+        use super::wide::mul_split_u as mul_wide_u;
+        debug_assert!(m >> self.bits == 0);
+        // m r = (mh r + (ml r >> 32)) 2^32 + (ml r mod 2^32); K >= 34, so
+        // the low word cannot carry into floor(m r / 2^K). mh < 2^29 and
+        // r <= 2^31: t < 2^61.
+        let (mh, ml) = ((m >> 32) as u32, m as u32);
+        let t = mul_wide_u(mh, self.r) + (mul_wide_u(ml, self.r) >> 32);
+        // The estimate is at most m / d < 2^K / 2^(l - 1) = 2^31, so its
+        // bits come from t's two words, shifted by 2..=29 and 3..=30.
+        let s = self.bits - 32;
+        let q = (t as u32 >> s) | ((t >> 32) as u32) << (32 - s);
+        // q d <= m: the remainder cannot wrap.
+        let rem = m - mul_wide_u(q, self.d);
+        q + (rem >= self.d as u64) as u32
+    }
+}
+
 /// A divisor used for many dividends, divided by as a 64-bit CPU does best:
 /// with its division instruction.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -191,6 +319,14 @@ pub(crate) type Divisor = Reciprocal;
 #[cfg(target_pointer_width = "64")]
 pub(crate) type Divisor = Hardware;
 
+/// The vertex stage's divisor `w`: [`ShortOrLong`] on ARMv6-M, else
+/// [`Divisor`] (both through `new_long` and `div_split`).
+#[cfg(all(target_arch = "arm", not(target_has_atomic = "32")))]
+pub(crate) type WDivisor = ShortOrLong;
+/// See the ARMv6-M definition.
+#[cfg(not(all(target_arch = "arm", not(target_has_atomic = "32"))))]
+pub(crate) type WDivisor = Divisor;
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -214,6 +350,48 @@ mod tests {
             let d = ((next(1 << 32) << 32 | next(1 << 32)) >> next(64)).max(1);
             let nz = NonZeroU64::new(d).unwrap();
             assert_eq!(max_div_long(nz), u64::MAX / d, "{d}");
+        }
+    }
+
+    /// The vertex stage's quotients through the 32-bit reciprocal and
+    /// through its fallback ([`ShortOrLong`]) against the division: every
+    /// divisor below 70,000 and around every power of two, dividends at
+    /// and near the limit `2^(30 + l)` and at random.
+    #[test]
+    fn short_quotients_are_exact() {
+        let mut next = crate::testing::rng();
+        let check = |d: u64, r: u64, e: u64| {
+            let nz = NonZeroU64::new(d).unwrap();
+            let l = 64 - d.leading_zeros();
+            let limit = 1u64 << (30 + l).min(62);
+            let s = ShortOrLong::new_long(nz);
+            for m in [
+                0,
+                1,
+                d - 1,
+                d,
+                d + 1,
+                limit - 1,
+                limit,
+                limit.saturating_sub(d),
+                (1 << 62) - 1,
+                r % limit,
+                r >> (1 + e),
+            ] {
+                assert_eq!(s.div_split(m), m / d, "{m} / {d}");
+            }
+        };
+        for d in 1..70_000 {
+            check(d, next(1 << 32) << 32 | next(1 << 32), next(63));
+        }
+        for b in 17..63 {
+            for d in (1u64 << b) - 200..=(1u64 << b) + 200 {
+                check(d, next(1 << 32) << 32 | next(1 << 32), next(63));
+            }
+        }
+        for _ in 0..100_000 {
+            let d = (next(1 << 32) << 31 | next(1 << 31)) >> next(62) | 1;
+            check(d, next(1 << 32) << 32 | next(1 << 32), next(63));
         }
     }
 
