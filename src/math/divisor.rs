@@ -32,6 +32,18 @@ impl Reciprocal {
         }
     }
 
+    /// The reciprocal of `d`, the same as [`new`](Self::new), with the
+    /// 64-bit division of divisors from 2^16 up done by long division in
+    /// 32-bit steps ([`max_div_long`]): for the vertex stage's `w`, mostly
+    /// of 2^16 to 2^22.
+    #[inline(always)]
+    pub(crate) fn new_long(d: NonZeroU64) -> Self {
+        Self {
+            d: d.get(),
+            r: max_div_long(d),
+        }
+    }
+
     /// `floor(m / d)`, for `m < 2^63`.
     #[inline(always)]
     pub(crate) fn div(&self, m: u64) -> u64 {
@@ -84,6 +96,185 @@ pub(crate) fn max_div(d: NonZeroU64) -> u64 {
     }
 }
 
+/// [`max_div`] by long division in 32-bit steps where the 64-bit division
+/// is a library call (about 190 instructions on a Cortex-M3): the upper
+/// word of the quotient is `floor((2^32 - 1) / d)`, the lower one comes
+/// from its remainder in digits of `k` bits, `k` the leading zeros of `d`
+/// (so every partial dividend `rem 2^k + (2^k - 1)`, with `rem < d`, fits
+/// `u32`). That is three divisions below 2^16 (two 16-bit digits), up to
+/// four below 2^21, a single instruction each on a Cortex-M3/M4. The
+/// quotient is the same. Divisors of 2^28 and more (seven or more digits)
+/// keep the 64-bit division, and so does ARMv6-M from 2^16 up: there each
+/// 32-bit division is a call of about 110 instructions too, and the
+/// `demo` frame's vertex stage measured 54,000 instructions slower.
+#[inline(always)]
+#[cfg_attr(target_pointer_width = "64", allow(dead_code))]
+pub(crate) fn max_div_long(d: NonZeroU64) -> u64 {
+    let limit = if super::wide::SPLIT { 1 << 16 } else { 1 << 28 };
+    match u32::try_from(d.get()) {
+        Ok(small) if small < limit => {
+            // `small` is d, not zero.
+            let d = core::num::NonZeroU32::new(small).unwrap_or(core::num::NonZeroU32::MIN);
+            let high = u32::MAX / d;
+            let mut rem = u32::MAX - high * d.get();
+            // The next digit, of `s` bits (1 <= s < 32): rem < d <
+            // 2^(32 - s), so the partial dividend fits u32 and its
+            // quotient is below 2^s.
+            let mut digit = |s: u32| {
+                let part = (rem << s) | (u32::MAX >> (32 - s));
+                let digit = part / d;
+                rem = part - digit * d.get();
+                digit
+            };
+            let low = if small < 1 << 16 {
+                // Two digits, without the loop.
+                let top = digit(16);
+                top << 16 | digit(16)
+            } else {
+                // 4..=15 bits a digit.
+                let k = small.leading_zeros();
+                let (mut low, mut left) = (0u32, 32u32);
+                while left > 0 {
+                    let s = k.min(left);
+                    low = (low << s) | digit(s);
+                    left -= s;
+                }
+                low
+            };
+            (high as u64) << 32 | low as u64
+        }
+        _ => u64::MAX / d,
+    }
+}
+
+/// The vertex stage's divisor `w` on ARMv6-M: [`Short`]'s 32-bit
+/// reciprocal when it applies (`8 <= w < 2^31` and the dividend below
+/// `2^(30 + bits of w)`: every vertex inside the guard band), else
+/// [`Reciprocal`]'s out of line. Without a 32 x 32 -> 64-bit multiply,
+/// `Short`'s three products a quotient cost much less than the seven of
+/// [`Reciprocal::div_split`]; on the Cortex-M3, whose `umlal` makes the
+/// 64-bit multiply-high cheap, it measured slower (see `Viewport::project`).
+/// The quotients are the same.
+#[derive(Clone, Copy, Debug)]
+#[cfg_attr(
+    not(all(target_arch = "arm", not(target_has_atomic = "32"))),
+    allow(dead_code)
+)]
+pub(crate) struct ShortOrLong {
+    d: NonZeroU64,
+    short: Option<Short>,
+}
+
+#[cfg_attr(
+    not(all(target_arch = "arm", not(target_has_atomic = "32"))),
+    allow(dead_code)
+)]
+impl ShortOrLong {
+    /// The divisor `d`.
+    #[inline(always)]
+    pub(crate) fn new_long(d: NonZeroU64) -> Self {
+        Self {
+            d,
+            short: Short::new(d),
+        }
+    }
+
+    /// `floor(m / d)`, for `m < 2^63`.
+    #[inline(always)]
+    pub(crate) fn div_split(&self, m: u64) -> u64 {
+        match self.short {
+            Some(s) if m >> s.bits == 0 => s.div(m) as u64,
+            _ => div_long(self.d, m),
+        }
+    }
+}
+
+/// `floor(m / d)` outside [`Short`]'s range, through [`Reciprocal`].
+#[inline(never)]
+#[cold]
+#[cfg_attr(
+    not(all(target_arch = "arm", not(target_has_atomic = "32"))),
+    allow(dead_code)
+)]
+fn div_long(d: NonZeroU64, m: u64) -> u64 {
+    Reciprocal::new_long(d).div_split(m)
+}
+
+/// Exact division by `d` (`8 <= d < 2^31`, of `l` bits) of dividends below
+/// `2^K`, `K = 30 + l`, through the 32-bit reciprocal `r = floor(2^K / d)
+/// <= 2^31`: per quotient two 32 x 32 -> 64-bit products for the estimate
+/// `floor(m r / 2^K)` and one for the correction, where [`Reciprocal`]'s
+/// 64-bit multiply-high takes four and its remainder three. The estimate
+/// undershoots `m / d` by less than `m / 2^K < 1` (as `r > 2^K / d - 1`)
+/// and never overshoots it, so it is `floor(m / d)` or one less, which the
+/// remainder test corrects. The reciprocal itself is a long division of
+/// `2^K`: `2^31 / d`, then the remaining `l - 1` zero bits in digits of as
+/// many bits as `d` has leading zeros (so every partial dividend fits
+/// `u32`): two or three divisions for `d` of 2^7 to 2^22.
+#[derive(Clone, Copy, Debug)]
+#[cfg_attr(
+    not(all(target_arch = "arm", not(target_has_atomic = "32"))),
+    allow(dead_code)
+)]
+struct Short {
+    d: u32,
+    r: u32,
+    /// `K`.
+    bits: u32,
+}
+
+#[cfg_attr(
+    not(all(target_arch = "arm", not(target_has_atomic = "32"))),
+    allow(dead_code)
+)]
+impl Short {
+    /// `d`'s reciprocal, if `8 <= d < 2^31`.
+    #[inline(always)]
+    fn new(d: NonZeroU64) -> Option<Self> {
+        let d = u32::try_from(d.get())
+            .ok()
+            .filter(|d| (8..1 << 31).contains(d))?;
+        let nz = core::num::NonZeroU32::new(d)?;
+        // k in 1..=28. d < 2^31: the first digit is `2^31 / d`, then
+        // `l - 1` zero bits are left to bring down, l = 32 - k.
+        let k = d.leading_zeros();
+        let mut r = (1u32 << 31) / nz;
+        let mut rem = (1u32 << 31) - r * d;
+        let mut left = 31 - k;
+        while left > 0 {
+            // rem < d < 2^(32 - k): `rem << s` fits u32 and its quotient is
+            // one digit of s bits; r stays below 2^32 (r <= 2^31).
+            let s = k.min(left);
+            let part = rem << s;
+            let digit = part / nz;
+            rem = part - digit * d;
+            r = (r << s) | digit;
+            left -= s;
+        }
+        Some(Self { d, r, bits: 62 - k })
+    }
+
+    /// `floor(m / d)`, for `m < 2^K`.
+    #[inline(always)]
+    fn div(&self, m: u64) -> u32 {
+        // Only ARMv6-M divides here: its products from 16-bit halves.
+        use super::wide::mul_split_u as mul_wide_u;
+        debug_assert!(m >> self.bits == 0);
+        // m r = (mh r + (ml r >> 32)) 2^32 + (ml r mod 2^32); K >= 34, so
+        // the low word cannot carry into floor(m r / 2^K). mh < 2^29 and
+        // r <= 2^31: t < 2^61.
+        let (mh, ml) = ((m >> 32) as u32, m as u32);
+        let t = mul_wide_u(mh, self.r) + (mul_wide_u(ml, self.r) >> 32);
+        // The estimate is at most m / d < 2^K / 2^(l - 1) = 2^31, so its
+        // bits come from t's two words, shifted by 2..=29 and 3..=30.
+        let s = self.bits - 32;
+        let q = (t as u32 >> s) | ((t >> 32) as u32) << (32 - s);
+        // q d <= m: the remainder cannot wrap.
+        let rem = m - mul_wide_u(q, self.d);
+        q + (rem >= self.d as u64) as u32
+    }
+}
+
 /// A divisor used for many dividends, divided by as a 64-bit CPU does best:
 /// with its division instruction.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -95,6 +286,12 @@ impl Hardware {
     /// The divisor `d`.
     #[inline(always)]
     pub(crate) fn new(d: NonZeroU64) -> Self {
+        Self(d)
+    }
+
+    /// The same as [`new`](Self::new) (see [`Reciprocal::new_long`]).
+    #[inline(always)]
+    pub(crate) fn new_long(d: NonZeroU64) -> Self {
         Self(d)
     }
 
@@ -122,6 +319,14 @@ pub(crate) type Divisor = Reciprocal;
 #[cfg(target_pointer_width = "64")]
 pub(crate) type Divisor = Hardware;
 
+/// The vertex stage's divisor `w`: [`ShortOrLong`] on ARMv6-M, else
+/// [`Divisor`] (both through `new_long` and `div_split`).
+#[cfg(all(target_arch = "arm", not(target_has_atomic = "32")))]
+pub(crate) type WDivisor = ShortOrLong;
+/// See the ARMv6-M definition.
+#[cfg(not(all(target_arch = "arm", not(target_has_atomic = "32"))))]
+pub(crate) type WDivisor = Divisor;
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -131,6 +336,62 @@ mod tests {
         for d in (1u64..=70_000).chain([u32::MAX as u64, 1 << 40, u64::MAX]) {
             let nz = NonZeroU64::new(d).unwrap();
             assert_eq!(max_div(nz), u64::MAX / d, "{d}");
+            assert_eq!(max_div_long(nz), u64::MAX / d, "{d}");
+        }
+        // Every digit width, around each power of two, and at random.
+        for b in 16..64 {
+            for d in (1u64 << b) - 300..=(1u64 << b).saturating_add(300) {
+                let nz = NonZeroU64::new(d).unwrap();
+                assert_eq!(max_div_long(nz), u64::MAX / d, "{d}");
+            }
+        }
+        let mut next = crate::testing::rng();
+        for _ in 0..2_000_000 {
+            let d = ((next(1 << 32) << 32 | next(1 << 32)) >> next(64)).max(1);
+            let nz = NonZeroU64::new(d).unwrap();
+            assert_eq!(max_div_long(nz), u64::MAX / d, "{d}");
+        }
+    }
+
+    /// The vertex stage's quotients through the 32-bit reciprocal and
+    /// through its fallback ([`ShortOrLong`]) against the division: every
+    /// divisor below 70,000 and around every power of two, dividends at
+    /// and near the limit `2^(30 + l)` and at random.
+    #[test]
+    fn short_quotients_are_exact() {
+        let mut next = crate::testing::rng();
+        let check = |d: u64, r: u64, e: u64| {
+            let nz = NonZeroU64::new(d).unwrap();
+            let l = 64 - d.leading_zeros();
+            let limit = 1u64 << (30 + l).min(62);
+            let s = ShortOrLong::new_long(nz);
+            for m in [
+                0,
+                1,
+                d - 1,
+                d,
+                d + 1,
+                limit - 1,
+                limit,
+                limit.saturating_sub(d),
+                (1 << 62) - 1,
+                r % limit,
+                r >> (1 + e),
+            ] {
+                assert_eq!(s.div_split(m), m / d, "{m} / {d}");
+            }
+        };
+        for d in 1..70_000 {
+            check(d, next(1 << 32) << 32 | next(1 << 32), next(63));
+        }
+        for b in 17..63 {
+            for d in (1u64 << b) - 200..=(1u64 << b) + 200 {
+                check(d, next(1 << 32) << 32 | next(1 << 32), next(63));
+            }
+        }
+        for _ in 0..100_000 {
+            let d = (next(1 << 32) << 31 | next(1 << 31)) >> next(62) | 1;
+            check(d, next(1 << 32) << 32 | next(1 << 32), next(63));
         }
     }
 
@@ -167,6 +428,8 @@ mod tests {
                 continue;
             };
             let (r, h) = (Reciprocal::new(nz), Hardware::new(nz));
+            assert_eq!(Reciprocal::new_long(nz), r);
+            assert_eq!(Hardware::new_long(nz), h);
             for _ in 0..4 {
                 let m = next() >> (1 + next() % 63);
                 assert_eq!(r.div(m), m / d, "{m} / {d}");

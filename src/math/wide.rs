@@ -10,7 +10,7 @@
 
 /// Whether the target is ARMv6-M: Arm without compare-and-swap atomics,
 /// the test the manifest uses for the RP2040 too.
-const SPLIT: bool = cfg!(all(target_arch = "arm", not(target_has_atomic = "32")));
+pub(crate) const SPLIT: bool = cfg!(all(target_arch = "arm", not(target_has_atomic = "32")));
 
 /// `a b`, exactly (`a as i64 * b as i64`).
 #[inline(always)]
