@@ -70,14 +70,9 @@ mod firmware {
     use embedded_dma::ReadBuffer;
     use embedded_hal::digital::{OutputPin, StatefulOutputPin};
     use embedded_hal::spi::{SpiBus, MODE_3};
-    use embedded_hal_bus::spi::ExclusiveDevice;
     use heapless::Deque;
     use microraster::prelude::*;
     use microraster::sink::wire::{wire_bytes, Window};
-    use mipidsi::interface::SpiInterface;
-    use mipidsi::models::ST7789;
-    use mipidsi::options::ColorInversion;
-    use mipidsi::Builder;
     use panic_halt as _;
     use rp2040_hal::clocks::{init_clocks_and_plls, Clock};
     use rp2040_hal::dma::single_buffer::{self, Transfer};
@@ -448,25 +443,19 @@ mod firmware {
             SPI_HZ.Hz(),
             MODE_3,
         );
-        // mipidsi's start-up sequence, through borrowed pins and bus (CS
-        // driven as a GPIO around each command), which come back when the
-        // display is dropped. 240x240 ST7789 panels are IPS panels that
-        // need inverted colours. mipidsi draws no pixel here, so its pixel
-        // buffer can be tiny.
+        // The panel's start-up sequence, CS driven as a GPIO around each
+        // command.
+        if board_support::init_st7789(
+            &mut spi,
+            &mut cs,
+            &mut dc,
+            &mut rst,
+            timer,
+            (WIDTH as u16, HEIGHT as u16),
+        )
+        .is_err()
         {
-            let mut delay = board_support::AtLeast(timer);
-            let mut scratch = [0; 4];
-            let Ok(device) = ExclusiveDevice::new(&mut spi, &mut cs, timer);
-            let interface = SpiInterface::new(device, &mut dc, &mut scratch);
-            if Builder::new(ST7789, interface)
-                .display_size(WIDTH as u16, HEIGHT as u16)
-                .invert_colors(ColorInversion::Inverted)
-                .reset_pin(&mut rst)
-                .init(&mut delay)
-                .is_err()
-            {
-                fault(&mut led, 3)
-            }
+            fault(&mut led, 3)
         }
         // From here on the panel is the bus's: CS low for good.
         let Ok(()) = cs.set_low();

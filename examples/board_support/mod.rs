@@ -1,12 +1,57 @@
-//! What the synchronous board firmwares share besides the scene
-//! (`examples/st7789_scene`): the panel's set-up delays made "at least",
-//! and the fault blink that stands in for a panic. `no_std`, and generic
-//! over embedded-hal's traits, so the Pico (rp2040-hal), Pico 2
-//! (rp235x-hal) and ESP32-C3 (esp-hal) firmwares include the same file.
+//! What the board firmwares share besides the scene
+//! (`examples/st7789_scene`): the ST7789's start-up sequence, the panel's
+//! set-up delays made "at least", and the fault blink that stands in for a
+//! panic. `no_std`, and generic over embedded-hal's traits, so the Pico
+//! (rp2040-hal, and embassy-rp), Pico 2 (rp235x-hal) and ESP32-C3
+//! (esp-hal) firmwares include the same file.
 #![allow(dead_code)]
 
 use embedded_hal::delay::DelayNs;
 use embedded_hal::digital::{OutputPin, PinState};
+use embedded_hal::spi::SpiBus;
+use embedded_hal_bus::spi::ExclusiveDevice;
+use mipidsi::interface::SpiInterface;
+use mipidsi::models::ST7789;
+use mipidsi::options::ColorInversion;
+use mipidsi::Builder;
+
+/// The ST7789 did not take its start-up sequence (a pin or the bus failed).
+pub struct PanelInitFailed;
+
+/// Sends the ST7789's start-up sequence through mipidsi (hardware reset on
+/// `rst`, SLPOUT, MADCTL, INVON, COLMOD 0x55, NORON, DISPON) for a
+/// `width` x `height` panel, borrowing the bus and the pins, which come
+/// back when it returns; the panel keeps its state. CS is driven as a GPIO
+/// around each command. 240x240 ST7789 panels are IPS panels that need
+/// inverted colours. mipidsi draws no pixel here, so its pixel buffer can
+/// be tiny. `delay` times the bus's transactions, and, made
+/// [`AtLeast`], the reset pulse and the waits of the sequence.
+pub fn init_st7789<S, CS, DC, RST, D>(
+    spi: &mut S,
+    cs: &mut CS,
+    dc: &mut DC,
+    rst: &mut RST,
+    delay: D,
+    (width, height): (u16, u16),
+) -> Result<(), PanelInitFailed>
+where
+    S: SpiBus,
+    CS: OutputPin,
+    DC: OutputPin,
+    RST: OutputPin,
+    D: DelayNs + Clone,
+{
+    let device = ExclusiveDevice::new(spi, cs, delay.clone()).map_err(|_| PanelInitFailed)?;
+    let mut scratch = [0; 4];
+    let interface = SpiInterface::new(device, dc, &mut scratch);
+    Builder::new(ST7789, interface)
+        .display_size(width, height)
+        .invert_colors(ColorInversion::Inverted)
+        .reset_pin(rst)
+        .init(&mut AtLeast(delay))
+        .map(drop)
+        .map_err(|_| PanelInitFailed)
+}
 
 /// A delay made "at least": the RP2040's and RP2350's `Timer` count whole
 /// ticks of a 1 MHz counter from the one they start in, so a delay can end

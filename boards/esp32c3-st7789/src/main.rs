@@ -57,7 +57,6 @@ use core::ptr::NonNull;
 use core::sync::atomic::{AtomicUsize, Ordering};
 use embedded_graphics::primitives::Rectangle;
 use embedded_hal::delay::DelayNs;
-use embedded_hal_bus::spi::ExclusiveDevice;
 use esp_hal::clock::CpuClock;
 use esp_hal::delay::Delay;
 use esp_hal::dma::aligned::{DmaAlignedMut, InternalMemory};
@@ -69,10 +68,6 @@ use esp_hal::time::{Instant, Rate};
 use esp_hal::Blocking;
 use microraster::prelude::*;
 use microraster::sink::wire::{wire_bytes, Window};
-use mipidsi::interface::SpiInterface;
-use mipidsi::models::ST7789;
-use mipidsi::options::ColorInversion;
-use mipidsi::Builder;
 use panic_halt as _;
 use st7789_scene::*;
 use static_cell::{ConstStaticCell, StaticCell};
@@ -299,23 +294,19 @@ fn main() -> ! {
     let mut rst = Output::new(peripherals.GPIO10, Level::High, OutputConfig::default());
     let mut backlight = Output::new(peripherals.GPIO3, Level::Low, OutputConfig::default());
 
-    // mipidsi sends the start-up sequence (reset, SLPOUT, MADCTL, INVON,
-    // COLMOD 0x55, DISPON), borrowing the driver and the pins; the panel
-    // keeps its state when mipidsi goes. 240x240 ST7789 panels are IPS
-    // panels that need inverted colours.
+    // The panel's start-up sequence, CS driven as a GPIO around each
+    // command.
+    if board_support::init_st7789(
+        &mut spi,
+        &mut cs,
+        &mut dc,
+        &mut rst,
+        Delay::new(),
+        (WIDTH as u16, HEIGHT as u16),
+    )
+    .is_err()
     {
-        let Ok(device) = ExclusiveDevice::new(&mut spi, &mut cs, Delay::new());
-        let mut buffer = [0; 64];
-        let interface = SpiInterface::new(device, &mut dc, &mut buffer);
-        if Builder::new(ST7789, interface)
-            .display_size(WIDTH as u16, HEIGHT as u16)
-            .invert_colors(ColorInversion::Inverted)
-            .reset_pin(&mut rst)
-            .init(&mut Delay::new())
-            .is_err()
-        {
-            fault(&mut led, 3)
-        }
+        fault(&mut led, 3)
     }
     let mut panel = Panel {
         spi: Some(spi),

@@ -36,6 +36,8 @@
 #![no_std]
 #![no_main]
 
+#[path = "../../../examples/board_support/mod.rs"]
+mod board_support;
 #[path = "../../../examples/st7789_scene/mod.rs"]
 mod st7789_scene;
 
@@ -47,14 +49,8 @@ use embassy_rp::peripherals::{DMA_CH0, SPI1};
 use embassy_rp::spi::{self, Async, Spi};
 use embassy_time::{Delay, Instant, Timer};
 use embedded_graphics::primitives::Rectangle;
-use embedded_hal::delay::DelayNs;
-use embedded_hal_bus::spi::ExclusiveDevice;
 use microraster::prelude::*;
 use microraster::sink::wire::{wire_bytes, Window};
-use mipidsi::interface::SpiInterface;
-use mipidsi::models::ST7789;
-use mipidsi::options::ColorInversion;
-use mipidsi::Builder;
 use panic_halt as _;
 use st7789_scene::*;
 use static_cell::ConstStaticCell;
@@ -140,20 +136,6 @@ impl AsyncTileSink<Rgb565Be> for Panel<'_> {
     }
 }
 
-/// embassy-time's delays made "at least": its 1 MHz ticks are counted from
-/// the one a delay starts in, so a delay can end up to 1 us early. That
-/// matters for the panel's reset pulse (mipidsi holds RES low for the
-/// 10 us minimum of the ST7789's datasheet, no more; the emulator's panel
-/// refuses a shorter one): one more tick makes every set-up delay at least
-/// what mipidsi asks for.
-struct AtLeast;
-
-impl DelayNs for AtLeast {
-    fn delay_ns(&mut self, ns: u32) {
-        Delay.delay_us(ns.div_ceil(1_000).saturating_add(1));
-    }
-}
-
 /// Blinks `code` times, pauses, and again, forever: what the firmware does
 /// instead of panicking when the board cannot be brought up.
 async fn fault(led: &mut Output<'_>, code: u32) -> ! {
@@ -187,23 +169,19 @@ async fn main(_spawner: Spawner) {
     let mut rst = Output::new(p.PIN_12, Level::High);
     let mut backlight = Output::new(p.PIN_13, Level::Low);
 
-    // mipidsi sends the start-up sequence (reset, SLPOUT, MADCTL, INVON,
-    // COLMOD 0x55, DISPON), borrowing the pins; the panel keeps its state
-    // when the driver goes. 240x240 ST7789 panels are IPS panels that need
-    // inverted colours.
+    // The panel's start-up sequence, CS driven as a GPIO around each
+    // command.
+    if board_support::init_st7789(
+        &mut spi,
+        &mut cs,
+        &mut dc,
+        &mut rst,
+        Delay,
+        (WIDTH as u16, HEIGHT as u16),
+    )
+    .is_err()
     {
-        let Ok(device) = ExclusiveDevice::new(&mut spi, &mut cs, Delay);
-        let mut buffer = [0; 64];
-        let interface = SpiInterface::new(device, &mut dc, &mut buffer);
-        if Builder::new(ST7789, interface)
-            .display_size(WIDTH as u16, HEIGHT as u16)
-            .invert_colors(ColorInversion::Inverted)
-            .reset_pin(&mut rst)
-            .init(&mut AtLeast)
-            .is_err()
-        {
-            fault(&mut led, 3).await
-        }
+        fault(&mut led, 3).await
     }
     let mut panel = Panel { spi, cs, dc };
 
