@@ -148,10 +148,8 @@ where
         B: BorrowMut<TileBuffer<C, TW, TH>>,
         F: ShaderSet<C>,
     {
-        match self.begin(ws, scene) {
-            Ok(frame) => frame.render_double_buffered(tiles, transfer),
-            Err(e) => (tiles, Err(e.for_sink())),
-        }
+        // Two buffers: the queue's loop keeps one tile in flight.
+        self.render_queued(ws, scene, tiles, transfer)
     }
 }
 
@@ -165,10 +163,11 @@ where
     /// handed to `transfer` while the next one is drawn: the loop of
     /// [`Renderer::render_double_buffered`], for a frame begun without a
     /// renderer ([`Frame::begin`]). Gives the buffers back with the
-    /// frame's statistics or the transfer's first error.
+    /// frame's statistics or the transfer's first error. The same as
+    /// [`Frame::render_queued`] with two buffers.
     #[must_use = "the tile buffers come back with the frame's result"]
     pub fn render_double_buffered<X, B>(
-        mut self,
+        self,
         tiles: [B; 2],
         transfer: &mut X,
     ) -> ([B; 2], Result<FrameStats, RenderError<X::Error>>)
@@ -176,28 +175,8 @@ where
         X: TileTransfer<B>,
         B: BorrowMut<TileBuffer<C, TW, TH>>,
     {
-        let [mut sending, mut free] = tiles;
-        let Some(mut area) = self.render_next(sending.borrow_mut()) else {
-            return ([sending, free], Ok(self.stats()));
-        };
-        loop {
-            // `sending` holds a finished tile, `free` nothing in flight.
-            if let Err((e, back)) = transfer.start(&area, sending) {
-                return ([back, free], Err(RenderError::Sink(e)));
-            }
-            let next = self.render_next(free.borrow_mut());
-            let (done, outcome) = transfer.wait();
-            if let Err(e) = outcome {
-                return ([done, free], Err(RenderError::Sink(e)));
-            }
-            match next {
-                None => return ([done, free], Ok(self.stats())),
-                Some(a) => {
-                    area = a;
-                    sending = free;
-                    free = done;
-                }
-            }
-        }
+        // The queue's loop with two buffers: `start(tile k)`, draw tile
+        // `k + 1`, `wait`, `start(tile k + 1)`, ... (see `render_queued`).
+        self.render_queued(tiles, transfer)
     }
 }
