@@ -349,7 +349,7 @@ const fn checker_texel_const(x: u32, y: u32, size: u32) -> u16 {
     let shade = (x + y) * 96 / (2 * size);
     let (r, g, b) = if x == 0 || y == 0 {
         (250, 240, 200)
-    } else if ((x / 8) + (y / 8)) % 2 == 0 {
+    } else if ((x / 8) + (y / 8)).is_multiple_of(2) {
         (150 + shade, 70 + shade / 2, 40)
     } else {
         (30, 90 + shade / 2, 140 + shade)
