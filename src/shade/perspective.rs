@@ -200,6 +200,12 @@ impl<V: Varyings> PerspectiveSetup<V> {
         false
     }
 
+    /// Index of the triangle's draw in the scene.
+    #[inline(always)]
+    pub(crate) fn draw(&self) -> usize {
+        self.draw
+    }
+
     /// The provoking vertex's colour.
     #[inline(always)]
     pub(crate) fn flat(&self) -> [u8; 3] {
@@ -431,8 +437,8 @@ impl Output {
     }
 }
 
-/// The [`SpanInput`] of span `sp` of triangle `t` set up as `p`, on the
-/// tile rows `color` and `depth`.
+/// The [`SpanInput`] of span `sp` of triangle `t` set up as `p`, whose
+/// pixels are `color` and `depth` (the span's part of its tile rows).
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
 pub(crate) fn span_input<'a, C, V: Varyings>(
@@ -445,15 +451,14 @@ pub(crate) fn span_input<'a, C, V: Varyings>(
     sp: SpanPos,
     opaque: bool,
 ) -> SpanInput<'a, C, V> {
-    let SpanPos { ox, j, x0, x1 } = sp;
+    let SpanPos { j, x0, .. } = sp;
     let [pq, p1, p2] = &p.planes;
-    let (a, b) = ((x0 - ox) as usize, (x1 - ox) as usize);
     SpanInput {
         draw: p.draw,
         x0,
         y: j,
-        color: &mut color[a..b],
-        depth: &mut depth[a..b],
+        color,
+        depth,
         texture,
         setup: p,
         z: (p.depth.start(t, x0, j)[0] as u32) << (16 - Z_FRAC),
