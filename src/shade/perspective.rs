@@ -418,6 +418,15 @@ const RECIPROCAL: [i64; 17] = {
     t
 };
 
+/// [`SpanInput::run_opaque`]'s weights: affine (`B1`, `B2` shifted), or
+/// exact from [`shifted_weights`] with the span's shift, or exact from
+/// [`weights`] (its clamps and normalisation per pixel).
+pub(crate) const AFFINE: u8 = 0;
+/// See [`AFFINE`].
+pub(crate) const SHIFTED: u8 = 1;
+/// See [`AFFINE`].
+pub(crate) const CLAMPED: u8 = 2;
+
 /// How the fragments of a span are tested and written.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Output {
@@ -504,12 +513,14 @@ impl<C, V: Varyings> SpanInput<'_, C, V> {
     /// The span loop of an opaque draw with the default depth test
     /// (`LessEqual`) and depth writes: [`run`](Self::run) with the test,
     /// the write and the blend known, so nothing but the depth comparison
-    /// branches per pixel. Exact mode (`AFFINE` false) takes the weights
-    /// with the span's shift `sh` ([`opaque_shift`](Self::opaque_shift)):
-    /// the bits of [`weights`], without its clamps and normalisation. A
-    /// shader that reads neither varyings nor colour runs with `AFFINE`.
+    /// branches per pixel. `WEIGHTS` is [`AFFINE`], or for exact mode
+    /// [`SHIFTED`], the weights with the span's shift `sh`
+    /// ([`opaque_shift`](Self::opaque_shift): the bits of [`weights`],
+    /// without its clamps and normalisation), or [`CLAMPED`], [`weights`]
+    /// itself (spans too short for the test, or that fail it). A shader
+    /// that reads neither varyings nor colour runs with `AFFINE`.
     #[inline(always)]
-    pub(crate) fn run_opaque<const AFFINE: bool>(
+    pub(crate) fn run_opaque<const WEIGHTS: u8>(
         self,
         ic: bool,
         mut fragment: impl PixelFn<V, C>,
@@ -526,10 +537,12 @@ impl<C, V: Varyings> SpanInput<'_, C, V> {
             if zz <= *d {
                 let (varyings, color) = if !weighted {
                     (V::zeroed(), [0; 3])
-                } else if AFFINE {
+                } else if WEIGHTS == AFFINE {
                     p.values((b1 >> 12, b2 >> 12), ic)
-                } else {
+                } else if WEIGHTS == SHIFTED {
                     p.values_weighted(shifted_weights(q, b1, b2, sh), ic)
+                } else {
+                    p.values_weighted(weights(q, b1, b2), ic)
                 };
                 let it = Interpolated {
                     x: x0 + k as i32,
