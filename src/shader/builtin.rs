@@ -55,8 +55,8 @@ impl<C: FromTexel> FragmentShader<C> for Textured {
             return 0;
         };
         match texture.sampler() {
-            Sampler::NearestRgb565(t) => span.shade_unspecialised(false, Unlit(Nearest565(t))),
-            Sampler::BilinearRgb565(t) => span.shade_unspecialised(false, Unlit(Bilinear565(t))),
+            Sampler::NearestRgb565(t) => span.shade_with(false, Unlit(Nearest565(t))),
+            Sampler::BilinearRgb565(t) => span.shade_with(false, Unlit(Bilinear565(t))),
             Sampler::General(t) => span.shade_unspecialised(false, Unlit(t)),
         }
     }
@@ -71,11 +71,9 @@ impl<C: FromTexel> FragmentShader<C> for Textured {
             return 0;
         };
         match texture.sampler() {
-            Sampler::NearestRgb565(t) => {
-                spans.each(|s| s.shade_unspecialised(false, Unlit(Nearest565(t))))
-            }
+            Sampler::NearestRgb565(t) => spans.each(|s| s.shade_with(false, Unlit(Nearest565(t)))),
             Sampler::BilinearRgb565(t) => {
-                spans.each(|s| s.shade_unspecialised(false, Unlit(Bilinear565(t))))
+                spans.each(|s| s.shade_with(false, Unlit(Bilinear565(t))))
             }
             Sampler::General(t) => spans.each(|s| s.shade_unspecialised(false, Unlit(t))),
         }

@@ -322,13 +322,14 @@ impl<'a, C, V: Varyings> SpanInput<'a, C, V> {
     }
 
     /// [`shade_with`](Self::shade_with) without the opaque draw's loops
-    /// of its own. For [`Textured`](crate::shader::Textured), whose loops
-    /// they made slower on the Cortex-M3 (`fill-nearest-exact` 144.5 to
-    /// 172.8 instructions per fragment, bilinear 276.4 to 304.8, though
-    /// faster on x86), and for the general texture path of
+    /// of its own. For the general texture path of
+    /// [`Textured`](crate::shader::Textured) and
     /// [`TexturedLit`](crate::shader::TexturedLit), whose texel costs far
     /// more than the per-pixel decisions they save and whose copies would
     /// not fit the LM3S6965's flash beside the rest of that firmware.
+    /// (`Textured`'s power-of-two paths took it too while the Cortex-M3
+    /// computed the varyings in the 32-bit form of ARMv6-M: the opaque
+    /// loops were slower there then.)
     #[inline(always)]
     pub(crate) fn shade_unspecialised(
         self,
