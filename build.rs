@@ -36,6 +36,12 @@
 //! crate's own `memory.x` later in the search order, and the firmware
 //! would silently link for the wrong chip (tests/dependent_memory_map.rs).
 //!
+//! For the library itself it sets `--cfg microraster_narrow_multiply` on
+//! ARM cores without a 32x32 to 64-bit multiply (ARMv6-M, ARMv8-M
+//! Baseline: `thumbv6m`, `thumbv8m.base`), where the span loops take their
+//! varyings in 32-bit arithmetic. Stable Rust sets no `target_feature` cfg
+//! for ARM (`thumb2` among them), so the target's name decides.
+//!
 //! With the `assets` feature it also converts `examples/assets/rocket.obj`
 //! (and its materials) into `$OUT_DIR/rocket.rs`, `static` arrays that the
 //! OLED firmware and its end-to-end test `include!`: the model goes from
@@ -85,6 +91,13 @@ fn main() {
     println!("cargo::rustc-check-cfg=cfg(microraster_board, values(\"mps2-an386\"))");
     let target = env::var("TARGET").unwrap_or_default();
     let board = env::var("CARGO_CFG_MICRORASTER_BOARD").ok();
+    println!("cargo::rustc-check-cfg=cfg(microraster_narrow_multiply)");
+    if matches!(
+        target.split('-').next().unwrap_or_default(),
+        "thumbv6m" | "thumbv8m.base"
+    ) {
+        println!("cargo:rustc-cfg=microraster_narrow_multiply");
+    }
     if let Some(map) = board_map(&target, board.as_deref()) {
         let out = PathBuf::from(env::var_os("OUT_DIR").expect("cargo sets OUT_DIR"));
         fs::copy(map, out.join("memory.x"))

@@ -57,7 +57,7 @@ pub mod span;
 pub use builtin::{mul255, DepthShade, Flat, Gouraud, Normals, Textured, TexturedLit};
 pub(crate) use set::check as check_in_set;
 pub use set::{ShaderSet, VisitShader};
-pub use span::{Interpolated, PixelFn, SpanInput};
+pub use span::{Interpolated, PixelFn, SpanInput, TriangleSpans};
 
 use crate::mesh::Mesh;
 use crate::scene::Draw;
@@ -281,11 +281,27 @@ pub trait FragmentShader<C> {
     {
         span.fragments(Self::INTERPOLATE_COLOR, |f| self.fragment(f))
     }
+
+    /// Colours the spans of one triangle in one tile, returning the number
+    /// of pixels written. The default calls
+    /// [`shade_span`](Self::shade_span) for each. Override it to decide
+    /// once per triangle and tile, rather than once per span, what does
+    /// not change between its spans (the texture's kind, say), then colour
+    /// them with [`TriangleSpans::each`]; it must colour them as
+    /// `shade_span` would. A shader that overrides neither needs neither.
+    #[inline(always)]
+    fn shade_spans(&self, spans: TriangleSpans<'_, C, Self::Varyings>) -> u32
+    where
+        C: Copy + From<Rgb888> + Into<Rgb888>,
+    {
+        spans.each(|span| self.shade_span(span))
+    }
 }
 
 /// A shader by reference, so that a [`ShaderSet`] tuple can hold
 /// shaders it borrows: `(&a, &b)`. Every method forwards, `shade_span`
-/// included, so a borrowed built-in keeps its own span loop.
+/// and `shade_spans` included, so a borrowed built-in keeps its own span
+/// loops.
 impl<C, S: FragmentShader<C> + ?Sized> FragmentShader<C> for &S {
     type Varyings = S::Varyings;
     const INTERPOLATE_COLOR: bool = S::INTERPOLATE_COLOR;
@@ -307,6 +323,13 @@ impl<C, S: FragmentShader<C> + ?Sized> FragmentShader<C> for &S {
         C: Copy + From<Rgb888> + Into<Rgb888>,
     {
         (**self).shade_span(span)
+    }
+    #[inline(always)]
+    fn shade_spans(&self, spans: TriangleSpans<'_, C, Self::Varyings>) -> u32
+    where
+        C: Copy + From<Rgb888> + Into<Rgb888>,
+    {
+        (**self).shade_spans(spans)
     }
 }
 

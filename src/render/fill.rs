@@ -4,9 +4,9 @@ use super::dispatch::{ShaderPass, Shaders};
 use super::Features;
 use crate::raster::scanline::Walker;
 use crate::raster::{hilbert, PixelRect, Rasterizer, Span, SubPoint};
-use crate::shade::perspective::{span_input, Output, PerspectiveSetup, ShaderTriangle};
+use crate::shade::perspective::{Output, PerspectiveSetup, ShaderTriangle};
 use crate::shade::{span_flat, span_gouraud, Corners, DepthFn, DepthTest, SpanPos, TriangleSetup};
-use crate::shader::{FragmentShader, Perspective, ShaderSet};
+use crate::shader::{FragmentShader, Perspective, ShaderSet, TriangleSpans};
 use crate::texture::Texture;
 use crate::tile::TileBuffer;
 use crate::vertex::ScreenVertex;
@@ -234,17 +234,16 @@ where
     F: FragmentShader<C>,
 {
     let setup = &PerspectiveSetup::new(tri, out.mode == Perspective::Affine);
-    let opaque = out.opaque();
-    each_span(tile, rect, found, |color, depth, sp| {
-        shader.shade_span(span_input(
-            setup,
-            &tri.corners,
-            texture,
-            out,
-            color,
-            depth,
-            sp,
-            opaque,
-        ))
+    shader.shade_spans(TriangleSpans {
+        color: tile.color.as_flattened_mut(),
+        depth: tile.depth.as_flattened_mut(),
+        width: TW,
+        ox: rect.x0,
+        oy: rect.y0,
+        found,
+        setup,
+        corners: &tri.corners,
+        texture,
+        out,
     })
 }

@@ -200,6 +200,12 @@ impl<V: Varyings> PerspectiveSetup<V> {
         false
     }
 
+    /// Index of the triangle's draw in the scene.
+    #[inline(always)]
+    pub(crate) fn draw(&self) -> usize {
+        self.draw
+    }
+
     /// The provoking vertex's colour.
     #[inline(always)]
     pub(crate) fn flat(&self) -> [u8; 3] {
@@ -302,9 +308,14 @@ fn scale_q32(wmin: u32, w: u32) -> i64 {
     q as i64
 }
 
-/// Whether the target lacks a 32x32 to 64-bit multiply (ARMv6-M, whose
-/// Thumb-1 has none; every Thumb-2 core has `SMULL`).
-const NARROW_MULTIPLY: bool = cfg!(all(target_arch = "arm", not(target_feature = "thumb2")));
+/// Whether the target lacks a 32x32 to 64-bit multiply (ARMv6-M and
+/// ARMv8-M Baseline, whose Thumb-1 has none; every Thumb-2 core has
+/// `SMULL`). Set by the build script from the target's name: stable Rust
+/// sets no `target_feature` cfg for ARM, so the test that was here,
+/// `not(target_feature = "thumb2")`, held on the Cortex-M3 and M4F too,
+/// which took the 32-bit form (demo-textured-lit +2.8 % on the M3, +4.0 %
+/// on the M4F).
+const NARROW_MULTIPLY: bool = cfg!(microraster_narrow_multiply);
 
 /// `a0 + ((d1 b1 + d2 b2 + 2^15) >> 16)` wrapped to `i32`, with
 /// `d_i = a_i - a0` exact (up to 33 bits) and weights `b` in `0..=2^16`,
@@ -412,6 +423,15 @@ const RECIPROCAL: [i64; 17] = {
     t
 };
 
+/// [`SpanInput::run_opaque`]'s weights: affine (`B1`, `B2` shifted), or
+/// exact from [`shifted_weights`] with the span's shift, or exact from
+/// [`weights`] (its clamps and normalisation per pixel).
+pub(crate) const AFFINE: u8 = 0;
+/// See [`AFFINE`].
+pub(crate) const SHIFTED: u8 = 1;
+/// See [`AFFINE`].
+pub(crate) const CLAMPED: u8 = 2;
+
 /// How the fragments of a span are tested and written.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Output {
@@ -431,8 +451,8 @@ impl Output {
     }
 }
 
-/// The [`SpanInput`] of span `sp` of triangle `t` set up as `p`, on the
-/// tile rows `color` and `depth`.
+/// The [`SpanInput`] of span `sp` of triangle `t` set up as `p`, whose
+/// pixels are `color` and `depth` (the span's part of its tile rows).
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
 pub(crate) fn span_input<'a, C, V: Varyings>(
@@ -445,15 +465,14 @@ pub(crate) fn span_input<'a, C, V: Varyings>(
     sp: SpanPos,
     opaque: bool,
 ) -> SpanInput<'a, C, V> {
-    let SpanPos { ox, j, x0, x1 } = sp;
+    let SpanPos { j, x0, .. } = sp;
     let [pq, p1, p2] = &p.planes;
-    let (a, b) = ((x0 - ox) as usize, (x1 - ox) as usize);
     SpanInput {
         draw: p.draw,
         x0,
         y: j,
-        color: &mut color[a..b],
-        depth: &mut depth[a..b],
+        color,
+        depth,
         texture,
         setup: p,
         z: (p.depth.start(t, x0, j)[0] as u32) << (16 - Z_FRAC),
@@ -499,12 +518,14 @@ impl<C, V: Varyings> SpanInput<'_, C, V> {
     /// The span loop of an opaque draw with the default depth test
     /// (`LessEqual`) and depth writes: [`run`](Self::run) with the test,
     /// the write and the blend known, so nothing but the depth comparison
-    /// branches per pixel. Exact mode (`AFFINE` false) takes the weights
-    /// with the span's shift `sh` ([`opaque_shift`](Self::opaque_shift)):
-    /// the bits of [`weights`], without its clamps and normalisation. A
-    /// shader that reads neither varyings nor colour runs with `AFFINE`.
+    /// branches per pixel. `WEIGHTS` is [`AFFINE`], or for exact mode
+    /// [`SHIFTED`], the weights with the span's shift `sh`
+    /// ([`opaque_shift`](Self::opaque_shift): the bits of [`weights`],
+    /// without its clamps and normalisation), or [`CLAMPED`], [`weights`]
+    /// itself (spans too short for the test, or that fail it). A shader
+    /// that reads neither varyings nor colour runs with `AFFINE`.
     #[inline(always)]
-    pub(crate) fn run_opaque<const AFFINE: bool>(
+    pub(crate) fn run_opaque<const WEIGHTS: u8>(
         self,
         ic: bool,
         mut fragment: impl PixelFn<V, C>,
@@ -521,10 +542,12 @@ impl<C, V: Varyings> SpanInput<'_, C, V> {
             if zz <= *d {
                 let (varyings, color) = if !weighted {
                     (V::zeroed(), [0; 3])
-                } else if AFFINE {
+                } else if WEIGHTS == AFFINE {
                     p.values((b1 >> 12, b2 >> 12), ic)
-                } else {
+                } else if WEIGHTS == SHIFTED {
                     p.values_weighted(shifted_weights(q, b1, b2, sh), ic)
+                } else {
+                    p.values_weighted(weights(q, b1, b2), ic)
                 };
                 let it = Interpolated {
                     x: x0 + k as i32,

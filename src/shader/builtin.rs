@@ -1,11 +1,15 @@
 //! The built-in shaders, each with a span loop of its own
 //! ([`FragmentShader::shade_span`]): what does not change along a span
-//! (the texture's kind, the colour) is decided before it, and the
-//! per-pixel work is a [`PixelFn`] whose `pixel` is always inlined.
+//! (the texture's kind, the colour) is decided before it (the texture's
+//! kind once per triangle and tile, [`FragmentShader::shade_spans`]), and
+//! the per-pixel work is a [`PixelFn`] whose `pixel` is always inlined.
 //! `fragment` stays the definition, and `tests/span_shaders.rs` holds
 //! every span loop to it, pixel for pixel.
 
-use super::{Fragment, FragmentShader, Interpolated, PixelFn, ShaderError, SpanInput, VertexInput};
+use super::{
+    Fragment, FragmentShader, Interpolated, PixelFn, ShaderError, SpanInput, TriangleSpans,
+    VertexInput,
+};
 use crate::scene::Draw;
 use crate::texture::{rgb565_to_rgb888, FromTexel, Pow2Rgb565, Sampler, Texture};
 use embedded_graphics::pixelcolor::Rgb888;
@@ -51,9 +55,27 @@ impl<C: FromTexel> FragmentShader<C> for Textured {
             return 0;
         };
         match texture.sampler() {
-            Sampler::NearestRgb565(t) => span.shade_unspecialised(false, Unlit(Nearest565(t))),
-            Sampler::BilinearRgb565(t) => span.shade_unspecialised(false, Unlit(Bilinear565(t))),
+            Sampler::NearestRgb565(t) => span.shade_with(false, Unlit(Nearest565(t))),
+            Sampler::BilinearRgb565(t) => span.shade_with(false, Unlit(Bilinear565(t))),
             Sampler::General(t) => span.shade_unspecialised(false, Unlit(t)),
+        }
+    }
+    /// [`shade_span`](FragmentShader::shade_span) with the texture's kind
+    /// decided once per triangle and tile.
+    #[inline(always)]
+    fn shade_spans(&self, spans: TriangleSpans<'_, C, [I16F16; 2]>) -> u32
+    where
+        C: Copy + From<Rgb888> + Into<Rgb888>,
+    {
+        let Some(texture) = spans.texture() else {
+            return 0;
+        };
+        match texture.sampler() {
+            Sampler::NearestRgb565(t) => spans.each(|s| s.shade_with(false, Unlit(Nearest565(t)))),
+            Sampler::BilinearRgb565(t) => {
+                spans.each(|s| s.shade_with(false, Unlit(Bilinear565(t))))
+            }
+            Sampler::General(t) => spans.each(|s| s.shade_unspecialised(false, Unlit(t))),
         }
     }
 }
@@ -111,6 +133,22 @@ impl<C: FromTexel> FragmentShader<C> for TexturedLit {
             Sampler::NearestRgb565(t) => span.shade_with(true, Lit(Nearest565(t))),
             Sampler::BilinearRgb565(t) => span.shade_with(true, Lit(Bilinear565(t))),
             Sampler::General(t) => span.shade_unspecialised(true, Lit(t)),
+        }
+    }
+    /// [`shade_span`](FragmentShader::shade_span) with the texture's kind
+    /// decided once per triangle and tile.
+    #[inline(always)]
+    fn shade_spans(&self, spans: TriangleSpans<'_, C, [I16F16; 2]>) -> u32
+    where
+        C: Copy + From<Rgb888> + Into<Rgb888>,
+    {
+        let Some(texture) = spans.texture() else {
+            return 0;
+        };
+        match texture.sampler() {
+            Sampler::NearestRgb565(t) => spans.each(|s| s.shade_with(true, Lit(Nearest565(t)))),
+            Sampler::BilinearRgb565(t) => spans.each(|s| s.shade_with(true, Lit(Bilinear565(t)))),
+            Sampler::General(t) => spans.each(|s| s.shade_unspecialised(true, Lit(t))),
         }
     }
 }

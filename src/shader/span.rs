@@ -17,6 +17,13 @@
 //! that: the stepping, depth test, perspective division and write stay in
 //! the renderer's loop, and only what the shader needs is computed.
 //!
+//! The renderer hands a shader a triangle's spans in one tile together
+//! ([`FragmentShader::shade_spans`], a [`TriangleSpans`]); the default
+//! calls `shade_span` for each. The built-in textured shaders override it
+//! to decide the texture's kind once per triangle and tile: most spans of
+//! a mesh are two or three pixels long, so what is decided per span is
+//! paid per few pixels.
+//!
 //! # The stepping
 //!
 //! Depth and the planes `Q`, `B1`, `B2` step by one add per pixel. At a
@@ -34,9 +41,10 @@
 //! [`Perspective::Affine`] takes the weights as `B1`, `B2` themselves (all
 //! `1 / w` equal).
 
+use crate::raster::Span;
 use crate::scene::Blend;
-use crate::shade::perspective::PerspectiveSetup;
-use crate::shade::DepthTest;
+use crate::shade::perspective::{span_input, Output, PerspectiveSetup, AFFINE, CLAMPED, SHIFTED};
+use crate::shade::{Corners, DepthTest, SpanPos};
 use crate::shader::{Fragment, FragmentShader, Perspective, Varyings};
 use crate::texture::Texture;
 use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
@@ -70,6 +78,112 @@ impl<V> Interpolated<V> {
 #[inline(always)]
 pub(crate) fn byte(c: i32) -> u8 {
     (c >> 16).clamp(0, 255) as u8
+}
+
+/// The spans of one triangle in one tile, handed to
+/// [`FragmentShader::shade_spans`]: what is the same for all of them (the
+/// draw, its texture, the perspective mode, the triangle's set-up) is
+/// known before the first, so a shader can decide it once per triangle
+/// and tile rather than once per span, then colour each span with
+/// [`each`](Self::each).
+///
+/// Most triangles of a mesh cover a few pixels in two or three spans:
+/// what a shader decides per span (which texture format, filter and wrap)
+/// is then paid two or three times per triangle and tile, for a few
+/// pixels.
+#[derive(Debug)]
+pub struct TriangleSpans<'a, C, V> {
+    /// The tile's colour and depth, row after row of `width` pixels.
+    pub(crate) color: &'a mut [C],
+    pub(crate) depth: &'a mut [u16],
+    pub(crate) width: usize,
+    /// The screen column and row of the tile's top left pixel.
+    pub(crate) ox: i32,
+    pub(crate) oy: i32,
+    /// The spans, at most one per row, inside the tile.
+    pub(crate) found: &'a [Span],
+    pub(crate) setup: &'a PerspectiveSetup<V>,
+    pub(crate) corners: &'a Corners<'a>,
+    pub(crate) texture: Option<&'a Texture<'a>>,
+    pub(crate) out: Output,
+}
+
+impl<'a, C, V: Varyings> TriangleSpans<'a, C, V> {
+    /// Index of the triangle's draw in the scene (see [`Fragment::draw`]).
+    #[inline(always)]
+    pub fn draw(&self) -> usize {
+        self.setup.draw()
+    }
+
+    /// The draw's texture, if it has one.
+    #[inline(always)]
+    pub fn texture(&self) -> Option<&'a Texture<'a>> {
+        self.texture
+    }
+
+    /// How the varyings are interpolated along the spans.
+    #[inline(always)]
+    pub fn perspective(&self) -> Perspective {
+        self.out.mode
+    }
+
+    /// The provoking vertex's lit colour (see
+    /// [`SpanInput::flat_color`]).
+    #[inline(always)]
+    pub fn flat_color(&self) -> [u8; 3] {
+        self.setup.flat()
+    }
+
+    /// Number of spans (at least one, as the renderer hands them).
+    #[inline(always)]
+    pub fn len(&self) -> usize {
+        self.found.len()
+    }
+
+    /// Whether there is no span (never, as the renderer hands them).
+    #[inline(always)]
+    pub fn is_empty(&self) -> bool {
+        self.found.is_empty()
+    }
+
+    /// Colours each span through `shade` (typically a shader's
+    /// [`FragmentShader::shade_span`], or [`SpanInput::shade_with`] with a
+    /// per-pixel function chosen before the first span), top to bottom,
+    /// and returns the sum of what it returns: the pixels written.
+    #[inline(always)]
+    pub fn each(self, mut shade: impl FnMut(SpanInput<'_, C, V>) -> u32) -> u32 {
+        let Self {
+            color,
+            depth,
+            width,
+            ox,
+            oy,
+            found,
+            setup,
+            corners,
+            texture,
+            out,
+        } = self;
+        let opaque = out.opaque();
+        let mut n = 0;
+        for &Span { j, x0, x1 } in found {
+            // The spans lie inside the tile (the walk clips them to it).
+            let row = (j - oy) as usize * width;
+            let (a, b) = (row + (x0 - ox) as usize, row + (x1 - ox) as usize);
+            let sp = SpanPos { ox, j, x0, x1 };
+            n += shade(span_input(
+                setup,
+                corners,
+                texture,
+                out,
+                &mut color[a..b],
+                &mut depth[a..b],
+                sp,
+                opaque,
+            ));
+        }
+        n
+    }
 }
 
 /// One span of a triangle in a tile row, handed to
@@ -182,33 +296,40 @@ impl<'a, C, V: Varyings> SpanInput<'a, C, V> {
     {
         // The common case, an opaque draw with the default depth test and
         // writes, has loops of its own with none of the three decided per
-        // pixel (exact mode only where its weights need no clamp: see
-        // `opaque_shift`).
+        // pixel (exact mode: spans of `OPAQUE_EXACT_MIN` pixels or more
+        // where the weights need no clamp, see `opaque_shift`; shorter
+        // ones, most of a mesh's, with `weights` per pixel where the shader
+        // has varyings: with none, `Gouraud`, its fill on the Cortex-M3
+        // went from 78.0 to 80.9 instructions per fragment).
         let opaque = self.opaque;
         let weighted = V::LEN > 0 || interpolate_color;
         match self.mode {
             Perspective::Affine if opaque => {
-                self.run_opaque::<true>(interpolate_color, fragment, 0)
+                self.run_opaque::<AFFINE>(interpolate_color, fragment, 0)
             }
-            _ if opaque && !weighted => self.run_opaque::<true>(interpolate_color, fragment, 0),
+            _ if opaque && !weighted => self.run_opaque::<AFFINE>(interpolate_color, fragment, 0),
             Perspective::Exact if opaque && self.len() >= OPAQUE_EXACT_MIN => {
                 match self.opaque_shift() {
-                    Some(sh) => self.run_opaque::<false>(interpolate_color, fragment, sh),
+                    Some(sh) => self.run_opaque::<SHIFTED>(interpolate_color, fragment, sh),
                     None => self.run_put(interpolate_color, fragment),
                 }
+            }
+            Perspective::Exact if opaque && V::LEN > 0 => {
+                self.run_opaque::<CLAMPED>(interpolate_color, fragment, 0)
             }
             _ => self.run_put(interpolate_color, fragment),
         }
     }
 
     /// [`shade_with`](Self::shade_with) without the opaque draw's loops
-    /// of its own. For [`Textured`](crate::shader::Textured), whose loops
-    /// they made slower on the Cortex-M3 (`fill-nearest-exact` 144.5 to
-    /// 172.8 instructions per fragment, bilinear 276.4 to 304.8, though
-    /// faster on x86), and for the general texture path of
+    /// of its own. For the general texture path of
+    /// [`Textured`](crate::shader::Textured) and
     /// [`TexturedLit`](crate::shader::TexturedLit), whose texel costs far
     /// more than the per-pixel decisions they save and whose copies would
     /// not fit the LM3S6965's flash beside the rest of that firmware.
+    /// (`Textured`'s power-of-two paths took it too while the Cortex-M3
+    /// computed the varyings in the 32-bit form of ARMv6-M: the opaque
+    /// loops were slower there then.)
     #[inline(always)]
     pub(crate) fn shade_unspecialised(
         self,
@@ -277,10 +398,13 @@ impl<'a, C, V: Varyings> SpanInput<'a, C, V> {
     }
 }
 
-/// The shortest span that takes the opaque exact loop: the test per span
-/// (`opaque_shift`: three products and a dozen comparisons) is not paid
-/// by spans of one to three pixels, most of the textured frame's, which
-/// have little to save (a threshold set, not tuned).
+/// The shortest span that takes the opaque exact loop with the span's
+/// shift: the test per span (`opaque_shift`: three products and a dozen
+/// comparisons) is not paid by spans of one to three pixels, most of the
+/// textured frame's, which take the opaque loop with [`weights`] per pixel
+/// instead (a threshold set, not tuned).
+///
+/// [`weights`]: crate::shade::perspective::weights
 const OPAQUE_EXACT_MIN: usize = 4;
 
 /// A span shader's colour at one pixel, for [`SpanInput::shade_with`]:
