@@ -156,19 +156,13 @@ pub(crate) fn max_div_long(d: NonZeroU64) -> u64 {
 /// 64-bit multiply-high cheap, it measured slower (see `Viewport::project`).
 /// The quotients are the same.
 #[derive(Clone, Copy, Debug)]
-#[cfg_attr(
-    not(all(target_arch = "arm", not(target_has_atomic = "32"))),
-    allow(dead_code)
-)]
+#[cfg_attr(not(microraster_narrow_multiply), allow(dead_code))]
 pub(crate) struct ShortOrLong {
     d: NonZeroU64,
     short: Option<Short>,
 }
 
-#[cfg_attr(
-    not(all(target_arch = "arm", not(target_has_atomic = "32"))),
-    allow(dead_code)
-)]
+#[cfg_attr(not(microraster_narrow_multiply), allow(dead_code))]
 impl ShortOrLong {
     /// The divisor `d`.
     #[inline(always)]
@@ -192,10 +186,7 @@ impl ShortOrLong {
 /// `floor(m / d)` outside [`Short`]'s range, through [`Reciprocal`].
 #[inline(never)]
 #[cold]
-#[cfg_attr(
-    not(all(target_arch = "arm", not(target_has_atomic = "32"))),
-    allow(dead_code)
-)]
+#[cfg_attr(not(microraster_narrow_multiply), allow(dead_code))]
 fn div_long(d: NonZeroU64, m: u64) -> u64 {
     Reciprocal::new_long(d).div_split(m)
 }
@@ -212,10 +203,7 @@ fn div_long(d: NonZeroU64, m: u64) -> u64 {
 /// many bits as `d` has leading zeros (so every partial dividend fits
 /// `u32`): two or three divisions for `d` of 2^7 to 2^22.
 #[derive(Clone, Copy, Debug)]
-#[cfg_attr(
-    not(all(target_arch = "arm", not(target_has_atomic = "32"))),
-    allow(dead_code)
-)]
+#[cfg_attr(not(microraster_narrow_multiply), allow(dead_code))]
 struct Short {
     d: u32,
     r: u32,
@@ -223,10 +211,7 @@ struct Short {
     bits: u32,
 }
 
-#[cfg_attr(
-    not(all(target_arch = "arm", not(target_has_atomic = "32"))),
-    allow(dead_code)
-)]
+#[cfg_attr(not(microraster_narrow_multiply), allow(dead_code))]
 impl Short {
     /// `d`'s reciprocal, if `8 <= d < 2^31`.
     #[inline(always)]
@@ -319,12 +304,14 @@ pub(crate) type Divisor = Reciprocal;
 #[cfg(target_pointer_width = "64")]
 pub(crate) type Divisor = Hardware;
 
-/// The vertex stage's divisor `w`: [`ShortOrLong`] on ARMv6-M, else
-/// [`Divisor`] (both through `new_long` and `div_split`).
-#[cfg(all(target_arch = "arm", not(target_has_atomic = "32")))]
+/// The vertex stage's divisor `w`: [`ShortOrLong`] on cores without a
+/// 32 x 32 -> 64-bit multiply (ARMv6-M, ARMv8-M Baseline:
+/// `microraster_narrow_multiply`), else [`Divisor`] (both through
+/// `new_long` and `div_split`).
+#[cfg(microraster_narrow_multiply)]
 pub(crate) type WDivisor = ShortOrLong;
-/// See the ARMv6-M definition.
-#[cfg(not(all(target_arch = "arm", not(target_has_atomic = "32"))))]
+/// See the narrow-multiply definition.
+#[cfg(not(microraster_narrow_multiply))]
 pub(crate) type WDivisor = Divisor;
 
 #[cfg(test)]

@@ -8,9 +8,10 @@
 //! and a few 64-bit shifts and adds. Other targets have a widening
 //! multiply instruction and keep the plain product.
 
-/// Whether the target is ARMv6-M: Arm without compare-and-swap atomics,
-/// the test the manifest uses for the RP2040 too.
-pub(crate) const SPLIT: bool = cfg!(all(target_arch = "arm", not(target_has_atomic = "32")));
+/// Whether the core lacks a 32x32 to 64-bit multiply (ARMv6-M, ARMv8-M
+/// Baseline): `build.rs` sets `microraster_narrow_multiply` from the
+/// target's name, the one test the span loops use too.
+pub(crate) const SPLIT: bool = cfg!(microraster_narrow_multiply);
 
 /// `a b`, exactly (`a as i64 * b as i64`).
 #[inline(always)]
