@@ -1,0 +1,141 @@
+//! The weights of a pixel from the perspective planes: `b1 = B1 / Q`,
+//! `b2 = B2 / Q` in 0.16 fixed point with one 32-bit reciprocal, and the
+//! span-wide shortcut when the whole span allows it.
+
+/// The perspective-correct weights `(B1 / Q, B2 / Q)` in 0.16 fixed
+/// point, with one 32-bit division: `Q` is shifted to 16 significant bits
+/// (`B1`, `B2` with it), so the reciprocal `2^31 / Q` has 16 as well and
+/// each product fits `u32`. Each weight is within 7 units (of 65,536) of
+/// the exact quotient when `Q >= 2^15`, which holds unless the triangle's
+/// `w` vary by more than 2^13: the truncations of `Q`, of the numerator
+/// and of the reciprocal cost at most 2 units each, the final shift 1.
+#[inline(always)]
+pub(crate) fn weights(q: i32, b1: i32, b2: i32) -> (i32, i32) {
+    let q = q.max(1) as u32;
+    let sh = (32 - q.leading_zeros()).saturating_sub(16);
+    let qn = q >> sh;
+    let r = (1u32 << 31) / qn;
+    let n1 = ((b1.max(0) as u32) >> sh).min(qn);
+    let n2 = ((b2.max(0) as u32) >> sh).min(qn);
+    // n <= qn, so n * r <= 2^31.
+    (((n1 * r) >> 15) as i32, ((n2 * r) >> 15) as i32)
+}
+
+/// [`SpanInput::opaque_shift`](crate::shader::span::SpanInput::opaque_shift) for a span of `len` pixels starting at
+/// `planes` (`Q`, `B1`, `B2`) with `steps`.
+#[inline(always)]
+pub(super) fn span_shift(planes: [i32; 3], steps: [i32; 3], len: usize) -> Option<u32> {
+    // In `i32`, checked: a span whose ends overflow takes the other loop.
+    let last = i32::try_from(len.saturating_sub(1)).ok()?;
+    let end = |a: i32, g: i32| g.checked_mul(last).and_then(|d| a.checked_add(d));
+    let [q, b1, b2] = planes;
+    let [gq, g1, g2] = steps;
+    let qe = end(q, gq)?;
+    if q < 1 || qe < 1 || q.leading_zeros() != qe.leading_zeros() {
+        return None;
+    }
+    let (b1e, b2e) = (end(b1, g1)?, end(b2, g2)?);
+    let within = |b: i32, q: i32| 0 <= b && b <= q;
+    (within(b1, q) && within(b2, q) && within(b1e, qe) && within(b2e, qe))
+        .then(|| (32 - q.leading_zeros()).saturating_sub(16))
+}
+
+/// [`weights`] where its clamps change nothing and `Q`'s normalising
+/// shift `sh` is known: `1 <= Q < 2^31`, `0 <= B1, B2 <= Q`
+/// ([`span_shift`]), so `qn > 0` and each product is at most 2^31.
+#[inline(always)]
+pub(super) fn shifted_weights(q: i32, b1: i32, b2: i32, sh: u32) -> (i32, i32) {
+    let qn = (q as u32) >> sh;
+    let r = (1u32 << 31) / qn;
+    let w1 = (((b1 as u32) >> sh) * r) >> 15;
+    let w2 = (((b2 as u32) >> sh) * r) >> 15;
+    (w1 as i32, w2 as i32)
+}
+
+/// [`weights`] with the sign of `B1` and `B2` kept (the same for
+/// non-negative ones): the quasi-perspective sample one pixel beyond a
+/// span's end may lie a little outside the triangle.
+#[inline(always)]
+pub(crate) fn signed_weights(q: i32, b1: i32, b2: i32) -> (i32, i32) {
+    let (w1, w2) = weights(q, b1.saturating_abs(), b2.saturating_abs());
+    (if b1 < 0 { -w1 } else { w1 }, if b2 < 0 { -w2 } else { w2 })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn weights_match_the_quotient() {
+        let mut next = crate::testing::rng();
+        for _ in 0..200_000 {
+            let bits = 1 + next(29);
+            let q = 1 + next(1 << bits) as i32;
+            let b1 = next(q as u64 + 1) as i32;
+            let b2 = next((q - b1) as u64 + 1) as i32;
+            let (w1, w2) = weights(q, b1, b2);
+            for (w, b) in [(w1, b1), (w2, b2)] {
+                let exact = b as f64 / q as f64 * 65_536.0;
+                // 7 units for Q >= 2^15 (see `weights`); below, the
+                // truncation of the numerator costs up to one unit of Q.
+                let tol = if q >= 1 << 15 {
+                    7.0
+                } else {
+                    65_536.0 / q as f64 + 2.0
+                };
+                assert!(
+                    (w as f64 - exact).abs() <= tol,
+                    "q {q} b {b}: {w} vs {exact}"
+                );
+            }
+        }
+    }
+
+    /// Where `span_shift` allows a span, `shifted_weights` gives the bits
+    /// of `weights` at each of its pixels; and it allows the usual spans.
+
+    #[test]
+    fn shifted_weights_match_where_allowed() {
+        let mut next = crate::testing::rng();
+        let mut allowed = 0;
+        for n in 0..40_000 {
+            let len = 1 + next(64) as usize;
+            let bits = 1 + next(30);
+            let q = next(1 << bits) as i32 + if n % 5 == 0 { -2 } else { 1 };
+            let b1 = next(q.max(1) as u64 + 2) as i32 - 1;
+            let b2 = next((q.max(1) - b1.max(0)) as u64 + 2) as i32 - 1;
+            let g =
+                |next: &mut dyn FnMut(u64) -> u64| (next(1 << 16) as i32 - (1 << 15)) >> next(12);
+            let steps = [g(&mut next), g(&mut next), g(&mut next)];
+            let Some(sh) = span_shift([q, b1, b2], steps, len) else {
+                continue;
+            };
+            allowed += 1;
+            let [mut q, mut b1, mut b2] = [q, b1, b2];
+            for _ in 0..len {
+                assert_eq!(
+                    shifted_weights(q, b1, b2, sh),
+                    weights(q, b1, b2),
+                    "{q} {b1} {b2}"
+                );
+                q = q.wrapping_add(steps[0]);
+                b1 = b1.wrapping_add(steps[1]);
+                b2 = b2.wrapping_add(steps[2]);
+            }
+        }
+        assert!(allowed > 5_000, "{allowed} spans allowed");
+    }
+
+    /// The 32-bit form of ARMv6-M gives the bits of the `i64` formula,
+    /// extremes included.
+
+    #[test]
+    fn signed_weights_keep_the_sign() {
+        assert_eq!(
+            signed_weights(1 << 20, 1 << 18, 0),
+            weights(1 << 20, 1 << 18, 0)
+        );
+        let (p, _) = weights(1 << 20, 1 << 10, 0);
+        assert_eq!(signed_weights(1 << 20, -(1 << 10), 5).0, -p);
+    }
+}

@@ -1,0 +1,312 @@
+//! The span loop behind [`SpanInput`]: a span's start from the planes,
+//! then its pixels, exact (a weight per pixel) or quasi-perspective
+//! (exact samples at screen-aligned columns, linear steps between), in
+//! the general loop or in the opaque ones.
+
+use super::barycentric::{shifted_weights, span_shift};
+use super::*;
+
+/// `round(2^24 / l)` for segment lengths `l` of 1 to 16.
+const RECIPROCAL: [i64; 17] = {
+    let mut t = [0i64; 17];
+    let mut l = 1;
+    while l <= 16 {
+        t[l] = ((1i64 << 25) / l as i64 + 1) >> 1;
+        l += 1;
+    }
+    t
+};
+
+/// [`SpanInput::run_opaque`]'s weights: affine (`B1`, `B2` shifted), or
+/// exact from [`shifted_weights`] with the span's shift, or exact from
+/// [`weights`] (its clamps and normalisation per pixel).
+pub(crate) const AFFINE: u8 = 0;
+/// See [`AFFINE`].
+pub(crate) const SHIFTED: u8 = 1;
+/// See [`AFFINE`].
+pub(crate) const CLAMPED: u8 = 2;
+
+/// How the fragments of a span are tested and written.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Output {
+    pub mode: Perspective,
+    pub blend: Blend,
+    pub test: DepthTest,
+    pub write: bool,
+}
+
+impl Output {
+    /// Whether the spans take the opaque loops
+    /// ([`SpanInput::run_opaque`]): an opaque draw with the default depth
+    /// test and depth writes. Decided once per triangle and tile.
+    #[inline(always)]
+    pub(crate) fn opaque(&self) -> bool {
+        self.blend == Blend::Opaque && self.write && self.test == DepthTest::LessEqual
+    }
+}
+
+/// The [`SpanInput`] of span `sp` of triangle `t` set up as `p`, whose
+/// pixels are `color` and `depth` (the span's part of its tile rows).
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+pub(crate) fn span_input<'a, C, V: Varyings>(
+    p: &'a PerspectiveSetup<V>,
+    t: &Corners<'_>,
+    texture: Option<&'a Texture<'a>>,
+    out: Output,
+    color: &'a mut [C],
+    depth: &'a mut [u16],
+    sp: SpanPos,
+    opaque: bool,
+) -> SpanInput<'a, C, V> {
+    let SpanPos { j, x0, .. } = sp;
+    let [pq, p1, p2] = &p.planes;
+    SpanInput {
+        draw: p.draw,
+        x0,
+        y: j,
+        color,
+        depth,
+        texture,
+        setup: p,
+        z: (p.depth.start(t, x0, j)[0] as u32) << (16 - Z_FRAC),
+        gz: (p.depth.steps()[0] as u32) << (16 - Z_FRAC),
+        planes: if p.narrow() {
+            const M: i32 = Q_MAX as i32;
+            [
+                pq.at32(x0, j, 1, M),
+                p1.at32(x0, j, -M, M),
+                p2.at32(x0, j, -M, M),
+            ]
+        } else {
+            [
+                pq.at(x0, j, 1, Q_MAX),
+                p1.at(x0, j, -Q_MAX, Q_MAX),
+                p2.at(x0, j, -Q_MAX, Q_MAX),
+            ]
+        },
+        steps: [pq.step(), p1.step(), p2.step()],
+        mode: out.mode,
+        blend: out.blend,
+        test: out.test,
+        write: out.write,
+        opaque,
+    }
+}
+
+impl<C, V: Varyings> SpanInput<'_, C, V> {
+    /// For an exact-mode span: the shift that normalises `Q` to 16
+    /// significant bits in [`weights`], if it is the same at every pixel
+    /// and none of `weights`' clamps changes a value there; `None`
+    /// otherwise. That holds when, at both ends of the span, `Q` is in
+    /// `1..2^31` with the same number of bits and `0 <= B1, B2 <= Q`: the
+    /// planes are linear along the span (their wrapping steps are exact
+    /// while the values stay in `i32`), so what holds at its ends holds
+    /// between, and `B >> sh <= Q >> sh` follows from `B <= Q`. Checked in
+    /// `i64`, once per span.
+    #[inline(always)]
+    pub(crate) fn opaque_shift(&self) -> Option<u32> {
+        span_shift(self.planes, self.steps, self.color.len())
+    }
+
+    /// The span loop of an opaque draw with the default depth test
+    /// (`LessEqual`) and depth writes: [`run`](Self::run) with the test,
+    /// the write and the blend known, so nothing but the depth comparison
+    /// branches per pixel. `WEIGHTS` is [`AFFINE`], or for exact mode
+    /// [`SHIFTED`], the weights with the span's shift `sh`
+    /// ([`opaque_shift`](Self::opaque_shift): the bits of [`weights`],
+    /// without its clamps and normalisation), or [`CLAMPED`], [`weights`]
+    /// itself (spans too short for the test, or that fail it). A shader
+    /// that reads neither varyings nor colour runs with `AFFINE`.
+    #[inline(always)]
+    pub(crate) fn run_opaque<const WEIGHTS: u8>(
+        self,
+        ic: bool,
+        mut fragment: impl PixelFn<V, C>,
+        sh: u32,
+    ) -> u32 {
+        let (x0, p, gz) = (self.x0, self.setup, self.gz);
+        let [mut q, mut b1, mut b2] = self.planes;
+        let [gq, g1, g2] = self.steps;
+        let mut z = self.z;
+        let weighted = V::LEN > 0 || ic;
+        let mut n = 0;
+        for (k, (c, d)) in self.color.iter_mut().zip(self.depth.iter_mut()).enumerate() {
+            let zz = depth16(z);
+            if zz <= *d {
+                let (varyings, color) = if !weighted {
+                    (V::zeroed(), [0; 3])
+                } else if WEIGHTS == AFFINE {
+                    p.values((b1 >> 12, b2 >> 12), ic)
+                } else if WEIGHTS == SHIFTED {
+                    p.values_weighted(shifted_weights(q, b1, b2, sh), ic)
+                } else {
+                    p.values_weighted(weights(q, b1, b2), ic)
+                };
+                let it = Interpolated {
+                    x: x0 + k as i32,
+                    depth: zz,
+                    varyings,
+                    color,
+                };
+                if let Some(out) = fragment.pixel(&it) {
+                    *c = out;
+                    *d = zz;
+                    n += 1;
+                }
+            }
+            z = z.wrapping_add(gz);
+            q = q.wrapping_add(gq);
+            b1 = b1.wrapping_add(g1);
+            b2 = b2.wrapping_add(g2);
+        }
+        n
+    }
+
+    /// The span loop: for each pixel that passes the depth test, the
+    /// values there (weights and varyings only if there are varyings or
+    /// `ic`, the colour only if `ic`), then `put` with the pixel's colour
+    /// and depth, which returns whether it wrote. A fragment that fails
+    /// the test costs no division. Returns the number written.
+    #[inline(always)]
+    pub(crate) fn run(self, ic: bool, mut put: impl PutPixel<V, C>) -> u32 {
+        let SpanInput {
+            x0,
+            color,
+            depth,
+            setup: p,
+            mut z,
+            gz,
+            planes: [mut q, mut b1, mut b2],
+            steps: [gq, g1, g2],
+            mode,
+            test,
+            ..
+        } = self;
+        let mut n = 0;
+        // A shader that reads neither varyings nor colour needs no
+        // weights: every pixel is then a depth test and the shader.
+        let weighted = V::LEN > 0 || ic;
+        let seg = if weighted { mode.segment() as i32 } else { 0 };
+        if seg <= 1 {
+            // Exact or affine: the weights at every pixel (affine: `Q` is
+            // constant, so they are a shift of `B1`, `B2`).
+            let affine = seg == 0;
+            for (k, (c, d)) in color.iter_mut().zip(depth.iter_mut()).enumerate() {
+                let zz = depth16(z);
+                if test.passes(zz, *d) {
+                    let (varyings, color) = if !weighted {
+                        (V::zeroed(), [0; 3])
+                    } else if affine {
+                        p.values((b1 >> 12, b2 >> 12), ic)
+                    } else {
+                        p.values_weighted(weights(q, b1, b2), ic)
+                    };
+                    let it = Interpolated {
+                        x: x0 + k as i32,
+                        depth: zz,
+                        varyings,
+                        color,
+                    };
+                    n += put.put(&it, c, d) as u32;
+                }
+                z = z.wrapping_add(gz);
+                q = q.wrapping_add(gq);
+                b1 = b1.wrapping_add(g1);
+                b2 = b2.wrapping_add(g2);
+            }
+            return n;
+        }
+        // Quasi-perspective: exact at the columns x = 0 (mod seg), at the
+        // span's first and at its last pixel; linear between.
+        let len = color.len() as i32;
+        let (mut var, mut col) = p.values(signed_weights(q, b1, b2), ic);
+        let mut k = 0;
+        while k < len {
+            // Pixels to the next sample: the next column that is a
+            // multiple of `seg` (a power of two) if the span reaches it or
+            // ends just before it (a tile cut there leaves the samples
+            // where they were), or else the last pixel.
+            let next = seg - ((x0 + k) & (seg - 1));
+            let l = if next <= len - k { next } else { len - 1 - k };
+            let (mut dv, mut dc) = (V::zeroed(), [0i32; 3]);
+            let (mut nvar, mut ncol) = (var, col);
+            if l > 0 {
+                // One pixel beyond the span's end, the weights may be a
+                // little negative.
+                let w = signed_weights(
+                    q.wrapping_add(gq.wrapping_mul(l)),
+                    b1.wrapping_add(g1.wrapping_mul(l)),
+                    b2.wrapping_add(g2.wrapping_mul(l)),
+                );
+                (nvar, ncol) = p.values(w, ic);
+                let r = RECIPROCAL[l as usize];
+                for (s, (a, b)) in dv
+                    .as_mut_slice()
+                    .iter_mut()
+                    .zip(var.as_slice().iter().zip(nvar.as_slice()))
+                {
+                    *s = I16F16::from_bits(segment_step(a.to_bits(), b.to_bits(), r));
+                }
+                if ic {
+                    for ch in 0..3 {
+                        dc[ch] = segment_step(col[ch], ncol[ch], r);
+                    }
+                }
+            }
+            // Pixels k..k + l step from the exact values at k; the last
+            // pixel of the span (l = 0) is drawn from exact values too.
+            let stop = if l == 0 { k + 1 } else { k + l };
+            for m in k as usize..stop as usize {
+                let zz = depth16(z);
+                if let (Some(c), Some(d)) = (color.get_mut(m), depth.get_mut(m)) {
+                    if test.passes(zz, *d) {
+                        let it = Interpolated {
+                            x: x0 + m as i32,
+                            depth: zz,
+                            varyings: var,
+                            color: col,
+                        };
+                        n += put.put(&it, c, d) as u32;
+                    }
+                }
+                z = z.wrapping_add(gz);
+                for (a, s) in var.as_mut_slice().iter_mut().zip(dv.as_slice()) {
+                    *a = I16F16::from_bits(a.to_bits().wrapping_add(s.to_bits()));
+                }
+                for ch in 0..3 {
+                    col[ch] = col[ch].wrapping_add(dc[ch]);
+                }
+            }
+            let li = stop - k;
+            q = q.wrapping_add(gq.wrapping_mul(li));
+            b1 = b1.wrapping_add(g1.wrapping_mul(li));
+            b2 = b2.wrapping_add(g2.wrapping_mul(li));
+            (var, col) = (nvar, ncol);
+            k = stop;
+        }
+        n
+    }
+}
+
+/// The step per pixel from `from` to `to` over a segment whose length's
+/// reciprocal is `r` (2^24 / l), rounded: the differences are below 2^32,
+/// times 2^24, so nothing overflows; the result wraps to `i32` like the
+/// values it steps.
+#[inline(always)]
+fn segment_step(from: i32, to: i32, r: i64) -> i32 {
+    (((to as i64 - from as i64) * r + (1 << 23)) >> 24) as i32
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn reciprocals_round() {
+        for (l, &r) in RECIPROCAL.iter().enumerate().skip(1) {
+            let exact = (1u64 << 24) as f64 / l as f64;
+            assert!((r as f64 - exact).abs() <= 0.5);
+        }
+    }
+}
