@@ -342,18 +342,11 @@ pub const CHECKER_TEXELS: [u16; 32 * 32] = {
     t
 };
 
-/// [`checker::checker_texel`] as a `const fn`: embedded-graphics' `Rgb888`
-/// to `Rgb565` channel conversion written out (`value · (max << 24) / 255`,
-/// rounded).
+/// [`checker::checker_texel`] at compile time: [`checker::checker_rgb`]
+/// with embedded-graphics' `Rgb888` to `Rgb565` channel conversion written
+/// out (`value · (max << 24) / 255`, rounded).
 const fn checker_texel_const(x: u32, y: u32, size: u32) -> u16 {
-    let shade = (x + y) * 96 / (2 * size);
-    let (r, g, b) = if x == 0 || y == 0 {
-        (250, 240, 200)
-    } else if ((x / 8) + (y / 8)).is_multiple_of(2) {
-        (150 + shade, 70 + shade / 2, 40)
-    } else {
-        (30, 90 + shade / 2, 140 + shade)
-    };
+    let [r, g, b] = checker::checker_rgb(x, y, size);
     ((channel(r, 31) << 11) | (channel(g, 63) << 5) | channel(b, 31)) as u16
 }
 
