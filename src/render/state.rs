@@ -23,10 +23,10 @@ pub(super) struct FrameState<'a> {
     pub(super) make_setup: SetupFn,
     /// The camera's position, world space.
     pub(super) eye: crate::math::Vec3,
-    /// Cull draws outside the frustum ([`Config::frustum_cull`]).
+    /// Cull draws outside the frustum ([`Config::frustum_cull`](super::Config::frustum_cull)).
     pub(super) cull_draws: bool,
     /// The order draws are visited in, when sorted
-    /// ([`Config::sort_draws`]); `None` for submission order.
+    /// ([`Config::sort_draws`](super::Config::sort_draws)); `None` for submission order.
     pub(super) order: Option<DrawOrder>,
     pub(super) vertices: &'a [ScreenVertex],
     pub(super) view_proj: crate::math::Mat4,
@@ -35,7 +35,7 @@ pub(super) struct FrameState<'a> {
     pub(super) frame: PixelRect,
 }
 
-/// The order draws are visited in when sorted ([`Config::sort_draws`]),
+/// The order draws are visited in when sorted ([`Config::sort_draws`](super::Config::sort_draws)),
 /// and the first vertex of each draw (by draw index) in the vertex
 /// buffer: 6 bytes per draw.
 pub(super) struct DrawOrder {

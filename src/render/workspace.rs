@@ -55,7 +55,7 @@ pub struct Workspace<const VERTICES: usize, const BIN_ENTRIES: usize, const TILE
     /// Per tile of the current pass: its first chunk.
     pub(super) heads: [u16; TILES],
     /// Per tile of the current pass: the slot its next entry goes to, or
-    /// [`EMPTY`].
+    /// `u16::MAX` (`bin::EMPTY`: none).
     pub(super) tails: [u16; TILES],
 }
 

@@ -43,7 +43,7 @@ impl Axis {
         }
     }
 
-    /// The texel of [`Filter::Nearest`]: `floor(u · size)` mapped by the
+    /// The texel of [`Filter::Nearest`](super::Filter::Nearest): `floor(u · size)` mapped by the
     /// wrap mode.
     #[inline(always)]
     pub(super) fn nearest(self, raw: i32) -> u32 {
@@ -85,7 +85,7 @@ impl Axis {
         }
     }
 
-    /// The two texels of [`Filter::Bilinear`] and the weight of the second:
+    /// The two texels of [`Filter::Bilinear`](super::Filter::Bilinear) and the weight of the second:
     /// `(i0, i1, fx)` with `s = u · size - ½`, `i0 = floor(s)` and
     /// `i1 = i0 + 1` mapped by the wrap mode, and `fx` the fraction of `s`
     /// in [`WEIGHT_BITS`] bits, truncated.

@@ -19,7 +19,7 @@ pub(super) fn blend_channel(c00: u8, c10: u8, c01: u8, c11: u8, fx: u32, fy: u32
 }
 
 impl Texture<'_> {
-    /// [`sample`](Self::sample) with [`Filter::Bilinear`].
+    /// [`sample`](Self::sample) with [`Filter::Bilinear`](super::Filter::Bilinear).
     #[inline(never)]
     pub(super) fn bilinear(&self, u: i32, v: i32) -> [u8; 3] {
         let (x0, x1, fx) = self.u.taps(u);
