@@ -57,60 +57,30 @@ struct Case {
     blend: u8,
 }
 
-fn case() -> impl Strategy<Value = Case> {
-    let tris = 1usize..5;
-    tris.prop_flat_map(|n| {
-        let v = n * 3;
-        (
-            prop::collection::vec(
-                (-1.5f32..1.5, -1.2f32..1.2, -6.0f32..-0.6).prop_map(|(x, y, z)| [x, y, z]),
-                v,
-            ),
-            prop::collection::vec((-2.0f32..3.0, -2.0f32..3.0).prop_map(|(u, v)| [u, v]), v),
-            prop::collection::vec(
-                (-1.2f32..1.2, -1.2f32..1.2, -1.2f32..1.2).prop_map(|(x, y, z)| [x, y, z]),
-                v,
-            ),
-            prop::collection::vec(any::<[u8; 3]>(), v),
-            [1u32..6, 1u32..6],
-            any::<bool>(),
-            0u8..4,
-            any::<bool>(),
-            [0u8..3, 0u8..3],
-            prop::collection::vec(any::<u16>(), 1024),
-            0u8..8,
-            0u8..3,
-        )
-            .prop_map(
-                |(
-                    positions,
-                    uvs,
-                    normals,
-                    colors,
-                    side,
-                    pow2,
-                    format,
-                    bilinear,
-                    wrap,
-                    texels,
-                    mode,
-                    blend,
-                )| Case {
-                    positions,
-                    uvs,
-                    normals,
-                    colors,
-                    side,
-                    pow2,
-                    format,
-                    bilinear,
-                    wrap,
-                    texels,
-                    mode,
-                    blend,
-                },
-            )
-    })
+prop_compose! {
+    /// One to four triangles with their attributes, a texture and the modes.
+    fn case()(n in 1usize..5)(
+        positions in prop::collection::vec(
+            (-1.5f32..1.5, -1.2f32..1.2, -6.0f32..-0.6).prop_map(|(x, y, z)| [x, y, z]),
+            n * 3,
+        ),
+        uvs in prop::collection::vec((-2.0f32..3.0, -2.0f32..3.0).prop_map(|(u, v)| [u, v]), n * 3),
+        normals in prop::collection::vec(
+            (-1.2f32..1.2, -1.2f32..1.2, -1.2f32..1.2).prop_map(|(x, y, z)| [x, y, z]),
+            n * 3,
+        ),
+        colors in prop::collection::vec(any::<[u8; 3]>(), n * 3),
+        side in [1u32..6, 1u32..6],
+        pow2 in any::<bool>(),
+        format in 0u8..4,
+        bilinear in any::<bool>(),
+        wrap in [0u8..3, 0u8..3],
+        texels in prop::collection::vec(any::<u16>(), 1024),
+        mode in 0u8..8,
+        blend in 0u8..3,
+    ) -> Case {
+        Case { positions, uvs, normals, colors, side, pow2, format, bilinear, wrap, texels, mode, blend }
+    }
 }
 
 fn fx(v: f32) -> I16F16 {
