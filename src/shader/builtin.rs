@@ -51,14 +51,7 @@ impl<C: FromTexel> FragmentShader<C> for Textured {
     where
         C: Copy + From<Rgb888> + Into<Rgb888>,
     {
-        let Some(texture) = span.texture() else {
-            return 0;
-        };
-        match texture.sampler() {
-            Sampler::NearestRgb565(t) => span.shade_with(false, Unlit(Nearest565(t))),
-            Sampler::BilinearRgb565(t) => span.shade_with(false, Unlit(Bilinear565(t))),
-            Sampler::General(t) => span.shade_unspecialised(false, Unlit(t)),
-        }
+        textured_span::<C, false>(span)
     }
     /// [`shade_span`](FragmentShader::shade_span) with the texture's kind
     /// decided once per triangle and tile.
@@ -67,16 +60,7 @@ impl<C: FromTexel> FragmentShader<C> for Textured {
     where
         C: Copy + From<Rgb888> + Into<Rgb888>,
     {
-        let Some(texture) = spans.texture() else {
-            return 0;
-        };
-        match texture.sampler() {
-            Sampler::NearestRgb565(t) => spans.each(|s| s.shade_with(false, Unlit(Nearest565(t)))),
-            Sampler::BilinearRgb565(t) => {
-                spans.each(|s| s.shade_with(false, Unlit(Bilinear565(t))))
-            }
-            Sampler::General(t) => spans.each(|s| s.shade_unspecialised(false, Unlit(t))),
-        }
+        textured_spans::<C, false>(spans)
     }
 }
 
@@ -126,14 +110,7 @@ impl<C: FromTexel> FragmentShader<C> for TexturedLit {
     where
         C: Copy + From<Rgb888> + Into<Rgb888>,
     {
-        let Some(texture) = span.texture() else {
-            return 0;
-        };
-        match texture.sampler() {
-            Sampler::NearestRgb565(t) => span.shade_with(true, Lit(Nearest565(t))),
-            Sampler::BilinearRgb565(t) => span.shade_with(true, Lit(Bilinear565(t))),
-            Sampler::General(t) => span.shade_unspecialised(true, Lit(t)),
-        }
+        textured_span::<C, true>(span)
     }
     /// [`shade_span`](FragmentShader::shade_span) with the texture's kind
     /// decided once per triangle and tile.
@@ -142,14 +119,7 @@ impl<C: FromTexel> FragmentShader<C> for TexturedLit {
     where
         C: Copy + From<Rgb888> + Into<Rgb888>,
     {
-        let Some(texture) = spans.texture() else {
-            return 0;
-        };
-        match texture.sampler() {
-            Sampler::NearestRgb565(t) => spans.each(|s| s.shade_with(true, Lit(Nearest565(t)))),
-            Sampler::BilinearRgb565(t) => spans.each(|s| s.shade_with(true, Lit(Bilinear565(t)))),
-            Sampler::General(t) => spans.each(|s| s.shade_unspecialised(true, Lit(t))),
-        }
+        textured_spans::<C, true>(spans)
     }
 }
 
@@ -350,25 +320,59 @@ impl Texels for &Texture<'_> {
     }
 }
 
-/// [`Textured`]'s pixel.
-struct Unlit<T>(T);
+/// The pixel of [`Textured`] (`LIT` false: the texel, in the target's
+/// format where it matches) and of [`TexturedLit`] (`LIT`: the texel
+/// modulated by the interpolated colour).
+struct TexelPixel<T, const LIT: bool>(T);
 
-impl<C: FromTexel, T: Texels> PixelFn<[I16F16; 2], C> for Unlit<T> {
+impl<C: FromTexel, T: Texels, const LIT: bool> PixelFn<[I16F16; 2], C> for TexelPixel<T, LIT> {
     #[inline(always)]
     fn pixel(&mut self, p: &Interpolated<[I16F16; 2]>) -> Option<C> {
         let [u, v] = p.varyings;
-        Some(self.0.target(u.to_bits(), v.to_bits()))
+        let (u, v) = (u.to_bits(), v.to_bits());
+        Some(if LIT {
+            rgb(modulate(self.0.rgb(u, v), p.rgb()))
+        } else {
+            self.0.target(u, v)
+        })
     }
 }
 
-/// [`TexturedLit`]'s pixel.
-struct Lit<T>(T);
+/// [`Textured`]'s and [`TexturedLit`]'s span: one loop per kind of texture
+/// ([`Texture::sampler`]), the colour interpolated only when `LIT`.
+#[inline(always)]
+fn textured_span<C, const LIT: bool>(span: SpanInput<'_, C, [I16F16; 2]>) -> u32
+where
+    C: FromTexel + Copy + Into<Rgb888>,
+{
+    let Some(texture) = span.texture() else {
+        return 0;
+    };
+    match texture.sampler() {
+        Sampler::NearestRgb565(t) => span.shade_with(LIT, TexelPixel::<_, LIT>(Nearest565(t))),
+        Sampler::BilinearRgb565(t) => span.shade_with(LIT, TexelPixel::<_, LIT>(Bilinear565(t))),
+        Sampler::General(t) => span.shade_unspecialised(LIT, TexelPixel::<_, LIT>(t)),
+    }
+}
 
-impl<C: From<Rgb888>, T: Texels> PixelFn<[I16F16; 2], C> for Lit<T> {
-    #[inline(always)]
-    fn pixel(&mut self, p: &Interpolated<[I16F16; 2]>) -> Option<C> {
-        let [u, v] = p.varyings;
-        Some(rgb(modulate(self.0.rgb(u.to_bits(), v.to_bits()), p.rgb())))
+/// [`textured_span`] for a triangle's spans in a tile, the texture's kind
+/// decided once for all of them.
+#[inline(always)]
+fn textured_spans<C, const LIT: bool>(spans: TriangleSpans<'_, C, [I16F16; 2]>) -> u32
+where
+    C: FromTexel + Copy + Into<Rgb888>,
+{
+    let Some(texture) = spans.texture() else {
+        return 0;
+    };
+    match texture.sampler() {
+        Sampler::NearestRgb565(t) => {
+            spans.each(|s| s.shade_with(LIT, TexelPixel::<_, LIT>(Nearest565(t))))
+        }
+        Sampler::BilinearRgb565(t) => {
+            spans.each(|s| s.shade_with(LIT, TexelPixel::<_, LIT>(Bilinear565(t))))
+        }
+        Sampler::General(t) => spans.each(|s| s.shade_unspecialised(LIT, TexelPixel::<_, LIT>(t))),
     }
 }
 
