@@ -26,6 +26,7 @@
 //! loop that walks a span's pixels with them ([`SpanInput`]'s methods and
 //! the [`Output`] that says how fragments are tested and written).
 
+use super::setup::Small;
 use super::{depth16, Basis, Corners, DepthTest, SpanPos, TriangleSetup, GRADIENT_LIMIT, Z_FRAC};
 use crate::raster::SUBPIXEL_BITS;
 use crate::scene::Blend;
@@ -67,9 +68,16 @@ struct WidePlane {
 }
 
 impl WidePlane {
+    /// The plane through `values` at the vertices of `f` (in `0..=2^28`).
+    /// With `small`, on a 32-bit target, a small triangle's gradients in
+    /// 32-bit divisions ([`perspective_gradients`]; the same values).
     #[inline(always)]
-    fn new(f: &Basis, values: [i64; 3]) -> Self {
-        let (gx, gy) = f.gradients(values, 0);
+    fn new(f: &Basis, values: [i64; 3], small: bool) -> Self {
+        let (gx, gy) = if small {
+            perspective_gradients(f, values)
+        } else {
+            f.gradients(values, 0)
+        };
         let (gx, gy) = (
             gx.clamp(-GRADIENT_LIMIT, GRADIENT_LIMIT),
             gy.clamp(-GRADIENT_LIMIT, GRADIENT_LIMIT),
@@ -166,14 +174,18 @@ impl<V: Varyings> PerspectiveSetup<V> {
         let [v0, v1, v2] = t.corners.0;
         let (c0, c1, c2) = (v0.color, v1.color, v2.color);
         let d = |a: [u8; 3], k: usize| a[k] as i32 - c0[k] as i32;
+        // The 32-bit gradients of small triangles only for shaders with
+        // varyings: with them, `Gouraud`'s long-span loops compiled worse
+        // on the Cortex-M3 (BENCHMARKS.md).
+        let small = V::LEN > 0;
         #[allow(unused_mut)]
         let mut s = Self {
             draw: t.draw,
             depth: TriangleSetup::with_basis(&f, &t.corners, false),
             planes: [
-                WidePlane::new(&f, q),
-                WidePlane::new(&f, [0, q[1], 0]),
-                WidePlane::new(&f, [0, 0, q[2]]),
+                WidePlane::new(&f, q, small),
+                WidePlane::new(&f, [0, q[1], 0], small),
+                WidePlane::new(&f, [0, 0, q[2]], small),
             ],
             #[cfg(not(target_pointer_width = "64"))]
             narrow: false,
@@ -282,6 +294,61 @@ impl<V: Varyings> PerspectiveSetup<V> {
         }
         c
     }
+}
+
+/// `f.gradients(values, 0)` for a perspective plane (`Q`, `B1` or `B2`:
+/// values in `0..=2^28`). On a 32-bit target a [`Small`] triangle's
+/// gradients take two 32-bit divisions each ([`small_gradient`]) where
+/// `Basis::gradients` takes four (`Small::div_round_wide`), when they are
+/// below 2^31 in magnitude; the same quotients. The edge vectors are then
+/// below 2^10 and the differences of the values at most 2^28, so each
+/// numerator is a difference of two 32x32 to 64-bit products.
+#[inline(always)]
+fn perspective_gradients(f: &Basis, values: [i64; 3]) -> (i64, i64) {
+    #[cfg(not(target_pointer_width = "64"))]
+    if let Some(small) = &f.small {
+        debug_assert!(values.iter().all(|v| (0..=Q_ONE).contains(v)));
+        let [x1, y1, x2, y2] = [f.x1 as i32, f.y1 as i32, f.x2 as i32, f.y2 as i32];
+        let (d1, d2) = (
+            (values[1] - values[0]) as i32,
+            (values[2] - values[0]) as i32,
+        );
+        if let (Some(gx), Some(gy)) = (
+            small_gradient(small, mul(d1, y2) - mul(d2, y1)),
+            small_gradient(small, mul(d2, x1) - mul(d1, x2)),
+        ) {
+            return (gx as i64, gy as i64);
+        }
+    }
+    f.gradients(values, 0)
+}
+
+/// `a b` in `i64`: one 32x32 to 64-bit product.
+#[cfg_attr(target_pointer_width = "64", allow(dead_code))]
+#[inline(always)]
+fn mul(a: i32, b: i32) -> i64 {
+    a as i64 * b as i64
+}
+
+/// `n 2^4 / area` rounded to nearest, ties away from zero (the quotient of
+/// `Small::div_round_wide` and of `Basis::gradients`), for
+/// `|n| <= 2 (2^28) (2^10 - 1) = 2^39 - 2^29`, if its magnitude is below
+/// 2^31; `None` otherwise. Then `a = |n| 2^4 + half < 2^43`, so `a >> 11`
+/// fits `u32`: one 32-bit division for it, and one for its remainder
+/// (below `area < 2^21`) shifted by 11 with `a`'s low 11 bits.
+#[cfg_attr(target_pointer_width = "64", allow(dead_code))]
+#[inline(always)]
+fn small_gradient(small: &Small, n: i64) -> Option<i32> {
+    let d = small.area.get();
+    let a = (n.unsigned_abs() << SUBPIXEL_BITS) + small.half as u64;
+    let hi = (a >> 11) as u32;
+    let q1 = hi / d;
+    if q1 >= 1 << 20 {
+        return None;
+    }
+    let lo = ((hi - q1 * d) << 11) | (a as u32 & 0x7FF);
+    let q = ((q1 << 11) | (lo / d)) as i32;
+    Some(if n < 0 { -q } else { q })
 }
 
 /// `(wmin << 28) / w` for `1 <= wmin <= w < 2^31`: a vertex's `1 / w`
@@ -424,9 +491,9 @@ mod tests {
             let mut q = || 1 + next(Q_ONE as u64) as i64;
             let q = [q(), q(), q()];
             let planes = [
-                WidePlane::new(&f, q),
-                WidePlane::new(&f, [0, q[1], 0]),
-                WidePlane::new(&f, [0, 0, q[2]]),
+                WidePlane::new(&f, q, false),
+                WidePlane::new(&f, [0, q[1], 0], false),
+                WidePlane::new(&f, [0, 0, q[2]], false),
             ];
             if !planes.iter().all(WidePlane::exact) {
                 continue;
@@ -441,6 +508,70 @@ mod tests {
             });
         }
         assert!(checked > 100_000, "{checked} span starts");
+    }
+
+    /// `small_gradient` gives `Basis::gradients`' quotients (those of
+    /// `Small::div_round_wide`) for every small triangle's perspective
+    /// planes whose gradients are below 2^31, slivers and far vertices
+    /// included, and declines the others.
+
+    #[test]
+    fn small_gradients_match_the_wide_ones() {
+        use crate::raster::SubPoint;
+        let mut next = crate::testing::rng();
+        let mut checked = 0u32;
+        for n in 0..200_000 {
+            let edge = match n % 3 {
+                0 => 1 << 10,
+                1 => 64,
+                _ => 8,
+            };
+            let o = SubPoint::new(
+                next(1 << 19) as i32 - (1 << 18),
+                next(1 << 19) as i32 - (1 << 18),
+            );
+            let mut p = || {
+                SubPoint::new(
+                    o.x + next(2 * edge) as i32 - edge as i32,
+                    o.y + next(2 * edge) as i32 - edge as i32,
+                )
+            };
+            let v = [o, p(), p()];
+            if crate::raster::signed_area2(&v) == 0 {
+                continue;
+            }
+            let f = Basis::with_small(&v, true);
+            let Some(small) = &f.small else {
+                continue;
+            };
+            let q = match next(4) {
+                0 => [Q_ONE; 3],
+                1 => [Q_ONE, next(Q_ONE as u64 + 1) as i64, Q_ONE],
+                _ => {
+                    let mut q = || next(Q_ONE as u64 + 1) as i64;
+                    [q(), q(), q()]
+                }
+            };
+            let [x1, y1, x2, y2] = [f.x1 as i32, f.y1 as i32, f.x2 as i32, f.y2 as i32];
+            for values in [q, [0, q[1], 0], [0, 0, q[2]]] {
+                let (gx, gy) = f.gradients(values, 0);
+                let (d1, d2) = (
+                    (values[1] - values[0]) as i32,
+                    (values[2] - values[0]) as i32,
+                );
+                let n = [mul(d1, y2) - mul(d2, y1), mul(d2, x1) - mul(d1, x2)];
+                for (g, n) in [(gx, n[0]), (gy, n[1])] {
+                    match small_gradient(small, n) {
+                        Some(s) => {
+                            assert_eq!(s as i64, g, "{v:?} {values:?}");
+                            checked += 1;
+                        }
+                        None => assert!(g.abs() >= 1 << 31, "{v:?} {values:?}"),
+                    }
+                }
+            }
+        }
+        assert!(checked > 500_000, "{checked} gradients");
     }
 
     /// The 32-bit long division of `scale_q` gives the 64-bit quotient.
