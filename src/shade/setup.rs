@@ -126,6 +126,36 @@ impl Small {
 }
 
 impl Small {
+    /// [`Small::div_round`] in `u32` arithmetic, for `|n| < 2^31` and
+    /// `10 < shift < 30`: the same digits, exact while `|n| / area <
+    /// 2^(30 - shift)` (the quotient is then below 2^30); `fits` is
+    /// cleared otherwise, and the result is then meaningless. On a
+    /// Cortex-M3 this spares the 64-bit shifts, additions and negation of
+    /// `div_round`'s quotient.
+    #[inline(always)]
+    pub(super) fn div_round32(&self, n: i32, shift: u32, fits: &mut bool) -> i32 {
+        let d = self.area;
+        let a = n.unsigned_abs();
+        let mut q = a / d;
+        let mut r = a % d;
+        *fits &= q < 1 << (30 - shift);
+        let mut left = shift;
+        while left > 10 {
+            let part = r << 10;
+            q = (q << 10) | (part / d);
+            r = part % d;
+            left -= 10;
+        }
+        let q = (q << left).wrapping_add(((r << left) + self.half) / d) as i32;
+        if n < 0 {
+            q.wrapping_neg()
+        } else {
+            q
+        }
+    }
+}
+
+impl Small {
     /// `n / area` rounded to nearest, ties away from zero (as
     /// [`Basis::div_round`]), for `|n| < 2^43` and `area < 2^21`: the
     /// perspective planes' numerators, whose values reach 2^28. Long
@@ -348,7 +378,63 @@ impl TriangleSetup {
     /// only computed for `gouraud` (flat shading needs only depth).
     #[inline(always)]
     pub(crate) fn new(t: &Corners<'_>, gouraud: bool) -> Self {
-        Self::with_basis(&Basis::new(&t.points()), t, gouraud)
+        let f = &Basis::new(&t.points());
+        match Self::small(f, t, gouraud) {
+            Some(s) => s,
+            None => Self::with_basis(f, t, gouraud),
+        }
+    }
+
+    /// [`TriangleSetup::with_basis`] of a [`Small`] triangle (on 32-bit
+    /// targets) in `i32` arithmetic, when every gradient is below 2^30 in
+    /// magnitude ([`Small::div_round32`]): the same planes, with no 64-bit
+    /// quotient, constant or range test; `None` otherwise.
+    #[inline(always)]
+    pub(super) fn small(f: &Basis, t: &Corners<'_>, gouraud: bool) -> Option<Self> {
+        let small = f.small.as_ref()?;
+        let mut fits = true;
+        let z = Self::plane_small(f, small, t, 0, &mut fits);
+        let planes = if gouraud {
+            [
+                z,
+                Self::plane_small(f, small, t, 1, &mut fits),
+                Self::plane_small(f, small, t, 2, &mut fits),
+                Self::plane_small(f, small, t, 3, &mut fits),
+            ]
+        } else {
+            [z, Plane::default(), Plane::default(), Plane::default()]
+        };
+        // Gradients below 2^30 are far inside the clamp: never wide.
+        fits.then_some(Self {
+            planes,
+            wide: false,
+        })
+    }
+
+    /// [`TriangleSetup::plane`] of a [`Small`] triangle in `i32`: its
+    /// values' differences are below 2^16 and its edge vectors below
+    /// 2^10, so the numerators are below 2^27 (as in
+    /// [`Basis::gradients`]); with gradients below 2^30 and the offsets of
+    /// the first pixel centre below 2^19 + 8, the constant's products
+    /// need no wrapping (`i32` by `i32`), and its wrapped `i32` is
+    /// `constant_wrapping`'s.
+    #[inline(always)]
+    fn plane_small(f: &Basis, small: &Small, t: &Corners<'_>, a: usize, fits: &mut bool) -> Plane {
+        let (values, frac) = t.values(a);
+        // Depths and colour channels: 16 and 8 bits.
+        let v = [values[0] as i32, values[1] as i32, values[2] as i32];
+        let (d1, d2) = (v[1] - v[0], v[2] - v[0]);
+        let [x1, y1, x2, y2] = [f.x1 as i32, f.y1 as i32, f.x2 as i32, f.y2 as i32];
+        let shift = frac + SUBPIXEL_BITS;
+        let gx = small.div_round32(d1 * y2 - d2 * y1, shift, fits);
+        let gy = small.div_round32(d2 * x1 - d1 * x2, shift, fits);
+        let base = (v[0] << frac) + (1 << (frac - 1));
+        let t = gx as i64 * (f.ox as i32) as i64 + gy as i64 * (f.oy as i32) as i64;
+        Plane {
+            gx,
+            gy,
+            k: base.wrapping_add((t >> SUBPIXEL_BITS) as i32),
+        }
     }
 
     /// [`TriangleSetup::new`] on the triangle's [`Basis`] `f`, which the
