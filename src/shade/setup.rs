@@ -86,6 +86,15 @@ pub(super) const SMALL_EDGE: i64 = 1 << 10;
 /// Whether the target sets small triangles up in 32-bit divisions.
 pub(super) const SMALL_SETUP: bool = cfg!(not(target_pointer_width = "64"));
 
+/// What the `i32` set-up of a [`Small`] triangle shares
+/// ([`TriangleSetup::small`]): [`Basis`]'s edge vectors `x1, y1, x2, y2`
+/// and offsets `ox, oy`, in `i32`, and the divisor.
+struct SmallBasis {
+    e: [i32; 4],
+    o: [i32; 2],
+    small: Small,
+}
+
 /// The divisor of a small triangle's gradients: twice its absolute area,
 /// below `2 * SMALL_EDGE^2 = 2^21`.
 #[derive(Clone, Copy, Debug)]
@@ -378,28 +387,51 @@ impl TriangleSetup {
     /// only computed for `gouraud` (flat shading needs only depth).
     #[inline(always)]
     pub(crate) fn new(t: &Corners<'_>, gouraud: bool) -> Self {
-        let f = &Basis::new(&t.points());
-        match Self::small(f, t, gouraud) {
-            Some(s) => s,
-            None => Self::with_basis(f, t, gouraud),
+        let v = &t.points();
+        if SMALL_SETUP {
+            if let Some(s) = Self::small(v, t, gouraud) {
+                return s;
+            }
         }
+        Self::with_basis(&Basis::new(v), t, gouraud)
     }
 
-    /// [`TriangleSetup::with_basis`] of a [`Small`] triangle (on 32-bit
-    /// targets) in `i32` arithmetic, when every gradient is below 2^30 in
-    /// magnitude ([`Small::div_round32`]): the same planes, with no 64-bit
-    /// quotient, constant or range test; `None` otherwise.
+    /// The set-up of a [`Small`] triangle `v` (on 32-bit targets) all in
+    /// `i32` arithmetic, when every gradient is below 2^30 in magnitude
+    /// ([`Small::div_round32`]): the planes [`TriangleSetup::with_basis`]
+    /// gives on [`Basis::new`], without building the basis's 64-bit
+    /// values or its 64-bit quotients, constants and range test; `None`
+    /// for any other triangle.
     #[inline(always)]
-    pub(super) fn small(f: &Basis, t: &Corners<'_>, gouraud: bool) -> Option<Self> {
-        let small = f.small.as_ref()?;
+    pub(super) fn small(v: &[SubPoint; 3], t: &Corners<'_>, gouraud: bool) -> Option<Self> {
+        // Within the guard band the edge vectors fit i32.
+        let (x1, y1) = (v[1].x - v[0].x, v[1].y - v[0].y);
+        let (x2, y2) = (v[2].x - v[0].x, v[2].y - v[0].y);
+        let e = SMALL_EDGE as i32;
+        if !(x1.abs() < e && y1.abs() < e && x2.abs() < e && y2.abs() < e) {
+            return None;
+        }
+        // Below 2^21 (`Basis`'s twice the signed area).
+        let area2 = x1 * y2 - x2 * y1;
+        let area = NonZeroU32::new(area2.unsigned_abs())?;
+        // As in `Basis`: the edge vectors negated for a positive divisor.
+        let n = |c: i32| if area2 < 0 { -c } else { c };
+        let f = &SmallBasis {
+            e: [n(x1), n(y1), n(x2), n(y2)],
+            o: [HALF_PIXEL - v[0].x, HALF_PIXEL - v[0].y],
+            small: Small {
+                area,
+                half: area.get() / 2,
+            },
+        };
         let mut fits = true;
-        let z = Self::plane_small(f, small, t, 0, &mut fits);
+        let z = Self::plane_small(f, t, 0, &mut fits);
         let planes = if gouraud {
             [
                 z,
-                Self::plane_small(f, small, t, 1, &mut fits),
-                Self::plane_small(f, small, t, 2, &mut fits),
-                Self::plane_small(f, small, t, 3, &mut fits),
+                Self::plane_small(f, t, 1, &mut fits),
+                Self::plane_small(f, t, 2, &mut fits),
+                Self::plane_small(f, t, 3, &mut fits),
             ]
         } else {
             [z, Plane::default(), Plane::default(), Plane::default()]
@@ -419,17 +451,17 @@ impl TriangleSetup {
     /// need no wrapping (`i32` by `i32`), and its wrapped `i32` is
     /// `constant_wrapping`'s.
     #[inline(always)]
-    fn plane_small(f: &Basis, small: &Small, t: &Corners<'_>, a: usize, fits: &mut bool) -> Plane {
+    fn plane_small(f: &SmallBasis, t: &Corners<'_>, a: usize, fits: &mut bool) -> Plane {
         let (values, frac) = t.values(a);
         // Depths and colour channels: 16 and 8 bits.
         let v = [values[0] as i32, values[1] as i32, values[2] as i32];
         let (d1, d2) = (v[1] - v[0], v[2] - v[0]);
-        let [x1, y1, x2, y2] = [f.x1 as i32, f.y1 as i32, f.x2 as i32, f.y2 as i32];
+        let [x1, y1, x2, y2] = f.e;
         let shift = frac + SUBPIXEL_BITS;
-        let gx = small.div_round32(d1 * y2 - d2 * y1, shift, fits);
-        let gy = small.div_round32(d2 * x1 - d1 * x2, shift, fits);
+        let gx = f.small.div_round32(d1 * y2 - d2 * y1, shift, fits);
+        let gy = f.small.div_round32(d2 * x1 - d1 * x2, shift, fits);
         let base = (v[0] << frac) + (1 << (frac - 1));
-        let t = gx as i64 * (f.ox as i32) as i64 + gy as i64 * (f.oy as i32) as i64;
+        let t = gx as i64 * f.o[0] as i64 + gy as i64 * f.o[1] as i64;
         Plane {
             gx,
             gy,
