@@ -135,31 +135,23 @@ impl Small {
 }
 
 impl Small {
-    /// [`Small::div_round`] in `u32` arithmetic, for `|n| < 2^31` and
-    /// `10 < shift < 30`: the same digits, exact while `|n| / area <
+    /// [`Small::div_round`] in `u32` arithmetic, for `|n| < 2^22` and
+    /// `10 <= shift < 30`: the same digits, exact while `|n| / area <
     /// 2^(30 - shift)` (the quotient is then below 2^30); `fits` is
-    /// cleared otherwise, and the result is then meaningless. On a
-    /// Cortex-M3 this spares the 64-bit shifts, additions and negation of
-    /// `div_round`'s quotient.
-    ///
-    /// With `narrow`, for `|n| < 2^22` (a colour channel's numerator), the
-    /// first two digits come from one division, `|n| 2^10 / area`: the
-    /// same quotient and remainder, one division fewer.
+    /// cleared otherwise, and the result is then meaningless. The first
+    /// two digits come from one division, `|n| 2^10 / area`, which
+    /// `|n| < 2^22` keeps in `u32`. On a Cortex-M3 this spares
+    /// `div_round`'s 64-bit shifts, additions and negation and one of its
+    /// three divisions.
     #[inline(always)]
-    pub(super) fn div_round32(&self, n: i32, shift: u32, narrow: bool, fits: &mut bool) -> i32 {
+    pub(super) fn div_round32(&self, n: i32, shift: u32, fits: &mut bool) -> i32 {
         let d = self.area;
-        let a = n.unsigned_abs();
-        let (mut q, mut r, mut left);
-        if narrow {
-            debug_assert!(a < 1 << 22);
-            let m = a << 10;
-            (q, r, left) = (m / d, m % d, shift - 10);
-            // The first digit alone is q >> 10.
-            *fits &= q < 1 << (40 - shift);
-        } else {
-            (q, r, left) = (a / d, a % d, shift);
-            *fits &= q < 1 << (30 - shift);
-        }
+        // Below 2^32 for |n| < 2^22 (beyond, `fits` is cleared by the
+        // caller and the bits lost do not matter).
+        let m = n.unsigned_abs() << 10;
+        let (mut q, mut r, mut left) = (m / d, m % d, shift - 10);
+        // The first digit alone is q >> 10.
+        *fits &= q < 1 << (40 - shift);
         while left > 10 {
             let part = r << 10;
             q = (q << 10) | (part / d);
@@ -469,11 +461,17 @@ impl TriangleSetup {
         let (d1, d2) = (v[1] - v[0], v[2] - v[0]);
         let [x1, y1, x2, y2] = f.e;
         let shift = frac + SUBPIXEL_BITS;
-        // A colour channel's differences are below 2^8: numerators below
-        // 2^19, which `div_round32` divides in two steps rather than three.
-        let narrow = a != 0;
-        let gx = f.small.div_round32(d1 * y2 - d2 * y1, shift, narrow, fits);
-        let gy = f.small.div_round32(d2 * x1 - d1 * x2, shift, narrow, fits);
+        let (n1, n2) = (d1 * y2 - d2 * y1, d2 * x1 - d1 * x2);
+        // Numerators below 2^22 are divided in two steps rather than
+        // three: a colour channel's always (its differences are below
+        // 2^8: numerators below 2^19), depth's when they are (below 2^27
+        // in general; a larger one sends the triangle to the general
+        // set-up).
+        if a == 0 {
+            *fits &= (n1.unsigned_abs() | n2.unsigned_abs()) < 1 << 22;
+        }
+        let gx = f.small.div_round32(n1, shift, fits);
+        let gy = f.small.div_round32(n2, shift, fits);
         let base = (v[0] << frac) + (1 << (frac - 1));
         let t = gx as i64 * f.o[0] as i64 + gy as i64 * f.o[1] as i64;
         Plane {
