@@ -401,7 +401,8 @@ impl TriangleSetup {
 
     /// The set-up of a [`Small`] triangle `v` (on 32-bit targets) all in
     /// `i32` arithmetic, when every gradient is below 2^30 in magnitude
-    /// ([`Small::div_round32`]): the planes [`TriangleSetup::with_basis`]
+    /// and depth's numerators below 2^22 ([`Small::div_round32`]): the
+    /// planes [`TriangleSetup::with_basis`]
     /// gives on [`Basis::new`], without building the basis's 64-bit
     /// values or its 64-bit quotients, constants and range test; `None`
     /// for any other triangle.
