@@ -463,6 +463,41 @@ mod tests {
         assert!(small > 30_000, "{small} small triangles");
     }
 
+    /// The `i32` set-up of small triangles against the general one, on
+    /// every target: the same planes whenever it applies.
+    #[test]
+    fn small_setup_matches_the_general_one() {
+        let mut next = crate::testing::rng();
+        let mut applied = 0;
+        for k in 0..100_000u64 {
+            let r = [24, 64, 600, 2_100][k as usize % 4];
+            let mut p = || SubPoint::new(next(r) as i32 - 300, next(r) as i32 - 300);
+            let v = [p(), p(), p()];
+            if crate::raster::signed_area2(&v) == 0 {
+                continue;
+            }
+            let sv = [0, 1, 2].map(|k| {
+                let z = next(65_536) as u16;
+                let color = [next(256) as u8, next(256) as u8, next(256) as u8];
+                ScreenVertex::new(v[k].x, v[k].y, z, 0, color)
+            });
+            let corners = Corners([&sv[0], &sv[1], &sv[2]]);
+            let f = Basis::with_small(&v, true);
+            for gouraud in [false, true] {
+                let general = TriangleSetup::with_basis(&f, &corners, gouraud);
+                if let Some(small) = TriangleSetup::small(&v, &corners, gouraud) {
+                    assert!(f.small.is_some(), "{v:?}");
+                    applied += 1;
+                    assert!(!general.wide, "{v:?}");
+                    for (a, b) in small.planes.iter().zip(&general.planes) {
+                        assert_eq!((a.gx, a.gy, a.k), (b.gx, b.gy, b.k), "{v:?}");
+                    }
+                }
+            }
+        }
+        assert!(applied > 50_000, "{applied} small set-ups");
+    }
+
     #[test]
     fn depth16_is_the_integer_part() {
         for z in [
