@@ -38,6 +38,8 @@
 
 pub(crate) mod perspective;
 mod setup;
+mod sliver;
+mod small;
 
 use embedded_graphics::pixelcolor::Rgb888;
 use setup::Basis;
@@ -333,6 +335,7 @@ fn gouraud_run<C: Copy + From<Rgb888>, D: DepthFn, const WRITE: bool>(
 #[cfg(test)]
 mod tests {
     use super::setup::*;
+    use super::small::*;
     use super::*;
     use crate::raster::{SubPoint, HALF_PIXEL, SUBPIXEL_BITS};
     use crate::vertex::ScreenVertex;

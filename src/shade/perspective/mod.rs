@@ -26,7 +26,7 @@
 //! loop that walks a span's pixels with them ([`SpanInput`]'s methods and
 //! the [`Output`] that says how fragments are tested and written).
 
-use super::setup::Small;
+use super::small::Small;
 use super::{depth16, Basis, Corners, DepthTest, SpanPos, TriangleSetup, GRADIENT_LIMIT, Z_FRAC};
 use crate::raster::SUBPIXEL_BITS;
 use crate::scene::Blend;
