@@ -1,7 +1,7 @@
 //! Exact division of many dividends by one divisor: the attribute set-up's
 //! and the vertex stage's divisions, as each kind of core does them best.
 
-use core::num::NonZeroU64;
+use core::num::{NonZeroU32, NonZeroU64};
 
 /// Exact integer division of many dividends by one divisor, through the
 /// divisor's reciprocal: one 64-bit division up front, then per quotient a
@@ -147,6 +147,26 @@ pub(crate) fn max_div_long(d: NonZeroU64) -> u64 {
     }
 }
 
+/// Long division by `d` carried on over `left` more zero bits of the
+/// dividend: with `q` the quotient so far and `r < d` its remainder, the
+/// quotient and remainder once `left` zero bits are brought down, in
+/// digits of as many bits as `d` has leading zeros (so every partial
+/// dividend `r 2^s < d 2^s` fits `u32`). The caller keeps the quotient
+/// below 2^32.
+#[inline(always)]
+pub(crate) fn shift_in_zeros(mut q: u32, mut r: u32, d: NonZeroU32, mut left: u32) -> (u32, u32) {
+    let k = d.leading_zeros();
+    while left > 0 {
+        let s = k.min(left);
+        let part = r << s;
+        let digit = part / d;
+        r = part - digit * d.get();
+        q = (q << s) | digit;
+        left -= s;
+    }
+    (q, r)
+}
+
 /// The vertex stage's divisor `w` on ARMv6-M: [`Short`]'s 32-bit
 /// reciprocal when it applies (`8 <= w < 2^31` and the dividend below
 /// `2^(30 + bits of w)`: every vertex inside the guard band), else
@@ -223,19 +243,9 @@ impl Short {
         // k in 1..=28. d < 2^31: the first digit is `2^31 / d`, then
         // `l - 1` zero bits are left to bring down, l = 32 - k.
         let k = d.leading_zeros();
-        let mut r = (1u32 << 31) / nz;
-        let mut rem = (1u32 << 31) - r * d;
-        let mut left = 31 - k;
-        while left > 0 {
-            // rem < d < 2^(32 - k): `rem << s` fits u32 and its quotient is
-            // one digit of s bits; r stays below 2^32 (r <= 2^31).
-            let s = k.min(left);
-            let part = rem << s;
-            let digit = part / nz;
-            rem = part - digit * d;
-            r = (r << s) | digit;
-            left -= s;
-        }
+        let first = (1u32 << 31) / nz;
+        // r stays below 2^32 (r <= 2^31).
+        let (r, _) = shift_in_zeros(first, (1u32 << 31) - first * d, nz, 31 - k);
         Some(Self { d, r, bits: 62 - k })
     }
 

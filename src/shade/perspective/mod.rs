@@ -369,21 +369,12 @@ fn scale_q(wmin: i64, w: i64) -> i64 {
 #[cfg_attr(target_pointer_width = "64", allow(dead_code))]
 #[inline(always)]
 fn scale_q32(wmin: u32, w: u32) -> i64 {
-    let mut r = wmin;
-    if r == w {
+    if wmin == w {
         return Q_ONE;
     }
-    // r < w < 2^31: at least one leading zero.
-    let k = w.leading_zeros();
-    let (mut q, mut left) = (0u32, 28);
-    while left > 0 {
-        let s = k.min(left);
-        let part = r << s;
-        q = (q << s) | (part / w);
-        r = part % w;
-        left -= s;
-    }
-    q as i64
+    // 1 <= wmin < w < 2^31: the quotient is below 2^28.
+    let w = core::num::NonZeroU32::new(w).unwrap_or(core::num::NonZeroU32::MAX);
+    crate::math::shift_in_zeros(0, wmin, w, 28).0 as i64
 }
 
 /// Whether the target lacks a 32x32 to 64-bit multiply (ARMv6-M and
