@@ -6,10 +6,12 @@
 //! (esp-hal) firmwares include the same file.
 #![allow(dead_code)]
 
+use core::convert::Infallible;
 use embedded_hal::delay::DelayNs;
 use embedded_hal::digital::{OutputPin, PinState};
 use embedded_hal::spi::SpiBus;
 use embedded_hal_bus::spi::ExclusiveDevice;
+use microraster::sink::wire::Window;
 use mipidsi::interface::SpiInterface;
 use mipidsi::models::ST7789;
 use mipidsi::options::ColorInversion;
@@ -88,4 +90,25 @@ pub fn fault<P: OutputPin>(
         }
         wait(4);
     }
+}
+
+/// Sends the panel's window commands for a tile (`CASET`, `RASET`,
+/// `RAMWR`, each with its parameters) and leaves DC high for `RAMWR`'s
+/// data. A finished DMA transfer may still have its last bytes in the
+/// SPI's FIFO: DC changes only once the SPI is idle (`flush`), so that no
+/// byte goes out with the wrong DC.
+pub fn send_window<S, DC>(spi: &mut S, dc: &mut DC, window: &Window) -> Result<(), S::Error>
+where
+    S: SpiBus,
+    DC: OutputPin<Error = Infallible>,
+{
+    for (command, parameters) in window.commands() {
+        spi.flush()?;
+        let Ok(()) = dc.set_low();
+        spi.write(&[command])?;
+        spi.flush()?;
+        let Ok(()) = dc.set_high();
+        spi.write(parameters)?;
+    }
+    Ok(())
 }

@@ -191,17 +191,8 @@ where
                 return Err((PanelError::Busy, tile));
             }
         };
-        // A finished DMA transfer has only put its last bytes into the
-        // SPI's FIFO: DC changes only once the SPI is idle (`flush`), so
-        // that no byte goes out with the wrong DC.
-        for (command, parameters) in window.commands() {
-            let Ok(()) = spi.flush();
-            let Ok(()) = self.dc.set_low();
-            let Ok(()) = spi.write(&[command]);
-            let Ok(()) = spi.flush();
-            let Ok(()) = self.dc.set_high();
-            let Ok(()) = spi.write(parameters);
-        }
+        // The window's commands, DC left high for the pixels.
+        let Ok(()) = board_support::send_window(&mut spi, &mut self.dc, &window);
         // After RAMWR, DC high: the pixels, by DMA, paced by SPI1's TX DREQ
         // (the FIFO's room).
         let bytes = TileBytes::new(tile, area);
