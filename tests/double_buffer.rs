@@ -21,132 +21,11 @@ use microraster::embedded_graphics::prelude::IntoStorage;
 use microraster::prelude::*;
 use microraster::shader::Dithered;
 use microraster::sink::wire::{self, Window, CASET, RAMWR, RASET};
-use std::cell::RefCell;
 use std::rc::Rc;
+use support::dma::{self, buffers, ids, Event, FakeDma, Shared, WireError};
 use support::{Capture, Order};
 
-type Tile<C> = TileBuffer<C, 32, 32>;
-
-/// What happened to the two tile buffers, in order.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-enum Event {
-    /// The renderer took buffer `n` to draw into.
-    Draw(usize),
-    /// The transfer started sending buffer `n`, holding tile `area`.
-    Start(usize, Rectangle),
-    /// The transfer of buffer `n` completed.
-    Done(usize),
-}
-
-type Log = Rc<RefCell<Vec<Event>>>;
-
-/// A tile buffer handle that logs each time the renderer draws into it.
-struct Logged<'t, C> {
-    id: usize,
-    tile: &'t mut Tile<C>,
-    log: Log,
-}
-
-impl<C> core::borrow::Borrow<Tile<C>> for Logged<'_, C> {
-    fn borrow(&self) -> &Tile<C> {
-        self.tile
-    }
-}
-
-impl<C> core::borrow::BorrowMut<Tile<C>> for Logged<'_, C> {
-    fn borrow_mut(&mut self) -> &mut Tile<C> {
-        RefCell::borrow_mut(&self.log).push(Event::Draw(self.id));
-        self.tile
-    }
-}
-
-/// A DMA channel on the host: `start` packs the tile and keeps its buffer;
-/// the bytes "arrive" only when `wait` is called, read from the buffer
-/// then, so a tile overwritten in flight would arrive wrong.
-struct FakeDma<'t, C> {
-    in_flight: Option<(Logged<'t, C>, Rectangle)>,
-    frame: Capture<C>,
-    log: Log,
-    /// Fail the `start` (or the `wait`) of this tile, counted from 0.
-    fail_start: Option<usize>,
-    fail_wait: Option<usize>,
-    started: usize,
-}
-
-impl<'t, C: PixelColor> FakeDma<'t, C> {
-    fn new(size: Size, log: &Log, background: C) -> Self {
-        Self {
-            in_flight: None,
-            frame: Capture::new(size, background),
-            log: log.clone(),
-            fail_start: None,
-            fail_wait: None,
-            started: 0,
-        }
-    }
-}
-
-#[derive(Debug, PartialEq, Eq)]
-struct WireError(usize);
-
-impl<'t, C: PixelColor> TileTransfer<Logged<'t, C>> for FakeDma<'t, C> {
-    type Error = WireError;
-
-    fn start(
-        &mut self,
-        area: &Rectangle,
-        tile: Logged<'t, C>,
-    ) -> Result<(), (WireError, Logged<'t, C>)> {
-        assert!(self.in_flight.is_none(), "two transfers in flight");
-        let k = self.started;
-        if self.fail_start == Some(k) {
-            return Err((WireError(k), tile));
-        }
-        self.started += 1;
-        // What a DMA driver does: one block, then the channel is started.
-        let packed = tile.tile.pack(area).len();
-        assert_eq!(packed, (area.size.width * area.size.height) as usize);
-        self.log.borrow_mut().push(Event::Start(tile.id, *area));
-        self.in_flight = Some((tile, *area));
-        Ok(())
-    }
-
-    fn wait(&mut self) -> (Logged<'t, C>, Result<(), WireError>) {
-        let (tile, area) = self.in_flight.take().expect("wait with nothing in flight");
-        self.log.borrow_mut().push(Event::Done(tile.id));
-        let k = self.started - 1;
-        if self.fail_wait == Some(k) {
-            return (tile, Err(WireError(k)));
-        }
-        // The bytes go out now, from the packed block.
-        let n = (area.size.width * area.size.height) as usize;
-        let pixels = &tile.tile.flat()[..n];
-        let width = area.size.width as usize;
-        for (i, &c) in pixels.iter().enumerate() {
-            let (x, y) = (
-                area.top_left.x as u32 + (i % width) as u32,
-                area.top_left.y as u32 + (i / width) as u32,
-            );
-            let at = (y * self.frame.size.width + x) as usize;
-            self.frame.pixels[at] = c;
-            self.frame.writes[at] += 1;
-        }
-        (tile, Ok(()))
-    }
-}
-
-/// The packed block of a buffer, read back without disturbing it: `pack`
-/// of a whole-width area moves nothing.
-trait FlatPixels<C> {
-    fn flat(&self) -> Vec<C>;
-}
-
-impl<C: PixelColor> FlatPixels<C> for Tile<C> {
-    fn flat(&self) -> Vec<C> {
-        let whole = Rectangle::new(Point::zero(), Size::new(32, 32));
-        self.view(&whole).pixels().collect()
-    }
-}
+type Tile<C> = dma::Tile<C>;
 
 /// `render`'s tiles in order and its frame.
 fn reference<C, const B: usize, const T: usize>(
@@ -172,31 +51,20 @@ fn double_buffered<const B: usize, const T: usize>(
     let (order, expected, stats) = reference::<Rgb565, B, T>(scene, config);
     let renderer: Renderer<Rgb565, 32, 32> = Renderer::new(config);
     let mut ws: Box<Workspace<2048, B, T>> = Box::new(Workspace::new());
-    let log: Log = Rc::default();
-    let mut a = Box::new(Tile::new(Rgb565::new(0, 63, 0)));
-    let mut b = Box::new(Tile::new(Rgb565::new(0, 0, 31)));
-    let tiles = [
-        Logged {
-            id: 0,
-            tile: &mut *a,
-            log: log.clone(),
-        },
-        Logged {
-            id: 1,
-            tile: &mut *b,
-            log: log.clone(),
-        },
-    ];
-    let mut dma = FakeDma::new(config.size, &log, Rgb565::new(31, 0, 31));
+    let book: Shared = Rc::default();
+    let mut store = Box::new([
+        Tile::new(Rgb565::new(0, 63, 0)),
+        Tile::new(Rgb565::new(0, 0, 31)),
+    ]);
+    let mut dma = FakeDma::new(config.size, 1, &book, Rgb565::new(31, 0, 31));
+    let tiles = buffers(&mut store, &book);
     let (back, result) = renderer.render_double_buffered(&mut ws, scene, tiles, &mut dma);
     assert_eq!(result.unwrap(), stats, "the same statistics");
-    let mut ids: Vec<usize> = back.iter().map(|t| t.id).collect();
-    ids.sort();
-    assert_eq!(ids, [0, 1], "both buffers come back");
-    assert!(dma.in_flight.is_none());
+    assert_eq!(ids(&back), [0, 1], "both buffers come back");
+    assert!(dma.queue.is_empty());
 
     // Every tile once, in visiting order, from the buffers in turn.
-    let log = log.borrow();
+    let log = &book.borrow().events;
     let starts: Vec<(usize, Rectangle)> = log
         .iter()
         .filter_map(|e| match *e {
@@ -264,24 +132,18 @@ fn failing(fail_start: Option<usize>, fail_wait: Option<usize>) -> (usize, Vec<E
     let scene = Scene::new(camera(size.width, size.height), &d).light(light());
     let renderer: Renderer<Rgb565, 32, 32> = Renderer::new(Config::new(size, Rgb565::BLACK));
     let mut ws: Box<Workspace<2048, 1024, 16>> = Box::new(Workspace::new());
-    let log: Log = Rc::default();
-    let (mut a, mut b) = (Tile::new(Rgb565::BLACK), Tile::new(Rgb565::BLACK));
-    let tiles = [(0, &mut a), (1, &mut b)].map(|(id, tile)| Logged {
-        id,
-        tile,
-        log: log.clone(),
-    });
-    let mut dma = FakeDma::new(size, &log, Rgb565::BLACK);
+    let book: Shared = Rc::default();
+    let mut store = [Tile::new(Rgb565::BLACK), Tile::new(Rgb565::BLACK)];
+    let mut dma = FakeDma::new(size, 1, &book, Rgb565::BLACK);
     dma.fail_start = fail_start;
     dma.fail_wait = fail_wait;
+    let tiles = buffers(&mut store, &book);
     let (back, result) = renderer.render_double_buffered(&mut ws, &scene, tiles, &mut dma);
     let k = fail_start.or(fail_wait).unwrap();
     assert_eq!(result, Err(RenderError::Sink(WireError(k))));
-    let mut ids: Vec<usize> = back.iter().map(|t| t.id).collect();
-    ids.sort();
-    assert_eq!(ids, [0, 1], "both buffers come back");
-    assert!(dma.in_flight.is_none(), "nothing left in flight");
-    let events = log.borrow().clone();
+    assert_eq!(ids(&back), [0, 1], "both buffers come back");
+    assert!(dma.queue.is_empty(), "nothing left in flight");
+    let events = book.borrow().events.clone();
     (dma.started, events)
 }
 
@@ -314,18 +176,14 @@ fn scene_errors_come_back_before_any_transfer_with_the_buffers() {
     let renderer: Renderer<Rgb565, 32, 32> =
         Renderer::new(Config::new(Size::new(64, 64), Rgb565::BLACK));
     let mut ws: Workspace<4, 64, 4> = Workspace::new();
-    let log: Log = Rc::default();
-    let (mut a, mut b) = (Tile::new(Rgb565::BLACK), Tile::new(Rgb565::BLACK));
-    let tiles = [(0, &mut a), (1, &mut b)].map(|(id, tile)| Logged {
-        id,
-        tile,
-        log: log.clone(),
-    });
-    let mut dma = FakeDma::new(Size::new(64, 64), &log, Rgb565::BLACK);
+    let book: Shared = Rc::default();
+    let mut store = [Tile::new(Rgb565::BLACK), Tile::new(Rgb565::BLACK)];
+    let mut dma = FakeDma::new(Size::new(64, 64), 1, &book, Rgb565::BLACK);
+    let tiles = buffers(&mut store, &book);
     let (back, result) = renderer.render_double_buffered(&mut ws, &scene, tiles, &mut dma);
     assert!(matches!(result, Err(RenderError::VertexCapacity { .. })));
     assert_eq!(back.map(|t| t.id), [0, 1]);
-    assert!(log.borrow().is_empty());
+    assert!(book.borrow().events.is_empty());
 }
 
 // ---- The async form ----

@@ -13,166 +13,12 @@ mod support;
 use common::*;
 use embedded_graphics::pixelcolor::{Rgb565, RgbColor};
 use microraster::prelude::*;
-use std::cell::RefCell;
-use std::collections::VecDeque;
 use std::rc::Rc;
-use support::{Capture, Order};
+use support::dma::{self, buffers, ids, FakeDma, Shared, WireError};
+use support::Order;
 
-type Tile = TileBuffer<Rgb565, 32, 32>;
-
-/// What the queue saw, shared with the buffer handles.
-#[derive(Default)]
-struct Book {
-    /// The ids of the buffers in flight, oldest first.
-    in_flight: VecDeque<usize>,
-    /// The most tiles ever in flight at once.
-    most: usize,
-    /// Each draw, as the id of the buffer drawn into.
-    draws: Vec<usize>,
-    /// Each call, in order: `s` a start, `w` a wait, `d` a draw.
-    calls: String,
-}
-
-type Shared = Rc<RefCell<Book>>;
-
-/// A buffer handle that checks, each time the renderer draws into it,
-/// that it is not in flight.
-struct Buffer<'t> {
-    id: usize,
-    tile: &'t mut Tile,
-    book: Shared,
-}
-
-impl core::borrow::Borrow<Tile> for Buffer<'_> {
-    fn borrow(&self) -> &Tile {
-        self.tile
-    }
-}
-
-impl core::borrow::BorrowMut<Tile> for Buffer<'_> {
-    fn borrow_mut(&mut self) -> &mut Tile {
-        let mut book = RefCell::borrow_mut(&self.book);
-        assert!(
-            !book.in_flight.contains(&self.id),
-            "buffer {} drawn into while in flight",
-            self.id
-        );
-        book.draws.push(self.id);
-        book.calls.push('d');
-        self.tile
-    }
-}
-
-#[derive(Debug, PartialEq, Eq)]
-struct WireError(usize);
-
-/// A DMA queue on the host: `start` packs the tile and queues it; a tile
-/// "arrives" only when it is waited for, oldest first, read from its
-/// buffer then, so a buffer drawn into while in flight would show.
-struct Queue<'t> {
-    queue: VecDeque<(Buffer<'t>, Rectangle)>,
-    /// The most tiles this driver takes in flight (`N - 1`).
-    depth: usize,
-    frame: Capture<Rgb565>,
-    order: Vec<Rectangle>,
-    book: Shared,
-    fail_start: Option<usize>,
-    fail_wait: Option<usize>,
-    /// Give the newest tile back first, against the contract.
-    newest_first: bool,
-    started: usize,
-    waited: usize,
-}
-
-impl<'t> Queue<'t> {
-    fn new(size: Size, depth: usize, book: &Shared) -> Self {
-        Self {
-            queue: VecDeque::new(),
-            depth,
-            frame: Capture::new(size, Rgb565::new(31, 0, 31)),
-            order: Vec::new(),
-            book: book.clone(),
-            fail_start: None,
-            fail_wait: None,
-            newest_first: false,
-            started: 0,
-            waited: 0,
-        }
-    }
-}
-
-impl<'t> TileTransfer<Buffer<'t>> for Queue<'t> {
-    type Error = WireError;
-
-    fn start(&mut self, area: &Rectangle, tile: Buffer<'t>) -> Result<(), (WireError, Buffer<'t>)> {
-        let mut book = self.book.borrow_mut();
-        book.calls.push('s');
-        assert!(
-            self.queue.len() < self.depth,
-            "a start with N - 1 tiles in flight"
-        );
-        let k = self.started;
-        if self.fail_start == Some(k) {
-            return Err((WireError(k), tile));
-        }
-        self.started += 1;
-        let packed = tile.tile.pack(area).len();
-        assert_eq!(packed, (area.size.width * area.size.height) as usize);
-        book.in_flight.push_back(tile.id);
-        book.most = book.most.max(book.in_flight.len());
-        self.order.push(*area);
-        self.queue.push_back((tile, *area));
-        Ok(())
-    }
-
-    fn wait(&mut self) -> (Buffer<'t>, Result<(), WireError>) {
-        let (tile, area) = match self.newest_first {
-            false => self.queue.pop_front(),
-            true => self.queue.pop_back(),
-        }
-        .expect("wait with nothing in flight");
-        let mut book = self.book.borrow_mut();
-        book.calls.push('w');
-        book.in_flight.retain(|&id| id != tile.id);
-        let k = self.waited;
-        self.waited += 1;
-        if self.fail_wait == Some(k) {
-            return (tile, Err(WireError(k)));
-        }
-        // The bytes go out now, from the packed block.
-        let whole = Rectangle::new(Point::zero(), Size::new(32, 32));
-        let block: Vec<Rgb565> = tile.tile.view(&whole).pixels().collect();
-        let n = (area.size.width * area.size.height) as usize;
-        let width = area.size.width as usize;
-        for (i, &c) in block[..n].iter().enumerate() {
-            let x = area.top_left.x as u32 + (i % width) as u32;
-            let y = area.top_left.y as u32 + (i / width) as u32;
-            let at = (y * self.frame.size.width + x) as usize;
-            self.frame.pixels[at] = c;
-            self.frame.writes[at] += 1;
-        }
-        (tile, Ok(()))
-    }
-}
-
-/// `N` buffers, each a distinct colour to begin with, under ids `0..N`.
-fn buffers<'t, const N: usize>(store: &'t mut [Tile; N], book: &Shared) -> [Buffer<'t>; N] {
-    let mut it = store.iter_mut().enumerate();
-    core::array::from_fn(|_| {
-        let (id, tile) = it.next().unwrap();
-        Buffer {
-            id,
-            tile,
-            book: book.clone(),
-        }
-    })
-}
-
-fn ids<const N: usize>(back: &[Buffer<'_>; N]) -> Vec<usize> {
-    let mut ids: Vec<usize> = back.iter().map(|b| b.id).collect();
-    ids.sort();
-    ids
-}
+type Tile = dma::Tile<Rgb565>;
+type Queue<'t> = FakeDma<'t, Rgb565>;
 
 /// The scene through `render_queued` over `N` buffers: every tile once,
 /// in `render`'s order and with its pixels and statistics, at most
@@ -190,7 +36,7 @@ fn queued<const N: usize, const B: usize, const T: usize>(
     let mut store: Box<[Tile; N]> = Box::new(core::array::from_fn(|k| {
         Tile::new(Rgb565::new(k as u8, 63, 0))
     }));
-    let mut queue = Queue::new(config.size, N - 1, &book);
+    let mut queue = Queue::new(config.size, N - 1, &book, Rgb565::new(31, 0, 31));
     let (back, result) =
         renderer.render_queued(&mut ws, scene, buffers(&mut store, &book), &mut queue);
     assert_eq!(result.unwrap(), stats, "the same statistics");
@@ -206,10 +52,10 @@ fn queued<const N: usize, const B: usize, const T: usize>(
         "up to N - 1 in flight"
     );
     // Tile k from buffer k % N (the last draw finds no tile).
-    for (k, &id) in book.draws.iter().enumerate() {
+    for (k, &id) in book.draws().iter().enumerate() {
         assert_eq!(id, k % N, "draw {k}");
     }
-    assert_eq!(book.draws.len(), sink.0.len() + 1);
+    assert_eq!(book.draws().len(), sink.0.len() + 1);
     // Draw, wait only with N - 1 in flight, start; at the end the last
     // (empty) draw and the waits for what is still in flight.
     let n = sink.0.len();
@@ -266,7 +112,7 @@ fn failing<const N: usize>(fail_start: Option<usize>, fail_wait: Option<usize>) 
     let mut ws: Box<Workspace<2048, 1024, 16>> = Box::new(Workspace::new());
     let book: Shared = Rc::default();
     let mut store: Box<[Tile; N]> = Box::new(core::array::from_fn(|_| Tile::new(Rgb565::BLACK)));
-    let mut queue = Queue::new(size, N - 1, &book);
+    let mut queue = Queue::new(size, N - 1, &book, Rgb565::new(31, 0, 31));
     queue.fail_start = fail_start;
     queue.fail_wait = fail_wait;
     let (back, result) = renderer.render_queued(
@@ -321,7 +167,7 @@ fn scene_errors_come_back_before_any_transfer_with_every_buffer() {
     let mut ws: Workspace<4, 64, 4> = Workspace::new();
     let book: Shared = Rc::default();
     let mut store: Box<[Tile; 3]> = Box::new(core::array::from_fn(|_| Tile::new(Rgb565::BLACK)));
-    let mut queue = Queue::new(size, 2, &book);
+    let mut queue = Queue::new(size, 2, &book, Rgb565::new(31, 0, 31));
     let (back, result) = renderer.render_queued(
         &mut ws,
         &scene_of(&d, size),
@@ -346,7 +192,7 @@ fn buffers_given_back_out_of_order_are_used_all_the_same() {
     let mut ws: Box<Workspace<2048, 1024, 16>> = Box::new(Workspace::new());
     let book: Shared = Rc::default();
     let mut store: Box<[Tile; 4]> = Box::new(core::array::from_fn(|_| Tile::new(Rgb565::BLACK)));
-    let mut queue = Queue::new(size, 3, &book);
+    let mut queue = Queue::new(size, 3, &book, Rgb565::new(31, 0, 31));
     queue.newest_first = true;
     let (back, result) =
         renderer.render_queued(&mut ws, &scene, buffers(&mut store, &book), &mut queue);

@@ -1,6 +1,7 @@
 //! Test support: a capturing draw target and PNG golden-image comparison.
 #![allow(dead_code)]
 
+pub mod dma;
 pub mod host;
 pub mod pico;
 
