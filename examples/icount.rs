@@ -89,3 +89,6 @@ mod icount_firmware;
 mod icount_scenes;
 #[cfg(target_os = "none")]
 mod stack_gauge;
+// The LM3S6965's own interrupt table (cortex-m-rt's `device` feature).
+#[cfg(microraster_lm3s6965)]
+mod lm3s6965_vectors;

@@ -33,6 +33,9 @@ fn main() {
 mod oled_scene;
 #[cfg(target_os = "none")]
 mod stack_gauge;
+// The LM3S6965's own interrupt table (cortex-m-rt's `device` feature).
+#[cfg(microraster_lm3s6965)]
+mod lm3s6965_vectors;
 
 #[cfg(target_os = "none")]
 mod firmware {
