@@ -392,65 +392,10 @@ mod firmware {
 
     #[rp2040_hal::entry]
     fn main() -> ! {
-        // Taken once, at the entry point: never `None` here.
-        let Some(mut pac) = pac::Peripherals::take() else {
-            park()
-        };
-        let sio = Sio::new(pac.SIO);
-        let pins = Pins::new(
-            pac.IO_BANK0,
-            pac.PADS_BANK0,
-            sio.gpio_bank0,
-            &mut pac.RESETS,
-        );
-        let mut led = pins.gpio25.into_push_pull_output_in_state(PinState::Low);
-
-        // 125 MHz system and peripheral clocks from the crystal.
-        let mut watchdog = Watchdog::new(pac.WATCHDOG);
-        let Ok(clocks) = init_clocks_and_plls(
-            XTAL_HZ,
-            pac.XOSC,
-            pac.CLOCKS,
-            pac.PLL_SYS,
-            pac.PLL_USB,
-            &mut pac.RESETS,
-            &mut watchdog,
-        ) else {
-            fault(&mut led, 2)
-        };
-        let timer = Timer::new(pac.TIMER, &mut pac.RESETS, &clocks);
-
-        // The display: SPI1 transmit-only, mode 3 (which also suits modules
-        // whose CS is tied low).
-        let sck = pins.gpio10.into_function::<FunctionSpi>();
-        let mosi = pins.gpio11.into_function::<FunctionSpi>();
-        let mut cs = pins.gpio9.into_push_pull_output_in_state(PinState::High);
-        let mut dc = pins.gpio8.into_push_pull_output_in_state(PinState::Low);
-        let mut rst = pins.gpio12.into_push_pull_output_in_state(PinState::High);
-        let mut backlight = pins.gpio13.into_push_pull_output_in_state(PinState::Low);
-        let mut spi = Spi::<_, _, _, 8>::new(pac.SPI1, (mosi, sck)).init(
-            &mut pac.RESETS,
-            clocks.peripheral_clock.freq(),
-            SPI_HZ.Hz(),
-            MODE_3,
-        );
-        // The panel's start-up sequence, CS driven as a GPIO around each
-        // command.
-        if board_support::init_st7789(
-            &mut spi,
-            &mut cs,
-            &mut dc,
-            &mut rst,
-            timer,
-            (WIDTH as u16, HEIGHT as u16),
-        )
-        .is_err()
-        {
-            fault(&mut led, 3)
-        }
-        // From here on the panel is the bus's: CS low for good.
-        let Ok(()) = cs.set_low();
-        let dma = pac.DMA.split(&mut pac.RESETS);
+        // 125 MHz clocks, the timer, the panel's wiring and start-up
+        // (board_support::rp_st7789_bring_up).
+        let (mut led, spi, dc, mut backlight, timer, dma) =
+            board_support::rp_st7789_bring_up!(TIMER, new);
         // Read once, as a value the compiler cannot assume (the harness
         // may have changed it in the image).
         // SAFETY: a valid, aligned `'static` byte that nothing writes.

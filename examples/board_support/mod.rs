@@ -112,3 +112,76 @@ where
     }
     Ok(())
 }
+
+/// The bring-up the Pico and Pico 2 firmwares share, expanded in their
+/// `main`: the peripherals taken, the system and peripheral clocks from
+/// the crystal (`XTAL_HZ`), the timer (`$timer`, made by `Timer::$new`),
+/// the wiring of README's table (LED GP25; SPI1 transmit-only in mode 3 at
+/// `SPI_HZ`, SCK GP10, MOSI GP11; CS GP9, DC GP8, reset GP12, backlight
+/// GP13) and the ST7789's start-up ([`init_st7789`], `WIDTH` x `HEIGHT`),
+/// after which CS stays low. rp2040-hal and rp235x-hal agree here name for
+/// name but not type for type, so this is a macro, whose names resolve
+/// where it is expanded: the firmware imports them, and provides `park`
+/// and `fault` (code 2: the clocks, 3: the panel). Gives `(led, spi, dc,
+/// backlight, timer, dma)`.
+#[allow(unused_macros)]
+macro_rules! rp_st7789_bring_up {
+    ($timer:ident, $new:ident) => {{
+        // Taken once, at the entry point: never `None` here.
+        let Some(mut pac) = pac::Peripherals::take() else {
+            park()
+        };
+        let sio = Sio::new(pac.SIO);
+        let pins = Pins::new(
+            pac.IO_BANK0,
+            pac.PADS_BANK0,
+            sio.gpio_bank0,
+            &mut pac.RESETS,
+        );
+        let mut led = pins.gpio25.into_push_pull_output_in_state(PinState::Low);
+        let mut watchdog = Watchdog::new(pac.WATCHDOG);
+        let Ok(clocks) = init_clocks_and_plls(
+            XTAL_HZ,
+            pac.XOSC,
+            pac.CLOCKS,
+            pac.PLL_SYS,
+            pac.PLL_USB,
+            &mut pac.RESETS,
+            &mut watchdog,
+        ) else {
+            fault(&mut led, 2)
+        };
+        let timer = Timer::$new(pac.$timer, &mut pac.RESETS, &clocks);
+        let sck = pins.gpio10.into_function::<FunctionSpi>();
+        let mosi = pins.gpio11.into_function::<FunctionSpi>();
+        let mut cs = pins.gpio9.into_push_pull_output_in_state(PinState::High);
+        let mut dc = pins.gpio8.into_push_pull_output_in_state(PinState::Low);
+        let mut rst = pins.gpio12.into_push_pull_output_in_state(PinState::High);
+        let backlight = pins.gpio13.into_push_pull_output_in_state(PinState::Low);
+        // Mode 3 also suits modules whose CS is tied low.
+        let mut spi = Spi::<_, _, _, 8>::new(pac.SPI1, (mosi, sck)).init(
+            &mut pac.RESETS,
+            clocks.peripheral_clock.freq(),
+            SPI_HZ.Hz(),
+            MODE_3,
+        );
+        if board_support::init_st7789(
+            &mut spi,
+            &mut cs,
+            &mut dc,
+            &mut rst,
+            timer,
+            (WIDTH as u16, HEIGHT as u16),
+        )
+        .is_err()
+        {
+            fault(&mut led, 3)
+        }
+        // From here on the panel is the bus's: CS low for good.
+        let Ok(()) = cs.set_low();
+        let dma = pac.DMA.split(&mut pac.RESETS);
+        (led, spi, dc, backlight, timer, dma)
+    }};
+}
+#[allow(unused_imports)]
+pub(crate) use rp_st7789_bring_up;
