@@ -58,21 +58,24 @@ fn main() {
 mod board_support;
 #[cfg(target_os = "none")]
 mod st7789_scene;
+#[cfg(target_os = "none")]
+#[path = "board_support/tile_bytes.rs"]
+mod tile_bytes;
 
 #[cfg(target_os = "none")]
 mod firmware {
     use crate::board_support;
     use crate::st7789_scene::*;
+    use crate::tile_bytes::TileBytes;
     use core::cell::RefCell;
     use core::convert::Infallible;
     use core::mem;
     use critical_section::Mutex;
-    use embedded_dma::ReadBuffer;
     use embedded_hal::digital::{OutputPin, StatefulOutputPin};
     use embedded_hal::spi::{SpiBus, MODE_3};
     use heapless::Deque;
     use microraster::prelude::*;
-    use microraster::sink::wire::{wire_bytes, Window};
+    use microraster::sink::wire::Window;
     use panic_halt as _;
     use rp2040_hal::clocks::{init_clocks_and_plls, Clock};
     use rp2040_hal::dma::single_buffer::{self, Transfer};
@@ -159,43 +162,6 @@ mod firmware {
             .collect::<Option<_>>()?;
         tiles.into_array().ok()
     }
-
-    /// A finished tile, packed into one block of wire bytes, as the DMA
-    /// channel reads it: the buffer and the block's address and length.
-    struct TileBytes {
-        tile: &'static mut PicoTile,
-        bytes: (*const u8, usize),
-    }
-
-    impl TileBytes {
-        /// Packs the tile that covers `area` of the frame (see
-        /// `TileBuffer::pack`) and takes its buffer.
-        fn new(tile: &'static mut PicoTile, area: &Rectangle) -> Self {
-            let bytes = wire_bytes(tile.pack(area));
-            Self { tile, bytes }
-        }
-    }
-
-    // SAFETY: `bytes` lies within `*tile` (it was made from the tile's
-    // packed pixels, `2 n` bytes for `n` pixels) and never changes. The
-    // buffer is `'static` and borrowed exclusively by `self`, so nothing
-    // else writes or frees it while the DMA channel reads it: the channel's
-    // `Transfer` owns `self` until it is done, and only then gives the
-    // buffer back (to the queue of finished tiles that `wait` empties).
-    unsafe impl ReadBuffer for TileBytes {
-        type Word = u8;
-
-        unsafe fn read_buffer(&self) -> (*const u8, usize) {
-            self.bytes
-        }
-    }
-
-    // SAFETY: the raw pointer is the only thing that keeps `TileBytes`
-    // from being `Send`, and it points into the buffer that `self` borrows
-    // exclusively. Sending it moves that exclusive borrow, here between
-    // the core's thread and the DMA interrupt on the one core, through the
-    // critical section of `WIRE`.
-    unsafe impl Send for TileBytes {}
 
     /// SPI1 as the firmware sets it up: TX on GP11, SCK on GP10, bytes.
     type Bus = Spi<

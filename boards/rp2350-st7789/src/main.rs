@@ -50,20 +50,22 @@ mod board_support;
 mod st7789_scene;
 #[path = "../../../examples/stack_gauge/mod.rs"]
 mod stack_gauge;
+#[path = "../../../examples/board_support/tile_bytes.rs"]
+mod tile_bytes;
 
 use core::convert::Infallible;
 use core::mem;
 use core::sync::atomic::{AtomicUsize, Ordering};
-use embedded_dma::ReadBuffer;
 use embedded_graphics::primitives::Rectangle;
 use embedded_hal::digital::{OutputPin, StatefulOutputPin};
 use embedded_hal::spi::{SpiBus, MODE_3};
 use microraster::prelude::*;
-use microraster::sink::wire::{wire_bytes, Window};
+use microraster::sink::wire::Window;
 use panic_halt as _;
 use rp235x_hal as hal;
 use st7789_scene::*;
 use static_cell::{ConstStaticCell, StaticCell};
+use tile_bytes::TileBytes;
 
 use hal::clocks::{init_clocks_and_plls, Clock};
 use hal::dma::single_buffer::{self, Transfer};
@@ -112,36 +114,6 @@ static PEAK_STACK_BYTES: AtomicUsize = AtomicUsize::new(0);
 fn tiles() -> Option<[&'static mut PicoTile; 2]> {
     let new = || PicoTile::new(Rgb565Be::new(0, 0, 0));
     Some([TILE_A.try_init_with(new)?, TILE_B.try_init_with(new)?])
-}
-
-/// A finished tile, packed into one block of wire bytes, as the DMA
-/// channel reads it: the buffer and the block's address and length.
-struct TileBytes {
-    tile: &'static mut PicoTile,
-    bytes: (*const u8, usize),
-}
-
-impl TileBytes {
-    /// Packs the tile that covers `area` of the frame (see
-    /// `TileBuffer::pack`) and takes its buffer.
-    fn new(tile: &'static mut PicoTile, area: &Rectangle) -> Self {
-        let bytes = wire_bytes(tile.pack(area));
-        Self { tile, bytes }
-    }
-}
-
-// SAFETY: `bytes` lies within `*tile` (it was made from the tile's packed
-// pixels, `2 n` bytes for `n` pixels) and never changes. The buffer is
-// `'static` and borrowed exclusively by `self`, so nothing else writes or
-// frees it while the DMA channel reads it: the channel's `Transfer` owns
-// `self` until it is done, and only then gives the buffer back
-// (`TileTransfer::wait`).
-unsafe impl ReadBuffer for TileBytes {
-    type Word = u8;
-
-    unsafe fn read_buffer(&self) -> (*const u8, usize) {
-        self.bytes
-    }
 }
 
 /// Where the bus is: free, or carrying a tile by DMA.
