@@ -69,20 +69,41 @@ fn intersect(inside: &ClipVertex, d_in: i64, outside: &ClipVertex, d_out: i64) -
     v
 }
 
-/// `a + (b - a) d_in / den`, rounded to nearest, for `0 <= d_in <= den`.
-/// Out of line: its `i128` division is a large library call sequence on a
-/// 32-bit core, and clipping is rare, so one copy serves all nine values.
+/// `a + (b - a) d_in / den`, rounded to nearest (halves away from `a`),
+/// for `0 <= d_in <= den`, `den > 0`. Out of line: clipping is rare, so one
+/// copy serves all nine values.
+///
+/// The quotient `q = floor((|b - a| d_in + floor(den / 2)) / den)` is at
+/// most `|b - a| < 2^32`, but its numerator needs up to 95 bits. No `i128`
+/// division (a large library routine on a 32-bit core, 1.3 KB of a
+/// firmware's flash): a `den` below 2^32 keeps the numerator below 2^64,
+/// one `u64` division; a larger one is shifted to its top 32 bits, whose
+/// `u64` quotient is at most 2 too large (the divisor then has its top bit
+/// set), and the remainder in `i128` takes the excess back.
 #[inline(never)]
 fn lerp(a: i32, b: i32, d_in: i64, den: i64) -> i32 {
-    let (num, den) = ((b as i128 - a as i128) * d_in as i128, den as i128);
-    // Round to nearest; |num / den| <= |b - a|, so the result stays
-    // between a and b and fits i32.
-    let q = if num >= 0 {
-        (num + den / 2) / den
+    let span = b as i64 - a as i64;
+    let (m, d, big_d) = (span.unsigned_abs(), d_in.max(0) as u64, den.max(1) as u64);
+    // m < 2^32 and d <= den < 2^63: below 2^95.
+    let num = m as u128 * d as u128 + (big_d / 2) as u128;
+    let q = if big_d >> 32 == 0 {
+        // d <= den < 2^32: num < 2^64.
+        num as u64 / big_d
     } else {
-        -((-num + den / 2) / den)
+        let sh = 32 - big_d.leading_zeros();
+        // num < 2^32 den, so num >> sh < 2^64 and the estimate is at
+        // least the quotient; den_top >= 2^31 bounds its excess by 2.
+        let den_top = big_d >> sh;
+        let mut q = (num >> sh) as u64 / den_top;
+        let mut r = num as i128 - q as i128 * big_d as i128;
+        while r < 0 && q > 0 {
+            q -= 1;
+            r += big_d as i128;
+        }
+        q
     };
-    (a as i128 + q) as i32
+    let q = q as i64;
+    (a as i64 + if span < 0 { -q } else { q }) as i32
 }
 
 fn clip_against(input: &Polygon, plane: Plane, out: &mut Polygon) {
@@ -155,4 +176,53 @@ pub fn clip_triangle(tri: &[ClipVertex; 3], outcodes: u8) -> Polygon {
         }
     }
     a
+}
+
+#[cfg(test)]
+mod tests {
+    use super::lerp;
+
+    /// The rounded quotient in `i128`, as `lerp` took it before.
+    fn reference(a: i32, b: i32, d_in: i64, den: i64) -> i32 {
+        let (num, den) = ((b as i128 - a as i128) * d_in as i128, den as i128);
+        let q = if num >= 0 {
+            (num + den / 2) / den
+        } else {
+            -((-num + den / 2) / den)
+        };
+        (a as i128 + q) as i32
+    }
+
+    #[test]
+    fn lerp_matches_the_wide_division() {
+        let mut next = crate::testing::rng();
+        let ends = [i32::MIN, i32::MIN + 1, -1, 0, 1, i32::MAX - 1, i32::MAX];
+        for _ in 0..400_000 {
+            let a = match next(4) {
+                0 => ends[next(ends.len() as u64) as usize],
+                _ => next(1 << 32) as u32 as i32,
+            };
+            let b = match next(4) {
+                0 => ends[next(ends.len() as u64) as usize],
+                1 => a.wrapping_add(next(1000) as i32 - 500),
+                _ => next(1 << 32) as u32 as i32,
+            };
+            // Denominators of every size up to 2^63 - 1, the distance
+            // anywhere in 0..=den (both ends often).
+            let bits = 1 + next(63);
+            let den = (1 + next(1u64 << (bits - 1)) + (1u64 << (bits - 1)) - 1).min(i64::MAX as u64)
+                as i64;
+            let d_in = match next(5) {
+                0 => 0,
+                1 => den,
+                2 => den / 2,
+                _ => next(den as u64 + 1).min(den as u64) as i64,
+            };
+            assert_eq!(
+                lerp(a, b, d_in, den),
+                reference(a, b, d_in, den),
+                "lerp({a}, {b}, {d_in}, {den})"
+            );
+        }
+    }
 }
