@@ -187,10 +187,12 @@ where
         self.next += 1;
         let t = self.grid.tile_at((self.t0 + k) as u32);
         let rect = self.grid.rect(t);
-        let (w, h) = ((rect.x1 - rect.x0) as usize, (rect.y1 - rect.y0) as usize);
         profiler.enter(Stage::Raster);
         let cfg = &self.config;
-        tile.clear(w, h, cfg.clear_color, cfg.clear_depth);
+        // Rewrites only the rows drawn since the buffer's last clear (when
+        // that was with the same colour and depth), whichever tile or
+        // frame they belonged to.
+        tile.clear(cfg.clear_color, cfg.clear_depth);
         let state = &self.state;
         let mut scan;
         let list = if self.rescan {
