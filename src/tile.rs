@@ -175,10 +175,10 @@ impl<C: Copy + PartialEq, const W: usize, const H: usize> TileBuffer<C, W, H> {
         // Whole rows: one fill over the rows' contiguous storage, rather
         // than a fill per row. None when no row was written (lo >= hi).
         if let Some(rows) = self.color.get_mut(lo..hi) {
-            rows.as_flattened_mut().fill(color);
+            fill(rows.as_flattened_mut(), color);
         }
         if let Some(rows) = self.depth.get_mut(lo..hi) {
-            rows.as_flattened_mut().fill(depth);
+            fill(rows.as_flattened_mut(), depth);
         }
         self.cleared = Cleared {
             color,
@@ -187,6 +187,17 @@ impl<C: Copy + PartialEq, const W: usize, const H: usize> TileBuffer<C, W, H> {
             hi: 0,
         };
     }
+}
+
+/// `slice.fill(value)`, 32 values a turn: stores with constant offsets, one
+/// loop test per 32 (`fill` tests every 4 on the Cortex-M3).
+#[inline(always)]
+fn fill<T: Copy>(slice: &mut [T], value: T) {
+    let (chunks, rest) = slice.as_chunks_mut::<32>();
+    for c in chunks {
+        *c = [value; 32];
+    }
+    rest.fill(value);
 }
 
 /// The finished pixels of one tile, row-major, as handed to a sink.
