@@ -195,6 +195,13 @@ where
         tile.clear(cfg.clear_color, cfg.clear_depth);
         let state = &self.state;
         let mut scan;
+        let bin = self.bins.iter(k);
+        if !self.rescan && bin.is_empty() {
+            // Nothing to draw: no tile loop (its cursor, its spans' array)
+            // at all.
+            self.stats.tiles += 1;
+            return Some(rectangle(&rect));
+        }
         let list = if self.rescan {
             scan = ScanState::new(state);
             TileList::Scan {
@@ -204,7 +211,7 @@ where
                 state: &mut scan,
             }
         } else {
-            TileList::Bin(self.bins.iter(k))
+            TileList::Bin(bin)
         };
         // LessEqual with writes, the default, has span loops of its own;
         // every other comparison shares one set (see `DepthFn`).
