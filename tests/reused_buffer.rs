@@ -35,7 +35,7 @@ fn read(tile: &Tile, area: Rectangle) -> Drawn {
 
 /// Every tile of a frame of `scene`, each drawn into a fresh buffer.
 fn fresh<F: ShaderSet<Rgb565>>(config: Config<Rgb565>, scene: &Scene<'_, F>) -> Vec<Drawn> {
-    let mut ws: Box<Workspace<2048, 8192, 256>> = Box::new(Workspace::new());
+    let mut ws: Box<Workspace<2048, 8192, 32>> = Box::new(Workspace::new());
     let mut frame: Frame<'_, Rgb565, F, 32, 32> = Frame::begin(config, &mut ws, scene).unwrap();
     let mut out = Vec::new();
     loop {
@@ -50,18 +50,22 @@ fn fresh<F: ShaderSet<Rgb565>>(config: Config<Rgb565>, scene: &Scene<'_, F>) -> 
 
 /// Every tile of a frame of `scene`, drawn into the buffers of `pool` in
 /// turn (tile `k` into buffer `k % pool.len()`), each narrow tile then
-/// packed for a transfer, as a DMA transfer would.
-fn reused<F: ShaderSet<Rgb565>>(
+/// packed for a transfer, as a DMA transfer would. Binned with a pool of
+/// `B` entries: a small one makes passes of a few tiles, and tiles whose
+/// bin overflows it, rescanned.
+fn reused<F: ShaderSet<Rgb565>, const B: usize>(
     config: Config<Rgb565>,
     scene: &Scene<'_, F>,
     pool: &mut [Tile],
 ) -> Vec<Drawn> {
-    let mut ws: Box<Workspace<2048, 8192, 256>> = Box::new(Workspace::new());
+    let mut ws: Box<Workspace<2048, B, 32>> = Box::new(Workspace::new());
     let mut frame: Frame<'_, Rgb565, F, 32, 32> = Frame::begin(config, &mut ws, scene).unwrap();
     let mut out = Vec::new();
     for k in 0.. {
         let tile = &mut pool[k % pool.len()];
         let Some(area) = frame.render_next(tile) else {
+            let s = frame.stats();
+            assert!(B > 64 || s.rescanned_tiles > 0, "{s:?}");
             return out;
         };
         out.push(read(tile, area));
@@ -80,8 +84,12 @@ fn check<F: ShaderSet<Rgb565>>(
     pool: &mut [Tile],
 ) {
     let expected = fresh(config, scene);
-    let got = reused(config, scene, pool);
+    let got = reused::<F, 8192>(config, scene, pool);
     assert_eq!(got.len(), expected.len(), "{name}");
+    assert!(
+        reused::<F, 64>(config, scene, pool) == expected,
+        "{name}: rescanned"
+    );
     let drawn = expected
         .iter()
         .filter(|t| t.1.iter().any(|&c| c != config.clear_color));
@@ -116,6 +124,10 @@ fn a_reused_buffer_draws_as_a_fresh_one() {
             // and depth (every other frame), then the first again.
             let hilbert = plain.tile_order(TileOrder::Hilbert);
             check(&name("hilbert"), hilbert, &scene, pool);
+            let auto = plain.rasterizer(Rasterizer::Auto);
+            check(&name("auto"), auto, &scene, pool);
+            let walk = plain.rasterizer(Rasterizer::Hilbert);
+            check(&name("hilbert walk"), walk, &scene, pool);
             let other = match i % 2 {
                 0 => plain.clear_depth(65_000),
                 _ => plain.clear_color(grey),
