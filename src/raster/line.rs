@@ -479,9 +479,14 @@ pub(crate) fn draw_line<C: Copy + From<Rgb888>, const W: usize, const H: usize>(
     depth_bias: u16,
 ) -> u32 {
     let (p, q) = canonical(a, b);
-    let Some(mut walk) = Walk::new(p.pos, q.pos, &tile_clip::<W, H>(rect)) else {
+    let clip = tile_clip::<W, H>(rect);
+    let Some(mut walk) = Walk::new(p.pos, q.pos, &clip) else {
         return 0;
     };
+    // The walk goes down (or along a row) from its first pixel, inside
+    // the clip, to `q`'s row at most.
+    let last = (q.pos.y >> SUBPIXEL_BITS).min(clip.y1 - 1);
+    tile.written((walk.j - rect.y0) as usize, (last - rect.y0) as usize);
     // Walk in tile-local pixels: the clip keeps them in 0..W, 0..H.
     walk.i -= rect.x0;
     walk.j -= rect.y0;
@@ -546,6 +551,9 @@ pub(crate) fn draw_point<C: Copy + From<Rgb888>, const W: usize, const H: usize>
     let ya = y0.max(clip.y0 as i64) as i32;
     let yb = (y0 + size as i64).min(clip.y1 as i64) as i32;
     let color = C::from(Rgb888::new(p.color[0], p.color[1], p.color[2]));
+    if ya < yb && xa < xb {
+        tile.written((ya - rect.y0) as usize, (yb - 1 - rect.y0) as usize);
+    }
     let mut written = 0;
     for j in ya..yb {
         for i in xa..xb {

@@ -208,6 +208,13 @@ pub(super) struct BinIter<'a> {
     pub(super) end: usize,
 }
 
+impl BinIter<'_> {
+    /// Whether the bin holds no triangle.
+    pub(super) fn is_empty(&self) -> bool {
+        self.pos == self.end
+    }
+}
+
 impl Iterator for BinIter<'_> {
     type Item = usize;
 

@@ -51,6 +51,36 @@ where
     pub(super) rect: &'j PixelRect,
     pub(super) found: [Span; TH],
     pub(super) shaders: &'j Shaders<'j, C, F, TW, TH>,
+    /// The first and last screen rows of the spans drawn so far (first >
+    /// last: none), recorded in the tile when it is done
+    /// ([`Target::finish`]).
+    pub(super) rows: (i32, i32),
+}
+
+impl<C, F: ShaderSet<C>, const TW: usize, const TH: usize> Target<'_, C, F, TW, TH>
+where
+    C: From<Rgb888>,
+{
+    /// Notes the rows of the first `count` spans of `found` (at least
+    /// one, top to bottom), about to be drawn: per triangle and tile,
+    /// never per pixel.
+    #[inline(always)]
+    fn drawn(&mut self, count: usize) {
+        let last = self.found[..count].last().map_or(i32::MIN, |s| s.j);
+        self.rows = (self.rows.0.min(self.found[0].j), self.rows.1.max(last));
+    }
+
+    /// Records in the tile the rows drawn (see [`TileBuffer::written`]).
+    #[inline(always)]
+    pub(super) fn finish(&mut self) {
+        let (first, last) = self.rows;
+        if first <= last {
+            // Spans lie inside the tile.
+            let y0 = self.rect.y0;
+            self.tile
+                .written((first - y0) as usize, (last - y0) as usize);
+        }
+    }
 }
 
 /// Draws one triangle into the tile, Gouraud or flat shaded (`flat` is the
@@ -78,6 +108,7 @@ where
     if count == 0 {
         return 0;
     }
+    to.drawn(count);
     let shade = if gouraud {
         to.shaders.gouraud
     } else {
@@ -111,6 +142,7 @@ where
     if count == 0 {
         return 0;
     }
+    to.drawn(count);
     (pass.shade)(
         to.tile,
         to.rect,

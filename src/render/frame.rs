@@ -187,12 +187,21 @@ where
         self.next += 1;
         let t = self.grid.tile_at((self.t0 + k) as u32);
         let rect = self.grid.rect(t);
-        let (w, h) = ((rect.x1 - rect.x0) as usize, (rect.y1 - rect.y0) as usize);
         profiler.enter(Stage::Raster);
         let cfg = &self.config;
-        tile.clear(w, h, cfg.clear_color, cfg.clear_depth);
+        // Rewrites only the rows drawn since the buffer's last clear (when
+        // that was with the same colour and depth), whichever tile or
+        // frame they belonged to.
+        tile.clear(cfg.clear_color, cfg.clear_depth);
         let state = &self.state;
         let mut scan;
+        let bin = self.bins.iter(k);
+        if !self.rescan && bin.is_empty() {
+            // Nothing to draw: no tile loop (its cursor, its spans' array)
+            // at all.
+            self.stats.tiles += 1;
+            return Some(rectangle(&rect));
+        }
         let list = if self.rescan {
             scan = ScanState::new(state);
             TileList::Scan {
@@ -202,7 +211,7 @@ where
                 state: &mut scan,
             }
         } else {
-            TileList::Bin(self.bins.iter(k))
+            TileList::Bin(bin)
         };
         // LessEqual with writes, the default, has span loops of its own;
         // every other comparison shares one set (see `DepthFn`).

@@ -44,6 +44,7 @@ where
             // triangles: `TH` of 12 bytes on the stack.
             found: [Span::default(); TH],
             shaders: &shaders,
+            rows: (i32::MAX, i32::MIN),
         },
     };
     // Transparent triangles, drawn after the opaque ones: (depth key,
@@ -99,6 +100,7 @@ where
     if P::BLEND {
         n += job.draw_later::<P>(&mut later);
     }
+    job.to.finish();
     n
 }
 
