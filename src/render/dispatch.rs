@@ -53,7 +53,7 @@ pub(super) struct Shaders<'s, C: From<Rgb888>, F, const TW: usize, const TH: usi
 
 impl<'s, C, F, const TW: usize, const TH: usize> Shaders<'s, C, F, TW, TH>
 where
-    C: PixelColor + From<Rgb888> + Into<Rgb888>,
+    C: PixelColor + From<Rgb888> + Into<Rgb888> + 'static,
     F: ShaderSet<C>,
 {
     /// The functions of a frame drawn with depth comparison `D`, depth

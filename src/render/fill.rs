@@ -70,7 +70,7 @@ pub(super) fn fill<C, F, const TW: usize, const TH: usize>(
     gouraud: bool,
 ) -> u32
 where
-    C: PixelColor + From<Rgb888> + Into<Rgb888>,
+    C: PixelColor + From<Rgb888> + Into<Rgb888> + 'static,
     F: ShaderSet<C>,
 {
     let v = [sv[0].xy(), sv[1].xy(), sv[2].xy()];
@@ -102,7 +102,7 @@ pub(super) fn fill_shaded<C, F, G, const TW: usize, const TH: usize>(
     pass: &ShaderPass<'_, C, G, TW, TH>,
 ) -> u32
 where
-    C: PixelColor + From<Rgb888> + Into<Rgb888>,
+    C: PixelColor + From<Rgb888> + Into<Rgb888> + 'static,
     F: ShaderSet<C>,
     G: FragmentShader<C>,
 {
@@ -179,7 +179,7 @@ pub(super) fn shade<
     test: DepthTest,
 ) -> u32
 where
-    C: PixelColor + From<Rgb888> + Into<Rgb888>,
+    C: PixelColor + From<Rgb888> + Into<Rgb888> + 'static,
 {
     let dt = D::new(test);
     let corners = &Corners(sv);
@@ -230,7 +230,7 @@ pub(super) fn shade_custom<C, F, const TW: usize, const TH: usize>(
     out: Output,
 ) -> u32
 where
-    C: PixelColor + From<Rgb888> + Into<Rgb888>,
+    C: PixelColor + From<Rgb888> + Into<Rgb888> + 'static,
     F: FragmentShader<C>,
 {
     let setup = &PerspectiveSetup::new(tri, out.mode == Perspective::Affine);

@@ -29,7 +29,7 @@ pub(super) fn raster_tile<'f, C, F, P, const TW: usize, const TH: usize>(
     shaders: Shaders<'_, C, F, TW, TH>,
 ) -> u32
 where
-    C: PixelColor + From<Rgb888> + Into<Rgb888>,
+    C: PixelColor + From<Rgb888> + Into<Rgb888> + 'static,
     F: ShaderSet<C>,
     P: Features,
 {
@@ -116,7 +116,7 @@ where
 
 impl<C, F, const TW: usize, const TH: usize> TileJob<'_, '_, C, F, TW, TH>
 where
-    C: PixelColor + From<Rgb888> + Into<Rgb888>,
+    C: PixelColor + From<Rgb888> + Into<Rgb888> + 'static,
     F: ShaderSet<C>,
 {
     /// Draws triangle `idx` of the cursor's draw, a [`Shading::Shader`]
@@ -393,7 +393,7 @@ where
 impl<C, F, P, const TW: usize, const TH: usize> VisitShader<C>
     for WithShader<'_, '_, '_, '_, C, F, P, TW, TH>
 where
-    C: PixelColor + From<Rgb888> + Into<Rgb888>,
+    C: PixelColor + From<Rgb888> + Into<Rgb888> + 'static,
     F: ShaderSet<C>,
     P: Features,
 {

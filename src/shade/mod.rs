@@ -36,11 +36,13 @@
 //! `z << 2` in a `u32`, whose upper half is then the 16-bit depth. The
 //! results are exactly those of the plain per-pixel test.
 
+mod convert;
 pub(crate) mod perspective;
 mod setup;
 mod sliver;
 mod small;
 
+pub(crate) use convert::rgb16;
 use embedded_graphics::pixelcolor::Rgb888;
 use setup::Basis;
 pub(crate) use setup::{Corners, TriangleSetup};
@@ -249,7 +251,7 @@ fn flat_run<C: Copy, D: DepthFn, const WRITE: bool>(
 
 /// Like [`span_flat`], with colour interpolated per pixel.
 #[inline(always)]
-pub(crate) fn span_gouraud<C: Copy + From<Rgb888>, D: DepthFn, const WRITE: bool>(
+pub(crate) fn span_gouraud<C: Copy + From<Rgb888> + 'static, D: DepthFn, const WRITE: bool>(
     dt: D,
     s: &TriangleSetup,
     t: &Corners<'_>,
@@ -281,11 +283,7 @@ pub(crate) fn span_gouraud<C: Copy + From<Rgb888>, D: DepthFn, const WRITE: bool
             if WRITE {
                 *d = zz;
             }
-            *c = C::from(Rgb888::new(
-                (r >> C_FRAC) as u8,
-                (g >> C_FRAC) as u8,
-                (b >> C_FRAC) as u8,
-            ));
+            *c = rgb16(r, g, b);
             n += 1;
         }
         z = z.wrapping_add(gz);
@@ -299,7 +297,7 @@ pub(crate) fn span_gouraud<C: Copy + From<Rgb888>, D: DepthFn, const WRITE: bool
 /// The branch-free loop of [`span_gouraud`]: `start` and `step` hold
 /// depth (as in [`span_flat`]), red, green and blue.
 #[inline(never)]
-fn gouraud_run<C: Copy + From<Rgb888>, D: DepthFn, const WRITE: bool>(
+fn gouraud_run<C: Copy + From<Rgb888> + 'static, D: DepthFn, const WRITE: bool>(
     dt: D,
     color: &mut [C],
     depth: &mut [u16],
@@ -317,11 +315,7 @@ fn gouraud_run<C: Copy + From<Rgb888>, D: DepthFn, const WRITE: bool>(
         if WRITE {
             *d = dt.merge(zz, old);
         }
-        let shaded = C::from(Rgb888::new(
-            (r >> C_FRAC) as u8,
-            (g >> C_FRAC) as u8,
-            (b >> C_FRAC) as u8,
-        ));
+        let shaded = rgb16(r as i32, g as i32, b as i32);
         *c = if pass { shaded } else { *c };
         n += pass as u16;
         z = z.wrapping_add(gz);
