@@ -41,7 +41,7 @@ pub(super) type CustomFn<C, G, const TW: usize, const TH: usize> = fn(
 /// How a frame draws a triangle: its rasterizer and its shading
 /// functions: Gouraud, flat, for transparent draws flat and Gouraud
 /// through the fragment-shader path, and the scene's fragment shaders.
-pub(super) struct Shaders<'s, C: From<Rgb888>, F, const TW: usize, const TH: usize> {
+pub(super) struct Shaders<'s, C: From<Rgb888> + 'static, F, const TW: usize, const TH: usize> {
     pub(super) find: FindFn,
     pub(super) out: Output,
     pub(super) gouraud: ShadeFn<C, TW, TH>,

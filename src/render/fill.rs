@@ -45,7 +45,7 @@ fn find_auto(v: &[SubPoint; 3], rect: &PixelRect, found: &mut [Span]) -> usize {
 /// frame's span loops.
 pub(super) struct Target<'j, C, F: ShaderSet<C>, const TW: usize, const TH: usize>
 where
-    C: From<Rgb888>,
+    C: From<Rgb888> + 'static,
 {
     pub(super) tile: &'j mut TileBuffer<C, TW, TH>,
     pub(super) rect: &'j PixelRect,

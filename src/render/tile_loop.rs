@@ -105,7 +105,7 @@ where
 /// One tile being drawn, and what drawing a triangle into it needs.
 struct TileJob<'j, 'f, C, F: ShaderSet<C>, const TW: usize, const TH: usize>
 where
-    C: PixelColor + From<Rgb888>,
+    C: PixelColor + From<Rgb888> + 'static,
 {
     frame: &'f FrameState<'f>,
     /// The last draw's fixed-point set-up, for clipped and shaded triangles.
@@ -379,7 +379,7 @@ fn no_write(blend: Blend) -> impl FnOnce(Output) -> Output {
 /// triangle with the one the draw picks.
 struct WithShader<'v, 'c, 'j, 'f, C, F, P, const TW: usize, const TH: usize>
 where
-    C: PixelColor + From<Rgb888>,
+    C: PixelColor + From<Rgb888> + 'static,
     F: ShaderSet<C>,
 {
     job: &'v mut TileJob<'j, 'f, C, F, TW, TH>,
