@@ -199,7 +199,7 @@ pub(crate) fn span_flat<C: Copy, D: DepthFn, const WRITE: bool>(
     let SpanPos { ox, j, x0, x1 } = sp;
     // Depth with its 16 integer bits in the upper half of a u32 (see
     // `depth16`).
-    let mut z = (s.start(t, x0, j)[0] as u32) << (16 - Z_FRAC);
+    let mut z = (s.z_start(t, x0, j) as u32) << (16 - Z_FRAC);
     let gz = (s.steps()[0] as u32) << (16 - Z_FRAC);
     let (a, b) = ((x0 - ox) as usize, (x1 - ox) as usize);
     let (color, depth) = (&mut color[a..b], &mut depth[a..b]);
