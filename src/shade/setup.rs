@@ -266,9 +266,34 @@ pub(crate) struct TriangleSetup {
     /// A gradient was beyond ±[`GRADIENT_LIMIT`]: span starts come from
     /// [`wide_start`] instead of `planes` (only the steps are used).
     pub(super) wide: bool,
+    /// The depth step along a span: the depth plane's `gx`, kept here
+    /// because a wide triangle's depth plane is replaced by one that is
+    /// outside the depth range everywhere, so that [`TriangleSetup::start`]
+    /// finds it there with the range tests it makes anyway, and tests no
+    /// flag per span.
+    pub(super) zstep: i32,
 }
 
 impl TriangleSetup {
+    /// The set-up of `planes`, `wide` or not (see
+    /// [`TriangleSetup::zstep`]).
+    #[inline(always)]
+    pub(super) fn finish(mut planes: [Plane; 4], wide: bool) -> Self {
+        let zstep = planes[0].gx;
+        if wide {
+            planes[0] = Plane {
+                gx: 0,
+                gy: 0,
+                k: i32::MIN,
+            };
+        }
+        Self {
+            planes,
+            wide,
+            zstep,
+        }
+    }
+
     /// Sets up the planes of a non-degenerate triangle. Colour planes are
     /// only computed for `gouraud` (flat shading needs only depth).
     #[inline(always)]
@@ -305,10 +330,7 @@ impl TriangleSetup {
         } else {
             [z, Plane::default(), Plane::default(), Plane::default()]
         };
-        Self {
-            planes,
-            wide: range >= 2 * GRADIENT_LIMIT as u64,
-        }
+        Self::finish(planes, range >= 2 * GRADIENT_LIMIT as u64)
     }
 
     /// The plane of attribute `a` (see [`Corners::values`]) over the
@@ -374,7 +396,7 @@ impl TriangleSetup {
     #[inline(always)]
     pub(super) fn steps(&self) -> [i32; 4] {
         [
-            self.planes[0].step(),
+            self.zstep,
             self.planes[1].step(),
             self.planes[2].step(),
             self.planes[3].step(),
@@ -391,9 +413,6 @@ impl TriangleSetup {
     /// attribute with the bounds built in registers.
     #[inline(always)]
     pub(crate) fn start(&self, t: &Corners<'_>, i: i32, j: i32) -> [i32; 4] {
-        if self.wide {
-            return wide_start(t, i, j);
-        }
         let v = [
             self.planes[0].at(i, j),
             self.planes[1].at(i, j),
@@ -402,6 +421,9 @@ impl TriangleSetup {
         ];
         if z_inside(v[0]) && c_inside(v[1]) && c_inside(v[2]) && c_inside(v[3]) {
             v
+        } else if self.wide {
+            // Its depth plane fails `z_inside` everywhere.
+            wide_start(t, i, j)
         } else {
             clamped(v[0], v[1], v[2], v[3])
         }
