@@ -184,7 +184,7 @@ where
     let dt = D::new(test);
     let corners = &Corners(sv);
     let setup = &TriangleSetup::for_spans::<GOURAUD>(corners);
-    let flat = C::from(Rgb888::new(flat[0], flat[1], flat[2]));
+    let flat = crate::shade::rgb::<C>(flat[0], flat[1], flat[2]);
     each_span(tile, rect, found, |color, depth, sp| {
         if GOURAUD {
             span_gouraud::<C, D, WRITE>(dt, setup, corners, color, depth, sp)
