@@ -421,11 +421,17 @@ impl TriangleSetup {
         ];
         if z_inside(v[0]) && c_inside(v[1]) && c_inside(v[2]) && c_inside(v[3]) {
             v
-        } else if self.wide {
-            // Its depth plane fails `z_inside` everywhere.
-            wide_start(t, i, j)
         } else {
-            clamped(v[0], v[1], v[2], v[3])
+            // A wide triangle's depth plane fails `z_inside` everywhere.
+            // `wide_start`'s values are clamped already, and clamped again
+            // they stay: the values meet the fast path's in registers.
+            let [z, r, g, b] = if self.wide { wide_start(t, i, j) } else { v };
+            [
+                z.clamp(Z_LO, Z_HI),
+                r.clamp(C_LO, C_HI),
+                g.clamp(C_LO, C_HI),
+                b.clamp(C_LO, C_HI),
+            ]
         }
     }
 }
@@ -445,18 +451,4 @@ fn z_inside(z: i32) -> bool {
 #[inline(always)]
 fn c_inside(c: i32) -> bool {
     ((c - C_LO) as u32) < (C_HI - C_LO) as u32
-}
-
-/// Depth, red, green and blue clamped to their ranges: what
-/// [`TriangleSetup::start`] returns when a value may be outside (the
-/// values passed one by one, in registers, not stored on the way).
-#[cold]
-#[inline(never)]
-fn clamped(z: i32, r: i32, g: i32, b: i32) -> [i32; 4] {
-    [
-        z.clamp(Z_LO, Z_HI),
-        r.clamp(C_LO, C_HI),
-        g.clamp(C_LO, C_HI),
-        b.clamp(C_LO, C_HI),
-    ]
 }
