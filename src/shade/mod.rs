@@ -42,7 +42,7 @@ mod setup;
 mod sliver;
 mod small;
 
-pub(crate) use convert::{rgb, rgb16};
+pub(crate) use convert::{rgb, rgb16, rgb_scalar};
 use embedded_graphics::pixelcolor::Rgb888;
 use setup::Basis;
 pub(crate) use setup::{Corners, TriangleSetup};
@@ -297,7 +297,7 @@ pub(crate) fn span_gouraud<C: Copy + From<Rgb888> + 'static, D: DepthFn, const W
 /// The branch-free loop of [`span_gouraud`]: `start` and `step` hold
 /// depth (as in [`span_flat`]), red, green and blue.
 #[inline(never)]
-fn gouraud_run<C: Copy + From<Rgb888> + 'static, D: DepthFn, const WRITE: bool>(
+fn gouraud_run<C: Copy + From<Rgb888>, D: DepthFn, const WRITE: bool>(
     dt: D,
     color: &mut [C],
     depth: &mut [u16],
@@ -315,7 +315,13 @@ fn gouraud_run<C: Copy + From<Rgb888> + 'static, D: DepthFn, const WRITE: bool>(
         if WRITE {
             *d = dt.merge(zz, old);
         }
-        let shaded = rgb16(r as i32, g as i32, b as i32);
+        // embedded-graphics' arithmetic, which vectorizes (this loop runs
+        // only where the target has SIMD).
+        let shaded = C::from(Rgb888::new(
+            (r >> C_FRAC) as u8,
+            (g >> C_FRAC) as u8,
+            (b >> C_FRAC) as u8,
+        ));
         *c = if pass { shaded } else { *c };
         n += pass as u16;
         z = z.wrapping_add(gz);
@@ -595,7 +601,14 @@ mod tests {
             }
             let sv = [0, 1, 2].map(|k| {
                 let z = next(65_536) as u16;
-                let color = [next(256) as u8, next(256) as u8, next(256) as u8];
+                // Half the channels at 0 or 255, where a start's rounding
+                // can take it outside the range and the clamp matters.
+                let mut c = || match next(4) {
+                    0 => 0,
+                    1 => 255,
+                    _ => next(256) as u8,
+                };
+                let color = [c(), c(), c()];
                 ScreenVertex::new(v[k].x, v[k].y, z, 0, color)
             });
             let vals = [0, 1, 2, 3].map(|a| {
@@ -619,6 +632,9 @@ mod tests {
                 let start = setup.start(&corners, x0, j);
                 let reference = reference_start(&v, vals, x0, j);
                 assert_eq!(start, reference, "{v:?} at ({x0}, {j})");
+                // Both forms, whichever this target takes.
+                assert_eq!(setup.start_selects(&corners, x0, j), reference);
+                assert_eq!(setup.start_tested(&corners, x0, j), reference);
                 // Along a span of two pixels or more the step is the exact
                 // x gradient (the old one, saturated to i32, was the same).
                 if x1 - x0 >= 2 {

@@ -398,7 +398,7 @@ impl<C: From<Rgb888> + 'static> PixelFn<[I16F16; 0], C> for Gouraud {
     #[inline(always)]
     fn pixel(&mut self, p: &Interpolated<[I16F16; 0]>) -> Option<C> {
         let [r, g, b] = p.rgb();
-        Some(crate::shade::rgb(r, g, b))
+        Some(crate::shade::rgb_scalar(r, g, b))
     }
 }
 
