@@ -467,11 +467,12 @@ impl TriangleSetup {
 
 /// Whether depth `z` is surely in `Z_LO..=Z_HI`: a conservative test (by
 /// a constant an instruction can hold; depths of 65,280 and more fail it
-/// and take the clamp, which leaves them as they are).
+/// and take the clamp, which leaves them as they are). Wrapping: a wide
+/// triangle's depth plane gives `i32::MIN`.
 #[inline(always)]
 fn z_inside(z: i32) -> bool {
     const _: () = assert!(0x3FC0_0000 <= Z_HI - Z_LO);
-    ((z - Z_LO) as u32) < 0x3FC0_0000
+    (z.wrapping_sub(Z_LO) as u32) < 0x3FC0_0000
 }
 
 /// Whether colour channel `c` is surely in `C_LO..=C_HI`: `C_HI` itself
@@ -479,5 +480,5 @@ fn z_inside(z: i32) -> bool {
 /// `C_HI - C_LO` fits an instruction.
 #[inline(always)]
 fn c_inside(c: i32) -> bool {
-    ((c - C_LO) as u32) < (C_HI - C_LO) as u32
+    (c.wrapping_sub(C_LO) as u32) < (C_HI - C_LO) as u32
 }
