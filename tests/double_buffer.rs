@@ -33,7 +33,7 @@ fn reference<C, const B: usize, const T: usize>(
     config: Config<C>,
 ) -> (Vec<Rectangle>, Capture<C>, FrameStats)
 where
-    C: PixelColor + From<Rgb888> + Into<Rgb888>,
+    C: PixelColor + From<Rgb888> + Into<Rgb888> + 'static,
 {
     let mut renderer: Renderer<C, 32, 32> = Renderer::new(config);
     let mut ws: Box<Workspace<2048, B, T>> = Box::new(Workspace::new());

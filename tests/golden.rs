@@ -22,7 +22,7 @@ const H: u32 = 120;
 /// returns the first image.
 fn render<C>(scene: &Scene<'_>, size: Size, clear: C, cull: CullMode) -> Capture<C>
 where
-    C: embedded_graphics::pixelcolor::PixelColor + From<Rgb888> + Into<Rgb888>,
+    C: embedded_graphics::pixelcolor::PixelColor + From<Rgb888> + Into<Rgb888> + 'static,
 {
     let config = Config::new(size, clear).cull(cull);
     let reference = render_with(scene, config);
@@ -43,7 +43,7 @@ where
 
 fn render_with<C>(scene: &Scene<'_>, config: Config<C>) -> Capture<C>
 where
-    C: embedded_graphics::pixelcolor::PixelColor + From<Rgb888> + Into<Rgb888>,
+    C: embedded_graphics::pixelcolor::PixelColor + From<Rgb888> + Into<Rgb888> + 'static,
 {
     let (size, clear) = (config.size, config.clear_color);
     let mut r: Renderer<C, 32, 32> = Renderer::new(config);
@@ -64,7 +64,7 @@ where
 
 fn golden<C>(name: &str, scene: &Scene<'_>, size: Size, clear: C, cull: CullMode)
 where
-    C: embedded_graphics::pixelcolor::PixelColor + From<Rgb888> + Into<Rgb888>,
+    C: embedded_graphics::pixelcolor::PixelColor + From<Rgb888> + Into<Rgb888> + 'static,
 {
     let cap = render(scene, size, clear, cull);
     check_golden(name, size, &cap.to_rgb());

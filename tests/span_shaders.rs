@@ -102,7 +102,7 @@ fn camera() -> Camera {
 /// Renders `c` with shader `s` into a `C` frame.
 fn render<C, S>(c: &Case, s: &S) -> Vec<C>
 where
-    C: PixelColor + From<Rgb888> + Into<Rgb888> + Default + core::fmt::Debug,
+    C: PixelColor + From<Rgb888> + Into<Rgb888> + Default + core::fmt::Debug + 'static,
     S: FragmentShader<C>,
 {
     // Half the cases take the specialised loops' texture: `Rgb565`,
@@ -198,7 +198,7 @@ where
 /// Shader `s`'s span loop and its per-fragment path agree on `c`, in `C`.
 fn agree<C, S>(c: &Case, s: S) -> Result<(), TestCaseError>
 where
-    C: PixelColor + From<Rgb888> + Into<Rgb888> + Default + core::fmt::Debug,
+    C: PixelColor + From<Rgb888> + Into<Rgb888> + Default + core::fmt::Debug + 'static,
     S: FragmentShader<C>,
 {
     let fast = render::<C, S>(c, &s);
@@ -210,7 +210,7 @@ where
 
 fn every_builtin<C>(c: &Case) -> Result<(), TestCaseError>
 where
-    C: PixelColor + FromTexel + Into<Rgb888> + Default + core::fmt::Debug,
+    C: PixelColor + FromTexel + Into<Rgb888> + Default + core::fmt::Debug + 'static,
 {
     agree::<C, _>(c, Textured)?;
     agree::<C, _>(c, TexturedLit)?;

@@ -23,7 +23,7 @@ pub fn render_png<
     path: &Path,
 ) -> Result<FrameStats, String>
 where
-    C: PixelColor + From<Rgb888> + Into<Rgb888>,
+    C: PixelColor + From<Rgb888> + Into<Rgb888> + 'static,
     S: ShaderSet<C>,
 {
     let config = renderer.config();

@@ -41,7 +41,7 @@ pub(super) type CustomFn<C, G, const TW: usize, const TH: usize> = fn(
 /// How a frame draws a triangle: its rasterizer and its shading
 /// functions: Gouraud, flat, for transparent draws flat and Gouraud
 /// through the fragment-shader path, and the scene's fragment shaders.
-pub(super) struct Shaders<'s, C: From<Rgb888>, F, const TW: usize, const TH: usize> {
+pub(super) struct Shaders<'s, C: From<Rgb888> + 'static, F, const TW: usize, const TH: usize> {
     pub(super) find: FindFn,
     pub(super) out: Output,
     pub(super) gouraud: ShadeFn<C, TW, TH>,
@@ -53,7 +53,7 @@ pub(super) struct Shaders<'s, C: From<Rgb888>, F, const TW: usize, const TH: usi
 
 impl<'s, C, F, const TW: usize, const TH: usize> Shaders<'s, C, F, TW, TH>
 where
-    C: PixelColor + From<Rgb888> + Into<Rgb888>,
+    C: PixelColor + From<Rgb888> + Into<Rgb888> + 'static,
     F: ShaderSet<C>,
 {
     /// The functions of a frame drawn with depth comparison `D`, depth

@@ -45,7 +45,7 @@ fn find_auto(v: &[SubPoint; 3], rect: &PixelRect, found: &mut [Span]) -> usize {
 /// frame's span loops.
 pub(super) struct Target<'j, C, F: ShaderSet<C>, const TW: usize, const TH: usize>
 where
-    C: From<Rgb888>,
+    C: From<Rgb888> + 'static,
 {
     pub(super) tile: &'j mut TileBuffer<C, TW, TH>,
     pub(super) rect: &'j PixelRect,
@@ -100,7 +100,7 @@ pub(super) fn fill<C, F, const TW: usize, const TH: usize>(
     gouraud: bool,
 ) -> u32
 where
-    C: PixelColor + From<Rgb888> + Into<Rgb888>,
+    C: PixelColor + From<Rgb888> + Into<Rgb888> + 'static,
     F: ShaderSet<C>,
 {
     let v = [sv[0].xy(), sv[1].xy(), sv[2].xy()];
@@ -133,7 +133,7 @@ pub(super) fn fill_shaded<C, F, G, const TW: usize, const TH: usize>(
     pass: &ShaderPass<'_, C, G, TW, TH>,
 ) -> u32
 where
-    C: PixelColor + From<Rgb888> + Into<Rgb888>,
+    C: PixelColor + From<Rgb888> + Into<Rgb888> + 'static,
     F: ShaderSet<C>,
     G: FragmentShader<C>,
 {
@@ -211,12 +211,12 @@ pub(super) fn shade<
     test: DepthTest,
 ) -> u32
 where
-    C: PixelColor + From<Rgb888> + Into<Rgb888>,
+    C: PixelColor + From<Rgb888> + Into<Rgb888> + 'static,
 {
     let dt = D::new(test);
     let corners = &Corners(sv);
     let setup = &TriangleSetup::for_spans::<GOURAUD>(corners);
-    let flat = C::from(Rgb888::new(flat[0], flat[1], flat[2]));
+    let flat = crate::shade::rgb::<C>(flat[0], flat[1], flat[2]);
     each_span(tile, rect, found, |color, depth, sp| {
         if GOURAUD {
             span_gouraud::<C, D, WRITE>(dt, setup, corners, color, depth, sp)
@@ -262,7 +262,7 @@ pub(super) fn shade_custom<C, F, const TW: usize, const TH: usize>(
     out: Output,
 ) -> u32
 where
-    C: PixelColor + From<Rgb888> + Into<Rgb888>,
+    C: PixelColor + From<Rgb888> + Into<Rgb888> + 'static,
     F: FragmentShader<C>,
 {
     let setup = &PerspectiveSetup::new(tri, out.mode == Perspective::Affine);

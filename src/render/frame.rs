@@ -55,7 +55,7 @@ pub struct Frame<'a, C, F, const TW: usize, const TH: usize, P = super::All> {
 
 impl<'a, C, F, const TW: usize, const TH: usize, P> Frame<'a, C, F, TW, TH, P>
 where
-    C: PixelColor + From<Rgb888> + Into<Rgb888>,
+    C: PixelColor + From<Rgb888> + Into<Rgb888> + 'static,
     F: ShaderSet<C>,
     P: Features,
 {

@@ -107,6 +107,13 @@ use embedded_graphics::pixelcolor::{PixelColor, Rgb888};
 /// plus its settings, linking the optional paths of `P` ([`All`] unless
 /// named; see [`Features`]).
 ///
+/// `C` is any embedded-graphics colour type that converts from and to
+/// `Rgb888`, and is `'static` (every colour type is: it holds no
+/// reference): the span loops convert their colours to `Rgb565` (and the
+/// crate's [`Rgb565Be`](crate::sink::Rgb565Be)) by tables rather than
+/// embedded-graphics' arithmetic, bit for bit the same, and pick that path
+/// by comparing `C`'s `TypeId`, which needs `'static`.
+///
 /// ```
 /// use microraster::prelude::*;
 /// use embedded_graphics::{mock_display::MockDisplay, pixelcolor::BinaryColor};
@@ -154,7 +161,14 @@ where
     pub fn tile(&self) -> &TileBuffer<C, TW, TH> {
         &self.tile
     }
+}
 
+/// Drawing: `C` must be `'static` here (see [`Renderer`]).
+impl<C, const TW: usize, const TH: usize, P> Renderer<C, TW, TH, P>
+where
+    C: PixelColor + From<Rgb888> + Into<Rgb888> + 'static,
+    P: Features,
+{
     /// Renders `scene` tile by tile into `sink`.
     ///
     /// Every error but [`RenderError::Sink`] is detected before anything is

@@ -29,7 +29,7 @@ pub(super) fn raster_tile<'f, C, F, P, const TW: usize, const TH: usize>(
     shaders: Shaders<'_, C, F, TW, TH>,
 ) -> u32
 where
-    C: PixelColor + From<Rgb888> + Into<Rgb888>,
+    C: PixelColor + From<Rgb888> + Into<Rgb888> + 'static,
     F: ShaderSet<C>,
     P: Features,
 {
@@ -107,7 +107,7 @@ where
 /// One tile being drawn, and what drawing a triangle into it needs.
 struct TileJob<'j, 'f, C, F: ShaderSet<C>, const TW: usize, const TH: usize>
 where
-    C: PixelColor + From<Rgb888>,
+    C: PixelColor + From<Rgb888> + 'static,
 {
     frame: &'f FrameState<'f>,
     /// The last draw's fixed-point set-up, for clipped and shaded triangles.
@@ -118,7 +118,7 @@ where
 
 impl<C, F, const TW: usize, const TH: usize> TileJob<'_, '_, C, F, TW, TH>
 where
-    C: PixelColor + From<Rgb888> + Into<Rgb888>,
+    C: PixelColor + From<Rgb888> + Into<Rgb888> + 'static,
     F: ShaderSet<C>,
 {
     /// Draws triangle `idx` of the cursor's draw, a [`Shading::Shader`]
@@ -381,7 +381,7 @@ fn no_write(blend: Blend) -> impl FnOnce(Output) -> Output {
 /// triangle with the one the draw picks.
 struct WithShader<'v, 'c, 'j, 'f, C, F, P, const TW: usize, const TH: usize>
 where
-    C: PixelColor + From<Rgb888>,
+    C: PixelColor + From<Rgb888> + 'static,
     F: ShaderSet<C>,
 {
     job: &'v mut TileJob<'j, 'f, C, F, TW, TH>,
@@ -395,7 +395,7 @@ where
 impl<C, F, P, const TW: usize, const TH: usize> VisitShader<C>
     for WithShader<'_, '_, '_, '_, C, F, P, TW, TH>
 where
-    C: PixelColor + From<Rgb888> + Into<Rgb888>,
+    C: PixelColor + From<Rgb888> + Into<Rgb888> + 'static,
     F: ShaderSet<C>,
     P: Features,
 {

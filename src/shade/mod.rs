@@ -36,11 +36,13 @@
 //! `z << 2` in a `u32`, whose upper half is then the 16-bit depth. The
 //! results are exactly those of the plain per-pixel test.
 
+mod convert;
 pub(crate) mod perspective;
 mod setup;
 mod sliver;
 mod small;
 
+pub(crate) use convert::{rgb, rgb16, rgb_scalar};
 use embedded_graphics::pixelcolor::Rgb888;
 use setup::Basis;
 pub(crate) use setup::{Corners, TriangleSetup};
@@ -197,7 +199,7 @@ pub(crate) fn span_flat<C: Copy, D: DepthFn, const WRITE: bool>(
     let SpanPos { ox, j, x0, x1 } = sp;
     // Depth with its 16 integer bits in the upper half of a u32 (see
     // `depth16`).
-    let mut z = (s.start(t, x0, j)[0] as u32) << (16 - Z_FRAC);
+    let mut z = (s.z_start(t, x0, j) as u32) << (16 - Z_FRAC);
     let gz = (s.steps()[0] as u32) << (16 - Z_FRAC);
     let (a, b) = ((x0 - ox) as usize, (x1 - ox) as usize);
     let (color, depth) = (&mut color[a..b], &mut depth[a..b]);
@@ -249,7 +251,7 @@ fn flat_run<C: Copy, D: DepthFn, const WRITE: bool>(
 
 /// Like [`span_flat`], with colour interpolated per pixel.
 #[inline(always)]
-pub(crate) fn span_gouraud<C: Copy + From<Rgb888>, D: DepthFn, const WRITE: bool>(
+pub(crate) fn span_gouraud<C: Copy + From<Rgb888> + 'static, D: DepthFn, const WRITE: bool>(
     dt: D,
     s: &TriangleSetup,
     t: &Corners<'_>,
@@ -281,11 +283,7 @@ pub(crate) fn span_gouraud<C: Copy + From<Rgb888>, D: DepthFn, const WRITE: bool
             if WRITE {
                 *d = zz;
             }
-            *c = C::from(Rgb888::new(
-                (r >> C_FRAC) as u8,
-                (g >> C_FRAC) as u8,
-                (b >> C_FRAC) as u8,
-            ));
+            *c = rgb16(r, g, b);
             n += 1;
         }
         z = z.wrapping_add(gz);
@@ -317,6 +315,8 @@ fn gouraud_run<C: Copy + From<Rgb888>, D: DepthFn, const WRITE: bool>(
         if WRITE {
             *d = dt.merge(zz, old);
         }
+        // embedded-graphics' arithmetic, which vectorizes (this loop runs
+        // only where the target has SIMD).
         let shaded = C::from(Rgb888::new(
             (r >> C_FRAC) as u8,
             (g >> C_FRAC) as u8,
@@ -601,7 +601,14 @@ mod tests {
             }
             let sv = [0, 1, 2].map(|k| {
                 let z = next(65_536) as u16;
-                let color = [next(256) as u8, next(256) as u8, next(256) as u8];
+                // Half the channels at 0 or 255, where a start's rounding
+                // can take it outside the range and the clamp matters.
+                let mut c = || match next(4) {
+                    0 => 0,
+                    1 => 255,
+                    _ => next(256) as u8,
+                };
+                let color = [c(), c(), c()];
                 ScreenVertex::new(v[k].x, v[k].y, z, 0, color)
             });
             let vals = [0, 1, 2, 3].map(|a| {
@@ -625,6 +632,9 @@ mod tests {
                 let start = setup.start(&corners, x0, j);
                 let reference = reference_start(&v, vals, x0, j);
                 assert_eq!(start, reference, "{v:?} at ({x0}, {j})");
+                // Both forms, whichever this target takes.
+                assert_eq!(setup.start_selects(&corners, x0, j), reference);
+                assert_eq!(setup.start_tested(&corners, x0, j), reference);
                 // Along a span of two pixels or more the step is the exact
                 // x gradient (the old one, saturated to i32, was the same).
                 if x1 - x0 >= 2 {

@@ -174,10 +174,7 @@ impl TriangleSetup {
             [z, Plane::default(), Plane::default(), Plane::default()]
         };
         // Gradients below 2^30 are far inside the clamp: never wide.
-        fits.then_some(Self {
-            planes,
-            wide: false,
-        })
+        fits.then_some(Self::finish(planes, false))
     }
 
     /// [`TriangleSetup::plane`] of a [`Small`] triangle in `i32`: its

@@ -251,11 +251,14 @@ impl<C: From<Rgb888>> FragmentShader<C> for Flat {
 
 /// The lit vertex colours interpolated perspective-correct (the
 /// [`Shading::Gouraud`](crate::scene::Shading::Gouraud) path interpolates
-/// them linearly in screen space, which is faster).
+/// them linearly in screen space, which is faster). For any `'static`
+/// colour type (every colour type is): its pixels convert to `Rgb565` by
+/// tables, picked by the type's `TypeId` (see
+/// [`Renderer`](crate::render::Renderer)).
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Gouraud;
 
-impl<C: From<Rgb888>> FragmentShader<C> for Gouraud {
+impl<C: From<Rgb888> + 'static> FragmentShader<C> for Gouraud {
     type Varyings = [I16F16; 0];
     fn vertex(&self, _: &VertexInput<'_>) -> [I16F16; 0] {
         []
@@ -281,7 +284,7 @@ trait Texels {
     fn rgb(&self, u: i32, v: i32) -> [u8; 3];
     #[inline(always)]
     fn target<C: FromTexel>(&self, u: i32, v: i32) -> C {
-        rgb(self.rgb(u, v))
+        C::from_rgb888(self.rgb(u, v))
     }
 }
 
@@ -331,7 +334,7 @@ impl<C: FromTexel, T: Texels, const LIT: bool> PixelFn<[I16F16; 2], C> for Texel
         let [u, v] = p.varyings;
         let (u, v) = (u.to_bits(), v.to_bits());
         Some(if LIT {
-            rgb(modulate(self.0.rgb(u, v), p.rgb()))
+            C::from_rgb888(modulate(self.0.rgb(u, v), p.rgb()))
         } else {
             self.0.target(u, v)
         })
@@ -391,10 +394,11 @@ impl<C: From<Rgb888>> PixelFn<[I16F16; 3], C> for Normals {
     }
 }
 
-impl<C: From<Rgb888>> PixelFn<[I16F16; 0], C> for Gouraud {
+impl<C: From<Rgb888> + 'static> PixelFn<[I16F16; 0], C> for Gouraud {
     #[inline(always)]
     fn pixel(&mut self, p: &Interpolated<[I16F16; 0]>) -> Option<C> {
-        Some(rgb(p.rgb()))
+        let [r, g, b] = p.rgb();
+        Some(crate::shade::rgb_scalar(r, g, b))
     }
 }
 

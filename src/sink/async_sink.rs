@@ -73,7 +73,7 @@ pub trait AsyncTileSink<C> {
 
 impl<C, const TW: usize, const TH: usize, P> Renderer<C, TW, TH, P>
 where
-    C: PixelColor + From<Rgb888> + Into<Rgb888>,
+    C: PixelColor + From<Rgb888> + Into<Rgb888> + 'static,
     P: Features,
 {
     /// Renders `scene` into the two tile buffers `tiles` in turn, writing
@@ -150,7 +150,7 @@ where
 
 impl<C, F, const TW: usize, const TH: usize, P> Frame<'_, C, F, TW, TH, P>
 where
-    C: PixelColor + From<Rgb888> + Into<Rgb888>,
+    C: PixelColor + From<Rgb888> + Into<Rgb888> + 'static,
     F: ShaderSet<C>,
     P: Features,
 {

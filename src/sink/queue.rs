@@ -24,7 +24,7 @@ use embedded_graphics::pixelcolor::{PixelColor, Rgb888};
 
 impl<C, const TW: usize, const TH: usize, P> Renderer<C, TW, TH, P>
 where
-    C: PixelColor + From<Rgb888> + Into<Rgb888>,
+    C: PixelColor + From<Rgb888> + Into<Rgb888> + 'static,
     P: Features,
 {
     /// Renders `scene` into the `N` tile buffers `tiles` in turn, handing
@@ -107,7 +107,7 @@ where
 
 impl<C, F, const TW: usize, const TH: usize, P> Frame<'_, C, F, TW, TH, P>
 where
-    C: PixelColor + From<Rgb888> + Into<Rgb888>,
+    C: PixelColor + From<Rgb888> + Into<Rgb888> + 'static,
     F: ShaderSet<C>,
     P: Features,
 {

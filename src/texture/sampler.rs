@@ -39,6 +39,14 @@ pub trait FromTexel: From<Rgb888> {
         let [r, g, b] = rgb565_to_rgb888(raw);
         Self::from(Rgb888::new(r, g, b))
     }
+
+    /// The colour of 8-bit channels `[r, g, b]` (a filtered or lit
+    /// texel): must equal `Self::from(Rgb888::new(r, g, b))`, which the
+    /// default returns.
+    #[inline(always)]
+    fn from_rgb888([r, g, b]: [u8; 3]) -> Self {
+        Self::from(Rgb888::new(r, g, b))
+    }
 }
 
 impl FromTexel for Rgb565 {
@@ -48,12 +56,25 @@ impl FromTexel for Rgb565 {
     fn from_rgb565(raw: u16) -> Self {
         Rgb565::from(RawU16::new(raw))
     }
+
+    /// By two 256-byte tables of embedded-graphics' rounding, rather than
+    /// its three multiplies.
+    #[inline(always)]
+    fn from_rgb888([r, g, b]: [u8; 3]) -> Self {
+        crate::shade::rgb(r, g, b)
+    }
 }
 
 impl FromTexel for crate::sink::Rgb565Be {
     #[inline(always)]
     fn from_rgb565(raw: u16) -> Self {
         Self::from(RawU16::new(raw))
+    }
+
+    /// As `Rgb565`'s.
+    #[inline(always)]
+    fn from_rgb888([r, g, b]: [u8; 3]) -> Self {
+        crate::shade::rgb(r, g, b)
     }
 }
 

@@ -69,7 +69,7 @@ pub(crate) fn span_input<'a, C, V: Varyings>(
         depth,
         texture,
         setup: p,
-        z: (p.depth.start(t, x0, j)[0] as u32) << (16 - Z_FRAC),
+        z: (p.depth.z_start(t, x0, j) as u32) << (16 - Z_FRAC),
         gz: (p.depth.steps()[0] as u32) << (16 - Z_FRAC),
         planes: if p.narrow() {
             const M: i32 = Q_MAX as i32;

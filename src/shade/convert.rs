@@ -1,0 +1,142 @@
+//! The span loops' colour conversion: `C::from(Rgb888::new(r, g, b))`, by
+//! tables for the 16-bit target formats.
+//!
+//! embedded-graphics converts a channel by rounding `v * MAX / 255` with a
+//! multiply, an add and a shift; for `Rgb565` that is three multiplies (and
+//! their constants, which the span loops, short of registers, rebuild at
+//! every pixel on the Cortex-M3), about 15 of a Gouraud pixel's 31
+//! instructions there. Two 256-byte tables of the same results (5-bit
+//! and 6-bit channels) take a load per channel instead.
+//!
+//! The span loops are generic over any colour type; stable Rust has no
+//! specialization, so [`rgb`] compares `C`'s [`TypeId`] with the formats it
+//! has a table for (a comparison of constants, folded in each
+//! monomorphization, so a firmware that draws in `Gray4` neither tests nor
+//! links the tables) and hands the result back through a checked
+//! downcast, which cannot fail there and falls back to `C::from`
+//! anyway. That is why the renderer's colour type must be `'static`.
+
+use crate::sink::Rgb565Be;
+use core::any::{Any, TypeId};
+use embedded_graphics::pixelcolor::{raw::RawU16, Rgb565, Rgb888};
+
+/// embedded-graphics' conversion of a channel `v` of 0 to 255 to 0 to
+/// `max` (`convert_channel`): `round(v max / 255)` in 8.24 fixed point.
+const fn channel(v: u8, max: u8) -> u8 {
+    const SHIFT: u32 = 24;
+    ((v as u32 * (((max as u32) << SHIFT) / 255) + (1 << (SHIFT - 1))) >> SHIFT) as u8
+}
+
+/// [`channel`] for every `v`.
+const fn table(max: u8) -> [u8; 256] {
+    let mut t = [0; 256];
+    let mut v = 0;
+    while v < 256 {
+        t[v] = channel(v as u8, max);
+        v += 1;
+    }
+    t
+}
+
+/// 8-bit channels to 5 bits, as embedded-graphics rounds them.
+static TO5: [u8; 256] = table(31);
+/// 8-bit channels to 6 bits.
+static TO6: [u8; 256] = table(63);
+
+/// The bits of `Rgb565::from(Rgb888::new(r, g, b))`, by the tables.
+#[inline(always)]
+fn rgb565_bits(r: u8, g: u8, b: u8) -> u16 {
+    ((TO5[r as usize] as u16) << 11) | ((TO6[g as usize] as u16) << 5) | TO5[b as usize] as u16
+}
+
+/// `C::from(Rgb888::new(r, g, b))`, bit for bit, through tables where `C`
+/// is `Rgb565` or [`Rgb565Be`] (see the [module docs](self)).
+#[inline(always)]
+pub(crate) fn rgb<C: From<Rgb888> + 'static>(r: u8, g: u8, b: u8) -> C {
+    let c = TypeId::of::<C>();
+    if c == TypeId::of::<Rgb565>() {
+        let v = Rgb565::from(RawU16::new(rgb565_bits(r, g, b)));
+        if let Some(v) = (&mut Some(v) as &mut dyn Any).downcast_mut::<Option<C>>() {
+            if let Some(v) = v.take() {
+                return v;
+            }
+        }
+    } else if c == TypeId::of::<Rgb565Be>() {
+        let v = Rgb565Be::from(RawU16::new(rgb565_bits(r, g, b)));
+        if let Some(v) = (&mut Some(v) as &mut dyn Any).downcast_mut::<Option<C>>() {
+            if let Some(v) = v.take() {
+                return v;
+            }
+        }
+    }
+    C::from(Rgb888::new(r, g, b))
+}
+
+/// [`rgb`] where the target has SIMD for the span loops
+/// ([`super::VECTOR_LOOPS`]), `C::from` elsewhere: for the loops that
+/// vectorize embedded-graphics' arithmetic there, or measured faster with
+/// it (x86-64's `fill-gouraud-exact`: 91.2 instructions per fragment with
+/// the tables, 87.2 without).
+#[inline(always)]
+pub(crate) fn rgb_scalar<C: From<Rgb888> + 'static>(r: u8, g: u8, b: u8) -> C {
+    if super::VECTOR_LOOPS {
+        C::from(Rgb888::new(r, g, b))
+    } else {
+        rgb(r, g, b)
+    }
+}
+
+/// [`rgb`] of channels in 8.16 fixed point, truncated to their integer
+/// byte (`(c >> 16) as u8`, as the Gouraud span loops take them).
+#[inline(always)]
+pub(crate) fn rgb16<C: From<Rgb888> + 'static>(r: i32, g: i32, b: i32) -> C {
+    rgb((r >> 16) as u8, (g >> 16) as u8, (b >> 16) as u8)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use embedded_graphics::pixelcolor::{Gray4, IntoStorage, RgbColor};
+
+    /// Every one of the 2^24 colours converts as embedded-graphics
+    /// converts it.
+    #[test]
+    fn tables_match_embedded_graphics() {
+        // Each channel on its own first (cheap, and the clearest failure).
+        for v in 0..=255u8 {
+            let e = Rgb565::from(Rgb888::new(v, v, v));
+            assert_eq!(TO5[v as usize], e.r(), "{v}");
+            assert_eq!(TO6[v as usize], e.g(), "{v}");
+        }
+        // Then every colour (about two seconds in a debug build).
+        for r in 0..=255u8 {
+            for g in 0..=255u8 {
+                for b in 0..=255u8 {
+                    let e = Rgb565::from(Rgb888::new(r, g, b));
+                    assert_eq!(rgb565_bits(r, g, b), e.into_storage(), "{r} {g} {b}");
+                    let fast: Rgb565 = rgb(r, g, b);
+                    assert_eq!(fast, e, "{r} {g} {b}");
+                    let be: Rgb565Be = rgb(r, g, b);
+                    assert_eq!(be, Rgb565Be::from(Rgb888::new(r, g, b)), "{r} {g} {b}");
+                }
+            }
+        }
+        for r in [0, 255] {
+            assert_eq!(rgb::<Rgb565>(r, 255, 255).r(), r >> 3);
+        }
+    }
+
+    /// Other formats take embedded-graphics' conversion itself.
+    #[test]
+    fn other_formats_convert_as_before() {
+        for (r, g, b) in [(0, 0, 0), (255, 255, 255), (12, 200, 99), (254, 1, 128)] {
+            let e = Gray4::from(Rgb888::new(r, g, b));
+            assert_eq!(rgb::<Gray4>(r, g, b), e);
+            assert_eq!(rgb::<Rgb888>(r, g, b), Rgb888::new(r, g, b));
+        }
+        assert_eq!(
+            rgb16::<Rgb565>(200 << 16 | 0xffff, 3 << 16, 255 << 16 | 0x8000),
+            Rgb565::from(Rgb888::new(200, 3, 255))
+        );
+    }
+}
