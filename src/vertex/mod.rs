@@ -229,12 +229,17 @@ pub const BARY_ONE: i32 = 1 << 30;
 /// The outcode of a clip-space position.
 #[inline(always)]
 pub fn outcode(p: &[i32; 4]) -> u8 {
-    let (x, y, z, w) = (p[0] as i64, p[1] as i64, p[2] as i64, p[3] as i64);
     // Most vertices are inside the view volume: then every bit is clear
-    // (inside `|x| <= w` is inside the guard band too).
-    if w >= W_MIN && x.abs() <= w && y.abs() <= w && z.abs() <= w {
-        return 0;
+    // (inside `|x| <= w` is inside the guard band too). In 32 bits: with
+    // `w` positive, `|x| <= w` compares the same as unsigned.
+    let w = p[3];
+    if w as i64 >= W_MIN {
+        let wu = w as u32;
+        if p[0].unsigned_abs() <= wu && p[1].unsigned_abs() <= wu && p[2].unsigned_abs() <= wu {
+            return 0;
+        }
     }
+    let (x, y, z, w) = (p[0] as i64, p[1] as i64, p[2] as i64, p[3] as i64);
     outcode_slow(x, y, z, w)
 }
 
@@ -575,6 +580,51 @@ mod tests {
         assert_eq!(outcode(&[0, 5 * w, 0, w]), OUT_TOP | OUT_GUARD);
         assert_eq!(outcode(&[0, 0, -2 * w, w]), OUT_NEAR);
         assert_eq!(outcode(&[0, 0, 0, -w]) & OUT_W, OUT_W);
+    }
+
+    /// The 32-bit test of a vertex inside the view volume agrees with the
+    /// full outcode everywhere: the extremes of `i32`, `w` around `W_MIN`,
+    /// coordinates around `±w`.
+    #[test]
+    fn the_inside_test_agrees_with_the_full_outcode() {
+        let mut next = crate::testing::rng();
+        let full = |p: &[i32; 4]| outcode_slow(p[0] as i64, p[1] as i64, p[2] as i64, p[3] as i64);
+        let ws = [
+            i32::MIN,
+            -1,
+            0,
+            1,
+            15,
+            16,
+            17,
+            1 << 16,
+            i32::MAX - 1,
+            i32::MAX,
+        ];
+        for w in ws {
+            let near = |d: i32| [w.saturating_add(d), w.saturating_neg().saturating_add(d)];
+            let mut cs: heapless::Vec<i32, 16> = heapless::Vec::new();
+            for c in [i32::MIN, i32::MIN + 1, -1, 0, 1, i32::MAX] {
+                cs.push(c).unwrap();
+            }
+            for d in [-1, 0, 1] {
+                cs.extend_from_slice(&near(d)).unwrap();
+            }
+            for &x in &cs {
+                for &y in &cs {
+                    for &z in &cs {
+                        let p = [x, y, z, w];
+                        assert_eq!(outcode(&p), full(&p), "{p:?}");
+                    }
+                }
+            }
+        }
+        for _ in 0..100_000 {
+            let w = (next(1 << 32) as u32 as i32) >> next(32);
+            let mut c = || (next(1 << 32) as u32 as i32) >> next(32);
+            let p = [c(), c(), c(), w];
+            assert_eq!(outcode(&p), full(&p), "{p:?}");
+        }
     }
 
     #[test]
