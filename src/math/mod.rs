@@ -521,12 +521,15 @@ impl FixedMat4 {
         let mut out = [0i32; 4];
         for (r, o) in out.iter_mut().enumerate() {
             // Within the bound nothing wraps; wrapping arithmetic only
-            // spares the checks.
-            let acc = mul_wide(m[0][r], p[0])
+            // spares the checks. The translation and the rounding first:
+            // one constant per row (kept out of the vertex loop) that the
+            // products accumulate onto (`smlal` on ARMv7-M), rather than
+            // a 64-bit add of each after the products.
+            let acc = ((m[3][r] as i64) << 16 | 1 << 15)
+                .wrapping_add(mul_wide(m[0][r], p[0]))
                 .wrapping_add(mul_wide(m[1][r], p[1]))
-                .wrapping_add(mul_wide(m[2][r], p[2]))
-                .wrapping_add((m[3][r] as i64) << 16);
-            *o = (acc.wrapping_add(1 << 15) >> 16) as i32;
+                .wrapping_add(mul_wide(m[2][r], p[2]));
+            *o = (acc >> 16) as i32;
         }
         out
     }
