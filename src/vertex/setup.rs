@@ -83,12 +83,22 @@ impl Lambert {
         let d = mul_wide(n[0].to_bits(), self.dir[0])
             + mul_wide(n[1].to_bits(), self.dir[1])
             + mul_wide(n[2].to_bits(), self.dir[2]);
-        // n·l in 1/256 steps, floored, clamped to [0, 1].
-        let ndotl = (d >> 24).clamp(0, 256) as u32;
+        // n·l in 1/256 steps, floored, clamped to [0, 1]: `(d >> 24)
+        // .clamp(0, 256)` from d's upper word, which is 0 exactly when
+        // d >> 24 is 0 to 255 (a 64-bit clamp took twice the instructions).
+        let hi = (d >> 32) as i32;
+        let ndotl = match hi {
+            0 => d as u32 >> 24,
+            1.. => 256,
+            _ => 0,
+        };
         let mut out = [0u8; 3];
         for c in 0..3 {
             let k = self.ambient[c] * 256 + self.color[c] * ndotl; // <= 2^17
-            out[c] = ((base[c] as u32 * k + 32_640) / 65_280).min(255) as u8;
+                                                                   // At most 510, so the signed clamp is the same as `min(255)`:
+                                                                   // one `usat` on ARMv7-M.
+            let q = ((base[c] as u32 * k + 32_640) / 65_280) as i32;
+            out[c] = q.clamp(0, 255) as u8;
         }
         out
     }
