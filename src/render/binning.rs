@@ -144,6 +144,8 @@ pub(super) fn bin_triangles<const TW: usize, const TH: usize, I: Copy + Into<u32
     tally: &mut Tally,
 ) {
     let cols = ctx.grid.cols as usize;
+    // Counted here and added once: `t` and `tally` live in the caller.
+    let (mut tt, mut pairs_sum) = (*t, tally.pairs);
     for &idx in tris {
         let idx = idx.map(Into::into);
         if let Some(r) = ctx
@@ -156,23 +158,29 @@ pub(super) fn bin_triangles<const TW: usize, const TH: usize, I: Copy + Into<u32
             let (r0, r1) = (r.y0 as usize / TH, (r.y1 as usize - 1) / TH + 1);
             // At most 2^16 triangles of 2^24 tiles: saturate, never wrap.
             let pairs = ((c1 - c0) * (r1 - r0)) as u32;
-            tally.pairs = tally.pairs.saturating_add(pairs);
-            for row in r0..r1 {
-                if hilbert {
+            pairs_sum = pairs_sum.saturating_add(pairs);
+            if hilbert {
+                for row in r0..r1 {
                     for col in c0..c1 {
                         let p = ctx.grid.position(col as u32, row as u32) as usize;
-                        bins.push(p.wrapping_sub(ctx.t0), *t as u16);
+                        bins.push(p.wrapping_sub(ctx.t0), tt as u16);
                     }
-                } else {
-                    // Tiles before the pass wrap around to indices the
-                    // pass does not hold.
-                    let first = (row * cols).wrapping_sub(ctx.t0);
-                    for col in c0..c1 {
-                        bins.push(first.wrapping_add(col), *t as u16);
-                    }
+                }
+            } else {
+                // Each row's tiles in the pass's numbering, from `t0`:
+                // those before the pass are negative, and the pass holds
+                // none of them (it gives up tiles from its end).
+                // At most 2^24 tiles: no overflow.
+                let mut lo = (r0 * cols + c0) as isize - ctx.t0 as isize;
+                let mut hi = lo + (c1 - c0) as isize;
+                for _ in r0..r1 {
+                    bins.push_run(lo.max(0) as usize..hi.max(0) as usize, tt as u16);
+                    lo += cols as isize;
+                    hi += cols as isize;
                 }
             }
         }
-        *t += 1;
+        tt += 1;
     }
+    (*t, tally.pairs) = (tt, pairs_sum);
 }
