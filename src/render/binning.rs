@@ -18,6 +18,10 @@ pub(super) enum Fate {
 /// How many triangles of a pass met each fate.
 #[derive(Clone, Copy, Debug, Default)]
 pub(super) struct Tally {
+    /// Per [`Fate`]. Classification counts the rejected and visible
+    /// triangles; [`bin_pass`] sets the culled ones (the most common fate,
+    /// whose count would be a memory increment on the binning loop's
+    /// shortest path) to the rest of the pass's triangles.
     pub(super) fates: [u32; 3],
     pub(super) clipped: u32,
     pub(super) draws_culled: u32,
@@ -101,10 +105,18 @@ pub(super) fn bin_pass<const TW: usize, const TH: usize, const HILBERT: bool, P:
                     bin_wide::<TW, TH>(&ctx, &tris[run], HILBERT, &mut t, bins, cache, tally)
                 }
                 // Refused by the vertex stage (Path::U32Indices).
-                Indices::U32(_) => t += len,
+                Indices::U32(_) => {
+                    t += len;
+                    tally.fates[Fate::Rejected as usize] += len as u32;
+                }
             }
         }
     }
+    // Every triangle of the pass met one fate: the culled ones are the
+    // rest (at most 2^16 triangles a frame).
+    let f = &mut tally.fates;
+    f[Fate::Culled as usize] =
+        (t as u32).saturating_sub(f[Fate::Rejected as usize] + f[Fate::Visible as usize]);
 }
 
 /// [`bin_triangles`] for `u32` indices, out of line.

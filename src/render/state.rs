@@ -216,7 +216,8 @@ impl FrameState<'_> {
     }
 
     /// Classifies triangle `idx` of draw `d`, whose vertices are `verts`:
-    /// counts its fate in `tally` and, if it is visible, returns the pixels
+    /// counts its fate in `tally` (but for [`Fate::Culled`], which the
+    /// binning pass counts as what is left) and, if it is visible, returns the pixels
     /// it may cover. The common case (no clipping) reads only the three
     /// screen vertices; a rejected or culled triangle costs a few dozen
     /// instructions.
@@ -237,26 +238,35 @@ impl FrameState<'_> {
         ];
         let and = sv[0].outcode() & sv[1].outcode() & sv[2].outcode();
         let any = sv[0].outcode() | sv[1].outcode() | sv[2].outcode();
-        let fate = if and & REJECT_MASK != 0 {
-            Fate::Rejected
-        } else if any & MUST_CLIP != 0 {
-            return self.classify_clipped(d, idx, any, sv[0].color, margin, cache, tally);
-        } else {
+        if and & REJECT_MASK == 0 {
+            if any & MUST_CLIP != 0 {
+                let [i0, i1, i2] = idx;
+                return self.classify_clipped(
+                    d,
+                    i0,
+                    i1,
+                    i2,
+                    any,
+                    sv[0].color,
+                    margin,
+                    cache,
+                    tally,
+                );
+            }
             let v = [sv[0].xy(), sv[1].xy(), sv[2].xy()];
             // Screen vertices lie within the guard band.
             let area2 = signed_area2_banded(&v);
             if !self.keeps(area2) {
-                Fate::Culled
-            } else {
-                let rect = meet(&grow(&covering(&v), margin), &self.frame);
-                if !rect.is_empty() {
-                    tally.fates[Fate::Visible as usize] += 1;
-                    return Some(rect);
-                }
-                Fate::Rejected
+                // Culled: not counted (see `Tally`).
+                return None;
             }
-        };
-        tally.fates[fate as usize] += 1;
+            let rect = meet(&grow(&covering(&v), margin), &self.frame);
+            if !rect.is_empty() {
+                tally.fates[Fate::Visible as usize] += 1;
+                return Some(rect);
+            }
+        }
+        tally.fates[Fate::Rejected as usize] += 1;
         None
     }
 }
