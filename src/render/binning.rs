@@ -158,11 +158,12 @@ pub(super) fn bin_triangles<const TW: usize, const TH: usize, I: Copy + Into<u32
     let cols = ctx.grid.cols as usize;
     // Counted here and added once: `t` and `tally` live in the caller.
     let (mut tt, mut pairs_sum) = (*t, tally.pairs);
+    let cull = ctx.frame.cull;
     for &idx in tris {
         let idx = idx.map(Into::into);
         if let Some(r) = ctx
             .frame
-            .classify(ctx.d, ctx.verts, idx, ctx.margin, cache, tally)
+            .classify(ctx.d, ctx.verts, idx, ctx.margin, cull, cache, tally)
         {
             // A visible rectangle lies inside the frame, so its
             // coordinates are not negative.
