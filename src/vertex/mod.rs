@@ -385,9 +385,11 @@ impl Viewport {
         let x = self.half_w as i32 + round(p[0], hw);
         let y = self.half_h as i32 - round(p[1], hh);
         // div_round((z + w) 65535, 2w) = floor(((z + w) 65535 + w) / w) / 2,
-        // and -w <= z <= w: not negative, at most 65535.
+        // and -w <= z <= w: not negative, at most
+        // floor((2w 65535 + w) / w) / 2 = 65535, no clamp.
         let n = (p[2] + w.get() as i32) as u32 as u64 * 65_535;
-        let z = (div_digits(n + w.get() as u64, w, k) >> 1).min(65_535);
+        let z = div_digits(n + w.get() as u64, w, k) >> 1;
+        debug_assert!(z <= 65_535);
         (SubPoint::new(x, y), z as u16)
     }
 
