@@ -94,9 +94,10 @@ impl Lambert {
         };
         let mut out = [0u8; 3];
         for c in 0..3 {
-            let k = self.ambient[c] * 256 + self.color[c] * ndotl; // <= 2^17
-                                                                   // At most 510, so the signed clamp is the same as `min(255)`:
-                                                                   // one `usat` on ARMv7-M.
+            // At most 2^17.
+            let k = self.ambient[c] * 256 + self.color[c] * ndotl;
+            // The quotient is at most 510, so the signed clamp is the same as `min(255)`:
+            // one `usat` on ARMv7-M.
             let q = ((base[c] as u32 * k + 32_640) / 65_280) as i32;
             out[c] = q.clamp(0, 255) as u8;
         }
