@@ -172,10 +172,15 @@ pub(super) fn bin_triangles<const TW: usize, const TH: usize, I: Copy + Into<u32
             // At most 2^16 triangles of 2^24 tiles: saturate, never wrap.
             let pairs = ((c1 - c0) * (r1 - r0)) as u32;
             pairs_sum = pairs_sum.saturating_add(pairs);
-            if hilbert {
+            if hilbert || crate::math::SPLIT {
                 for row in r0..r1 {
                     for col in c0..c1 {
-                        let p = ctx.grid.position(col as u32, row as u32) as usize;
+                        let p = match hilbert {
+                            true => ctx.grid.position(col as u32, row as u32) as usize,
+                            false => row * cols + col,
+                        };
+                        // Tiles before the pass wrap around to indices
+                        // the pass does not hold.
                         bins.push(p.wrapping_sub(ctx.t0), tt as u16);
                     }
                 }
