@@ -15,18 +15,13 @@ impl FrameState<'_> {
     pub(super) fn classify_clipped(
         &self,
         d: usize,
-        i0: u32,
-        i1: u32,
-        i2: u32,
+        idx: [u32; 3],
         any: u8,
         flat: [u8; 3],
         margin: i32,
         cache: &mut SetupCache,
         tally: &mut Tally,
     ) -> Option<PixelRect> {
-        // The indices one by one: an array would be stored for the call on
-        // the binning loop's every triangle.
-        let idx = [i0, i1, i2];
         let mut r = PixelRect::new(i32::MAX, i32::MAX, i32::MIN, i32::MIN);
         let fate = self.clipped_pieces(d, idx, any, flat, cache, &mut |piece, _| {
             let sv = &piece.sv;
