@@ -293,7 +293,8 @@ mod tests {
         let check =
             |d: i64| assert_eq!(clamp_ndotl_words(d), (d >> 24).clamp(0, 256) as u32, "{d}");
         for b in 0..64 {
-            for d in [1i64 << b, (1i64 << b) - 1, -(1i64 << b), -(1i64 << b) + 1] {
+            let p = 1i64 << b;
+            for d in [p, p.wrapping_sub(1), p.wrapping_neg(), p.wrapping_neg() + 1] {
                 check(d);
             }
         }
