@@ -34,7 +34,7 @@ mod wide;
 pub use cast::{f32_to_i32, f32_to_i64, f32_to_u64, f32_to_u8};
 pub(crate) use divisor::{shift_in_zeros, Divisor, WDivisor};
 pub use trig::{sin_cos, sqrt, tan};
-pub(crate) use wide::mul_wide;
+pub(crate) use wide::{mul_wide, SPLIT};
 
 use fixed::types::I16F16;
 
@@ -521,12 +521,15 @@ impl FixedMat4 {
         let mut out = [0i32; 4];
         for (r, o) in out.iter_mut().enumerate() {
             // Within the bound nothing wraps; wrapping arithmetic only
-            // spares the checks.
-            let acc = mul_wide(m[0][r], p[0])
+            // spares the checks. The translation and the rounding first:
+            // one constant per row (kept out of the vertex loop) that the
+            // products accumulate onto (`smlal` on ARMv7-M), rather than
+            // a 64-bit add of each after the products.
+            let acc = ((m[3][r] as i64) << 16 | 1 << 15)
+                .wrapping_add(mul_wide(m[0][r], p[0]))
                 .wrapping_add(mul_wide(m[1][r], p[1]))
-                .wrapping_add(mul_wide(m[2][r], p[2]))
-                .wrapping_add((m[3][r] as i64) << 16);
-            *o = (acc.wrapping_add(1 << 15) >> 16) as i32;
+                .wrapping_add(mul_wide(m[2][r], p[2]));
+            *o = (acc >> 16) as i32;
         }
         out
     }

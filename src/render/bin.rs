@@ -136,6 +136,39 @@ impl<'p> Pass<'p> {
         self.tails[k] = slot as u16 + 1;
     }
 
+    /// Appends triangle `t` to the bins of tiles `ks` of the pass, those
+    /// the pass holds: [`push`](Self::push) for each, with the tables in
+    /// registers rather than reread from the pass for every tile (a row
+    /// of a triangle's tiles in row-major order).
+    #[inline(always)]
+    pub(super) fn push_run(&mut self, ks: core::ops::Range<usize>, t: u16) {
+        let mut k = ks.start;
+        loop {
+            let end = ks.end.min(self.tails.len());
+            let (pool, tails) = (&mut *self.pool, &mut *self.tails);
+            let full = loop {
+                if k >= end {
+                    return;
+                }
+                let slot = tails[k] as usize;
+                if slot % CHUNK == CHUNK - 1 {
+                    break k;
+                }
+                pool[slot] = t;
+                tails[k] = slot as u16 + 1;
+                k += 1;
+            };
+            // A new chunk, or the pass gave up tile `k` (and every later
+            // one: tiles go from the end).
+            let Some(slot) = self.grow(full) else {
+                return;
+            };
+            self.pool[slot] = t;
+            self.tails[full] = slot as u16 + 1;
+            k = full + 1;
+        }
+    }
+
     /// Links a new chunk to tile `k`, whose chunk is full (or which has
     /// none), and returns the chunk's first slot. When the pool is
     /// exhausted, the pass gives up its last tile, whose chunks go back to
@@ -261,8 +294,15 @@ mod tests {
                     // A triangle touches one to four consecutive tiles,
                     // some beyond the pass.
                     let first = next(tiles + 2);
-                    for k in first..first + 1 + next(4) {
-                        pass.push(k, t);
+                    let ks = first..first + 1 + next(4);
+                    if round % 3 == 0 {
+                        pass.push_run(ks.clone(), t);
+                    } else {
+                        for k in ks.clone() {
+                            pass.push(k, t);
+                        }
+                    }
+                    for k in ks {
                         if let Some(e) = expected.get_mut(k).filter(|_| k < tiles) {
                             e.push(t).unwrap();
                         }

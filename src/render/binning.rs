@@ -18,6 +18,10 @@ pub(super) enum Fate {
 /// How many triangles of a pass met each fate.
 #[derive(Clone, Copy, Debug, Default)]
 pub(super) struct Tally {
+    /// Per [`Fate`]. Classification counts the rejected and visible
+    /// triangles; [`bin_pass`] sets the culled ones (the most common fate,
+    /// whose count would be a memory increment on the binning loop's
+    /// shortest path) to the rest of the pass's triangles.
     pub(super) fates: [u32; 3],
     pub(super) clipped: u32,
     pub(super) draws_culled: u32,
@@ -101,10 +105,18 @@ pub(super) fn bin_pass<const TW: usize, const TH: usize, const HILBERT: bool, P:
                     bin_wide::<TW, TH>(&ctx, &tris[run], HILBERT, &mut t, bins, cache, tally)
                 }
                 // Refused by the vertex stage (Path::U32Indices).
-                Indices::U32(_) => t += len,
+                Indices::U32(_) => {
+                    t += len;
+                    tally.fates[Fate::Rejected as usize] += len as u32;
+                }
             }
         }
     }
+    // Every triangle of the pass met one fate: the culled ones are the
+    // rest (at most 2^16 triangles a frame).
+    let f = &mut tally.fates;
+    f[Fate::Culled as usize] =
+        (t as u32).saturating_sub(f[Fate::Rejected as usize] + f[Fate::Visible as usize]);
 }
 
 /// [`bin_triangles`] for `u32` indices, out of line.
@@ -144,11 +156,14 @@ pub(super) fn bin_triangles<const TW: usize, const TH: usize, I: Copy + Into<u32
     tally: &mut Tally,
 ) {
     let cols = ctx.grid.cols as usize;
+    // Counted here and added once: `t` and `tally` live in the caller.
+    let (mut tt, mut pairs_sum) = (*t, tally.pairs);
+    let cull = ctx.frame.cull;
     for &idx in tris {
         let idx = idx.map(Into::into);
         if let Some(r) = ctx
             .frame
-            .classify(ctx.d, ctx.verts, idx, ctx.margin, cache, tally)
+            .classify(ctx.d, ctx.verts, idx, ctx.margin, cull, cache, tally)
         {
             // A visible rectangle lies inside the frame, so its
             // coordinates are not negative.
@@ -156,23 +171,34 @@ pub(super) fn bin_triangles<const TW: usize, const TH: usize, I: Copy + Into<u32
             let (r0, r1) = (r.y0 as usize / TH, (r.y1 as usize - 1) / TH + 1);
             // At most 2^16 triangles of 2^24 tiles: saturate, never wrap.
             let pairs = ((c1 - c0) * (r1 - r0)) as u32;
-            tally.pairs = tally.pairs.saturating_add(pairs);
-            for row in r0..r1 {
-                if hilbert {
+            pairs_sum = pairs_sum.saturating_add(pairs);
+            if hilbert || crate::math::SPLIT {
+                for row in r0..r1 {
                     for col in c0..c1 {
-                        let p = ctx.grid.position(col as u32, row as u32) as usize;
-                        bins.push(p.wrapping_sub(ctx.t0), *t as u16);
+                        let p = match hilbert {
+                            true => ctx.grid.position(col as u32, row as u32) as usize,
+                            false => row * cols + col,
+                        };
+                        // Tiles before the pass wrap around to indices
+                        // the pass does not hold.
+                        bins.push(p.wrapping_sub(ctx.t0), tt as u16);
                     }
-                } else {
-                    // Tiles before the pass wrap around to indices the
-                    // pass does not hold.
-                    let first = (row * cols).wrapping_sub(ctx.t0);
-                    for col in c0..c1 {
-                        bins.push(first.wrapping_add(col), *t as u16);
-                    }
+                }
+            } else {
+                // Each row's tiles in the pass's numbering, from `t0`:
+                // those before the pass are negative, and the pass holds
+                // none of them (it gives up tiles from its end).
+                // At most 2^24 tiles: no overflow.
+                let mut lo = (r0 * cols + c0) as isize - ctx.t0 as isize;
+                let mut hi = lo + (c1 - c0) as isize;
+                for _ in r0..r1 {
+                    bins.push_run(lo.max(0) as usize..hi.max(0) as usize, tt as u16);
+                    lo += cols as isize;
+                    hi += cols as isize;
                 }
             }
         }
-        *t += 1;
+        tt += 1;
     }
+    (*t, tally.pairs) = (tt, pairs_sum);
 }

@@ -34,7 +34,10 @@ impl FrameState<'_> {
             );
         });
         tally.clipped += 1;
-        tally.fates[fate as usize] += 1;
+        // Culled triangles are counted by the binning pass (see `Tally`).
+        if fate != Fate::Culled {
+            tally.fates[fate as usize] += 1;
+        }
         (fate == Fate::Visible).then(|| meet(&grow(&r, margin), &self.frame))
     }
 

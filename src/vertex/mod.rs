@@ -48,7 +48,7 @@ pub use setup::{DrawSetup, VertexError, MAX_LIGHTS};
 
 use crate::math::WDivisor;
 use crate::raster::{SubPoint, SUBPIXEL};
-use core::num::NonZeroU64;
+use core::num::{NonZeroU32, NonZeroU64};
 
 /// Outside `x >= -w`.
 pub const OUT_LEFT: u8 = 1;
@@ -229,13 +229,37 @@ pub const BARY_ONE: i32 = 1 << 30;
 /// The outcode of a clip-space position.
 #[inline(always)]
 pub fn outcode(p: &[i32; 4]) -> u8 {
-    let (x, y, z, w) = (p[0] as i64, p[1] as i64, p[2] as i64, p[3] as i64);
     // Most vertices are inside the view volume: then every bit is clear
     // (inside `|x| <= w` is inside the guard band too).
-    if w >= W_MIN && x.abs() <= w && y.abs() <= w && z.abs() <= w {
+    let inside = match cfg!(target_pointer_width = "64") {
+        true => inside_wide(p),
+        false => inside_words(p),
+    };
+    if inside {
         return 0;
     }
+    let (x, y, z, w) = (p[0] as i64, p[1] as i64, p[2] as i64, p[3] as i64);
     outcode_slow(x, y, z, w)
+}
+
+/// Whether `p` is inside the view volume (`W_MIN <= w`, `|x|, |y|, |z| <=
+/// w`), in `i64`: fewer instructions where that is a register.
+#[inline(always)]
+fn inside_wide(p: &[i32; 4]) -> bool {
+    let (x, y, z, w) = (p[0] as i64, p[1] as i64, p[2] as i64, p[3] as i64);
+    w >= W_MIN && x.abs() <= w && y.abs() <= w && z.abs() <= w
+}
+
+/// [`inside_wide`] in 32 bits, for 32-bit cores: with `w` positive,
+/// `|x| <= w` compares the same as unsigned.
+#[inline(always)]
+fn inside_words(p: &[i32; 4]) -> bool {
+    let w = p[3];
+    let wu = w as u32;
+    w as i64 >= W_MIN
+        && p[0].unsigned_abs() <= wu
+        && p[1].unsigned_abs() <= wu
+        && p[2].unsigned_abs() <= wu
 }
 
 /// [`outcode`] of a vertex outside the view volume.
@@ -328,12 +352,72 @@ impl Viewport {
         (SubPoint::new(x as i32, y as i32), z as u16)
     }
 
+    /// [`project`](Self::project) of a vertex without [`MUST_CLIP`] bits
+    /// (`W_MIN <= w`, `|x|, |y| <= K w`, `|z| <= w`): the same results.
+    /// Where a 32-bit division is an instruction ([`LONG_DIVISION`]) and
+    /// `w < 2^23`, each quotient is two of them ([`div_digits`]) rather
+    /// than a multiply-high by `w`'s 64-bit reciprocal, which itself took
+    /// two to four divisions: on the Cortex-M3 about 110 instructions a
+    /// vertex fewer.
+    #[inline(always)]
+    pub(crate) fn project_inside(&self, p: &[i32; 4]) -> (SubPoint, u16) {
+        if !LONG_DIVISION {
+            return self.project(p);
+        }
+        match NonZeroU32::new(p[3] as u32) {
+            Some(w) if w.get() >> DIGITS_W_BITS == 0 => self.project_digits(p, w),
+            _ => self.project_wide(p[0], p[1], p[2], p[3]),
+        }
+    }
+
+    /// [`project`](Self::project), out of line: for the rare vertex of
+    /// [`project_inside`](Self::project_inside) with `w >= 2^23`. (The
+    /// coordinates by value: a reference would keep the vertex in memory.)
+    #[inline(never)]
+    #[cold]
+    fn project_wide(&self, x: i32, y: i32, z: i32, w: i32) -> (SubPoint, u16) {
+        self.project(&[x, y, z, w])
+    }
+
+    /// [`project`](Self::project) of a vertex without [`MUST_CLIP`] bits
+    /// and `w < 2^23` by 32-bit long division: every dividend is below
+    /// `(4 * 2^15 + 2) w < 2^(l + 18)`, `l` the bits of `w`, so below
+    /// `2^(32 + k)` with `k = 32 - l >= 9` its leading zeros, as
+    /// [`div_digits`] needs; its quotients are below `2^18`.
+    #[inline(always)]
+    pub(crate) fn project_digits(&self, p: &[i32; 4], w: NonZeroU32) -> (SubPoint, u16) {
+        debug_assert!(w.get() >> DIGITS_W_BITS == 0 && w.get() as i64 >= W_MIN);
+        let k = w.leading_zeros();
+        let half = w.get() as u64 / 2;
+        // Half a viewport side in sub-pixels is at most 2^15; |x|, |y| <=
+        // 4w < 2^25.
+        let (hw, hh) = (self.half_w as u32 as u64, self.half_h as u32 as u64);
+        // div_round(n hw, w) with the sign of n.
+        let round = |n: i32, h: u64| -> i32 {
+            let q = div_digits(n.unsigned_abs() as u64 * h + half, w, k) as i32;
+            if n < 0 {
+                -q
+            } else {
+                q
+            }
+        };
+        let x = self.half_w as i32 + round(p[0], hw);
+        let y = self.half_h as i32 - round(p[1], hh);
+        // div_round((z + w) 65535, 2w) = floor(((z + w) 65535 + w) / w) / 2,
+        // and -w <= z <= w: not negative, at most
+        // floor((2w 65535 + w) / w) / 2 = 65535, no clamp.
+        let n = (p[2] + w.get() as i32) as u32 as u64 * 65_535;
+        let z = div_digits(n + w.get() as u64, w, k) >> 1;
+        debug_assert!(z <= 65_535);
+        (SubPoint::new(x, y), z as u16)
+    }
+
     /// Runs the vertex stage on one vertex.
     #[inline(always)]
     pub fn screen_vertex(&self, v: &ClipVertex) -> ScreenVertex {
         let outcode = outcode(&v.pos);
         let (p, z) = if outcode & MUST_CLIP == 0 {
-            self.project(&v.pos)
+            self.project_inside(&v.pos)
         } else {
             (SubPoint::default(), 0)
         };
@@ -348,6 +432,35 @@ impl Viewport {
             [v.color[0] as u8, v.color[1] as u8, v.color[2] as u8],
         )
     }
+}
+
+/// Whether the vertex stage divides by `w` through 32-bit divisions
+/// ([`Viewport::project_inside`]): on 32-bit cores with a 32 x 32 -> 64-bit
+/// multiply, which have a divide instruction too (ARMv7-M, ARMv8-M
+/// Mainline, RISC-V `rv32im`). ARMv6-M, whose division is a library call,
+/// keeps `w`'s 32-bit reciprocal; 64-bit targets their 64-bit division.
+const LONG_DIVISION: bool = cfg!(all(
+    not(microraster_narrow_multiply),
+    not(target_pointer_width = "64")
+));
+
+/// [`Viewport::project_digits`] takes `w` below `2^DIGITS_W_BITS`.
+const DIGITS_W_BITS: u32 = 23;
+
+/// `floor(m / d)` by long division in two 32-bit steps, for `d` with `k`
+/// leading zeros and `m < 2^(32 + k)` whose quotient is below
+/// `2^32`: the upper digit from `m`'s upper `64 - k` bits (below `2^32`),
+/// the lower `k` bits from the remainder (below `d`, so `rem 2^k < 2^32`)
+/// and `m`'s lower `k` bits.
+#[inline(always)]
+pub(crate) fn div_digits(m: u64, d: NonZeroU32, k: u32) -> u32 {
+    debug_assert!(k == d.leading_zeros() && (1..32).contains(&k) && m >> (32 + k) == 0);
+    // `m >> k` from the two words: `1 <= k < 32`.
+    let high = (m as u32 >> k) | ((m >> 32) as u32) << (32 - k);
+    let q1 = high / d;
+    let rem = high - q1 * d.get();
+    let part = (rem << k) | (m as u32 & (u32::MAX >> (32 - k)));
+    (q1 << k) | (part / d)
 }
 
 /// `n / d` rounded to nearest (ties away from zero), for `d > 0`: the
@@ -490,12 +603,116 @@ mod tests {
         assert_eq!(outcode(&[0, 0, 0, -w]) & OUT_W, OUT_W);
     }
 
+    /// The tests of a vertex inside the view volume (32- and 64-bit) agree
+    /// with the full outcode everywhere: the extremes of `i32`, `w` around `W_MIN`,
+    /// coordinates around `±w`.
+    #[test]
+    fn the_inside_test_agrees_with_the_full_outcode() {
+        let mut next = crate::testing::rng();
+        let full = |p: &[i32; 4]| outcode_slow(p[0] as i64, p[1] as i64, p[2] as i64, p[3] as i64);
+        let ws = [
+            i32::MIN,
+            -1,
+            0,
+            1,
+            15,
+            16,
+            17,
+            1 << 16,
+            i32::MAX - 1,
+            i32::MAX,
+        ];
+        for w in ws {
+            let near = |d: i32| [w.saturating_add(d), w.saturating_neg().saturating_add(d)];
+            let mut cs: heapless::Vec<i32, 16> = heapless::Vec::new();
+            for c in [i32::MIN, i32::MIN + 1, -1, 0, 1, i32::MAX] {
+                cs.push(c).unwrap();
+            }
+            for d in [-1, 0, 1] {
+                cs.extend_from_slice(&near(d)).unwrap();
+            }
+            for &x in &cs {
+                for &y in &cs {
+                    for &z in &cs {
+                        let p = [x, y, z, w];
+                        assert_eq!(outcode(&p), full(&p), "{p:?}");
+                        assert_eq!(inside_words(&p), inside_wide(&p), "{p:?}");
+                    }
+                }
+            }
+        }
+        for _ in 0..100_000 {
+            let w = (next(1 << 32) as u32 as i32) >> next(32);
+            let mut c = || (next(1 << 32) as u32 as i32) >> next(32);
+            let p = [c(), c(), c(), w];
+            assert_eq!(outcode(&p), full(&p), "{p:?}");
+            assert_eq!(inside_words(&p), inside_wide(&p), "{p:?}");
+        }
+    }
+
     #[test]
     fn div_round_rounds_half_away_from_zero() {
         assert_eq!(div_round(5, 2), 3);
         assert_eq!(div_round(-5, 2), -3);
         assert_eq!(div_round(4, 3), 1);
         assert_eq!(div_round(-4, 3), -1);
+    }
+
+    /// The 32-bit long division against the 64-bit one: every divisor
+    /// below 70,000 and around every power of two up to 2^31 (below it), with
+    /// dividends up to its limit `2^(32 + k)` (and quotients below 2^32).
+    #[test]
+    fn div_digits_is_the_quotient() {
+        let mut next = crate::testing::rng();
+        let check = |d: u32, m: u64| {
+            let nz = NonZeroU32::new(d).unwrap();
+            let k = d.leading_zeros();
+            let m = m.min((1u64 << (32 + k)) - 1).min(((d as u64) << 32) - 1);
+            assert_eq!(div_digits(m, nz, k) as u64, m / d as u64, "{m} / {d}");
+        };
+        // k >= 1: divisors below 2^31.
+        let divisors = (2..70_000u32).chain(
+            (17..32).flat_map(|b| (1u32 << b) - 100..((1u64 << b) + 100).min(1 << 31) as u32),
+        );
+        for d in divisors {
+            for m in [0, 1, d as u64 - 1, d as u64, u64::MAX] {
+                check(d, m);
+            }
+            check(d, next(1 << 32) << 32 | next(1 << 32));
+            check(d, (next(1 << 32) << 32 | next(1 << 32)) >> next(64));
+        }
+    }
+
+    /// `project_inside` (two 32-bit divisions a quotient for `w < 2^23`)
+    /// against `project`, for vertices without `MUST_CLIP` bits: `w` from
+    /// `W_MIN` to beyond 2^23, coordinates up to the guard band, the
+    /// extremes of each.
+    #[test]
+    fn projection_inside_matches_project() {
+        let mut next = crate::testing::rng();
+        for (width, height) in [(320, 240), (4096, 4096), (1, 4096), (4096, 3001)] {
+            let vp = Viewport::new(width, height);
+            for i in 0..200_000u64 {
+                let w = match i % 8 {
+                    0 => W_MIN + next(16) as i64,
+                    1 => (1 << DIGITS_W_BITS) - 1 - next(4) as i64,
+                    _ => W_MIN + (next(1 << 28) >> next(24)) as i64,
+                } as i32;
+                let g = GUARD_K as i32 * w;
+                let mut c = |limit: i32| match next(6) {
+                    0 => limit,
+                    1 => -limit,
+                    _ => (next(2 * limit as u64 + 1) as i64 - limit as i64) as i32,
+                };
+                let p = [c(g), c(g), c(w), w];
+                assert_eq!(outcode(&p) & MUST_CLIP, 0, "{p:?}");
+                assert_eq!(vp.project_inside(&p), vp.project(&p), "{p:?}");
+                if w >> DIGITS_W_BITS == 0 {
+                    let nz = NonZeroU32::new(w as u32).unwrap();
+                    assert_eq!(vp.project_digits(&p, nz), vp.project(&p), "{p:?}");
+                }
+            }
+        }
     }
 
     /// `project` (one divisor for the three quotients) against the three

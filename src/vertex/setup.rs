@@ -83,14 +83,33 @@ impl Lambert {
         let d = mul_wide(n[0].to_bits(), self.dir[0])
             + mul_wide(n[1].to_bits(), self.dir[1])
             + mul_wide(n[2].to_bits(), self.dir[2]);
-        // n·l in 1/256 steps, floored, clamped to [0, 1].
-        let ndotl = (d >> 24).clamp(0, 256) as u32;
+        // n·l in 1/256 steps, floored, clamped to [0, 1]. On 32-bit cores
+        // from d's upper word, which is 0 exactly when d >> 24 is 0 to 255
+        // (the 64-bit clamp took twice the instructions on the Cortex-M3);
+        // 64-bit ones keep the clamp, which measured fewer there.
+        let ndotl = if cfg!(target_pointer_width = "64") {
+            (d >> 24).clamp(0, 256) as u32
+        } else {
+            clamp_ndotl_words(d)
+        };
         let mut out = [0u8; 3];
         for c in 0..3 {
-            let k = self.ambient[c] * 256 + self.color[c] * ndotl; // <= 2^17
+            // At most 2^17.
+            let k = self.ambient[c] * 256 + self.color[c] * ndotl;
             out[c] = ((base[c] as u32 * k + 32_640) / 65_280).min(255) as u8;
         }
         out
+    }
+}
+
+/// `(d >> 24).clamp(0, 256)` from `d`'s upper word, which is 0 exactly
+/// when `d >> 24` is 0 to 255: the Lambert fast path's n·l on 32-bit cores.
+#[inline(always)]
+fn clamp_ndotl_words(d: i64) -> u32 {
+    match (d >> 32) as i32 {
+        0 => d as u32 >> 24,
+        1.. => 256,
+        _ => 0,
     }
 }
 
@@ -266,6 +285,34 @@ impl DrawSetup {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// n·l's clamp from the upper word is the 64-bit clamp.
+    #[test]
+    fn ndotl_from_words_is_the_clamp() {
+        let mut next = crate::testing::rng();
+        let check =
+            |d: i64| assert_eq!(clamp_ndotl_words(d), (d >> 24).clamp(0, 256) as u32, "{d}");
+        for b in 0..64 {
+            let p = 1i64 << b;
+            for d in [p, p.wrapping_sub(1), p.wrapping_neg(), p.wrapping_neg() + 1] {
+                check(d);
+            }
+        }
+        for d in [
+            0,
+            -1,
+            i64::MIN,
+            i64::MAX,
+            (256 << 24) - 1,
+            256 << 24,
+            255 << 24,
+        ] {
+            check(d);
+        }
+        for _ in 0..100_000 {
+            check(((next(1 << 32) << 32 | next(1 << 32)) as i64) >> next(64));
+        }
+    }
 
     /// The fast path of one directional light gives the general
     /// lighting's colours, for any normal, colour and light.
