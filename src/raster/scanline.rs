@@ -27,11 +27,11 @@
 //! division, in `i32` unless a long edge lies far from the origin. The
 //! per-row stepping is `i32` adds and one compare per edge.
 //!
-//! The walk is a resumable `Walker`, which records the spans of the next
-//! rows in a buffer rather than calling back for each: the renderer walks a
-//! triangle's rows in a tile into a buffer of one span per tile row, so the
-//! edge loop runs with nothing else in registers, and shades them
-//! afterwards. [`spans`] drives the same walker through a small buffer.
+//! The walk records the spans of a triangle's rows in a buffer rather than
+//! calling back for each: the renderer walks a triangle's rows in a tile
+//! into a buffer of one span per tile row, so the edge loop runs with
+//! nothing else in registers, and shades them afterwards. [`spans`] runs
+//! the same walk over bands of 32 rows through a small buffer.
 
 use super::{
     first_centre_at_or_after, PixelRect, Span, SubPoint, HALF_PIXEL, SUBPIXEL, SUBPIXEL_BITS,
@@ -152,7 +152,7 @@ fn ceil_div_rem32(n: i32, d: NonZeroU32) -> (i32, i32) {
     }
 }
 
-/// Row count above which [`Walker::new`] first tests whether the triangle misses
+/// Row count above which [`find_spans`] first tests whether the triangle misses
 /// the clip rectangle altogether.
 const CHECK_ROWS: i32 = 16;
 
@@ -187,147 +187,96 @@ fn may_cover(v: &[SubPoint; 3], area2: i64, clip: PixelRect) -> bool {
     true
 }
 
-/// The scanline walk of one triangle over a clip rectangle, resumable: each
-/// [`Walker::walk`] records the spans of the next rows in a buffer.
+/// Records the non-empty spans of triangle `v` in `clip`, in row order,
+/// in `out`, and returns how many: the walk of the rows of `clip` (at most
+/// the first `out.len()` of the triangle's rows there), as the renderer
+/// asks it for a tile.
 ///
 /// The long edge a -> c (vertices sorted by y) is on the left when the
 /// middle vertex b is right of it. The short edge is a -> b for rows whose
 /// centre lies above b, then b -> c. Both halves run through the same
 /// loop, and no row tests which edge is on which side.
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct Walker {
-    left: EdgeStepper,
-    right: EdgeStepper,
-    /// The next row, and where the current half ends.
-    row: i32,
-    stop: i32,
-    end: i32,
-    /// Columns of the clip rectangle.
-    x0: i32,
-    x1: i32,
-    /// For the switch to the lower half: b, c, and which side the short
-    /// edge is on.
-    b: SubPoint,
-    c: SubPoint,
-    long_on_left: bool,
-}
-
-impl Walker {
-    /// Starts the walk of triangle `v` over `clip`; `None` when it covers
-    /// no pixel centre there for certain (zero area, no rows, or a tall
-    /// block all of whose centres lie outside one edge).
-    #[inline(always)]
-    pub(crate) fn new(v: &[SubPoint; 3], clip: PixelRect) -> Option<Self> {
-        // Sort by y: a on top, c at the bottom.
-        let (mut a, mut b, mut c) = (v[0], v[1], v[2]);
-        if a.y > b.y {
-            core::mem::swap(&mut a, &mut b);
-        }
-        if b.y > c.y {
-            core::mem::swap(&mut b, &mut c);
-        }
-        if a.y > b.y {
-            core::mem::swap(&mut a, &mut b);
-        }
-        // Within the guard band the edge vectors fit i32.
-        let cross = super::signed_area2_banded(&[a, b, c]);
-        if cross == 0 || clip.is_empty() {
-            return None;
-        }
-        // cross > 0: the middle vertex is right of the long edge a -> c.
-        let long_on_left = cross > 0;
-
-        let row_top = first_centre_at_or_after(a.y).max(clip.y0);
-        let row_mid = first_centre_at_or_after(b.y);
-        let row_end = first_centre_at_or_after(c.y).min(clip.y1);
-        if row_top >= row_end {
-            return None;
-        }
-        // Before walking many rows, check that no edge puts every pixel
-        // centre of the clipped block strictly outside (a tile that the
-        // triangle's bounding box overlaps but the triangle misses).
-        if row_end - row_top > CHECK_ROWS
-            && !may_cover(
-                &[a, b, c],
-                cross,
-                PixelRect::new(clip.x0, row_top, clip.x1, row_end),
-            )
-        {
-            return None;
-        }
-        let long = EdgeStepper::new(a, c, row_top);
-        let (short, stop) = if row_top < row_mid {
-            (EdgeStepper::new(a, b, row_top), row_mid.min(row_end))
-        } else {
-            (EdgeStepper::new(b, c, row_top), row_end)
-        };
-        let (left, right) = if long_on_left {
-            (long, short)
-        } else {
-            (short, long)
-        };
-        Some(Self {
-            left,
-            right,
-            row: row_top,
-            stop,
-            end: row_end,
-            x0: clip.x0,
-            x1: clip.x1,
-            b,
-            c,
-            long_on_left,
-        })
+#[inline(always)]
+pub(crate) fn find_spans(v: &[SubPoint; 3], clip: PixelRect, out: &mut [Span]) -> usize {
+    // Sort by y: a on top, c at the bottom.
+    let (mut a, mut b, mut c) = (v[0], v[1], v[2]);
+    if a.y > b.y {
+        core::mem::swap(&mut a, &mut b);
     }
-
-    /// Whether every row has been walked.
-    #[inline(always)]
-    pub(crate) fn done(&self) -> bool {
-        self.row >= self.end
+    if b.y > c.y {
+        core::mem::swap(&mut b, &mut c);
     }
-
-    /// Walks the next rows, at most as many as `out` holds, recording the
-    /// non-empty spans in `out`, in order; returns how many.
-    #[inline(always)]
-    pub(crate) fn walk(&mut self, out: &mut [Span]) -> usize {
-        // The state in locals, so the loop keeps it in registers.
-        let (mut left, mut right, mut row, mut stop) = (self.left, self.right, self.row, self.stop);
-        // Rows left in `out`; spans recorded (never more than rows walked).
-        let (mut room, mut n) = (out.len(), 0);
-        loop {
-            let rows = ((stop - row) as usize).min(room);
-            n = half(out, n, row, rows, &mut left, &mut right, self.x0, self.x1);
-            room -= rows;
-            row += rows as i32;
-            if row < stop || row >= self.end {
-                // `out` is full, or the triangle ends.
-                break;
-            }
-            // Only reached after the upper half, with `row == row_mid`.
-            let lower = EdgeStepper::new(self.b, self.c, row);
-            if self.long_on_left {
-                right = lower;
-            } else {
-                left = lower;
-            }
-            stop = self.end;
+    if a.y > b.y {
+        core::mem::swap(&mut a, &mut b);
+    }
+    // Within the guard band the edge vectors fit i32.
+    let cross = super::signed_area2_banded(&[a, b, c]);
+    if cross == 0 || clip.is_empty() {
+        return 0;
+    }
+    let row_top = first_centre_at_or_after(a.y).max(clip.y0);
+    let row_mid = first_centre_at_or_after(b.y);
+    let mut row_end = first_centre_at_or_after(c.y).min(clip.y1);
+    if row_top >= row_end {
+        return 0;
+    }
+    // Before walking many rows, check that no edge puts every pixel
+    // centre of the clipped block strictly outside (a tile that the
+    // triangle's bounding box overlaps but the triangle misses).
+    if row_end - row_top > CHECK_ROWS
+        && !may_cover(
+            &[a, b, c],
+            cross,
+            PixelRect::new(clip.x0, row_top, clip.x1, row_end),
+        )
+    {
+        return 0;
+    }
+    // At most one span per row of `out`.
+    if (row_end - row_top) as usize > out.len() {
+        row_end = row_top + out.len() as i32;
+    }
+    // cross > 0: the middle vertex is right of the long edge a -> c.
+    let long_on_left = cross > 0;
+    let long = EdgeStepper::new(a, c, row_top);
+    let (short, mut stop) = if row_top < row_mid {
+        (EdgeStepper::new(a, b, row_top), row_mid.min(row_end))
+    } else {
+        (EdgeStepper::new(b, c, row_top), row_end)
+    };
+    let (mut left, mut right) = if long_on_left {
+        (long, short)
+    } else {
+        (short, long)
+    };
+    let (mut row, mut n) = (row_top, 0);
+    loop {
+        n = half(out, n, row, stop, &mut left, &mut right, clip.x0, clip.x1);
+        if stop >= row_end {
+            return n;
         }
-        (self.left, self.right, self.row, self.stop) = (left, right, row, stop);
-        n
+        // Only reached after the upper half, with `stop == row_mid`.
+        row = stop;
+        let lower = EdgeStepper::new(b, c, row);
+        if long_on_left {
+            right = lower;
+        } else {
+            left = lower;
+        }
+        stop = row_end;
     }
 }
 
-/// Walks `rows` rows from `row` between the edges `left` and `right`,
+/// Walks the rows `row..stop` between the edges `left` and `right`,
 /// recording the non-empty spans, clipped to columns `x0..x1`, in `out`
 /// from `out[n]` on; returns the new count.
 #[inline(always)]
-// `j` counts the rows beside the loop's count, the form that was measured.
-#[allow(clippy::too_many_arguments, clippy::explicit_counter_loop)]
+#[allow(clippy::too_many_arguments)]
 fn half(
     out: &mut [Span],
     mut n: usize,
     row: i32,
-    rows: usize,
+    stop: i32,
     left: &mut EdgeStepper,
     right: &mut EdgeStepper,
     x0: i32,
@@ -337,8 +286,7 @@ fn half(
     let (mut rc, mut re) = (right.col, right.err);
     let (ls, lse, ld) = (left.step_col, left.step_err, left.den);
     let (rs, rse, rd) = (right.step_col, right.step_err, right.den);
-    let mut j = row;
-    for _ in 0..rows {
+    for j in row..stop {
         let s = Span {
             j,
             x0: lc.max(x0),
@@ -349,7 +297,6 @@ fn half(
             *o = s;
         }
         n += (s.x0 < s.x1) as usize;
-        j += 1;
         lc += ls;
         le += lse;
         if le >= 0 {
@@ -385,15 +332,16 @@ fn half(
 /// assert_eq!(covered, 3 + 2 + 1);
 /// ```
 pub fn spans<F: FnMut(i32, i32, i32)>(v: &[SubPoint; 3], clip: PixelRect, mut span: F) {
-    let Some(mut w) = Walker::new(v, clip) else {
-        return;
-    };
+    // The walk of the renderer's tiles, over bands of 32 rows of `clip`.
     let mut buf = [Span::default(); 32];
-    while !w.done() {
-        let n = w.walk(&mut buf);
+    let mut y0 = clip.y0;
+    while y0 < clip.y1 {
+        let y1 = y0.saturating_add(buf.len() as i32).min(clip.y1);
+        let n = find_spans(v, PixelRect::new(clip.x0, y0, clip.x1, y1), &mut buf);
         for s in &buf[..n] {
             span(s.j, s.x0, s.x1);
         }
+        y0 = y1;
     }
 }
 
