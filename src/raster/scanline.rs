@@ -250,8 +250,19 @@ pub(crate) fn find_spans(v: &[SubPoint; 3], clip: PixelRect, out: &mut [Span]) -
         (short, long)
     };
     let (mut row, mut n) = (row_top, 0);
+    // Whether every span lies within the clip's columns: its columns are
+    // those of the edges between the vertices, so the vertices' extent
+    // bounds them. A triangle inside its tile's columns (most of a mesh's
+    // small ones) then takes a row loop with no clamps, whose two fewer
+    // live values spare it loads from the stack on a 32-bit core.
+    let (lo, hi) = (a.x.min(b.x).min(c.x), a.x.max(b.x).max(c.x));
+    let inside = first_centre_at_or_after(lo) >= clip.x0 && first_centre_at_or_after(hi) <= clip.x1;
     loop {
-        n = half(out, n, row, stop, &mut left, &mut right, clip.x0, clip.x1);
+        n = if inside {
+            half::<false>(out, n, row, stop, &mut left, &mut right, clip.x0, clip.x1)
+        } else {
+            half::<true>(out, n, row, stop, &mut left, &mut right, clip.x0, clip.x1)
+        };
         if stop >= row_end {
             return n;
         }
@@ -268,11 +279,12 @@ pub(crate) fn find_spans(v: &[SubPoint; 3], clip: PixelRect, out: &mut [Span]) -
 }
 
 /// Walks the rows `row..stop` between the edges `left` and `right`,
-/// recording the non-empty spans, clipped to columns `x0..x1`, in `out`
-/// from `out[n]` on; returns the new count.
+/// recording the non-empty spans, clipped to columns `x0..x1` (when
+/// `CLIP`; otherwise they lie within them already), in `out` from
+/// `out[n]` on; returns the new count.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-fn half(
+fn half<const CLIP: bool>(
     out: &mut [Span],
     mut n: usize,
     row: i32,
@@ -287,10 +299,11 @@ fn half(
     let (ls, lse, ld) = (left.step_col, left.step_err, left.den);
     let (rs, rse, rd) = (right.step_col, right.step_err, right.den);
     for j in row..stop {
+        debug_assert!(CLIP || (x0 <= lc && rc <= x1));
         let s = Span {
             j,
-            x0: lc.max(x0),
-            x1: rc.min(x1),
+            x0: if CLIP { lc.max(x0) } else { lc },
+            x1: if CLIP { rc.min(x1) } else { rc },
         };
         // Written whether empty or not, kept only if not: no branch.
         if let Some(o) = out.get_mut(n) {
