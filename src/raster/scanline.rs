@@ -70,8 +70,10 @@ impl EdgeStepper {
     /// out: in `i32` when its numerator fits (a single instruction on a
     /// Cortex-M3/M4 where the 64-bit one is a library call), in `i64` for
     /// long edges far from the origin; all give the same quotient.
+    ///
+    /// `NEAR` tells that `row` is the edge's own first row (so `t < 16`).
     #[inline(always)]
-    fn new(p: SubPoint, q: SubPoint, row: i32) -> Self {
+    fn new<const NEAR: bool>(p: SubPoint, q: SubPoint, row: i32) -> Self {
         // Within the guard band coordinates are below 2^18 in magnitude
         // (see `crate::vertex`), so differences fit i32 with room to spare.
         let dx = q.x - p.x;
@@ -86,7 +88,8 @@ impl EdgeStepper {
         let (step_col, r) = ceil_div_rem32(dx, dy);
         let yc = row * SUBPIXEL + HALF_PIXEL;
         let t = yc - p.y;
-        let (col, rem) = if (t as u32) < SUBPIXEL as u32 {
+        debug_assert!(!NEAR || (t as u32) < SUBPIXEL as u32);
+        let (col, rem) = if NEAR || (t as u32) < SUBPIXEL as u32 {
             // |t s| <= 15 * 2^19: P fits i32; dy R and t r are below 2^24.
             let big_p = p.x - HALF_PIXEL + t * step_col;
             let n = dy.get() as i32 * (big_p & (SUBPIXEL - 1)) - t * r;
@@ -214,6 +217,8 @@ pub(crate) fn find_spans(v: &[SubPoint; 3], clip: PixelRect, out: &mut [Span]) -
     if cross == 0 || clip.is_empty() {
         return 0;
     }
+    // cross > 0: the middle vertex is right of the long edge a -> c.
+    let long_on_left = cross > 0;
     let row_top = first_centre_at_or_after(a.y).max(clip.y0);
     let row_mid = first_centre_at_or_after(b.y);
     let mut row_end = first_centre_at_or_after(c.y).min(clip.y1);
@@ -236,20 +241,6 @@ pub(crate) fn find_spans(v: &[SubPoint; 3], clip: PixelRect, out: &mut [Span]) -
     if (row_end - row_top) as usize > out.len() {
         row_end = row_top + out.len() as i32;
     }
-    // cross > 0: the middle vertex is right of the long edge a -> c.
-    let long_on_left = cross > 0;
-    let long = EdgeStepper::new(a, c, row_top);
-    let (short, mut stop) = if row_top < row_mid {
-        (EdgeStepper::new(a, b, row_top), row_mid.min(row_end))
-    } else {
-        (EdgeStepper::new(b, c, row_top), row_end)
-    };
-    let (mut left, mut right) = if long_on_left {
-        (long, short)
-    } else {
-        (short, long)
-    };
-    let (mut row, mut n) = (row_top, 0);
     // Whether every span lies within the clip's columns: its columns are
     // those of the edges between the vertices, so the vertices' extent
     // bounds them. On a 32-bit core, a triangle inside its tile's columns
@@ -262,6 +253,21 @@ pub(crate) fn find_spans(v: &[SubPoint; 3], clip: PixelRect, out: &mut [Span]) -
     let inside = cfg!(any(target_pointer_width = "32", test))
         && first_centre_at_or_after(lo) >= clip.x0
         && first_centre_at_or_after(hi) <= clip.x1;
+    let long = EdgeStepper::new::<false>(a, c, row_top);
+    let (short, mut stop) = if row_top < row_mid {
+        (
+            EdgeStepper::new::<false>(a, b, row_top),
+            row_mid.min(row_end),
+        )
+    } else {
+        (EdgeStepper::new::<false>(b, c, row_top), row_end)
+    };
+    let (mut left, mut right) = if long_on_left {
+        (long, short)
+    } else {
+        (short, long)
+    };
+    let (mut row, mut n) = (row_top, 0);
     loop {
         n = if inside {
             half::<false>(out, n, row, stop, &mut left, &mut right, clip.x0, clip.x1)
@@ -273,7 +279,7 @@ pub(crate) fn find_spans(v: &[SubPoint; 3], clip: PixelRect, out: &mut [Span]) -
         }
         // Only reached after the upper half, with `stop == row_mid`.
         row = stop;
-        let lower = EdgeStepper::new(b, c, row);
+        let lower = EdgeStepper::new::<true>(b, c, row);
         if long_on_left {
             right = lower;
         } else {
