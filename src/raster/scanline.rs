@@ -197,8 +197,9 @@ fn may_cover(v: &[SubPoint; 3], area2: i64, clip: PixelRect) -> bool {
 ///
 /// The long edge a -> c (vertices sorted by y) is on the left when the
 /// middle vertex b is right of it. The short edge is a -> b for rows whose
-/// centre lies above b, then b -> c. Both halves run through the same
-/// loop, and no row tests which edge is on which side.
+/// centre lies above b, then b -> c. Both halves run through the same row
+/// loop ([`half`]: once, or on 32-bit cores a copy for each half), and no
+/// row tests which edge is on which side.
 #[inline(always)]
 pub(crate) fn find_spans(v: &[SubPoint; 3], clip: PixelRect, out: &mut [Span]) -> usize {
     // Sort by y: a on top, c at the bottom.
