@@ -2,7 +2,7 @@
 
 use super::dispatch::{ShaderPass, Shaders};
 use super::Features;
-use crate::raster::scanline::Walker;
+use crate::raster::scanline;
 use crate::raster::{hilbert, PixelRect, Rasterizer, Span, SubPoint};
 use crate::shade::perspective::{Output, PerspectiveSetup, ShaderTriangle};
 use crate::shade::{span_flat, span_gouraud, Corners, DepthFn, DepthTest, SpanPos, TriangleSetup};
@@ -160,12 +160,8 @@ where
 /// the edge walk has the registers to itself.
 #[inline(never)]
 fn find_spans(v: &[SubPoint; 3], rect: &PixelRect, found: &mut [Span]) -> usize {
-    // The walk stays inside `rect`, at most as many rows as `found` holds
-    // (TH), so one call records every span.
-    match Walker::new(v, *rect) {
-        Some(mut walker) => walker.walk(found),
-        None => 0,
-    }
+    // `found` holds a span for each row of `rect` (TH).
+    scanline::find_spans(v, *rect, found)
 }
 
 /// For [`Rasterizer::Auto`]: when triangle `v`'s bounds hold the whole
