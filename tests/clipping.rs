@@ -569,3 +569,31 @@ fn slightly_concave_clipped_polygon_is_culled_and_shaded_once() {
         assert_eq!(stats.pixels_shaded, drawn, "{cull:?}: {stats:?}");
     }
 }
+
+/// A clipped, snapped polygon with two reflex vertices, star-shaped from
+/// the second only: fanned from the first, two pieces overlapped and a
+/// pixel was shaded twice. (Found by the random search above.)
+#[test]
+fn polygon_with_two_reflex_vertices_is_shaded_once() {
+    let cam = perspective_camera(Vec3::new(0.4, 0.3, 2.5), Vec3::new(0.0, 0.0, -1.0), 9.0);
+    let tri = [
+        p3(-0.09938, -4.9563, 2.03772),
+        p3(0.40562, 1.764, -8.9905),
+        p3(0.17711, -2.16167, 7.01346),
+    ];
+    compare(cam, Mat4::IDENTITY, &tri, CullMode::None, true).unwrap();
+}
+
+/// A clipped polygon that snapping folds over itself (a spike whose sides
+/// cross), star-shaped from no vertex: still every pixel shaded once.
+/// (Found by the random search above.)
+#[test]
+fn folded_polygon_is_shaded_once() {
+    let cam = perspective_camera(Vec3::new(0.4, 0.3, 2.5), Vec3::new(0.0, 0.0, -1.0), 9.0);
+    let tri = [
+        p3(-3.47757, 0.04996, 7.23784),
+        p3(-0.09161, 0.26251, -1.59828),
+        p3(1.23158, 0.3245, -9.69272),
+    ];
+    compare(cam, Mat4::IDENTITY, &tri, CullMode::None, true).unwrap();
+}

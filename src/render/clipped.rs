@@ -109,21 +109,33 @@ impl FrameState<'_> {
         if !self.keeps(total) {
             return Fate::Culled;
         }
-        // A polygon made very slightly concave by snapping has a reflex
-        // vertex (turning against the polygon's orientation), and a fan
+        // A polygon made very slightly concave by snapping has reflex
+        // vertices (turning against the polygon's orientation), and a fan
         // from another vertex would overlap itself there, shading pixels
-        // twice. Nearly convex, it is star-shaped from that vertex: fan
-        // from it, and the pieces tile the polygon exactly.
+        // twice. A fan tiles the polygon exactly when every piece turns the
+        // polygon's way (a piece of zero area is skipped): nearly convex,
+        // the polygon is star-shaped from one of its reflex vertices, so
+        // those are tried first (two reflex vertices can be, and only one
+        // of them may do), then the others.
         let n = proj.len();
-        let apex = (0..n)
-            .find(|&k| {
-                let turn = signed_area2(&[
-                    xy(&proj[(k + n - 1) % n]),
-                    xy(&proj[k]),
-                    xy(&proj[(k + 1) % n]),
-                ]);
-                turn != 0 && (turn > 0) != (total > 0)
+        let area_of = |k: [usize; 3]| signed_area2(&k.map(|c| xy(&proj[c % n])));
+        let fans = |apex: usize| {
+            (2..n).all(|k| {
+                let a = area_of([apex, apex + k - 1, apex + k]);
+                a == 0 || (a > 0) == (total > 0)
             })
+        };
+        let reflex = |k: usize| {
+            let turn = area_of([k + n - 1, k, k + 1]);
+            turn != 0 && (turn > 0) != (total > 0)
+        };
+        // A polygon that snapping folded over itself (a spike whose sides
+        // cross) is star-shaped from no vertex: the first reflex vertex
+        // then, whose fan's pieces of the wrong turn are dropped.
+        let apex = (0..n)
+            .find(|&k| reflex(k) && fans(k))
+            .or_else(|| (0..n).find(|&k| fans(k)))
+            .or_else(|| (0..n).find(|&k| reflex(k)))
             .unwrap_or(0);
         // The margin of the draw's lines and points, which may reach pixels
         // beyond a piece's covered centres.
