@@ -531,13 +531,8 @@ mod tests {
     /// against the one with them (the same triangle in narrower columns).
     #[test]
     fn spans_without_clamps_match_the_clamped_ones() {
-        let mut x = 0x2545_f491_4f6c_dd1du64;
-        let mut next = move |m: u64| {
-            x ^= x << 13;
-            x ^= x >> 7;
-            x ^= x << 17;
-            (x % m) as i32
-        };
+        let mut rng = crate::testing::rng();
+        let mut next = move |m: u64| rng(m) as i32;
         for _ in 0..20_000 {
             let p = |a: i32, b: i32| SubPoint::new(a - 100, b - 100);
             let v = [
