@@ -45,8 +45,16 @@ static TO6: [u8; 256] = table(63);
 
 /// The bits of `Rgb565::from(Rgb888::new(r, g, b))`, by the tables.
 #[inline(always)]
-fn rgb565_bits(r: u8, g: u8, b: u8) -> u16 {
+pub(crate) fn rgb565_bits(r: u8, g: u8, b: u8) -> u16 {
     ((TO5[r as usize] as u16) << 11) | ((TO6[g as usize] as u16) << 5) | TO5[b as usize] as u16
+}
+
+/// `v` as a `C`, when `C` is `T` (a checked downcast).
+#[inline(always)]
+fn cast<T: 'static, C: 'static>(v: T) -> Option<C> {
+    (&mut Some(v) as &mut dyn Any)
+        .downcast_mut::<Option<C>>()?
+        .take()
 }
 
 /// `C::from(Rgb888::new(r, g, b))`, bit for bit, through tables where `C`
@@ -54,22 +62,15 @@ fn rgb565_bits(r: u8, g: u8, b: u8) -> u16 {
 #[inline(always)]
 pub(crate) fn rgb<C: From<Rgb888> + 'static>(r: u8, g: u8, b: u8) -> C {
     let c = TypeId::of::<C>();
-    if c == TypeId::of::<Rgb565>() {
-        let v = Rgb565::from(RawU16::new(rgb565_bits(r, g, b)));
-        if let Some(v) = (&mut Some(v) as &mut dyn Any).downcast_mut::<Option<C>>() {
-            if let Some(v) = v.take() {
-                return v;
-            }
-        }
+    let bits = || RawU16::new(rgb565_bits(r, g, b));
+    let table = if c == TypeId::of::<Rgb565>() {
+        cast(Rgb565::from(bits()))
     } else if c == TypeId::of::<Rgb565Be>() {
-        let v = Rgb565Be::from(RawU16::new(rgb565_bits(r, g, b)));
-        if let Some(v) = (&mut Some(v) as &mut dyn Any).downcast_mut::<Option<C>>() {
-            if let Some(v) = v.take() {
-                return v;
-            }
-        }
-    }
-    C::from(Rgb888::new(r, g, b))
+        cast(Rgb565Be::from(bits()))
+    } else {
+        None
+    };
+    table.unwrap_or_else(|| C::from(Rgb888::new(r, g, b)))
 }
 
 /// [`rgb`] where the target has SIMD for the span loops

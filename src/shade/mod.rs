@@ -42,7 +42,7 @@ mod setup;
 mod sliver;
 mod small;
 
-pub(crate) use convert::{rgb, rgb16, rgb_scalar};
+pub(crate) use convert::{rgb, rgb16, rgb565_bits, rgb_scalar};
 use embedded_graphics::pixelcolor::Rgb888;
 use setup::Basis;
 pub(crate) use setup::{Corners, TriangleSetup};

@@ -61,7 +61,7 @@ impl FromTexel for Rgb565 {
     /// its three multiplies.
     #[inline(always)]
     fn from_rgb888([r, g, b]: [u8; 3]) -> Self {
-        crate::shade::rgb(r, g, b)
+        Rgb565::from(RawU16::new(crate::shade::rgb565_bits(r, g, b)))
     }
 }
 
@@ -74,7 +74,7 @@ impl FromTexel for crate::sink::Rgb565Be {
     /// As `Rgb565`'s.
     #[inline(always)]
     fn from_rgb888([r, g, b]: [u8; 3]) -> Self {
-        crate::shade::rgb(r, g, b)
+        Self::from(RawU16::new(crate::shade::rgb565_bits(r, g, b)))
     }
 }
 
