@@ -431,38 +431,46 @@ impl TriangleSetup {
         if self.wide {
             return wide_start(t, i, j);
         }
-        [
-            self.planes[0].at(i, j).clamp(Z_LO, Z_HI),
-            self.planes[1].at(i, j).clamp(C_LO, C_HI),
-            self.planes[2].at(i, j).clamp(C_LO, C_HI),
-            self.planes[3].at(i, j).clamp(C_LO, C_HI),
-        ]
+        clamped(self.values_at(i, j))
     }
 
     /// [`TriangleSetup::start`] with the values tested first.
     #[inline(always)]
     pub(super) fn start_tested(&self, t: &Corners<'_>, i: i32, j: i32) -> [i32; 4] {
-        let v = [
-            self.planes[0].at(i, j),
-            self.planes[1].at(i, j),
-            self.planes[2].at(i, j),
-            self.planes[3].at(i, j),
-        ];
+        let v = self.values_at(i, j);
         if z_inside(v[0]) && c_inside(v[1]) && c_inside(v[2]) && c_inside(v[3]) {
             v
         } else {
             // A wide triangle's depth plane fails `z_inside` everywhere.
             // `wide_start`'s values are clamped already, and clamped again
             // they stay: the values meet the fast path's in registers.
-            let [z, r, g, b] = if self.wide { wide_start(t, i, j) } else { v };
-            [
-                z.clamp(Z_LO, Z_HI),
-                r.clamp(C_LO, C_HI),
-                g.clamp(C_LO, C_HI),
-                b.clamp(C_LO, C_HI),
-            ]
+            clamped(if self.wide { wide_start(t, i, j) } else { v })
         }
     }
+
+    /// Depth, red, green and blue of the planes at the centre of pixel
+    /// `(i, j)`, before any clamp.
+    #[inline(always)]
+    fn values_at(&self, i: i32, j: i32) -> [i32; 4] {
+        [
+            self.planes[0].at(i, j),
+            self.planes[1].at(i, j),
+            self.planes[2].at(i, j),
+            self.planes[3].at(i, j),
+        ]
+    }
+}
+
+/// Depth, red, green and blue clamped to their ranges (constant bounds:
+/// `clamp`'s check of them is done at compile time).
+#[inline(always)]
+fn clamped([z, r, g, b]: [i32; 4]) -> [i32; 4] {
+    [
+        z.clamp(Z_LO, Z_HI),
+        r.clamp(C_LO, C_HI),
+        g.clamp(C_LO, C_HI),
+        b.clamp(C_LO, C_HI),
+    ]
 }
 
 /// Whether depth `z` is surely in `Z_LO..=Z_HI`: a conservative test (by
