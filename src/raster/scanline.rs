@@ -280,12 +280,7 @@ pub(crate) fn find_spans(v: &[SubPoint; 3], clip: PixelRect, out: &mut [Span]) -
             }
             // Only reached after the upper half, with `stop == row_mid`.
             row = stop;
-            let lower = EdgeStepper::new::<true>(b, c, row);
-            if long_on_left {
-                right = lower;
-            } else {
-                left = lower;
-            }
+            lower_half(b, c, row, long_on_left, &mut left, &mut right);
             stop = row_end;
         }
     }
@@ -303,13 +298,27 @@ pub(crate) fn find_spans(v: &[SubPoint; 3], clip: PixelRect, out: &mut [Span]) -
         return n;
     }
     // The lower half, from `stop == row_mid`.
-    let lower = EdgeStepper::new::<true>(b, c, stop);
-    if long_on_left {
-        right = lower;
-    } else {
-        left = lower;
-    }
+    lower_half(b, c, stop, long_on_left, &mut left, &mut right);
     walk(n, stop, row_end, &mut left, &mut right, out)
+}
+
+/// Starts the lower half at `row`: the short edge becomes `b -> c`, on
+/// the left or the right (`long_on_left`).
+#[inline(always)]
+fn lower_half(
+    b: SubPoint,
+    c: SubPoint,
+    row: i32,
+    long_on_left: bool,
+    left: &mut EdgeStepper,
+    right: &mut EdgeStepper,
+) {
+    let lower = EdgeStepper::new::<true>(b, c, row);
+    if long_on_left {
+        *right = lower;
+    } else {
+        *left = lower;
+    }
 }
 
 /// Walks the rows `row..stop` between the edges `left` and `right`,
