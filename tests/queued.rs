@@ -1,7 +1,7 @@
 //! Queued streaming: a frame sent through `render_queued` over `N` tile
 //! buffers, to a fake DMA queue whose tiles complete only later (each
 //! tile's pixels are read from its buffer when it is waited for, oldest
-//! first), delivers every tile once, in visiting order, with the pixels
+//! first), delivers every tile once (in visiting order for two buffers), with the pixels
 //! of `Renderer::render`; never more than `N - 1` tiles are in flight, a
 //! buffer is never drawn into while it is, and every error gives all `N`
 //! buffers back with nothing left in flight.
@@ -20,8 +20,8 @@ use support::Order;
 type Tile = dma::Tile<Rgb565>;
 type Queue<'t> = FakeDma<'t, Rgb565>;
 
-/// The scene through `render_queued` over `N` buffers: every tile once,
-/// in `render`'s order and with its pixels and statistics, at most
+/// The scene through `render_queued` over `N` buffers: every tile once
+/// (in `render`'s order for two) and with its pixels and statistics, at most
 /// `N - 1` in flight (and that many reached), the buffers in turn.
 fn queued<const N: usize, const B: usize, const T: usize>(
     scene: &Scene<'_>,
@@ -42,7 +42,18 @@ fn queued<const N: usize, const B: usize, const T: usize>(
     assert_eq!(result.unwrap(), stats, "the same statistics");
     assert_eq!(ids(&back), (0..N).collect::<Vec<_>>(), "every buffer back");
     assert!(queue.queue.is_empty(), "nothing in flight");
-    assert_eq!(queue.order, sink.0, "every tile once, in visiting order");
+    // Two buffers keep the visiting order; more may take tiles with an
+    // empty bin ahead within a binning pass (the order itself is tested
+    // in src/sink/queue.rs).
+    if N == 2 {
+        assert_eq!(queue.order, sink.0, "every tile once, in visiting order");
+    } else {
+        let key = |r: &Rectangle| (r.top_left.y, r.top_left.x);
+        let (mut sent, mut want) = (queue.order.clone(), sink.0.clone());
+        sent.sort_by_key(key);
+        want.sort_by_key(key);
+        assert_eq!(sent, want, "every tile once");
+    }
     queue.frame.assert_once_and_equal(&sink.1);
 
     let book = book.borrow();

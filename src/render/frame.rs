@@ -29,6 +29,17 @@ use crate::vertex::ScreenVertex;
 use embedded_graphics::pixelcolor::{PixelColor, Rgb888};
 use embedded_graphics::primitives::Rectangle;
 
+/// Which tile of a binning pass [`Frame::render_picked`] draws next.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Pick {
+    /// The next in visiting order.
+    InOrder,
+    /// The next with an empty bin if any is left, else the next.
+    Cheap,
+    /// The next with triangles if any is left, else the next.
+    Dear,
+}
+
 /// A frame being rendered tile by tile: made by
 /// [`Renderer::begin`](super::Renderer::begin), drawn by
 /// [`render_next`](Self::render_next).
@@ -40,11 +51,18 @@ pub struct Frame<'a, C, F, const TW: usize, const TH: usize, P = super::All> {
     shaders: &'a F,
     grid: TileGrid,
     bins: Bins<'a>,
-    /// The current pass: its first tile (visiting position), how many
-    /// tiles it holds, and the next of them to draw.
+    /// The current pass: its first tile (visiting position) and how many
+    /// tiles it holds; the next tile with an empty bin (`cheap`) and the
+    /// next with triangles (`dear`) not yet drawn (`len` when there is
+    /// none), and how many of its tiles have been drawn. In visiting order
+    /// the lower of the two comes next; `render_queued` may take a cheap
+    /// tile ahead of a dear one, or the other way round (see
+    /// [`Frame::render_picked`]).
     t0: usize,
     len: usize,
-    next: usize,
+    cheap: usize,
+    dear: usize,
+    taken: usize,
     /// The current pass is tile `t0` alone, whose bin overflowed the pool:
     /// it is drawn by scanning every triangle against it.
     rescan: bool,
@@ -147,7 +165,9 @@ where
             bins: Bins::new(bins, heads, tails),
             t0: 0,
             len: 0,
-            next: 0,
+            cheap: 0,
+            dear: 0,
+            taken: 0,
             rescan: false,
             cache: None,
             stats: FrameStats {
@@ -175,7 +195,30 @@ where
         tile: &mut TileBuffer<C, TW, TH>,
         profiler: &mut Q,
     ) -> Option<Rectangle> {
-        if self.next == self.len {
+        self.render_picked(tile, profiler, Pick::InOrder)
+            .map(|(area, _)| area)
+    }
+
+    /// Renders a tile of the current binning pass (binning the next pass
+    /// first if every tile of this one is drawn) into `tile`: the next in
+    /// visiting order, or with `Pick::Cheap` the next whose bin is empty
+    /// (a clear and nothing else) and with `Pick::Dear` the next with
+    /// triangles, each falling back on the other kind when the pass has
+    /// none left. Returns the tile's area and whether it was cheap, or
+    /// `None` after the last tile.
+    ///
+    /// Every tile is drawn once whatever the picks: a pass's tiles are
+    /// drawn before the next pass is binned, and the two kinds are taken
+    /// in visiting order each. What a tile holds does not depend on the
+    /// order (its bin, the frame's state and the clear), so neither do
+    /// its pixels.
+    pub(crate) fn render_picked<Q: Profiler>(
+        &mut self,
+        tile: &mut TileBuffer<C, TW, TH>,
+        profiler: &mut Q,
+        pick: Pick,
+    ) -> Option<(Rectangle, bool)> {
+        if self.taken == self.len {
             let t0 = self.t0 + self.len;
             if t0 >= self.grid.count() as usize {
                 return None;
@@ -183,8 +226,21 @@ where
             profiler.enter(Stage::Binning);
             self.bin(t0);
         }
-        let k = self.next;
-        self.next += 1;
+        let cheap = match pick {
+            Pick::InOrder => self.cheap < self.dear,
+            Pick::Cheap => self.cheap < self.len,
+            Pick::Dear => self.dear == self.len,
+        };
+        let k = if cheap {
+            let k = self.cheap;
+            self.cheap = self.seek(k + 1, true);
+            k
+        } else {
+            let k = self.dear;
+            self.dear = self.seek(k + 1, false);
+            k
+        };
+        self.taken += 1;
         let t = self.grid.tile_at((self.t0 + k) as u32);
         let rect = self.grid.rect(t);
         profiler.enter(Stage::Raster);
@@ -200,7 +256,7 @@ where
             // Nothing to draw: no tile loop (its cursor, its spans' array)
             // at all.
             self.stats.tiles += 1;
-            return Some(rectangle(&rect));
+            return Some((rectangle(&rect), true));
         }
         let list = if self.rescan {
             scan = ScanState::new(state);
@@ -232,7 +288,17 @@ where
         };
         self.stats.pixels_shaded += shaded;
         self.stats.tiles += 1;
-        Some(rectangle(&rect))
+        Some((rectangle(&rect), false))
+    }
+
+    /// The first tile of the pass at or after position `k` whose bin is
+    /// empty (`cheap`) or not (`!cheap`), or the pass's length if none
+    /// is. A rescanned tile counts as dear.
+    fn seek(&self, mut k: usize, cheap: bool) -> usize {
+        while k < self.len && (!self.rescan && self.bins.iter(k).is_empty()) != cheap {
+            k += 1;
+        }
+        k
     }
 
     /// Bins the pass starting at tile `t0` (visiting position): the
@@ -265,7 +331,6 @@ where
             s.tile_pairs = tally.pairs;
         }
         self.t0 = t0;
-        self.next = 0;
         self.rescan = self.bins.tiles() == 0;
         if self.rescan {
             // Tile t0 alone overflows the pool: scan every triangle
@@ -275,6 +340,9 @@ where
         } else {
             self.len = self.bins.tiles();
         }
+        self.taken = 0;
+        self.cheap = self.seek(0, true);
+        self.dear = self.seek(0, false);
         let s = &mut self.stats;
         s.peak_bin_entries = self.bins.peak() as u32;
         s.peak_tiles_per_pass = s.peak_tiles_per_pass.max(self.bins.tiles() as u32);

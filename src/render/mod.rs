@@ -92,6 +92,7 @@ pub use config::Config;
 pub use error::RenderError;
 pub use features::{All, Features, Path, Triangles};
 pub use frame::Frame;
+pub(crate) use frame::Pick;
 pub use state::MAX_SORTED_DRAWS;
 pub use stats::{FrameStats, Profiler, Stage};
 pub use tile_loop::MAX_TRANSPARENT;

@@ -7,14 +7,16 @@
 //! makes the core wait for the wire, and a dear one leaves the wire idle.
 //! With `N` buffers up to `N - 1` finished tiles wait on the wire, so a
 //! run of cheap tiles fills the queue while the wire catches up on them
-//! during the dear ones that follow.
+//! during the dear ones that follow; and tiles with nothing to draw are
+//! taken between the others, at most `N - 2` in a row, so that no long
+//! run of them makes the core wait (see [`Renderer::render_queued`]).
 //!
 //! [`Frame::render_double_buffered`] keeps its own loop although it makes
 //! the calls of this one with `N = 2`: the slots and the count here cost
 //! the Pico firmware 252 bytes more flash than that loop's two variables.
 
 use super::TileTransfer;
-use crate::render::{Frame, FrameStats, Renderer, Workspace};
+use crate::render::{Frame, FrameStats, Pick, Renderer, Workspace};
 use crate::scene::Scene;
 use crate::shader::ShaderSet;
 use crate::tile::TileBuffer;
@@ -42,8 +44,22 @@ where
     /// or the first error. Every error but [`RenderError::Sink`] is found
     /// before the first tile is drawn; after a transfer's error no tile is
     /// started, the tiles still in flight are waited for, and nothing is
-    /// in flight when this returns. The tiles, the order they are sent in
-    /// and every pixel are those of [`render`](Self::render).
+    /// in flight when this returns. The tiles and every pixel are those
+    /// of [`render`](Self::render); for `N = 2` the order too.
+    ///
+    /// # Order
+    ///
+    /// A tile whose bin is empty (no triangle touches it) costs a clear
+    /// and nothing else: drawn in no time, it waits for the wire if
+    /// `N - 1` tiles are in flight, and a run of such tiles (the sky, the
+    /// floor, the margins around a model) makes the core wait where it
+    /// could be drawing. So for `N > 2` the frame's tiles are taken in two
+    /// streams, each in visiting order within a binning pass: up to
+    /// `N - 2` empty tiles after each tile with triangles (the wire sends
+    /// them while the core draws that one, whose buffer's transfer is the
+    /// only one left to wait for), then the next tile with triangles; the
+    /// other kind when one runs out. The driver gets each tile's area with
+    /// it (as a display's window), so the order changes nothing on screen.
     ///
     /// ```
     /// use microraster::embedded_graphics::pixelcolor::{Rgb565, RgbColor};
@@ -112,8 +128,8 @@ where
     P: Features,
 {
     /// Draws the frame's tiles into the `N` buffers `tiles` in turn, with
-    /// up to `N - 1` finished tiles in flight in `transfer`: the loop of
-    /// [`Renderer::render_queued`], for a frame begun without a renderer
+    /// up to `N - 1` finished tiles in flight in `transfer`, in the order
+    /// [`Renderer::render_queued`] describes: its loop, for a frame begun without a renderer
     /// ([`Frame::begin`]). Gives the buffers back with the frame's
     /// statistics or the transfer's first error, nothing in flight.
     #[must_use = "the tile buffers come back with the frame's result"]
@@ -136,6 +152,9 @@ where
         let mut slots = tiles.map(Some);
         let mut next = 0;
         let mut in_flight = 0;
+        // Cheap tiles (an empty bin: a clear and nothing else) drawn since
+        // the last dear one. See the order in `render_queued`'s docs.
+        let mut cheap_run = 0;
         let outcome = loop {
             // Always a buffer here, whatever order the driver gives them
             // back in: slot `next` holds one of the `N` to begin with, and
@@ -145,10 +164,18 @@ where
             let Some(mut tile) = slots[next].take() else {
                 break Ok(());
             };
-            let Some(area) = self.render_next(tile.borrow_mut()) else {
+            let pick = if N == 2 {
+                Pick::InOrder
+            } else if cheap_run < N - 2 {
+                Pick::Cheap
+            } else {
+                Pick::Dear
+            };
+            let Some((area, cheap)) = self.render_picked(tile.borrow_mut(), &mut (), pick) else {
                 slots[next] = Some(tile);
                 break Ok(());
             };
+            cheap_run = if cheap { cheap_run + 1 } else { 0 };
             let after = (next + 1) % N;
             if in_flight == N - 1 {
                 let (done, result) = transfer.wait();
@@ -200,5 +227,139 @@ fn put_back<B, const N: usize>(slots: &mut [Option<B>; N], at: usize, tile: B) {
     };
     if let Some(slot) = slot {
         *slot = Some(tile);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::prelude::*;
+    use crate::render::{Frame, Pick};
+    use crate::TileBuffer;
+    use embedded_graphics::pixelcolor::{Rgb565, Rgb888, RgbColor};
+    use fixed::types::I16F16;
+    use heapless::{Deque, Vec};
+
+    type Tile = TileBuffer<Rgb565, 16, 16>;
+
+    /// A queued driver that sends nothing: it keeps the buffers in flight,
+    /// gives the oldest back first, and records the areas started.
+    struct Fifo<'t> {
+        queue: Deque<&'t mut Tile, 8>,
+        order: Vec<Rectangle, 64>,
+    }
+
+    impl<'t> TileTransfer<&'t mut Tile> for Fifo<'t> {
+        type Error = ();
+        fn start(
+            &mut self,
+            area: &Rectangle,
+            tile: &'t mut Tile,
+        ) -> Result<(), ((), &'t mut Tile)> {
+            // Room for every tile of the test's frames; a full queue
+            // gives the tile back with the error.
+            if self.order.push(*area).is_err() {
+                return Err(((), tile));
+            }
+            self.queue.push_back(tile).map_err(|tile| ((), tile))
+        }
+        fn wait(&mut self) -> (&'t mut Tile, Result<(), ()>) {
+            (self.queue.pop_front().expect("a tile in flight"), Ok(()))
+        }
+    }
+
+    /// The order `render_queued`'s policy gives tiles of the kinds
+    /// `cheap` (in visiting order) over `N` buffers: up to `N - 2` cheap
+    /// tiles after each dear one (`N - 2` at the start), each kind in
+    /// visiting order, the other kind when one runs out; visiting order
+    /// for two buffers.
+    fn policy<const N: usize>(tiles: &[(Rectangle, bool)]) -> Vec<Rectangle, 64> {
+        let cheap: Vec<_, 64> = tiles.iter().filter(|t| t.1).map(|t| t.0).collect();
+        let dear: Vec<_, 64> = tiles.iter().filter(|t| !t.1).map(|t| t.0).collect();
+        if N == 2 {
+            return tiles.iter().map(|t| t.0).collect();
+        }
+        let (mut c, mut d, mut run) = (0, 0, 0);
+        let mut out = Vec::new();
+        while c + d < tiles.len() {
+            let take_cheap = if run < N - 2 {
+                c < cheap.len()
+            } else {
+                d == dear.len()
+            };
+            if take_cheap {
+                out.push(cheap[c]).unwrap();
+                c += 1;
+                run += 1;
+            } else {
+                out.push(dear[d]).unwrap();
+                d += 1;
+                run = 0;
+            }
+        }
+        out
+    }
+
+    fn queued<const N: usize>(scene: &Scene<'_>, config: Config<Rgb565>) {
+        let renderer: Renderer<Rgb565, 16, 16> = Renderer::new(config);
+        let mut ws: Workspace<8, 1024, 64> = Workspace::new();
+        // Visiting order, and which tiles have an empty bin.
+        let mut visit: Vec<(Rectangle, bool), 64> = Vec::new();
+        let mut tile = Tile::new(Rgb565::BLACK);
+        let mut frame: Frame<'_, _, _, 16, 16> = renderer.begin(&mut ws, scene).unwrap();
+        while let Some(t) = frame.render_picked(&mut tile, &mut (), Pick::InOrder) {
+            visit.push(t).unwrap();
+        }
+        let cheap = visit.iter().filter(|t| t.1).count();
+        assert!(
+            cheap > 10 && visit.len() - cheap > 3,
+            "{cheap} of {}",
+            visit.len()
+        );
+
+        let mut store = [(); N].map(|_| Tile::new(Rgb565::BLACK));
+        let mut fifo = Fifo {
+            queue: Deque::new(),
+            order: Vec::new(),
+        };
+        let tiles = {
+            let mut it = store.iter_mut();
+            [(); N].map(|_| it.next().unwrap())
+        };
+        let (_, result) = renderer.render_queued(&mut ws, scene, tiles, &mut fifo);
+        let stats = result.unwrap();
+        // One binning pass: the order is chosen within a pass.
+        assert_eq!((stats.tiles as usize, stats.bin_passes), (visit.len(), 1));
+        let want = policy::<N>(&visit);
+        assert_eq!(fifo.order, want, "{N} buffers");
+        if N > 2 {
+            let in_order: Vec<_, 64> = visit.iter().map(|t| t.0).collect();
+            assert_ne!(fifo.order, in_order, "cheap tiles taken ahead");
+        }
+    }
+
+    /// `render_queued` draws up to `N - 2` tiles with an empty bin after
+    /// each tile with triangles, so that a run of empty tiles (drawn in
+    /// no time) does not make the core wait for the wire while it could
+    /// be drawing: every tile once, each kind in visiting order.
+    #[test]
+    fn queued_tiles_interleave_cheap_and_dear() {
+        let p = |x: f32, y: f32| {
+            [
+                I16F16::from_num(x),
+                I16F16::from_num(y),
+                I16F16::from_num(0.5),
+            ]
+        };
+        let positions = [p(-0.1, -0.3), p(0.5, -0.3), p(0.5, 0.4), p(-0.1, 0.4)];
+        let triangles = [[0u16, 1, 2], [0, 2, 3]];
+        let mesh = Mesh::new(&positions, &triangles).unwrap();
+        let draws = [Draw::new(&mesh).color(Rgb888::new(255, 0, 0))];
+        let scene = Scene::new(Camera::new(Mat4::IDENTITY, Mat4::IDENTITY), &draws);
+        // 10 x 6 tiles of 16 x 16.
+        let config = Config::new(Size::new(160, 96), Rgb565::BLACK);
+        queued::<2>(&scene, config);
+        queued::<3>(&scene, config);
+        queued::<5>(&scene, config);
+        queued::<5>(&scene, config.tile_order(TileOrder::Hilbert));
     }
 }

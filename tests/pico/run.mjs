@@ -510,6 +510,16 @@ function main() {
     while (bench ? !bench.done : frames.length < args.frames) {
       const profile = profiling();
       const pc = mcu.core.PC >>> 0;
+      // A WFI executed while an enabled interrupt is already pending (it
+      // became pending inside a critical section, PRIMASK set) does not
+      // sleep on a Cortex-M0+: the ARMv6-M ARM (B1.5.19) wakes the core
+      // for any pending interrupt that PRIMASK alone keeps from being
+      // taken. rp2040js wakes it only for an interrupt raised while it
+      // waits, so the firmware's `wfi` after finding no tile sent (when
+      // the DMA finished between its look and the `wfi`) would sleep on.
+      if (mcu.core.waiting && (mcu.core.pendingInterrupts & mcu.core.enabledInterrupts)) {
+        mcu.core.waiting = false;
+      }
       if (mcu.core.waiting) {
         if (!clock.nextAlarm) fail('the core sleeps with nothing to wake it');
         const ns = Math.max(clock.nanosToNextAlarm, 0);
