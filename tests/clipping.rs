@@ -584,6 +584,20 @@ fn polygon_with_two_reflex_vertices_is_shaded_once() {
     compare(cam, Mat4::IDENTITY, &tri, CullMode::None, true).unwrap();
 }
 
+/// A clipped polygon whose snapped vertices fan into overlapping pieces
+/// from every vertex: still every pixel shaded once. (Found by the random
+/// search above.)
+#[test]
+fn polygon_fanning_from_no_vertex_is_shaded_once() {
+    let cam = perspective_camera(Vec3::new(0.4, 0.3, 2.5), Vec3::new(0.0, 0.0, -1.0), 9.0);
+    let tri = [
+        p3(-0.5273, -0.35722, -0.56526),
+        p3(2.7879, -2.16945, 9.38312),
+        p3(-2.62396, 0.03519, -7.02246),
+    ];
+    compare(cam, Mat4::IDENTITY, &tri, CullMode::None, true).unwrap();
+}
+
 /// A clipped polygon that snapping folds over itself (a spike whose sides
 /// cross), star-shaped from no vertex: still every pixel shaded once.
 /// (Found by the random search above.)

@@ -129,9 +129,6 @@ impl FrameState<'_> {
             let turn = area_of([k + n - 1, k, k + 1]);
             turn != 0 && (turn > 0) != (total > 0)
         };
-        // A polygon that snapping folded over itself (a spike whose sides
-        // cross) is star-shaped from no vertex: the first reflex vertex
-        // then, whose fan's pieces of the wrong turn are dropped.
         // One pass, each vertex ranked (a reflex vertex that fans, one
         // that fans, a reflex one, any), the first of the best rank kept:
         // each test is then inlined once (rare code: flash, not time).
@@ -145,12 +142,26 @@ impl FrameState<'_> {
                 }
             }
         }
+        // The fan's corners in order: the polygon from `apex`; or, for a
+        // polygon that snapping folded over itself (a spike whose sides
+        // cross, a sliver bent back and forth), star-shaped from no vertex,
+        // its convex hull, which every fan tiles (it differs from the
+        // polygon by slivers narrower than the snapping).
+        let mut order = [0; MAX_CLIPPED_VERTICES];
+        let corners = if best >= 2 {
+            for (k, c) in order.iter_mut().enumerate().take(n) {
+                *c = (apex + k) % n;
+            }
+            n
+        } else {
+            convex_hull(&proj, total > 0, &mut order)
+        };
         // The margin of the draw's lines and points, which may reach pixels
         // beyond a piece's covered centres.
         let margin = margin(draw);
         let mut fate = Fate::Rejected;
-        for k in 2..n {
-            let corners = [apex, (apex + k - 1) % n, (apex + k) % n];
+        for k in 2..corners {
+            let corners = [order[0], order[k - 1], order[k]];
             let piece = Piece {
                 sv: corners.map(|c| proj[c]),
                 w: corners.map(|c| poly[c].pos[3]),
@@ -177,4 +188,61 @@ pub(super) struct Piece {
     pub(super) sv: [ScreenVertex; 3],
     pub(super) w: [i32; 3],
     pub(super) bary: [[i32; 2]; 3],
+}
+
+/// The convex hull of the snapped corners `proj` into `out`, as indices
+/// (how many is returned) turning the polygon's way (`positive`: the sign of [`signed_area2`]),
+/// without repeated or collinear points: Andrew's monotone chain (A. M.
+/// Andrew, *Another efficient algorithm for convex hulls in two
+/// dimensions*, Information Processing Letters 9(5), 1979), the lower
+/// chain left to right, then the upper one back.
+fn convex_hull(
+    proj: &[ScreenVertex],
+    positive: bool,
+    out: &mut [usize; MAX_CLIPPED_VERTICES],
+) -> usize {
+    let p = |k: usize| proj[k].xy();
+    let key = |k: usize| (p(k).x, p(k).y);
+    // Sorted by x, then y, by insertion (with swaps: core's sort, or a
+    // vector's insert and its `memmove`, would link kilobytes of code for
+    // at most 16 points).
+    let mut by_x = [0; MAX_CLIPPED_VERTICES];
+    let n = proj.len().min(MAX_CLIPPED_VERTICES);
+    for c in 0..n {
+        by_x[c] = c;
+        let mut j = c;
+        while j > 0 && key(by_x[j - 1]) > key(by_x[j]) {
+            by_x.swap(j - 1, j);
+            j -= 1;
+        }
+    }
+    // The chains' points, popped while they do not turn left: the lower
+    // chain (by_x in order), then the upper one (back, from the one before
+    // the last), which keeps the lower whole. Never more than twice the
+    // corners.
+    let mut hull = [0; 2 * MAX_CLIPPED_VERTICES];
+    let (mut len, mut keep) = (0, 2);
+    for step in 0..(2 * n).saturating_sub(1) {
+        let c = if step < n {
+            by_x[step]
+        } else {
+            by_x[2 * n - 2 - step]
+        };
+        if step == n {
+            keep = len + 1;
+        }
+        while len >= keep && signed_area2(&[p(hull[len - 2]), p(hull[len - 1]), p(c)]) <= 0 {
+            len -= 1;
+        }
+        hull[len] = c;
+        len += 1;
+    }
+    // The last point closes the chain: it is the first. (At most `n`
+    // corners are left.)
+    let hull = &mut hull[..len.saturating_sub(1).min(MAX_CLIPPED_VERTICES)];
+    if !positive {
+        hull.reverse();
+    }
+    out[..hull.len()].copy_from_slice(hull);
+    hull.len()
 }
