@@ -413,6 +413,74 @@ mod tests {
         }
     }
 
+    /// The `i32` set-up's division, signed and unsigned, against the
+    /// 64-bit one over its whole domain's edges: numerators within
+    /// -2^21..2^21, twice the area of either sign up to `2 * 1023^2`,
+    /// first digits up to `2^(40 - shift)`, and ties.
+    #[test]
+    fn small_i32_division_matches_the_64_bit_one() {
+        let mut next = crate::testing::rng();
+        let max_area = 2 * 1023 * 1023;
+        let mut checked = 0;
+        for k in 0..400_000u64 {
+            let mut area = match k % 5 {
+                0 => max_area,
+                1 => 1 + next(8) as i32,
+                _ => 1 + next(max_area as u64) as i32,
+            };
+            let mut shift = [18, 20][(k / 2) as usize % 2];
+            // Ties: `n 2^shift` an odd multiple of `area / 2`, which needs
+            // `2^(shift + 1)` to divide `area`: depth's shift and twice the
+            // area 2^19, 3 2^19 or 2^20, and an odd multiple of
+            // `area / 2^19`.
+            let tie = k % 7 == 2;
+            if tie {
+                area = [1 << 19, 3 << 19, 1 << 20][(k / 7) as usize % 3];
+                shift = 18;
+            }
+            let area2 = if k % 2 == 0 { area } else { -area };
+            if area2 == -1 {
+                continue;
+            }
+            // The largest numerator whose first digit is at most
+            // 2^(40 - shift), and 2^21.
+            let limit = ((area as i64) << (30 - shift)).min(1 << 21);
+            let n = match k % 7 {
+                0 => limit - 1,
+                1 => -limit,
+                2 => (2 * next(8) as i64 - 7) * (area >> 19) as i64,
+                _ => next(2 * limit as u64) as i64 - limit,
+            };
+            if n.abs() > limit || n >= 1 << 21 {
+                continue;
+            }
+            let n = n as i32;
+            let f = SmallBasis {
+                e: [0; 4],
+                o: [0; 2],
+                area2,
+                half: area / 2,
+            };
+            let small = Small {
+                area: NonZeroU32::new(area as u32).unwrap(),
+                half: area as u32 / 2,
+            };
+            if tie {
+                let m = (n as i64) << shift;
+                assert_eq!(m.abs() % area as i64 * 2, area as i64, "{n} {area}");
+            }
+            let expected = small.div_round(n, shift) * area2.signum() as i64;
+            for q in [
+                f.div_round32_with::<true>(n, shift),
+                f.div_round32_with::<false>(n, shift),
+            ] {
+                assert_eq!(q as i64, expected, "{n} << {shift} / {area2}");
+            }
+            checked += 1;
+        }
+        assert!(checked > 300_000, "{checked}");
+    }
+
     /// Gradients of small triangles through the 32-bit divisions against
     /// the 64-bit ones, for depth, colour and the perspective weights.
     /// The 32-bit long division of the perspective planes' gradients

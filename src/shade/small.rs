@@ -22,12 +22,15 @@ pub(super) const SMALL_EDGE: i64 = 1 << 10;
 pub(super) const SMALL_SETUP: bool = cfg!(not(target_pointer_width = "64"));
 
 /// What the `i32` set-up of a [`Small`] triangle shares
-/// ([`TriangleSetup::small`]): [`Basis`]'s edge vectors `x1, y1, x2, y2`
-/// and offsets `ox, oy`, in `i32`, and the divisor.
-struct SmallBasis {
-    e: [i32; 4],
-    o: [i32; 2],
-    small: Small,
+/// ([`TriangleSetup::small`]): the edge vectors `x1, y1, x2, y2` from
+/// vertex 0 (not negated as [`Basis`]'s: the divisor keeps its sign), the
+/// offsets `ox, oy`, twice the signed area (neither 0 nor -1, at most
+/// `2 * 1023^2` in magnitude) and half its magnitude.
+pub(super) struct SmallBasis {
+    pub(super) e: [i32; 4],
+    pub(super) o: [i32; 2],
+    pub(super) area2: i32,
+    pub(super) half: i32,
 }
 
 /// The divisor of a small triangle's gradients: twice its absolute area,
@@ -69,36 +72,64 @@ impl Small {
     }
 }
 
-impl Small {
-    /// [`Small::div_round`] in `u32` arithmetic, for `|n| < 2^22` and
-    /// `10 <= shift < 30`: the same digits, exact while `|n| / area <
-    /// 2^(30 - shift)` (the quotient is then below 2^30); `fits` is
-    /// cleared otherwise, and the result is then meaningless. The first
-    /// two digits come from one division, `|n| 2^10 / area`, which
-    /// `|n| < 2^22` keeps in `u32`. On a Cortex-M3 this spares
-    /// `div_round`'s 64-bit shifts, additions and negation and one of its
-    /// three divisions.
+impl SmallBasis {
+    /// [`Small::div_round`] in `i32` arithmetic, for `-2^21 <= n < 2^21`,
+    /// `shift` 18 or 20 (depth and colour) and a first digit
+    /// `|n| 2^10 / area` of at most `2^(40 - shift)`, which keeps the
+    /// quotient within `2^30 + 2^(shift - 10)` in magnitude (the callers
+    /// check both bounds before).
+    ///
+    /// Two truncating signed divisions by the signed area (the divisor's
+    /// sign is the quotient's, as `Basis`'s negated edge vectors make
+    /// it): `n 2^10 = q area2 + r` with `r` of `n`'s sign and
+    /// `|r| < |area2|`, then the last `shift - 10` bits from
+    /// `r 2^(shift - 10)` plus half the area with `n`'s sign, whose
+    /// truncated quotient is the rounded one's with the quotient's sign
+    /// (ties away from zero). Against the unsigned digits of
+    /// [`Small::div_round`] this spares each gradient the magnitude of its
+    /// numerator and the quotient's negation, and the set-up the edge
+    /// vectors' (a Cortex-M3's signed division is one instruction as the
+    /// unsigned one).
+    ///
+    /// Where the division is a library call (ARMv6-M: no divider), the
+    /// unsigned digits of the magnitudes instead, whose one call gives
+    /// both the quotient and the remainder; the same quotient
+    /// ([`SmallBasis::div_round32_with`]).
     #[inline(always)]
-    pub(super) fn div_round32(&self, n: i32, shift: u32, fits: &mut bool) -> i32 {
-        let d = self.area;
-        // Below 2^32 for |n| < 2^22 (beyond, `fits` is cleared by the
-        // caller and the bits lost do not matter).
-        let m = n.unsigned_abs() << 10;
-        let (mut q, mut r, mut left) = (m / d, m % d, shift - 10);
-        // The first digit alone is q >> 10.
-        *fits &= q < 1 << (40 - shift);
-        while left > 10 {
-            let part = r << 10;
-            q = (q << 10) | (part / d);
-            r = part % d;
-            left -= 10;
+    fn div_round32(&self, n: i32, shift: u32) -> i32 {
+        self.div_round32_with::<{ !cfg!(microraster_narrow_multiply) }>(n, shift)
+    }
+
+    /// [`SmallBasis::div_round32`] in signed divisions (`SIGNED`) or in
+    /// unsigned ones of the magnitudes.
+    #[inline(always)]
+    pub(super) fn div_round32_with<const SIGNED: bool>(&self, n: i32, shift: u32) -> i32 {
+        let k = shift - 10;
+        if !SIGNED {
+            let d = self.area2.unsigned_abs();
+            // Below 2^31 for |n| <= 2^21.
+            let m = n.unsigned_abs() << 10;
+            let (q, r) = (m / d, m % d);
+            let q = (q << k) + ((r << k) + self.half as u32) / d;
+            // The quotient's sign: the numerator's times the divisor's.
+            return if (n ^ self.area2) < 0 {
+                (q as i32).wrapping_neg()
+            } else {
+                q as i32
+            };
         }
-        let q = (q << left).wrapping_add(((r << left) + self.half) / d) as i32;
-        if n < 0 {
-            q.wrapping_neg()
-        } else {
-            q
-        }
+        let d = self.area2;
+        // Within i32 for -2^21 <= n < 2^21: no bit is lost.
+        let m = n << 10;
+        let q = m / d;
+        let r = m - q * d;
+        let sign = n >> 31;
+        // `half` with n's sign. `|area2| <= 2 * 1023^2` (edge vectors of at
+        // most 1023 sub-pixels), so `|r| 2^10 + half <= (|area2| - 1) 2^10
+        // + |area2| / 2 < 2^31`: no overflow.
+        let half = (self.half ^ sign) - sign;
+        let low = ((r << k) + half) / d;
+        (q << k) + low
     }
 }
 
@@ -133,59 +164,78 @@ impl Small {
 
 impl TriangleSetup {
     /// The set-up of a [`Small`] triangle `v` (on 32-bit targets) all in
-    /// `i32` arithmetic, when every gradient is below 2^30 in magnitude
-    /// and depth's numerators below 2^22 ([`Small::div_round32`]): the
-    /// planes [`TriangleSetup::with_basis`]
-    /// gives on [`Basis::new`], without building the basis's 64-bit
-    /// values or its 64-bit quotients, constants and range test; `None`
-    /// for any other triangle.
+    /// `i32` arithmetic, when its gradients' first digits are small enough
+    /// and depth's numerators below 2^21 ([`SmallBasis::div_round32`]):
+    /// the planes [`TriangleSetup::with_basis`] gives on [`Basis::new`],
+    /// without building the basis's 64-bit values or its 64-bit
+    /// quotients, constants and range test; `None` for any other
+    /// triangle.
+    ///
+    /// Both bounds are checked before any division, colour's from the
+    /// edge vectors alone: a test of the quotients themselves made the
+    /// optimiser take every plane's first digits before the test (they
+    /// decide whether the rest is needed), more live values than a
+    /// Cortex-M3 has registers.
     #[inline(always)]
     pub(super) fn small(v: &[SubPoint; 3], t: &Corners<'_>, gouraud: bool) -> Option<Self> {
         // Within the guard band the edge vectors fit i32.
         let (x1, y1) = (v[1].x - v[0].x, v[1].y - v[0].y);
         let (x2, y2) = (v[2].x - v[0].x, v[2].y - v[0].y);
-        let e = SMALL_EDGE as i32;
-        if !(x1.abs() < e && y1.abs() < e && x2.abs() < e && y2.abs() < e) {
+        // The edge vectors' magnitudes, less one for negative ones, or-ed:
+        // below 1023 only if every one is within -1023..=1022, inside
+        // `Basis`'s small triangles (|c| < SMALL_EDGE).
+        let m = |c: i32| (c ^ (c >> 31)) as u32;
+        let e = m(x1) | m(y1) | m(x2) | m(y2);
+        if e >= SMALL_EDGE as u32 - 1 {
             return None;
         }
-        // Below 2^21 (`Basis`'s twice the signed area).
+        // At most 2 * 1023^2 in magnitude (`Basis`'s twice the signed
+        // area). -1 goes to the general set-up too: the divisions by it
+        // then need no check for `i32::MIN / -1`.
         let area2 = x1 * y2 - x2 * y1;
-        let area = NonZeroU32::new(area2.unsigned_abs())?;
-        // As in `Basis`: the edge vectors negated for a positive divisor.
-        let n = |c: i32| if area2 < 0 { -c } else { c };
+        if area2 == 0 || area2 == -1 {
+            return None;
+        }
+        let area = area2.unsigned_abs();
+        // A colour channel's numerators `d1 y2 - d2 y1` and `d2 x1 - d1 x2`
+        // are at most `2 * 255 (e + 1)` in magnitude, below `1024 area`
+        // for `e < 2 area`, so their first digits are below 2^20. Only
+        // slivers fail this (a triangle's height is below its sides).
+        if gouraud && e >= 2 * area {
+            return None;
+        }
         let f = &SmallBasis {
-            e: [n(x1), n(y1), n(x2), n(y2)],
+            e: [x1, y1, x2, y2],
             o: [HALF_PIXEL - v[0].x, HALF_PIXEL - v[0].y],
-            small: Small {
-                area,
-                half: area.get() / 2,
-            },
+            area2,
+            half: (area / 2) as i32,
         };
-        let mut fits = true;
-        let z = Self::plane_small(f, t, 0, &mut fits);
+        let z = Self::plane_small(f, t, 0)?;
         let planes = if gouraud {
             [
                 z,
-                Self::plane_small(f, t, 1, &mut fits),
-                Self::plane_small(f, t, 2, &mut fits),
-                Self::plane_small(f, t, 3, &mut fits),
+                Self::plane_small(f, t, 1)?,
+                Self::plane_small(f, t, 2)?,
+                Self::plane_small(f, t, 3)?,
             ]
         } else {
             [z, Plane::default(), Plane::default(), Plane::default()]
         };
-        // Gradients below 2^30 are far inside the clamp: never wide.
-        fits.then_some(Self::finish(planes, false))
+        // Gradients within 2^30 + 2^10 are far inside the clamp: never
+        // wide.
+        Some(Self::finish(planes, false))
     }
 
     /// [`TriangleSetup::plane`] of a [`Small`] triangle in `i32`: its
     /// values' differences are below 2^16 and its edge vectors below
     /// 2^10, so the numerators are below 2^27 (as in
-    /// [`Basis::gradients`]); with gradients below 2^30 and the offsets of
-    /// the first pixel centre below 2^19 + 8, the constant's products
+    /// [`Basis::gradients`]); with gradients within 2^31 and the offsets
+    /// of the first pixel centre below 2^19 + 8, the constant's products
     /// need no wrapping (`i32` by `i32`), and its wrapped `i32` is
-    /// `constant_wrapping`'s.
+    /// `constant_wrapping`'s. `None` for depth numerators beyond
+    /// [`SmallBasis::div_round32`]'s bounds.
     #[inline(always)]
-    fn plane_small(f: &SmallBasis, t: &Corners<'_>, a: usize, fits: &mut bool) -> Plane {
+    fn plane_small(f: &SmallBasis, t: &Corners<'_>, a: usize) -> Option<Plane> {
         let (values, frac) = t.values(a);
         // Depths and colour channels: 16 and 8 bits.
         let v = [values[0] as i32, values[1] as i32, values[2] as i32];
@@ -193,22 +243,25 @@ impl TriangleSetup {
         let [x1, y1, x2, y2] = f.e;
         let shift = frac + SUBPIXEL_BITS;
         let (n1, n2) = (d1 * y2 - d2 * y1, d2 * x1 - d1 * x2);
-        // Numerators below 2^22 are divided in two steps rather than
-        // three: a colour channel's always (its differences are below
-        // 2^8: numerators below 2^19), depth's when they are (below 2^27
-        // in general; a larger one sends the triangle to the general
-        // set-up).
         if a == 0 {
-            *fits &= (n1.unsigned_abs() | n2.unsigned_abs()) < 1 << 22;
+            // Depth's numerators reach 2^27: within -2^21..2^21 (`m`, the
+            // magnitudes less one when negative, below 2^21) and below
+            // `area 2^12` (first digits at most 2^22), or the general
+            // set-up. (A colour channel's are below 2 * 255 * 1023 < 2^19,
+            // and `small` checked their first digits.)
+            let m = ((n1 ^ (n1 >> 31)) | (n2 ^ (n2 >> 31))) as u32;
+            if m >> 21 != 0 || m >> 12 >= f.area2.unsigned_abs() {
+                return None;
+            }
         }
-        let gx = f.small.div_round32(n1, shift, fits);
-        let gy = f.small.div_round32(n2, shift, fits);
+        let gx = f.div_round32(n1, shift);
+        let gy = f.div_round32(n2, shift);
         let base = (v[0] << frac) + (1 << (frac - 1));
         let t = gx as i64 * f.o[0] as i64 + gy as i64 * f.o[1] as i64;
-        Plane {
+        Some(Plane {
             gx,
             gy,
             k: base.wrapping_add((t >> SUBPIXEL_BITS) as i32),
-        }
+        })
     }
 }
