@@ -265,6 +265,16 @@ pub(crate) fn span_gouraud<C: Copy + From<Rgb888> + 'static, D: DepthFn, const W
     let [gz, gr, gg, gb] = s.steps();
     let gz = (gz as u32) << (16 - Z_FRAC);
     let (a0, a1) = ((x0 - ox) as usize, (x1 - ox) as usize);
+    if !VECTOR_LOOPS {
+        return gouraud_indexed::<C, D, WRITE>(
+            dt,
+            color,
+            depth,
+            (a0, a1),
+            [z, r as u32, g as u32, b as u32],
+            [gz, gr as u32, gg as u32, gb as u32],
+        );
+    }
     let (color, depth) = (&mut color[a0..a1], &mut depth[a0..a1]);
     let (mut z, mut r, mut g, mut b) = (z, r, g, b);
     if VECTOR_LOOPS && color.len() >= SHORT_SPAN {
@@ -290,6 +300,43 @@ pub(crate) fn span_gouraud<C: Copy + From<Rgb888> + 'static, D: DepthFn, const W
         r = r.wrapping_add(gr);
         g = g.wrapping_add(gg);
         b = b.wrapping_add(gb);
+    }
+    n
+}
+
+/// The loop of [`span_gouraud`] on targets without SIMD: pixels `a0..a1`
+/// of the tile row, each indexed with its bounds check rather than the
+/// span sliced first. The check is an exit of its own, and LLVM does not
+/// unroll a loop with a second exit: unrolled by four (as the Cortex-M
+/// targets otherwise do), the loop costs more per span, in its set-up and
+/// its remainder, than it saves per pixel, spans being 2 to 3 pixels long.
+#[inline(always)]
+fn gouraud_indexed<C: Copy + From<Rgb888> + 'static, D: DepthFn, const WRITE: bool>(
+    dt: D,
+    color: &mut [C],
+    depth: &mut [u16],
+    (a0, a1): (usize, usize),
+    start: [u32; 4],
+    step: [u32; 4],
+) -> u32 {
+    let [mut z, mut r, mut g, mut b] = start;
+    let [gz, gr, gg, gb] = step;
+    let mut n = 0;
+    let mut i = a0;
+    while i < a1 {
+        let zz = depth16(z);
+        if dt.pass(zz, depth[i]) {
+            if WRITE {
+                depth[i] = zz;
+            }
+            color[i] = rgb16(r as i32, g as i32, b as i32);
+            n += 1;
+        }
+        z = z.wrapping_add(gz);
+        r = r.wrapping_add(gr);
+        g = g.wrapping_add(gg);
+        b = b.wrapping_add(gb);
+        i += 1;
     }
     n
 }
