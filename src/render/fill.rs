@@ -213,23 +213,24 @@ where
     let corners = &Corners(sv);
     let setup = &TriangleSetup::for_spans::<GOURAUD>(corners);
     let flat = crate::shade::rgb::<C>(flat[0], flat[1], flat[2]);
-    each_span(tile, rect, found, |color, depth, sp| {
+    each_span(tile, rect, found, |color, depth, sp, n| {
         if GOURAUD {
-            span_gouraud::<C, D, WRITE>(dt, setup, corners, color, depth, sp)
+            span_gouraud::<C, D, WRITE>(dt, setup, corners, color, depth, sp, n)
         } else {
-            span_flat::<C, D, WRITE>(dt, setup, corners, flat, color, depth, sp)
+            n + span_flat::<C, D, WRITE>(dt, setup, corners, flat, color, depth, sp)
         }
     })
 }
 
-/// Calls `shade` with the tile's colour and depth rows and the place of
-/// each span of `found`, and adds up the fragments it wrote.
+/// Calls `shade` with the tile's colour and depth rows, the place of each
+/// span of `found` and the fragments written so far, which it returns with
+/// its own added (so that a span loop can count in the running total).
 #[inline(always)]
 fn each_span<C, const TW: usize, const TH: usize>(
     tile: &mut TileBuffer<C, TW, TH>,
     rect: &PixelRect,
     found: &[Span],
-    mut shade: impl FnMut(&mut [C], &mut [u16], SpanPos) -> u32,
+    mut shade: impl FnMut(&mut [C], &mut [u16], SpanPos, u32) -> u32,
 ) -> u32 {
     let mut n = 0;
     for &Span { j, x0, x1 } in found {
@@ -240,7 +241,7 @@ fn each_span<C, const TW: usize, const TH: usize>(
             x0,
             x1,
         };
-        n += shade(&mut tile.color[row][..], &mut tile.depth[row][..], sp);
+        n = shade(&mut tile.color[row][..], &mut tile.depth[row][..], sp, n);
     }
     n
 }

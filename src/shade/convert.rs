@@ -27,26 +27,40 @@ const fn channel(v: u8, max: u8) -> u8 {
     ((v as u32 * (((max as u32) << SHIFT) / 255) + (1 << (SHIFT - 1))) >> SHIFT) as u8
 }
 
-/// [`channel`] for every `v`.
-const fn table(max: u8) -> [u8; 256] {
-    let mut t = [0; 256];
+/// [`channel`] for every `v`: to 5 bits at `v`, to 6 bits at `256 + v`.
+const fn table() -> [u8; 512] {
+    let mut t = [0; 512];
     let mut v = 0;
     while v < 256 {
-        t[v] = channel(v as u8, max);
+        t[v] = channel(v as u8, 31);
+        t[256 + v] = channel(v as u8, 63);
         v += 1;
     }
     t
 }
 
-/// 8-bit channels to 5 bits, as embedded-graphics rounds them.
-static TO5: [u8; 256] = table(31);
-/// 8-bit channels to 6 bits.
-static TO6: [u8; 256] = table(63);
+/// 8-bit channels to 5 bits, as embedded-graphics rounds them, then to 6
+/// bits: one table, so that the span loops, short of registers on the
+/// Cortex-M3, keep one address for both rather than rebuilding two at
+/// every pixel.
+static TO565: [u8; 512] = table();
 
-/// The bits of `Rgb565::from(Rgb888::new(r, g, b))`, by the tables.
+/// 8-bit channel `v` to 5 bits.
+#[inline(always)]
+fn to5(v: u8) -> u16 {
+    TO565[v as usize] as u16
+}
+
+/// 8-bit channel `v` to 6 bits.
+#[inline(always)]
+fn to6(v: u8) -> u16 {
+    TO565[256 + v as usize] as u16
+}
+
+/// The bits of `Rgb565::from(Rgb888::new(r, g, b))`, by the table.
 #[inline(always)]
 pub(crate) fn rgb565_bits(r: u8, g: u8, b: u8) -> u16 {
-    ((TO5[r as usize] as u16) << 11) | ((TO6[g as usize] as u16) << 5) | TO5[b as usize] as u16
+    (to5(r) << 11) | (to6(g) << 5) | to5(b)
 }
 
 /// `v` as a `C`, when `C` is `T` (a checked downcast).
@@ -106,8 +120,8 @@ mod tests {
         // Each channel on its own first (cheap, and the clearest failure).
         for v in 0..=255u8 {
             let e = Rgb565::from(Rgb888::new(v, v, v));
-            assert_eq!(TO5[v as usize], e.r(), "{v}");
-            assert_eq!(TO6[v as usize], e.g(), "{v}");
+            assert_eq!(to5(v), e.r() as u16, "{v}");
+            assert_eq!(to6(v), e.g() as u16, "{v}");
         }
         // Then every colour (about two seconds in a debug build).
         for r in 0..=255u8 {

@@ -249,7 +249,8 @@ fn flat_run<C: Copy, D: DepthFn, const WRITE: bool>(
     n as u32
 }
 
-/// Like [`span_flat`], with colour interpolated per pixel.
+/// Like [`span_flat`], with colour interpolated per pixel; returns `n`, the
+/// fragments written before, plus its own.
 #[inline(always)]
 pub(crate) fn span_gouraud<C: Copy + From<Rgb888> + 'static, D: DepthFn, const WRITE: bool>(
     dt: D,
@@ -258,6 +259,7 @@ pub(crate) fn span_gouraud<C: Copy + From<Rgb888> + 'static, D: DepthFn, const W
     color: &mut [C],
     depth: &mut [u16],
     sp: SpanPos,
+    n: u32,
 ) -> u32 {
     let SpanPos { ox, j, x0, x1 } = sp;
     let [z, r, g, b] = s.start(t, x0, j);
@@ -265,10 +267,21 @@ pub(crate) fn span_gouraud<C: Copy + From<Rgb888> + 'static, D: DepthFn, const W
     let [gz, gr, gg, gb] = s.steps();
     let gz = (gz as u32) << (16 - Z_FRAC);
     let (a0, a1) = ((x0 - ox) as usize, (x1 - ox) as usize);
+    if !VECTOR_LOOPS {
+        return gouraud_indexed::<C, D, WRITE>(
+            dt,
+            color,
+            depth,
+            (a0, a1),
+            [z, r as u32, g as u32, b as u32],
+            [gz, gr as u32, gg as u32, gb as u32],
+            n,
+        );
+    }
     let (color, depth) = (&mut color[a0..a1], &mut depth[a0..a1]);
     let (mut z, mut r, mut g, mut b) = (z, r, g, b);
     if VECTOR_LOOPS && color.len() >= SHORT_SPAN {
-        return gouraud_run::<C, D, WRITE>(
+        return n + gouraud_run::<C, D, WRITE>(
             dt,
             color,
             depth,
@@ -276,7 +289,7 @@ pub(crate) fn span_gouraud<C: Copy + From<Rgb888> + 'static, D: DepthFn, const W
             [gz, gr as u32, gg as u32, gb as u32],
         );
     }
-    let mut n = 0;
+    let mut n = n;
     for (c, d) in color.iter_mut().zip(depth.iter_mut()) {
         let zz = depth16(z);
         if dt.pass(zz, *d) {
@@ -290,6 +303,43 @@ pub(crate) fn span_gouraud<C: Copy + From<Rgb888> + 'static, D: DepthFn, const W
         r = r.wrapping_add(gr);
         g = g.wrapping_add(gg);
         b = b.wrapping_add(gb);
+    }
+    n
+}
+
+/// The loop of [`span_gouraud`] on targets without SIMD: pixels `a0..a1`
+/// of the tile row, each indexed with its bounds check rather than the
+/// span sliced first. The check is an exit of its own, and LLVM does not
+/// unroll a loop with a second exit: unrolled by four (as the Cortex-M
+/// targets otherwise do), the loop costs more per span, in its set-up and
+/// its remainder, than it saves per pixel, spans being 2 to 3 pixels long.
+#[inline(always)]
+fn gouraud_indexed<C: Copy + From<Rgb888> + 'static, D: DepthFn, const WRITE: bool>(
+    dt: D,
+    color: &mut [C],
+    depth: &mut [u16],
+    (a0, a1): (usize, usize),
+    start: [u32; 4],
+    step: [u32; 4],
+    mut n: u32,
+) -> u32 {
+    let [mut z, mut r, mut g, mut b] = start;
+    let [gz, gr, gg, gb] = step;
+    let mut i = a0;
+    while i < a1 {
+        let zz = depth16(z);
+        if dt.pass(zz, depth[i]) {
+            if WRITE {
+                depth[i] = zz;
+            }
+            color[i] = rgb16(r as i32, g as i32, b as i32);
+            n += 1;
+        }
+        z = z.wrapping_add(gz);
+        r = r.wrapping_add(gr);
+        g = g.wrapping_add(gg);
+        b = b.wrapping_add(gb);
+        i += 1;
     }
     n
 }
