@@ -252,7 +252,18 @@ impl FrameState<'_> {
         let any = sv[0].outcode() | sv[1].outcode() | sv[2].outcode();
         if and & REJECT_MASK == 0 {
             if any & MUST_CLIP != 0 {
-                return self.classify_clipped(d, idx, any, sv[0].color, margin, cache, tally);
+                let [i0, i1, i2] = idx;
+                return self.classify_clipped(
+                    d,
+                    i0,
+                    i1,
+                    i2,
+                    any,
+                    sv[0].color,
+                    margin,
+                    cache,
+                    tally,
+                );
             }
             let v = [sv[0].xy(), sv[1].xy(), sv[2].xy()];
             // Screen vertices lie within the guard band.
