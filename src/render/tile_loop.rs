@@ -53,15 +53,17 @@ where
     let mut n = 0;
     for t in list {
         cur.seek(t);
-        let idx = cur.triangles.get(t - cur.first);
+        // The indices one by one: an array handed to the rare paths below
+        // would live in memory, stored there for every triangle.
+        let [i0, i1, i2] = cur.triangles.get(t - cur.first);
         let sv = [
-            &cur.verts[idx[0] as usize],
-            &cur.verts[idx[1] as usize],
-            &cur.verts[idx[2] as usize],
+            &cur.verts[i0 as usize],
+            &cur.verts[i1 as usize],
+            &cur.verts[i2 as usize],
         ];
         let any = sv[0].outcode() | sv[1].outcode() | sv[2].outcode();
         if P::LINES && cur.lines {
-            n += job.lines(&cur, idx, any);
+            n += job.lines(&cur, [i0, i1, i2], any);
             if matches!(cur.shading, Shading::Wireframe | Shading::Points(_)) {
                 continue;
             }
@@ -85,9 +87,9 @@ where
             continue;
         }
         n += if P::SHADERS && cur.shading == Shading::Shader {
-            job.with_shader::<P>(&cur, idx, any, Blend::Opaque)
+            job.with_shader::<P>(&cur, [i0, i1, i2], any, Blend::Opaque)
         } else if any & MUST_CLIP != 0 {
-            job.clipped(&cur, idx, any, sv[0].color)
+            job.clipped(&cur, [i0, i1, i2], any, sv[0].color)
         } else {
             fill(
                 &mut job.to,
