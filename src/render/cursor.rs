@@ -31,6 +31,9 @@ pub(super) struct DrawCursor<'f> {
     pub(super) blend: Blend,
     /// The draw has edges or points to draw.
     pub(super) lines: bool,
+    /// The draw is filled only, opaque, without a fragment shader: the
+    /// tile loop's common path, tested once rather than once per rare path.
+    pub(super) plain: bool,
 }
 
 impl<'f> DrawCursor<'f> {
@@ -50,6 +53,7 @@ impl<'f> DrawCursor<'f> {
             shading: Shading::Flat,
             blend: Blend::Opaque,
             lines: false,
+            plain: true,
         };
         if !draws.is_empty() {
             c.enter(0);
@@ -77,6 +81,7 @@ impl<'f> DrawCursor<'f> {
         self.shading = draw.shading;
         self.blend = draw.blend;
         self.lines = margin(draw) != 0;
+        self.plain = !self.lines && self.blend == Blend::Opaque && self.shading != Shading::Shader;
     }
 
     /// Moves to the draw holding global triangle `t`, which must not lie
