@@ -26,6 +26,9 @@ pub(super) struct DrawCursor<'f> {
     /// Index of the draw's first vertex in the vertex buffer.
     pub(super) vbase: usize,
     pub(super) triangles: Indices<'f>,
+    /// The draw's triangles when its indices are `u16` (the common
+    /// case), else empty: see [`indices`](Self::indices).
+    pub(super) tris16: &'f [[u16; 3]],
     pub(super) verts: &'f [ScreenVertex],
     pub(super) shading: Shading,
     pub(super) blend: Blend,
@@ -49,6 +52,7 @@ impl<'f> DrawCursor<'f> {
             end: 0,
             vbase: 0,
             triangles: Indices::U16(&[]),
+            tris16: &[],
             verts: &[],
             shading: Shading::Flat,
             blend: Blend::Opaque,
@@ -76,12 +80,28 @@ impl<'f> DrawCursor<'f> {
         self.pos = k;
         self.draw = d;
         self.triangles = draw.mesh.triangles();
+        self.tris16 = match self.triangles {
+            Indices::U16(tris) => tris,
+            Indices::U32(_) => &[],
+        };
         self.verts = &self.vertices[self.vbase..self.vbase + draw.mesh.vertex_count()];
         self.end = self.first + self.triangles.len();
         self.shading = draw.shading;
         self.blend = draw.blend;
         self.lines = margin(draw) != 0;
         self.plain = !self.lines && self.blend == Blend::Opaque && self.shading != Shading::Shader;
+    }
+
+    /// The vertex indices of global triangle `t` of the current draw:
+    /// for `u16` indices one bounds check, which also tells them from
+    /// `u32` ones (rather than a test of the indices' kind and then a
+    /// bounds check).
+    #[inline(always)]
+    pub(super) fn indices(&self, t: usize) -> [u32; 3] {
+        match self.tris16.get(t - self.first) {
+            Some(&[a, b, c]) => [a as u32, b as u32, c as u32],
+            None => self.triangles.get(t - self.first),
+        }
     }
 
     /// Moves to the draw holding global triangle `t`, which must not lie

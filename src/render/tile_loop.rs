@@ -55,7 +55,7 @@ where
         cur.seek(t);
         // The indices one by one: an array handed to the rare paths below
         // would live in memory, stored there for every triangle.
-        let [i0, i1, i2] = cur.triangles.get(t - cur.first);
+        let [i0, i1, i2] = cur.indices(t);
         let sv = [
             &cur.verts[i0 as usize],
             &cur.verts[i1 as usize],
