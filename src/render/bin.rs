@@ -272,6 +272,17 @@ impl BinIter<'_> {
         }
     }
 
+    /// A bin holding no triangle.
+    pub(super) fn empty() -> Self {
+        BinIter {
+            pool: &[],
+            run: [].iter(),
+            next: 0,
+            last: 0,
+            end: 0,
+        }
+    }
+
     /// Whether the bin holds no triangle.
     pub(super) fn is_empty(&self) -> bool {
         self.run.len() == 0 && self.next == self.end

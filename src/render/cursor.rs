@@ -133,17 +133,23 @@ impl<'f> DrawCursor<'f> {
 }
 
 /// The triangles of one tile: its bin, or, for a tile whose bin overflowed
-/// the pool, every visible triangle whose bounds touch it.
-// One per tile, moved by value into the tile loop: the rare variant keeps
+/// the pool, every visible triangle whose bounds touch it (then the bin
+/// is empty). Not an enum: the common bin's next entry is then taken
+/// without a test of the variant, and the scan is asked once the bin is
+/// exhausted.
+// One per tile, moved by value into the tile loop: the rare scan keeps
 // its large state behind a reference.
-pub(super) enum TileList<'a, 'f, P> {
-    Bin(BinIter<'a>),
-    Scan {
-        frame: &'f FrameState<'f>,
-        rect: PixelRect,
-        next: usize,
-        state: &'a mut ScanState<'f, P>,
-    },
+pub(super) struct TileList<'a, 'f, P> {
+    pub(super) bin: BinIter<'a>,
+    pub(super) scan: Option<Scan<'a, 'f, P>>,
+}
+
+/// A rescanned tile's walk over every triangle of the frame.
+pub(super) struct Scan<'a, 'f, P> {
+    pub(super) frame: &'f FrameState<'f>,
+    pub(super) rect: PixelRect,
+    pub(super) next: usize,
+    pub(super) state: &'a mut ScanState<'f, P>,
 }
 
 /// What a rescanned tile's walk over every triangle keeps.
@@ -178,60 +184,61 @@ impl<P: Features> Iterator for TileList<'_, '_, P> {
 
     #[inline(always)]
     fn next(&mut self) -> Option<usize> {
-        match self {
-            TileList::Bin(b) => b.next(),
-            TileList::Scan {
-                frame,
-                rect,
-                next,
-                state,
-            } => loop {
-                let ScanState {
-                    cur,
-                    cache,
-                    frustum,
-                    cluster,
-                    cluster_end,
-                    ..
-                } = &mut **state;
-                let t = *next;
-                if t >= cur.end {
-                    if cur.pos + 1 >= cur.draws.len() {
-                        return None;
-                    }
-                    cur.advance();
+        if let Some(t) = self.bin.next() {
+            return Some(t);
+        }
+        let Scan {
+            frame,
+            rect,
+            next,
+            state,
+        } = self.scan.as_mut()?;
+        loop {
+            let ScanState {
+                cur,
+                cache,
+                frustum,
+                cluster,
+                cluster_end,
+                ..
+            } = &mut **state;
+            let t = *next;
+            if t >= cur.end {
+                if cur.pos + 1 >= cur.draws.len() {
+                    return None;
+                }
+                cur.advance();
+                continue;
+            }
+            // The same tests as binning's, in the same order.
+            let mesh = frame.draws[cur.draw].mesh;
+            if t == cur.first {
+                *frustum = frame.frustum::<P>(cur.draw);
+                if frustum.as_ref().is_some_and(|f| f.excludes_mesh(mesh)) {
+                    *next = cur.end;
                     continue;
                 }
-                // The same tests as binning's, in the same order.
-                let mesh = frame.draws[cur.draw].mesh;
-                if t == cur.first {
-                    *frustum = frame.frustum::<P>(cur.draw);
-                    if frustum.as_ref().is_some_and(|f| f.excludes_mesh(mesh)) {
-                        *next = cur.end;
-                        continue;
-                    }
-                    (*cluster, *cluster_end) = (0, t);
+                (*cluster, *cluster_end) = (0, t);
+            }
+            if let (Some(f), Some(clusters)) = (frustum.as_ref(), mesh.clusters()) {
+                // Enter the cluster holding t (past any empty ones).
+                let mut skip = false;
+                while t >= *cluster_end && *cluster < clusters.len() {
+                    let c = &clusters[*cluster];
+                    *cluster += 1;
+                    *cluster_end += c.triangle_count() as usize;
+                    skip = f.excludes_box(&c.bounds());
                 }
-                if let (Some(f), Some(clusters)) = (frustum.as_ref(), mesh.clusters()) {
-                    // Enter the cluster holding t (past any empty ones).
-                    let mut skip = false;
-                    while t >= *cluster_end && *cluster < clusters.len() {
-                        let c = &clusters[*cluster];
-                        *cluster += 1;
-                        *cluster_end += c.triangle_count() as usize;
-                        skip = f.excludes_box(&c.bounds());
-                    }
-                    if skip {
-                        *next = *cluster_end;
-                        continue;
-                    }
+                if skip {
+                    *next = *cluster_end;
+                    continue;
                 }
-                *next += 1;
-                let idx = cur.triangles.get(t - cur.first);
-                if scan_touches(frame, cur.draw, cur.verts, idx, cache, rect) {
-                    return Some(t);
-                }
-            },
+            }
+            *next += 1;
+            let idx = cur.triangles.get(t - cur.first);
+            if scan_touches(frame, cur.draw, cur.verts, idx, cache, rect) {
+                return Some(t);
+            }
         }
     }
 }
