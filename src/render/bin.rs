@@ -69,16 +69,23 @@ impl<'w> Bins<'w> {
     /// The triangles of tile `k` of the last pass, in submission order.
     pub(super) fn iter(&self, k: usize) -> BinIter<'_> {
         let tail = if k < self.held { self.tails[k] } else { EMPTY };
-        let (pos, end) = if tail == EMPTY {
+        let (first, end) = if tail == EMPTY {
             (0, 0)
         } else {
             (self.heads[k] as usize * CHUNK, tail as usize)
         };
-        BinIter {
+        // The first slot of the bin's last chunk (`end` may be that
+        // chunk's link slot: the chunk is full).
+        let last = end.saturating_sub(1) & !(CHUNK - 1);
+        let mut iter = BinIter {
             pool: self.pool,
-            pos,
+            run: [].iter(),
+            next: end,
+            last,
             end,
-        }
+        };
+        iter.enter(first);
+        iter
     }
 }
 
@@ -234,17 +241,67 @@ impl<'p> Pass<'p> {
     }
 }
 
-/// The triangle indices of one bin.
+/// The triangle indices of one bin: a chunk's entries at a time, through
+/// a slice iterator, so that an entry costs the tile loop a pointer
+/// compare and a load rather than a test for the chunk's link slot and a
+/// bounds check.
 pub(super) struct BinIter<'a> {
-    pub(super) pool: &'a [u16],
-    pub(super) pos: usize,
-    pub(super) end: usize,
+    pool: &'a [u16],
+    /// The current chunk's entries not yet visited.
+    run: core::slice::Iter<'a, u16>,
+    /// The slot after them: the chunk's link, or `end`.
+    next: usize,
+    /// The first slot of the bin's last chunk.
+    last: usize,
+    /// The slot after the bin's last entry.
+    end: usize,
 }
 
 impl BinIter<'_> {
+    /// Enters the chunk whose first slot is `first`: its entries up to
+    /// its link slot, or up to `end` in the bin's last chunk.
+    #[inline(always)]
+    fn enter(&mut self, first: usize) {
+        let stop = if first == self.last {
+            self.end
+        } else {
+            first + CHUNK - 1
+        };
+        if let Some(run) = self.pool.get(first..stop) {
+            (self.run, self.next) = (run.iter(), stop);
+        }
+    }
+
+    /// A bin holding no triangle.
+    pub(super) fn empty() -> Self {
+        BinIter {
+            pool: &[],
+            run: [].iter(),
+            next: 0,
+            last: 0,
+            end: 0,
+        }
+    }
+
     /// Whether the bin holds no triangle.
     pub(super) fn is_empty(&self) -> bool {
-        self.pos == self.end
+        self.run.len() == 0 && self.next == self.end
+    }
+
+    /// Moves to the next chunk of the bin; `false` at its end.
+    #[inline(always)]
+    fn follow(&mut self) -> bool {
+        if self.next == self.end {
+            return false;
+        }
+        match self.pool.get(self.next) {
+            Some(&c) => {
+                self.next = self.end;
+                self.enter(c as usize * CHUNK);
+                true
+            }
+            None => false,
+        }
     }
 }
 
@@ -253,15 +310,14 @@ impl Iterator for BinIter<'_> {
 
     #[inline(always)]
     fn next(&mut self) -> Option<usize> {
-        if self.pos == self.end {
-            return None;
+        loop {
+            if let Some(&t) = self.run.next() {
+                return Some(t as usize);
+            }
+            if !self.follow() {
+                return None;
+            }
         }
-        if self.pos % CHUNK == CHUNK - 1 {
-            self.pos = self.pool[self.pos] as usize * CHUNK;
-        }
-        let t = self.pool[self.pos];
-        self.pos += 1;
-        Some(t as usize)
     }
 }
 

@@ -8,14 +8,19 @@ use crate::vertex::ScreenVertex;
 
 impl FrameState<'_> {
     /// [`classify`](Self::classify) for a triangle that must be clipped:
-    /// the bounds of all its visible pieces.
+    /// the bounds of all its visible pieces. The triangle's vertex indices
+    /// `i0, i1, i2` come one by one: an array argument lives in memory,
+    /// and the binning loop stored it there for every triangle, clipped or
+    /// not (three stores a triangle on the Cortex-M3).
     #[cold]
     #[inline(never)]
     #[allow(clippy::too_many_arguments)]
     pub(super) fn classify_clipped(
         &self,
         d: usize,
-        idx: [u32; 3],
+        i0: u32,
+        i1: u32,
+        i2: u32,
         any: u8,
         flat: [u8; 3],
         margin: i32,
@@ -23,6 +28,7 @@ impl FrameState<'_> {
         tally: &mut Tally,
     ) -> Option<PixelRect> {
         let mut r = PixelRect::new(i32::MAX, i32::MAX, i32::MIN, i32::MIN);
+        let idx = [i0, i1, i2];
         let fate = self.clipped_pieces(d, idx, any, flat, cache, &mut |piece, _| {
             let sv = &piece.sv;
             let b = covering(&[sv[0].xy(), sv[1].xy(), sv[2].xy()]);

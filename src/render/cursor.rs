@@ -26,11 +26,17 @@ pub(super) struct DrawCursor<'f> {
     /// Index of the draw's first vertex in the vertex buffer.
     pub(super) vbase: usize,
     pub(super) triangles: Indices<'f>,
+    /// The draw's triangles when its indices are `u16` (the common
+    /// case), else empty: see [`indices`](Self::indices).
+    pub(super) tris16: &'f [[u16; 3]],
     pub(super) verts: &'f [ScreenVertex],
     pub(super) shading: Shading,
     pub(super) blend: Blend,
     /// The draw has edges or points to draw.
     pub(super) lines: bool,
+    /// The draw is filled only, opaque, without a fragment shader: the
+    /// tile loop's common path, tested once rather than once per rare path.
+    pub(super) plain: bool,
 }
 
 impl<'f> DrawCursor<'f> {
@@ -46,10 +52,12 @@ impl<'f> DrawCursor<'f> {
             end: 0,
             vbase: 0,
             triangles: Indices::U16(&[]),
+            tris16: &[],
             verts: &[],
             shading: Shading::Flat,
             blend: Blend::Opaque,
             lines: false,
+            plain: true,
         };
         if !draws.is_empty() {
             c.enter(0);
@@ -72,11 +80,28 @@ impl<'f> DrawCursor<'f> {
         self.pos = k;
         self.draw = d;
         self.triangles = draw.mesh.triangles();
+        self.tris16 = match self.triangles {
+            Indices::U16(tris) => tris,
+            Indices::U32(_) => &[],
+        };
         self.verts = &self.vertices[self.vbase..self.vbase + draw.mesh.vertex_count()];
         self.end = self.first + self.triangles.len();
         self.shading = draw.shading;
         self.blend = draw.blend;
         self.lines = margin(draw) != 0;
+        self.plain = !self.lines && self.blend == Blend::Opaque && self.shading != Shading::Shader;
+    }
+
+    /// The vertex indices of global triangle `t` of the current draw:
+    /// for `u16` indices one bounds check, which also tells them from
+    /// `u32` ones (rather than a test of the indices' kind and then a
+    /// bounds check).
+    #[inline(always)]
+    pub(super) fn indices(&self, t: usize) -> [u32; 3] {
+        match self.tris16.get(t - self.first) {
+            Some(&[a, b, c]) => [a as u32, b as u32, c as u32],
+            None => self.triangles.get(t - self.first),
+        }
     }
 
     /// Moves to the draw holding global triangle `t`, which must not lie
@@ -108,17 +133,23 @@ impl<'f> DrawCursor<'f> {
 }
 
 /// The triangles of one tile: its bin, or, for a tile whose bin overflowed
-/// the pool, every visible triangle whose bounds touch it.
-// One per tile, moved by value into the tile loop: the rare variant keeps
+/// the pool, every visible triangle whose bounds touch it (then the bin
+/// is empty). Not an enum: the common bin's next entry is then taken
+/// without a test of the variant, and the scan is asked once the bin is
+/// exhausted.
+// One per tile, moved by value into the tile loop: the rare scan keeps
 // its large state behind a reference.
-pub(super) enum TileList<'a, 'f, P> {
-    Bin(BinIter<'a>),
-    Scan {
-        frame: &'f FrameState<'f>,
-        rect: PixelRect,
-        next: usize,
-        state: &'a mut ScanState<'f, P>,
-    },
+pub(super) struct TileList<'a, 'f, P> {
+    pub(super) bin: BinIter<'a>,
+    pub(super) scan: Option<Scan<'a, 'f, P>>,
+}
+
+/// A rescanned tile's walk over every triangle of the frame.
+pub(super) struct Scan<'a, 'f, P> {
+    pub(super) frame: &'f FrameState<'f>,
+    pub(super) rect: PixelRect,
+    pub(super) next: usize,
+    pub(super) state: &'a mut ScanState<'f, P>,
 }
 
 /// What a rescanned tile's walk over every triangle keeps.
@@ -153,60 +184,61 @@ impl<P: Features> Iterator for TileList<'_, '_, P> {
 
     #[inline(always)]
     fn next(&mut self) -> Option<usize> {
-        match self {
-            TileList::Bin(b) => b.next(),
-            TileList::Scan {
-                frame,
-                rect,
-                next,
-                state,
-            } => loop {
-                let ScanState {
-                    cur,
-                    cache,
-                    frustum,
-                    cluster,
-                    cluster_end,
-                    ..
-                } = &mut **state;
-                let t = *next;
-                if t >= cur.end {
-                    if cur.pos + 1 >= cur.draws.len() {
-                        return None;
-                    }
-                    cur.advance();
+        if let Some(t) = self.bin.next() {
+            return Some(t);
+        }
+        let Scan {
+            frame,
+            rect,
+            next,
+            state,
+        } = self.scan.as_mut()?;
+        loop {
+            let ScanState {
+                cur,
+                cache,
+                frustum,
+                cluster,
+                cluster_end,
+                ..
+            } = &mut **state;
+            let t = *next;
+            if t >= cur.end {
+                if cur.pos + 1 >= cur.draws.len() {
+                    return None;
+                }
+                cur.advance();
+                continue;
+            }
+            // The same tests as binning's, in the same order.
+            let mesh = frame.draws[cur.draw].mesh;
+            if t == cur.first {
+                *frustum = frame.frustum::<P>(cur.draw);
+                if frustum.as_ref().is_some_and(|f| f.excludes_mesh(mesh)) {
+                    *next = cur.end;
                     continue;
                 }
-                // The same tests as binning's, in the same order.
-                let mesh = frame.draws[cur.draw].mesh;
-                if t == cur.first {
-                    *frustum = frame.frustum::<P>(cur.draw);
-                    if frustum.as_ref().is_some_and(|f| f.excludes_mesh(mesh)) {
-                        *next = cur.end;
-                        continue;
-                    }
-                    (*cluster, *cluster_end) = (0, t);
+                (*cluster, *cluster_end) = (0, t);
+            }
+            if let (Some(f), Some(clusters)) = (frustum.as_ref(), mesh.clusters()) {
+                // Enter the cluster holding t (past any empty ones).
+                let mut skip = false;
+                while t >= *cluster_end && *cluster < clusters.len() {
+                    let c = &clusters[*cluster];
+                    *cluster += 1;
+                    *cluster_end += c.triangle_count() as usize;
+                    skip = f.excludes_box(&c.bounds());
                 }
-                if let (Some(f), Some(clusters)) = (frustum.as_ref(), mesh.clusters()) {
-                    // Enter the cluster holding t (past any empty ones).
-                    let mut skip = false;
-                    while t >= *cluster_end && *cluster < clusters.len() {
-                        let c = &clusters[*cluster];
-                        *cluster += 1;
-                        *cluster_end += c.triangle_count() as usize;
-                        skip = f.excludes_box(&c.bounds());
-                    }
-                    if skip {
-                        *next = *cluster_end;
-                        continue;
-                    }
+                if skip {
+                    *next = *cluster_end;
+                    continue;
                 }
-                *next += 1;
-                let idx = cur.triangles.get(t - cur.first);
-                if scan_touches(frame, cur.draw, cur.verts, idx, cache, rect) {
-                    return Some(t);
-                }
-            },
+            }
+            *next += 1;
+            let idx = cur.triangles.get(t - cur.first);
+            if scan_touches(frame, cur.draw, cur.verts, idx, cache, rect) {
+                return Some(t);
+            }
         }
     }
 }

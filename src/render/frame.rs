@@ -12,9 +12,9 @@
 //! draw's fixed-point set-up and the statistics are written. A second core
 //! could therefore draw other tiles of the same pass from the same state.
 
-use super::bin::Bins;
+use super::bin::{BinIter, Bins};
 use super::binning::{bin_pass, Fate, Tally};
-use super::cursor::{ScanState, TileList};
+use super::cursor::{Scan, ScanState, TileList};
 use super::dispatch::Shaders;
 use super::state::{DrawOrder, FrameState, SetupCache};
 use super::tile_loop::raster_tile;
@@ -260,14 +260,17 @@ where
         }
         let list = if self.rescan {
             scan = ScanState::new(state);
-            TileList::Scan {
-                frame: state,
-                rect,
-                next: 0,
-                state: &mut scan,
+            TileList {
+                bin: BinIter::empty(),
+                scan: Some(Scan {
+                    frame: state,
+                    rect,
+                    next: 0,
+                    state: &mut scan,
+                }),
             }
         } else {
-            TileList::Bin(bin)
+            TileList { bin, scan: None }
         };
         // LessEqual with writes, the default, has span loops of its own;
         // every other comparison shares one set (see `DepthFn`).

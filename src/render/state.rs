@@ -32,6 +32,7 @@ pub(super) struct FrameState<'a> {
     pub(super) view_proj: crate::math::Mat4,
     pub(super) viewport: Viewport,
     pub(super) cull: CullMode,
+    /// The frame's pixels: from the origin to the viewport's size.
     pub(super) frame: PixelRect,
 }
 
@@ -252,7 +253,18 @@ impl FrameState<'_> {
         let any = sv[0].outcode() | sv[1].outcode() | sv[2].outcode();
         if and & REJECT_MASK == 0 {
             if any & MUST_CLIP != 0 {
-                return self.classify_clipped(d, idx, any, sv[0].color, margin, cache, tally);
+                let [i0, i1, i2] = idx;
+                return self.classify_clipped(
+                    d,
+                    i0,
+                    i1,
+                    i2,
+                    any,
+                    sv[0].color,
+                    margin,
+                    cache,
+                    tally,
+                );
             }
             let v = [sv[0].xy(), sv[1].xy(), sv[2].xy()];
             // Screen vertices lie within the guard band.
@@ -267,7 +279,12 @@ impl FrameState<'_> {
                 }
                 return None;
             }
-            let rect = meet(&grow(&covering(&v), margin), &self.frame);
+            // The frame's corner is the origin: with that known, the clamp
+            // of the rectangle's corner to it is one instruction a side
+            // on the Cortex-M3 rather than a load and three.
+            debug_assert!(self.frame.x0 == 0 && self.frame.y0 == 0);
+            let frame = PixelRect::new(0, 0, self.frame.x1, self.frame.y1);
+            let rect = meet(&grow(&covering(&v), margin), &frame);
             if !rect.is_empty() {
                 tally.fates[Fate::Visible as usize] += 1;
                 return Some(rect);

@@ -53,41 +53,48 @@ where
     let mut n = 0;
     for t in list {
         cur.seek(t);
-        let idx = cur.triangles.get(t - cur.first);
+        // The indices one by one: an array handed to the rare paths below
+        // would live in memory, stored there for every triangle.
+        let [i0, i1, i2] = cur.indices(t);
         let sv = [
-            &cur.verts[idx[0] as usize],
-            &cur.verts[idx[1] as usize],
-            &cur.verts[idx[2] as usize],
+            &cur.verts[i0 as usize],
+            &cur.verts[i1 as usize],
+            &cur.verts[i2 as usize],
         ];
         let any = sv[0].outcode() | sv[1].outcode() | sv[2].outcode();
-        if P::LINES && cur.lines {
-            n += job.lines(&cur, idx, any);
-            if matches!(cur.shading, Shading::Wireframe | Shading::Points(_)) {
+        // One test for the common draw, rather than one per rare path.
+        if (P::LINES || P::BLEND || P::SHADERS) && !cur.plain {
+            if P::LINES && cur.lines {
+                n += job.lines(&cur, [i0, i1, i2], any);
+                if matches!(cur.shading, Shading::Wireframe | Shading::Points(_)) {
+                    continue;
+                }
+            }
+            if P::BLEND && cur.blend != Blend::Opaque {
+                // Farthest vertex first; a clipped triangle (whose depths the
+                // vertex buffer does not hold) reaches the near plane: last.
+                let key = if any & MUST_CLIP != 0 {
+                    0
+                } else {
+                    sv[0].z().max(sv[1].z()).max(sv[2].z())
+                };
+                // `t < MAX_TRIANGLES`, so it fits u16. A full list is drawn
+                // (sorted) and emptied first: a tile with more transparent
+                // triangles than the list holds sorts them in batches of
+                // `MAX_TRANSPARENT`, in submission order between batches.
+                if later.is_full() {
+                    n += job.draw_later::<P>(&mut later);
+                }
+                let _ = later.push((key, t as u16));
+                continue;
+            }
+            if P::SHADERS && cur.shading == Shading::Shader {
+                n += job.with_shader::<P>(&cur, [i0, i1, i2], any, Blend::Opaque);
                 continue;
             }
         }
-        if P::BLEND && cur.blend != Blend::Opaque {
-            // Farthest vertex first; a clipped triangle (whose depths the
-            // vertex buffer does not hold) reaches the near plane: last.
-            let key = if any & MUST_CLIP != 0 {
-                0
-            } else {
-                sv[0].z().max(sv[1].z()).max(sv[2].z())
-            };
-            // `t < MAX_TRIANGLES`, so it fits u16. A full list is drawn
-            // (sorted) and emptied first: a tile with more transparent
-            // triangles than the list holds sorts them in batches of
-            // `MAX_TRANSPARENT`, in submission order between batches.
-            if later.is_full() {
-                n += job.draw_later::<P>(&mut later);
-            }
-            let _ = later.push((key, t as u16));
-            continue;
-        }
-        n += if P::SHADERS && cur.shading == Shading::Shader {
-            job.with_shader::<P>(&cur, idx, any, Blend::Opaque)
-        } else if any & MUST_CLIP != 0 {
-            job.clipped(&cur, idx, any, sv[0].color)
+        n += if any & MUST_CLIP != 0 {
+            job.clipped(&cur, [i0, i1, i2], any, sv[0].color)
         } else {
             fill(
                 &mut job.to,

@@ -263,11 +263,12 @@ fn transform<F>(
             let first = range.start;
             // The range lies within the mesh (checked when the
             // mesh was built).
+            // The colour after the projection (see `screen_vertex_lit`).
             for (i, sv) in out[range].iter_mut().enumerate() {
-                let cv = setup
-                    .clip_vertex(draw.mesh, first + i)
+                let pos = setup
+                    .clip_position(draw.mesh, first + i)
                     .map_err(|error| RenderError::Draw { draw: di, error })?;
-                *sv = viewport.screen_vertex(&cv);
+                *sv = viewport.screen_vertex_lit(&pos, || setup.lit_color(draw.mesh, first + i));
             }
         }
     }

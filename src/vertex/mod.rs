@@ -415,22 +415,31 @@ impl Viewport {
     /// Runs the vertex stage on one vertex.
     #[inline(always)]
     pub fn screen_vertex(&self, v: &ClipVertex) -> ScreenVertex {
-        let outcode = outcode(&v.pos);
+        let color = [v.color[0] as u8, v.color[1] as u8, v.color[2] as u8];
+        self.screen_vertex_lit(&v.pos, || color)
+    }
+
+    /// [`screen_vertex`](Self::screen_vertex) of the vertex at clip-space
+    /// position `pos` whose lit colour `color` gives, asked for after the
+    /// projection: the vertex stage's loop then keeps neither the colour
+    /// nor the lighting's constants in registers (or on the stack) across
+    /// the divisions.
+    #[inline(always)]
+    pub(crate) fn screen_vertex_lit(
+        &self,
+        pos: &[i32; 4],
+        color: impl FnOnce() -> [u8; 3],
+    ) -> ScreenVertex {
+        let outcode = outcode(pos);
         let (p, z) = if outcode & MUST_CLIP == 0 {
-            self.project_inside(&v.pos)
+            self.project_inside(pos)
         } else {
             (SubPoint::default(), 0)
         };
         // Within the 24-bit fields: `p` is 0 for a vertex that must be
         // clipped, otherwise inside the guard band (`|x|, |y| <= K w`), so
         // within `(K + 1) * 2^15 < 2^18` sub-pixels.
-        ScreenVertex::new(
-            p.x,
-            p.y,
-            z,
-            outcode,
-            [v.color[0] as u8, v.color[1] as u8, v.color[2] as u8],
-        )
+        ScreenVertex::new(p.x, p.y, z, outcode, color())
     }
 }
 

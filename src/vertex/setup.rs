@@ -227,15 +227,34 @@ impl DrawSetup {
     /// mesh of the draw this was set up for.
     #[inline(always)]
     pub fn clip_vertex(&self, mesh: &Mesh<'_>, i: usize) -> Result<ClipVertex, VertexError> {
+        let pos = self.clip_position(mesh, i)?;
+        let color = self.lit_color(mesh, i);
+        Ok(ClipVertex {
+            pos,
+            color: [color[0] as i32, color[1] as i32, color[2] as i32],
+            bary: [0; 2],
+        })
+    }
+
+    /// The clip-space position of vertex `i` of `mesh` (that of
+    /// [`clip_vertex`](Self::clip_vertex)).
+    #[inline(always)]
+    pub(crate) fn clip_position(&self, mesh: &Mesh<'_>, i: usize) -> Result<[i32; 4], VertexError> {
         let p = mesh.positions()[i];
         let p = [p[0].to_bits(), p[1].to_bits(), p[2].to_bits()];
-        let pos = if self.bounded {
-            self.mvp.transform_point_bounded(p)
+        if self.bounded {
+            Ok(self.mvp.transform_point_bounded(p))
         } else {
             self.mvp
                 .transform_point(p)
-                .ok_or(VertexError::OutOfRange { vertex: i })?
-        };
+                .ok_or(VertexError::OutOfRange { vertex: i })
+        }
+    }
+
+    /// The lit colour of vertex `i` of `mesh` (that of
+    /// [`clip_vertex`](Self::clip_vertex)).
+    #[inline(always)]
+    pub(crate) fn lit_color(&self, mesh: &Mesh<'_>, i: usize) -> [u8; 3] {
         let base = match mesh.colors() {
             Some(c) => {
                 use embedded_graphics::prelude::RgbColor;
@@ -243,31 +262,27 @@ impl DrawSetup {
             }
             None => self.color,
         };
-        let color = match (&self.light, mesh.normals()) {
+        match (&self.light, mesh.normals()) {
             (_, Some(n)) if self.lambert.is_some() => match &self.lambert {
                 Some(l) => l.shade(n[i], base),
                 None => base,
             },
             (Some(l), Some(n)) => match self.general {
                 Some(shade) => {
+                    let p = mesh.positions()[i];
                     let n = n[i];
                     shade(
                         l,
                         &self.material,
                         base,
-                        p,
+                        [p[0].to_bits(), p[1].to_bits(), p[2].to_bits()],
                         [n[0].to_bits(), n[1].to_bits(), n[2].to_bits()],
                     )
                 }
                 None => base,
             },
             _ => base,
-        };
-        Ok(ClipVertex {
-            pos,
-            color: [color[0] as i32, color[1] as i32, color[2] as i32],
-            bary: [0; 2],
-        })
+        }
     }
 
     /// The clip-space `w` of vertex `i` of `mesh`, exactly as
