@@ -110,7 +110,7 @@ impl FrameState<'_> {
         let xy = |v: &ScreenVertex| v.xy();
         let mut total = 0i64;
         for k in 2..proj.len() {
-            total += signed_area2(&[xy(&proj[0]), xy(&proj[k - 1]), xy(&proj[k])]);
+            total += turn(&proj, [0, k - 1, k]);
         }
         if !self.keeps(total) {
             return Fate::Culled;
@@ -124,7 +124,7 @@ impl FrameState<'_> {
         // those are tried first (two reflex vertices can be, and only one
         // of them may do), then the others.
         let n = proj.len();
-        let area_of = |k: [usize; 3]| signed_area2(&k.map(|c| xy(&proj[c % n])));
+        let area_of = |k: [usize; 3]| turn(&proj, k.map(|c| c % n));
         let fans = |apex: usize| {
             (2..n).all(|k| {
                 let a = area_of([apex, apex + k - 1, apex + k]);
@@ -237,7 +237,7 @@ fn convex_hull(
         if step == n {
             keep = len + 1;
         }
-        while len >= keep && signed_area2(&[p(hull[len - 2]), p(hull[len - 1]), p(c)]) <= 0 {
+        while len >= keep && turn(proj, [hull[len - 2], hull[len - 1], c]) <= 0 {
             len -= 1;
         }
         hull[len] = c;
@@ -251,4 +251,11 @@ fn convex_hull(
     }
     out[..hull.len()].copy_from_slice(hull);
     hull.len()
+}
+
+/// [`signed_area2`] of the snapped corners `k` of `proj`: out of line, as
+/// the clipper asks it in five places (rare code: flash, not time).
+#[inline(never)]
+fn turn(proj: &[ScreenVertex], k: [usize; 3]) -> i64 {
+    signed_area2(&k.map(|c| proj[c].xy()))
 }
