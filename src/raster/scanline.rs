@@ -359,13 +359,12 @@ fn half<const CLIP: bool, const REST: bool>(
         // Written whether empty or not, kept only if not: no branch.
         if REST {
             let r = core::mem::take(&mut rest);
-            let k = match r.first_mut() {
-                Some(o) => {
-                    *o = s;
-                    (s.x0 < s.x1) as usize
-                }
-                None => 0,
+            let Some(o) = r.first_mut() else {
+                // No slot left: the caller's rows never exceed them.
+                break;
             };
+            *o = s;
+            let k = (s.x0 < s.x1) as usize;
             rest = &mut r[k..];
         } else {
             if let Some(o) = out.get_mut(n) {
