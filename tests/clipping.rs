@@ -172,6 +172,7 @@ impl Reference {
             .sum();
         let s = if area2 < 0.0 { -1.0 } else { 1.0 };
         let mut inside = true;
+        let mut edges = 0;
         for k in 0..n {
             let (a, b) = (self.pts[k], self.pts[(k + 1) % n]);
             let (ex, ey) = (b[0] - a[0], b[1] - a[1]);
@@ -179,6 +180,7 @@ impl Reference {
             if len2 < 1e-18 {
                 continue;
             }
+            edges += 1;
             let len = len2.sqrt();
             let (px, py) = (x - a[0], y - a[1]);
             let d = s * (ex * py - ey * px) / len;
@@ -190,6 +192,15 @@ impl Reference {
             if d <= margin {
                 inside = false;
             }
+        }
+        if edges == 0 {
+            // A polygon collapsed to a point (a triangle seen edge-on
+            // along the line of sight) holds no pixel centre: outside
+            // beyond its corners' error, too close to call within.
+            let [x0, y0] = self.pts[0];
+            let near = self.err.iter().fold(0.1f64, |m, &e| m.max(e));
+            let far = (x - x0).hypot(y - y0) > near;
+            return far.then_some(false);
         }
         inside.then_some(true)
     }
