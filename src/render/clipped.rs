@@ -117,50 +117,25 @@ impl FrameState<'_> {
         }
         // A polygon made very slightly concave by snapping has reflex
         // vertices (turning against the polygon's orientation), and a fan
-        // from another vertex would overlap itself there, shading pixels
-        // twice. A fan tiles the polygon exactly when every piece turns the
-        // polygon's way (a piece of zero area is skipped): nearly convex,
-        // the polygon is star-shaped from one of its reflex vertices, so
-        // those are tried first (two reflex vertices can be, and only one
-        // of them may do), then the others.
+        // over it may overlap itself there, shading pixels twice; one that
+        // snapping folded over itself (a spike whose sides cross, a sliver
+        // bent back and forth) may be star-shaped from no vertex at all.
+        // Such a polygon is fanned over its convex hull, which every fan
+        // tiles and which differs from it by slivers narrower than the
+        // snapping; a convex one (every golden) from its first corner.
         let n = proj.len();
-        let area_of = |k: [usize; 3]| turn(&proj, k.map(|c| c % n));
-        let fans = |apex: usize| {
-            (2..n).all(|k| {
-                let a = area_of([apex, apex + k - 1, apex + k]);
-                a == 0 || (a > 0) == (total > 0)
-            })
-        };
         let reflex = |k: usize| {
-            let turn = area_of([k + n - 1, k, k + 1]);
+            let turn = turn(&proj, [(k + n - 1) % n, k, (k + 1) % n]);
             turn != 0 && (turn > 0) != (total > 0)
         };
-        // One pass, each vertex ranked (a reflex vertex that fans, one
-        // that fans, a reflex one, any), the first of the best rank kept:
-        // each test is then inlined once (rare code: flash, not time).
-        let (mut apex, mut best) = (0, 0);
-        for k in 0..n {
-            let rank = 2 * fans(k) as u8 + reflex(k) as u8;
-            if rank > best {
-                (apex, best) = (k, rank);
-                if rank == 3 {
-                    break;
-                }
-            }
-        }
-        // The fan's corners in order: the polygon from `apex`; or, for a
-        // polygon that snapping folded over itself (a spike whose sides
-        // cross, a sliver bent back and forth), star-shaped from no vertex,
-        // its convex hull, which every fan tiles (it differs from the
-        // polygon by slivers narrower than the snapping).
         let mut order = [0; MAX_CLIPPED_VERTICES];
-        let corners = if best >= 2 {
+        let corners = if (0..n).any(reflex) {
+            convex_hull(&proj, total > 0, &mut order)
+        } else {
             for (k, c) in order.iter_mut().enumerate().take(n) {
-                *c = (apex + k) % n;
+                *c = k;
             }
             n
-        } else {
-            convex_hull(&proj, total > 0, &mut order)
         };
         // The margin of the draw's lines and points, which may reach pixels
         // beyond a piece's covered centres.
