@@ -5,8 +5,10 @@
 //! multiply, an add and a shift; for `Rgb565` that is three multiplies (and
 //! their constants, which the span loops, short of registers, rebuild at
 //! every pixel on the Cortex-M3), about 15 of a Gouraud pixel's 31
-//! instructions there. Two 256-byte tables of the same results (5-bit
-//! and 6-bit channels) take a load per channel instead.
+//! instructions there. One 512-byte table of the same results (5-bit
+//! channels in its first half, 6-bit in its second) takes a load per
+//! channel instead: one table, so that a span loop keeps one address in
+//! a register for all three (two tables had it rebuild two per pixel).
 //!
 //! The span loops are generic over any colour type; stable Rust has no
 //! specialization, so [`rgb`] compares `C`'s [`TypeId`] with the formats it

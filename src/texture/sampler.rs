@@ -57,8 +57,8 @@ impl FromTexel for Rgb565 {
         Rgb565::from(RawU16::new(raw))
     }
 
-    /// By two 256-byte tables of embedded-graphics' rounding, rather than
-    /// its three multiplies.
+    /// By the 512-byte table of embedded-graphics' rounding
+    /// (`shade::convert`), rather than its three multiplies.
     #[inline(always)]
     fn from_rgb888([r, g, b]: [u8; 3]) -> Self {
         Rgb565::from(RawU16::new(crate::shade::rgb565_bits(r, g, b)))
