@@ -239,11 +239,13 @@ mod firmware {
         let (meshes, camera) = (rocket::meshes(), rocket::camera());
         #[cfg(not(feature = "assets"))]
         let (mesh, camera) = {
-            let knot = KNOT.take();
+            let Some(knot) = KNOT.try_take() else { halt() };
             knot.generate();
             (knot.mesh(), camera())
         };
-        let workspace = WORKSPACE.take();
+        let Some(workspace) = WORKSPACE.try_take() else {
+            halt()
+        };
         let mut renderer = OledRenderer::new(config());
         let mut oled = Oled::init();
         let frames: Option<u32> =
@@ -353,6 +355,14 @@ mod firmware {
             line.str(" at ").str(at.file()).str(":").num(at.line());
         }
         line.print();
+        halt()
+    }
+
+    /// Ends the QEMU run with a failure. `main` takes its statics with
+    /// `try_take` and halts here if one was taken already (it never is:
+    /// `main` runs once): `take` would panic with a message and a
+    /// location in `static_cell`'s source, over 150 B of flash.
+    fn halt() -> ! {
         loop {
             debug::exit(debug::EXIT_FAILURE);
         }

@@ -141,12 +141,25 @@ impl FrameState<'_> {
         // beyond a piece's covered centres.
         let margin = margin(draw);
         let mut fate = Fate::Rejected;
-        for k in 2..corners {
-            let corners = [order[0], order[k - 1], order[k]];
+        // Every index is in range (`order` holds `corners <= n` indices
+        // below `n`), but looked up with `get`: indexing made a panic call
+        // and location for each of the nine look-ups (flash, in rare code).
+        let corner = |c: usize| Some((*proj.get(c)?, poly.get(c)?));
+        let fan = order.get(..corners).unwrap_or(&[]);
+        let Some((&first, rest)) = fan.split_first() else {
+            return fate;
+        };
+        let Some(a) = corner(first) else {
+            return fate;
+        };
+        for pair in rest.windows(2) {
+            let (Some(b), Some(c)) = (corner(pair[0]), corner(pair[1])) else {
+                continue;
+            };
             let piece = Piece {
-                sv: corners.map(|c| proj[c]),
-                w: corners.map(|c| poly[c].pos[3]),
-                bary: corners.map(|c| poly[c].bary),
+                sv: [a.0, b.0, c.0],
+                w: [a.1.pos[3], b.1.pos[3], c.1.pos[3]],
+                bary: [a.1.bary, b.1.bary, c.1.bary],
             };
             let v = piece.sv.map(|v| xy(&v));
             let area2 = signed_area2(&v);
