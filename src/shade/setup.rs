@@ -447,7 +447,11 @@ impl TriangleSetup {
             // then reads them per span where the set-up left them, rather
             // than loading them all before the span loop and copying them
             // to spill slots (26 instructions per triangle-tile pair on the
-            // Cortex-M3; `demo` 4,821,094 -> 4,805,038 instructions).
+            // Cortex-M3; `demo` 4,821,094 -> 4,805,038 instructions). Not
+            // on the Thumb-1 targets (the build script's cfg for them),
+            // with their eight low registers: the copy measured cheaper
+            // there (ARMv6-M `demo` 15,851,848, 15,874,675 with it).
+            #[cfg(not(microraster_narrow_multiply))]
             core::hint::black_box(self);
             // A wide triangle's depth plane fails `z_inside` everywhere.
             // `wide_start`'s values are clamped already, and clamped again
