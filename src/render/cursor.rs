@@ -235,7 +235,7 @@ impl<P: Features> Iterator for TileList<'_, '_, P> {
                 }
             }
             *next += 1;
-            let idx = cur.triangles.get(t - cur.first);
+            let idx = cur.indices(t);
             if scan_touches(frame, cur.draw, cur.verts, idx, cache, rect) {
                 return Some(t);
             }

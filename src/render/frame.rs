@@ -251,13 +251,13 @@ where
         tile.clear(cfg.clear_color, cfg.clear_depth);
         let state = &self.state;
         let mut scan;
-        let bin = self.bins.iter(k);
-        if !self.rescan && bin.is_empty() {
-            // Nothing to draw: no tile loop (its cursor, its spans' array)
-            // at all.
+        if cheap {
+            // An empty bin (the cheap stream holds only those): nothing to
+            // draw, no tile loop (its cursor, its spans' array) at all.
             self.stats.tiles += 1;
             return Some((rectangle(&rect), true));
         }
+        let bin = self.bins.iter(k);
         let list = if self.rescan {
             scan = ScanState::new(state);
             TileList {

@@ -280,7 +280,8 @@ pub(crate) fn span_gouraud<C: Copy + From<Rgb888> + 'static, D: DepthFn, const W
     }
     let (color, depth) = (&mut color[a0..a1], &mut depth[a0..a1]);
     let (mut z, mut r, mut g, mut b) = (z, r, g, b);
-    if VECTOR_LOOPS && color.len() >= SHORT_SPAN {
+    // Only targets with SIMD reach here.
+    if color.len() >= SHORT_SPAN {
         return n + gouraud_run::<C, D, WRITE>(
             dt,
             color,

@@ -184,8 +184,7 @@ impl TriangleSetup {
         // The edge vectors' magnitudes, less one for negative ones, or-ed:
         // below 1023 only if every one is within -1023..=1022, inside
         // `Basis`'s small triangles (|c| < SMALL_EDGE).
-        let m = |c: i32| (c ^ (c >> 31)) as u32;
-        let e = m(x1) | m(y1) | m(x2) | m(y2);
+        let e = fold_sign(x1) | fold_sign(y1) | fold_sign(x2) | fold_sign(y2);
         if e >= SMALL_EDGE as u32 - 1 {
             return None;
         }
@@ -249,7 +248,7 @@ impl TriangleSetup {
             // `area 2^12` (first digits at most 2^22), or the general
             // set-up. (A colour channel's are below 2 * 255 * 1023 < 2^19,
             // and `small` checked their first digits.)
-            let m = ((n1 ^ (n1 >> 31)) | (n2 ^ (n2 >> 31))) as u32;
+            let m = fold_sign(n1) | fold_sign(n2);
             if m >> 21 != 0 || m >> 12 >= f.area2.unsigned_abs() {
                 return None;
             }
@@ -264,4 +263,12 @@ impl TriangleSetup {
             k: base.wrapping_add((t >> SUBPIXEL_BITS) as i32),
         })
     }
+}
+
+/// `c`'s magnitude, less one when `c` is negative: or-ed over several
+/// values, below `2^k` exactly when every one is within `-2^k..2^k`, in
+/// two instructions a value and one compare for all.
+#[inline(always)]
+fn fold_sign(c: i32) -> u32 {
+    (c ^ (c >> 31)) as u32
 }
