@@ -115,6 +115,36 @@ pub(super) fn covering(v: &[SubPoint; 3]) -> PixelRect {
     )
 }
 
+/// The pixels a triangle with these vertices may draw, `margin` pixels
+/// beyond the centres it may cover ([`margin`]). A filled triangle
+/// (`margin` 0) covers only the centres strictly before its rightmost
+/// and lowest vertices: a centre on its right or bottom extreme lies on a
+/// right or bottom edge (or on a vertex that is on one), which the fill
+/// rule leaves out ([`crate::raster`]). So its columns end at the first
+/// centre at or after the rightmost vertex, where [`covering`] (for any
+/// triangle) ends one column later, and a triangle between two centre
+/// columns or rows is found empty here, before it takes a bin entry in a
+/// tile it cannot draw into. Lines and points keep `covering`'s bounds,
+/// grown by their margin.
+#[inline(always)]
+pub(super) fn reach(v: &[SubPoint; 3], margin: i32) -> PixelRect {
+    let (xmin, xmax) = (
+        v[0].x.min(v[1].x).min(v[2].x),
+        v[0].x.max(v[1].x).max(v[2].x),
+    );
+    let (ymin, ymax) = (
+        v[0].y.min(v[1].y).min(v[2].y),
+        v[0].y.max(v[1].y).max(v[2].y),
+    );
+    let end = margin + (margin != 0) as i32;
+    PixelRect::new(
+        first_centre_at_or_after(xmin) - margin,
+        first_centre_at_or_after(ymin) - margin,
+        first_centre_at_or_after(xmax) + end,
+        first_centre_at_or_after(ymax) + end,
+    )
+}
+
 /// `r` grown by `m` pixels on every side.
 #[inline(always)]
 pub(super) fn grow(r: &PixelRect, m: i32) -> PixelRect {
@@ -279,18 +309,69 @@ impl FrameState<'_> {
                 }
                 return None;
             }
+            let reach = reach(&v, margin);
             // The frame's corner is the origin: with that known, the clamp
             // of the rectangle's corner to it is one instruction a side
             // on the Cortex-M3 rather than a load and three.
             debug_assert!(self.frame.x0 == 0 && self.frame.y0 == 0);
             let frame = PixelRect::new(0, 0, self.frame.x1, self.frame.y1);
-            let rect = meet(&grow(&covering(&v), margin), &frame);
+            let rect = meet(&reach, &frame);
             if !rect.is_empty() {
                 tally.fates[Fate::Visible as usize] += 1;
                 return Some(rect);
             }
+            if reach.is_empty() {
+                // No pixel centre within the bounds: nothing to draw, as
+                // for a zero-area triangle (a filled one: `reach` keeps a
+                // line's pixels).
+                if crate::math::SPLIT {
+                    tally.fates[Fate::Culled as usize] += 1;
+                }
+                return None;
+            }
         }
         tally.fates[Fate::Rejected as usize] += 1;
         None
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::reach;
+    use crate::raster::{scanline::spans, PixelRect, SubPoint};
+
+    /// Every centre a filled triangle covers lies within `reach` with no
+    /// margin (which ends a column and a row before `covering`), and a
+    /// triangle it finds empty covers none: random small triangles, their
+    /// vertices often on or near pixel centres, where the fill rule
+    /// decides.
+    #[test]
+    fn filled_triangles_cover_nothing_beyond_their_reach() {
+        let mut next = crate::testing::rng();
+        let mut empty = 0;
+        for _ in 0..200_000 {
+            let mut p = || {
+                let mut c = || match next(3) {
+                    // A pixel centre, or a sub-pixel from one.
+                    0 => 8 + 16 * next(6) as i32 + next(3) as i32 - 1,
+                    _ => next(96) as i32,
+                };
+                SubPoint::new(c(), c())
+            };
+            let v = [p(), p(), p()];
+            let r = reach(&v, 0);
+            let mut inside = true;
+            let mut covered = 0;
+            spans(&v, PixelRect::new(-2, -2, 10, 10), |j, x0, x1| {
+                covered += x1 - x0;
+                inside &= r.y0 <= j && j < r.y1 && r.x0 <= x0 && x1 <= r.x1;
+            });
+            assert!(inside, "{v:?} {r:?}");
+            if r.is_empty() {
+                assert_eq!(covered, 0, "{v:?}");
+                empty += 1;
+            }
+        }
+        assert!(empty > 1_000, "the test should find empty reaches");
     }
 }

@@ -5,7 +5,8 @@
 pub struct FrameStats {
     /// Triangles submitted.
     pub triangles_in: u32,
-    /// Triangles discarded as back- or front-facing or zero-area.
+    /// Triangles discarded as back- or front-facing, zero-area, or (filled
+    /// ones) with no pixel centre between their vertices' columns or rows.
     pub culled: u32,
     /// Triangles outside the view (trivially, or after clipping).
     pub rejected: u32,
