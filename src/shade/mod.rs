@@ -538,7 +538,7 @@ mod tests {
     /// every divisor of a small triangle (its extremes, the powers of two
     /// and their neighbours where the reciprocal changes form, random
     /// ones) and every dividend of its range: 0, the multiples of `d`
-    /// and their neighbours, `d 2^12` and the range's end `2^(s + 16) -
+    /// and their neighbours, `d 2^12` and the range's end `2^(t + 13) -
     /// 1`, and random ones.
     #[test]
     fn short_reciprocal_digits_are_exact() {
@@ -546,7 +546,7 @@ mod tests {
         let check = |d: u32, next: &mut dyn FnMut(u64) -> u64| {
             let f = Recip16::new(NonZeroU32::new(d).unwrap());
             let t = 31 - d.leading_zeros();
-            let end = 1u64 << (t.saturating_sub(3) + 16);
+            let end = 1u64 << (t + 13);
             let max = d as u64 * 4096;
             assert!(max < end, "{d}");
             let digit = |x: u64| {

@@ -53,15 +53,14 @@ pub(super) struct SmallBasis {
 /// either way. Then `d' 2^(t - 15) <= d < (d' + 1) 2^(t - 15)` puts `E`
 /// between `2^31 / (d' + 1)` and `2^31 / d'`, so `0 <= E - r <
 /// 2^31 / (d' (d' + 1)) + 1 < 3` (`d' >= 2^15`), and `E - r < 1` in the
-/// exact case.
+/// exact case. For `t < 3` (`d < 8`) `r` is stored times `2^(3 - t)`, so
+/// that every digit's product drops the same 19 bits.
 #[derive(Clone, Copy, Debug, Default)]
 pub(super) struct Recip16 {
     d: u32,
     r: u32,
     /// `s = max(t - 3, 0)`: the dividend's bits dropped before the product.
     s: u32,
-    /// `p = t + 16 - s`: the product's bits dropped after it.
-    p: u32,
 }
 
 impl Recip16 {
@@ -70,35 +69,36 @@ impl Recip16 {
     pub(super) fn new(d: NonZeroU32) -> Self {
         let t = 31 - d.leading_zeros();
         let r = if t <= 15 {
-            (1u32 << (t + 16)) / d
+            ((1u32 << (t + 16)) / d) << 3u32.saturating_sub(t)
         } else {
             // d' + 1 <= 2^16: nonzero.
             (1u32 << 31) / ((d.get() >> (t - 15)) + 1)
         };
-        let s = t.saturating_sub(3);
         Self {
             d: d.get(),
             r,
-            s,
-            p: t + 16 - s,
+            s: t.saturating_sub(3),
         }
     }
 
-    /// `(floor(x / d), x mod d)` for `x < 2^(s + 16)`, which every `x`
-    /// up to `d 2^12` is (`x < 2^(t + 13)`, below `2^15` for `t < 3`).
+    /// `(floor(x / d), x mod d)` for `x < 2^(t + 13)`, which every `x`
+    /// up to `d 2^12` is.
     ///
-    /// The estimate `q' = floor(xh r / 2^p)` of the dividend's upper bits
-    /// `xh = floor(x / 2^s)` (below 2^16, so with `r <= 2^16` the product
-    /// fits `u32`): with `x = xh 2^s + xl`, `x / d = xh E / 2^p + xl / d`,
-    /// so `x / d - xh r / 2^p = xh (E - r) / 2^p + xl / d`, at least 0 and
-    /// below `2^16 3 / 2^19 + 2^s / 2^t = 3/8 + 1/8` for `t >= 3` (`p =
-    /// 19`), below `2^16 / 2^(t + 16) <= 1/2` for `t` 1 or 2 (`r =
-    /// floor(E)`, `xl = 0`) and 0 for `d = 1` (`r = E`). The estimate is
-    /// thus `floor(x / d)` or one less: its remainder `x - q' d` (no
-    /// wrap: `q' d <= x`) is below `2 d`, and one compare corrects both.
+    /// For `t >= 3`, the estimate `q' = floor(xh r / 2^19)` of the
+    /// dividend's upper bits `xh = floor(x / 2^s)` (below 2^16, so with
+    /// `r <= 2^16` the product fits `u32`): with `x = xh 2^s + xl`,
+    /// `x / d = xh E / 2^19 + xl / d`, so `x / d - xh r / 2^19 =
+    /// xh (E - r) / 2^19 + xl / d`, at least 0 and below `2^16 3 / 2^19 +
+    /// 2^s / 2^t = 3/8 + 1/8`. For `t < 3`, `q' = floor(x r / 2^19)` with
+    /// `r = floor(E) 2^(3 - t) <= 2^19 / d` (the product is below
+    /// `2^(t + 13) 2^19 / 2^t = 2^32`), and `x / d - x r / 2^19 =
+    /// x 2^(3 - t) (E - floor(E)) / 2^19`, below `2^(t + 13 + 3 - t - 19)
+    /// = 1/8` (0 for `d = 1`). The estimate is thus `floor(x / d)` or one
+    /// less: its remainder `x - q' d` (no wrap: `q' d <= x`) is below
+    /// `2 d`, and one compare corrects both.
     #[inline(always)]
     pub(super) fn digit(&self, x: u32) -> (u32, u32) {
-        let q = ((x >> self.s) * self.r) >> self.p;
+        let q = ((x >> self.s) * self.r) >> 19;
         let rem = x - q * self.d;
         if rem >= self.d {
             (q + 1, rem - self.d)
