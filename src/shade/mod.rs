@@ -581,6 +581,28 @@ mod tests {
         }
     }
 
+    /// [`Recip16`]'s reciprocal of every divisor of a small triangle is
+    /// within the bounds its digits' exactness rests on: never above
+    /// `E = 2^(t + 16) / d` (times `2^(3 - t)` for `d < 8`), and below it
+    /// by less than 5.1 (3.1 where `d < 2^16` is exact), and at most 2^16.
+    #[test]
+    fn short_reciprocal_is_within_its_bounds() {
+        for d in 1u32..1 << 21 {
+            let f = Recip16::new(NonZeroU32::new(d).unwrap());
+            let (r, t) = (f.r as u64, 31 - d.leading_zeros());
+            let scale = 1u64 << 3u32.saturating_sub(t);
+            let e = (1u64 << (t + 16)) * scale;
+            // r <= e / d, and (e / d - r) < limit: in integers, times 10 d.
+            assert!(r * d as u64 <= e, "{d}");
+            let limit = if t <= 15 { 31 } else { 51 };
+            assert!(
+                (e - r * d as u64) * 10 < limit * scale * d as u64,
+                "{d}: {r}"
+            );
+            assert!(r <= (1 << 16) * scale, "{d}");
+        }
+    }
+
     /// The reciprocal's rounded quotients ([`SmallBasis::div_round32_short`],
     /// ARMv6-M's) equal the library divisions' at the bounds: twice the
     /// area ±1, ±2, ±3 and ±2 1023^2, numerators ±2^21 (less one for the

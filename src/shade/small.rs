@@ -40,25 +40,27 @@ pub(super) struct SmallBasis {
 }
 
 /// A divisor `d` (`1 <= d < 2^21`) and its 16-bit reciprocal, for
-/// quotients of at most 12 bits ([`Recip16::digit`]): one division per
-/// triangle, then per digit of a long division two 16 x 16 -> 32-bit
-/// products (`MULS` on ARMv6-M) and one correction, where ARMv6-M's
-/// library division (`__aeabi_uidivmod`) takes about a hundred
-/// instructions.
+/// quotients of at most 12 bits ([`Recip16::digit`]): per triangle a
+/// table look-up and one Newton step ([`recip31`]), then per digit of a
+/// long division two 16 x 16 -> 32-bit products (`MULS` on ARMv6-M) and
+/// one correction, where ARMv6-M's library division
+/// (`__aeabi_uidivmod`) takes about a hundred instructions.
 ///
 /// With `2^t <= d < 2^(t + 1)`, `r` approximates `E = 2^(t + 16) / d`
-/// (in `(2^15, 2^16]`) from below: `floor(E)` for `t <= 15`, where
-/// `2^(t + 16)` fits `u32`, else `floor(2^31 / (d' + 1))` for `d`'s
-/// upper 16 bits `d' = floor(d / 2^(t - 15))`, one 32-bit division
-/// either way. Then `d' 2^(t - 15) <= d < (d' + 1) 2^(t - 15)` puts `E`
-/// between `2^31 / (d' + 1)` and `2^31 / d'`, so `0 <= E - r <
-/// 2^31 / (d' (d' + 1)) + 1 < 3` (`d' >= 2^15`), and `E - r < 1` in the
-/// exact case. For `t < 3` (`d < 8`) `r` is stored times `2^(3 - t)`, so
-/// that every digit's product drops the same 19 bits.
+/// (in `(2^15, 2^16]`) from below, `0 <= E - r < 5.1`: for `t <= 15`,
+/// `E = 2^31 / D` for `D = d 2^(15 - t)`, which [`recip31`] approximates
+/// within 3.1; else `D = d' + 1` for `d`'s upper 16 bits
+/// `d' = floor(d / 2^(t - 15))` (`2^16 - 1` for `2^16`, whose reciprocal
+/// from below, at most `2^15`, is still below `E`). Then
+/// `d' 2^(t - 15) <= d < (d' + 1) 2^(t - 15)` puts `E` between
+/// `2^31 / (d' + 1)` and `2^31 / d'`, less than
+/// `2^31 / (d' (d' + 1)) < 2` apart (`d' >= 2^15`). For `t < 3`
+/// (`d < 8`) `r` is stored times `2^(3 - t)`, so that every digit's
+/// product drops the same 19 bits.
 #[derive(Clone, Copy, Debug, Default)]
 pub(super) struct Recip16 {
     d: u32,
-    r: u32,
+    pub(super) r: u32,
     /// `s = max(t - 3, 0)`: the dividend's bits dropped before the product.
     s: u32,
 }
@@ -69,10 +71,10 @@ impl Recip16 {
     pub(super) fn new(d: NonZeroU32) -> Self {
         let t = 31 - d.leading_zeros();
         let r = if t <= 15 {
-            ((1u32 << (t + 16)) / d) << 3u32.saturating_sub(t)
+            recip31(d.get() << (15 - t)) << 3u32.saturating_sub(t)
         } else {
-            // d' + 1 <= 2^16: nonzero.
-            (1u32 << 31) / ((d.get() >> (t - 15)) + 1)
+            // (d' + 1 = 2^16 as 2^16 - 1: see `recip31`.)
+            recip31(((d.get() >> (t - 15)) + 1).min(0xffff))
         };
         Self {
             d: d.get(),
@@ -88,14 +90,14 @@ impl Recip16 {
     /// dividend's upper bits `xh = floor(x / 2^s)` (below 2^16, so with
     /// `r <= 2^16` the product fits `u32`): with `x = xh 2^s + xl`,
     /// `x / d = xh E / 2^19 + xl / d`, so `x / d - xh r / 2^19 =
-    /// xh (E - r) / 2^19 + xl / d`, at least 0 and below `2^16 3 / 2^19 +
-    /// 2^s / 2^t = 3/8 + 1/8`. For `t < 3`, `q' = floor(x r / 2^19)` with
-    /// `r = floor(E) 2^(3 - t) <= 2^19 / d` (the product is below
-    /// `2^(t + 13) 2^19 / 2^t = 2^32`), and `x / d - x r / 2^19 =
-    /// x 2^(3 - t) (E - floor(E)) / 2^19`, below `2^(t + 13 + 3 - t - 19)
-    /// = 1/8` (0 for `d = 1`). The estimate is thus `floor(x / d)` or one
-    /// less: its remainder `x - q' d` (no wrap: `q' d <= x`) is below
-    /// `2 d`, and one compare corrects both.
+    /// xh (E - r) / 2^19 + xl / d`, at least 0 and below
+    /// `2^16 5.1 / 2^19 + 2^s / 2^t < 0.64 + 1/8`. For `t < 3`,
+    /// `q' = floor(x r / 2^19)` with `r <= E 2^(3 - t) = 2^19 / d` (the
+    /// product is below `2^(t + 13) 2^19 / 2^t = 2^32`), and
+    /// `x / d - x r / 2^19 = x 2^(3 - t) (E - r / 2^(3 - t)) / 2^19`,
+    /// below `2^(t + 13 + 3 - t - 19) 3.1 < 0.39`. The estimate is thus
+    /// `floor(x / d)` or one less: its remainder `x - q' d` (no wrap:
+    /// `q' d <= x`) is below `2 d`, and one compare corrects both.
     #[inline(always)]
     pub(super) fn digit(&self, x: u32) -> (u32, u32) {
         let q = ((x >> self.s) * self.r) >> 19;
@@ -106,6 +108,38 @@ impl Recip16 {
             (q, rem)
         }
     }
+}
+
+/// `floor(2^31 / (2^15 + (i + 1) 2^7))` for `i` in `0..256`: [`recip31`]'s
+/// first estimate, from below, for the 16-bit divisors whose upper 9 bits
+/// are `2^8 + i`.
+const RECIP_SEED: [u16; 256] = {
+    let mut t = [0; 256];
+    let mut i = 0;
+    while i < 256 {
+        t[i] = ((1u32 << 31) / ((1 << 15) + (i as u32 + 1) * 128)) as u16;
+        i += 1;
+    }
+    t
+};
+
+/// A reciprocal `r` of `D` (`2^15 <= D < 2^16`) from below:
+/// `r <= E0 = 2^31 / D` and `E0 - r < 3.1`, without a division
+/// ([`Recip16::new`]: ARMv6-M's is a library call).
+///
+/// The seed `r0` ([`RECIP_SEED`]) is `2^31 / D'` floored for the end `D'`
+/// of `D`'s bucket of 2^7, so `E0 - r0 < 2^31 2^7 / D^2 + 1 <= 257`. One
+/// Newton step from below: `e = 2^31 - D r0 = D (E0 - r0)` (below 2^25,
+/// and no wrap), `r = r0 + floor(r0 floor(e / 2^9) / 2^22)`; without
+/// the truncations `E0 - r = (E0 - r0)^2 / E0 <= 257^2 / 2^15 < 2.02`,
+/// and they lower `r` by less than `1 + 2^16 / 2^22`: never above `E0`,
+/// below it by less than 3.1 (the tests check every `D`). Every product
+/// is of 16-bit factors.
+#[inline(always)]
+fn recip31(d: u32) -> u32 {
+    let r0 = RECIP_SEED[(d >> 7) as usize & 0xff] as u32;
+    let e = (1u32 << 31) - d * r0;
+    r0 + ((r0 * (e >> 9)) >> 22)
 }
 
 /// The divisor of a small triangle's gradients: twice its absolute area,
