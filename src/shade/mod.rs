@@ -543,6 +543,7 @@ mod tests {
                 o: [0; 2],
                 area2,
                 half: area / 2,
+                recip: Recip16::new(NonZeroU32::new(area as u32).unwrap()),
             };
             let small = Small {
                 area: NonZeroU32::new(area as u32).unwrap(),
@@ -556,12 +557,175 @@ mod tests {
             for q in [
                 f.div_round32_with::<true>(n, shift),
                 f.div_round32_with::<false>(n, shift),
+                f.div_round32_short(n, shift),
             ] {
                 assert_eq!(q as i64, expected, "{n} << {shift} / {area2}");
             }
             checked += 1;
         }
         assert!(checked > 300_000, "{checked}");
+    }
+
+    /// [`Recip16::digit`] is the library's quotient and remainder for
+    /// every divisor of a small triangle (its extremes, the powers of two
+    /// and their neighbours where the reciprocal changes form, random
+    /// ones) and every dividend of its range: 0, the multiples of `d`
+    /// and their neighbours, `d 2^12` and the range's end `2^(t + 13) -
+    /// 1`, and random ones.
+    #[test]
+    fn short_reciprocal_digits_are_exact() {
+        let mut next = crate::testing::rng();
+        let check = |d: u32, next: &mut dyn FnMut(u64) -> u64| {
+            let f = Recip16::new(NonZeroU32::new(d).unwrap());
+            let t = 31 - d.leading_zeros();
+            let end = 1u64 << (t + 13);
+            let max = d as u64 * 4096;
+            assert!(max < end, "{d}");
+            let digit = |x: u64| {
+                if x < end {
+                    let x = x as u32;
+                    assert_eq!(f.digit(x), (x / d, x % d), "{x} / {d}");
+                }
+            };
+            for x in [0u64, 1, end - 1, max, max - 1, max + 1] {
+                digit(x);
+            }
+            for q in [1u64, 2, 1023, 1024, 1025, 4095] {
+                for x in [q * d as u64 - 1, q * d as u64, q * d as u64 + 1] {
+                    digit(x);
+                }
+            }
+            for _ in 0..200 {
+                digit(next(end));
+            }
+        };
+        for d in [1u32, 2, 3, 4, 5, 7, 8, 9, 2 * 1023 * 1023, (1 << 21) - 1] {
+            check(d, &mut next);
+        }
+        for t in 3..21 {
+            for d in [(1u32 << t) - 1, 1 << t, (1 << t) + 1] {
+                check(d, &mut next);
+            }
+        }
+        for _ in 0..2_000 {
+            let d = 1 + next((1 << 21) - 1) as u32;
+            check(d, &mut next);
+        }
+    }
+
+    /// [`Recip16`]'s reciprocal of every divisor of a small triangle is
+    /// within the bounds its digits' exactness rests on: never above
+    /// `E = 2^(t + 16) / d` (times `2^(3 - t)` for `d < 8`), and below it
+    /// by less than 5.1 (3.1 where `d < 2^16` is exact), and at most 2^16.
+    #[test]
+    fn short_reciprocal_is_within_its_bounds() {
+        for d in 1u32..1 << 21 {
+            let f = Recip16::new(NonZeroU32::new(d).unwrap());
+            let (r, t) = (f.r as u64, 31 - d.leading_zeros());
+            let scale = 1u64 << 3u32.saturating_sub(t);
+            let e = (1u64 << (t + 16)) * scale;
+            // r <= e / d, and (e / d - r) < limit: in integers, times 10 d.
+            assert!(r * d as u64 <= e, "{d}");
+            let limit = if t <= 15 { 31 } else { 51 };
+            assert!(
+                (e - r * d as u64) * 10 < limit * scale * d as u64,
+                "{d}: {r}"
+            );
+            assert!(r <= (1 << 16) * scale, "{d}");
+        }
+    }
+
+    /// The reciprocal's rounded quotients ([`SmallBasis::div_round32_short`],
+    /// ARMv6-M's) equal the library divisions' at the bounds: twice the
+    /// area ±1, ±2, ±3 and ±2 1023^2, numerators ±2^21 (less one for the
+    /// positive) and the largest first digits, `2^(40 - shift)`.
+    #[test]
+    fn short_division_matches_at_the_bounds() {
+        let max_area = 2 * 1023 * 1023;
+        for area2 in [1i32, 2, -2, 3, -3, 1 << 20, -(1 << 20), max_area, -max_area] {
+            let area = area2.unsigned_abs();
+            let f = SmallBasis {
+                e: [0; 4],
+                o: [0; 2],
+                area2,
+                half: (area / 2) as i32,
+                recip: Recip16::new(NonZeroU32::new(area).unwrap()),
+            };
+            let small = Small {
+                area: NonZeroU32::new(area).unwrap(),
+                half: area / 2,
+            };
+            for shift in [18, 20] {
+                let limit = ((area as i64) << (30 - shift)).min(1 << 21);
+                for n in [
+                    0,
+                    1,
+                    -1,
+                    limit - 1,
+                    -limit,
+                    (1 << 21) - 1,
+                    -(1 << 21),
+                    area as i64,
+                    -(area as i64),
+                    area as i64 / 2,
+                    -(area as i64 / 2) - 1,
+                ] {
+                    if n.abs() > limit || n >= 1 << 21 {
+                        continue;
+                    }
+                    let n = n as i32;
+                    let expected = f.div_round32_with::<false>(n, shift);
+                    assert_eq!(
+                        f.div_round32_short(n, shift),
+                        expected,
+                        "{n} {shift} {area2}"
+                    );
+                    assert_eq!(
+                        expected as i64,
+                        small.div_round(n, shift) * area2.signum() as i64
+                    );
+                }
+            }
+        }
+    }
+
+    /// ARMv6-M's plane constant term from `i32` products
+    /// ([`offset_term_split`]) is the wrapped `i64` one, for random and
+    /// extreme gradients and offsets.
+    #[test]
+    fn split_offset_term_matches_the_64_bit_one() {
+        let mut next = crate::testing::rng();
+        let g = |v: u64| v as i64 as i32;
+        let edges = [
+            0,
+            1,
+            -1,
+            15,
+            -16,
+            i32::MAX,
+            i32::MIN + 1,
+            (1 << 30) + 1024,
+            -(1 << 30) - 1025,
+        ];
+        let offsets = [0, 1, -1, 8, -8, 15, -17, (1 << 19) + 8, -(1 << 19) - 8];
+        for k in 0..200_000 {
+            let (gx, gy) = if k < 81 {
+                (edges[k % 9], edges[k / 9])
+            } else {
+                (g(next(1 << 32)), g(next(1 << 32)))
+            };
+            let o = if k % 3 == 0 {
+                [offsets[k % 9], offsets[(k / 9) % 9]]
+            } else {
+                [
+                    next(1 << 21) as i32 - (1 << 20),
+                    next(1 << 21) as i32 - (1 << 20),
+                ]
+            };
+            let t = gx as i64 * o[0] as i64 + gy as i64 * o[1] as i64;
+            let expected = (t >> SUBPIXEL_BITS) as i32;
+            assert_eq!(offset_term_split(gx, gy, o), expected, "{gx} {gy} {o:?}");
+        }
     }
 
     /// Gradients of small triangles through the 32-bit divisions against

@@ -2,7 +2,9 @@
 //! vectors below 2^10 sub-pixels (64 pixels), twice the area below 2^21,
 //! so the gradients come from long divisions in 32-bit steps (one
 //! instruction each on a Cortex-M3/M4) and, where every value fits, the
-//! whole set-up runs in `i32` ([`TriangleSetup::small`]). The planes are
+//! whole set-up runs in `i32` ([`TriangleSetup::small`]; on ARMv6-M,
+//! which has no divider, by one reciprocal of the area and 16-bit
+//! products instead: [`Recip16`]). The planes are
 //! exactly those of the general set-up ([`TriangleSetup::with_basis`]),
 //! which the tests check on random triangles.
 
@@ -31,6 +33,113 @@ pub(super) struct SmallBasis {
     pub(super) o: [i32; 2],
     pub(super) area2: i32,
     pub(super) half: i32,
+    /// `|area2|`'s short reciprocal, where the gradients divide through it
+    /// (ARMv6-M: [`SmallBasis::div_round32`]); unused elsewhere, where
+    /// the optimiser drops it.
+    pub(super) recip: Recip16,
+}
+
+/// A divisor `d` (`1 <= d < 2^21`) and its 16-bit reciprocal, for
+/// quotients of at most 12 bits ([`Recip16::digit`]): per triangle a
+/// table look-up and one Newton step ([`recip31`]), then per digit of a
+/// long division two 16 x 16 -> 32-bit products (`MULS` on ARMv6-M) and
+/// one correction, where ARMv6-M's library division
+/// (`__aeabi_uidivmod`) takes about a hundred instructions.
+///
+/// With `2^t <= d < 2^(t + 1)`, `r` approximates `E = 2^(t + 16) / d`
+/// (in `(2^15, 2^16]`) from below, `0 <= E - r < 5.1`: for `t <= 15`,
+/// `E = 2^31 / D` for `D = d 2^(15 - t)`, which [`recip31`] approximates
+/// within 3.1; else `D = d' + 1` for `d`'s upper 16 bits
+/// `d' = floor(d / 2^(t - 15))` (`2^16 - 1` for `2^16`, whose reciprocal
+/// from below, at most `2^15`, is still below `E`). Then
+/// `d' 2^(t - 15) <= d < (d' + 1) 2^(t - 15)` puts `E` between
+/// `2^31 / (d' + 1)` and `2^31 / d'`, less than
+/// `2^31 / (d' (d' + 1)) < 2` apart (`d' >= 2^15`). For `t < 3`
+/// (`d < 8`) `r` is stored times `2^(3 - t)`, so that every digit's
+/// product drops the same 19 bits.
+#[derive(Clone, Copy, Debug, Default)]
+pub(super) struct Recip16 {
+    d: u32,
+    pub(super) r: u32,
+    /// `s = max(t - 3, 0)`: the dividend's bits dropped before the product.
+    s: u32,
+}
+
+impl Recip16 {
+    /// `d`'s reciprocal, for `d < 2^21`.
+    #[inline(always)]
+    pub(super) fn new(d: NonZeroU32) -> Self {
+        let t = 31 - d.leading_zeros();
+        let r = if t <= 15 {
+            recip31(d.get() << (15 - t)) << 3u32.saturating_sub(t)
+        } else {
+            // (d' + 1 = 2^16 as 2^16 - 1: see `recip31`.)
+            recip31(((d.get() >> (t - 15)) + 1).min(0xffff))
+        };
+        Self {
+            d: d.get(),
+            r,
+            s: t.saturating_sub(3),
+        }
+    }
+
+    /// `(floor(x / d), x mod d)` for `x < 2^(t + 13)`, which every `x`
+    /// up to `d 2^12` is.
+    ///
+    /// For `t >= 3`, the estimate `q' = floor(xh r / 2^19)` of the
+    /// dividend's upper bits `xh = floor(x / 2^s)` (below 2^16, so with
+    /// `r <= 2^16` the product fits `u32`): with `x = xh 2^s + xl`,
+    /// `x / d = xh E / 2^19 + xl / d`, so `x / d - xh r / 2^19 =
+    /// xh (E - r) / 2^19 + xl / d`, at least 0 and below
+    /// `2^16 5.1 / 2^19 + 2^s / 2^t < 0.64 + 1/8`. For `t < 3`,
+    /// `q' = floor(x r / 2^19)` with `r <= E 2^(3 - t) = 2^19 / d` (the
+    /// product is below `2^(t + 13) 2^19 / 2^t = 2^32`), and
+    /// `x / d - x r / 2^19 = x 2^(3 - t) (E - r / 2^(3 - t)) / 2^19`,
+    /// below `2^(t + 13 + 3 - t - 19) 3.1 < 0.39`. The estimate is thus
+    /// `floor(x / d)` or one less: its remainder `x - q' d` (no wrap:
+    /// `q' d <= x`) is below `2 d`, and one compare corrects both.
+    #[inline(always)]
+    pub(super) fn digit(&self, x: u32) -> (u32, u32) {
+        let q = ((x >> self.s) * self.r) >> 19;
+        let rem = x - q * self.d;
+        if rem >= self.d {
+            (q + 1, rem - self.d)
+        } else {
+            (q, rem)
+        }
+    }
+}
+
+/// `floor(2^31 / (2^15 + (i + 1) 2^7))` for `i` in `0..256`: [`recip31`]'s
+/// first estimate, from below, for the 16-bit divisors whose upper 9 bits
+/// are `2^8 + i`.
+const RECIP_SEED: [u16; 256] = {
+    let mut t = [0; 256];
+    let mut i = 0;
+    while i < 256 {
+        t[i] = ((1u32 << 31) / ((1 << 15) + (i as u32 + 1) * 128)) as u16;
+        i += 1;
+    }
+    t
+};
+
+/// A reciprocal `r` of `D` (`2^15 <= D < 2^16`) from below:
+/// `r <= E0 = 2^31 / D` and `E0 - r < 3.1`, without a division
+/// ([`Recip16::new`]: ARMv6-M's is a library call).
+///
+/// The seed `r0` ([`RECIP_SEED`]) is `2^31 / D'` floored for the end `D'`
+/// of `D`'s bucket of 2^7, so `E0 - r0 < 2^31 2^7 / D^2 + 1 <= 257`. One
+/// Newton step from below: `e = 2^31 - D r0 = D (E0 - r0)` (below 2^25,
+/// and no wrap), `r = r0 + floor(r0 floor(e / 2^9) / 2^22)`; without
+/// the truncations `E0 - r = (E0 - r0)^2 / E0 <= 257^2 / 2^15 < 2.02`,
+/// and they lower `r` by less than `1 + 2^16 / 2^22`: never above `E0`,
+/// below it by less than 3.1 (the tests check every `D`). Every product
+/// is of 16-bit factors.
+#[inline(always)]
+fn recip31(d: u32) -> u32 {
+    let r0 = RECIP_SEED[(d >> 7) as usize & 0xff] as u32;
+    let e = (1u32 << 31) - d * r0;
+    r0 + ((r0 * (e >> 9)) >> 22)
 }
 
 /// The divisor of a small triangle's gradients: twice its absolute area,
@@ -92,16 +201,52 @@ impl SmallBasis {
     /// unsigned one).
     ///
     /// Where the division is a library call (ARMv6-M: no divider), the
-    /// unsigned digits of the magnitudes instead, whose one call gives
-    /// both the quotient and the remainder; the same quotient
-    /// ([`SmallBasis::div_round32_with`]).
+    /// digits of the magnitudes by the area's reciprocal instead
+    /// ([`SmallBasis::div_round32_short`]); the same quotient.
     #[inline(always)]
     fn div_round32(&self, n: i32, shift: u32) -> i32 {
-        self.div_round32_with::<{ !cfg!(microraster_narrow_multiply) }>(n, shift)
+        if cfg!(microraster_narrow_multiply) {
+            self.div_round32_short(n, shift)
+        } else {
+            self.div_round32_with::<true>(n, shift)
+        }
+    }
+
+    /// [`SmallBasis::div_round32`] by [`Recip16`] digits (ARMv6-M: no
+    /// library division per gradient): the rounded quotient of the
+    /// magnitudes `Q = floor((|n| 2^shift + half) / d)`, `d = |area2|`,
+    /// from three digits of the long division, then the sign of
+    /// `n area2`. With `|n| = q0 d + r0`, `r0 2^10 = q1 d + r1` and
+    /// `r1 2^k + half = q2 d + r2` (`k = shift - 10`, each remainder in
+    /// `0..d`), `|n| 2^shift + half = (q0 2^shift + q1 2^k + q2) d + r2`,
+    /// so `Q = q0 2^shift + q1 2^k + q2`: the quotient of
+    /// [`SmallBasis::div_round32_with`], whose unsigned form takes the
+    /// first two digits as one (`floor(|n| 2^10 / d) = q0 2^10 + q1`).
+    /// Each digit's dividend is within [`Recip16::digit`]'s range: `|n|
+    /// <= d 2^12` (the first digit at most `2^(40 - shift)`, `2^12` for
+    /// depth, below `2^10` for colour), `r0 2^10 < d 2^10` and
+    /// `r1 2^k + half < d (2^k + 1)`; `q2` may be `2^k` (added, not
+    /// or-ed), and `Q` is within `2^30 + 2^k + 1`.
+    #[inline(always)]
+    pub(super) fn div_round32_short(&self, n: i32, shift: u32) -> i32 {
+        let k = shift - 10;
+        let f = &self.recip;
+        let (q0, r0) = f.digit(n.unsigned_abs());
+        let (q1, r1) = f.digit(r0 << 10);
+        let (q2, _) = f.digit((r1 << k) + self.half as u32);
+        let q = (q0 << shift) + (q1 << k) + q2;
+        // The quotient's sign: the numerator's times the divisor's.
+        if (n ^ self.area2) < 0 {
+            (q as i32).wrapping_neg()
+        } else {
+            q as i32
+        }
     }
 
     /// [`SmallBasis::div_round32`] in signed divisions (`SIGNED`) or in
-    /// unsigned ones of the magnitudes.
+    /// unsigned ones of the magnitudes (one library call for quotient and
+    /// remainder where the division is one; the tests' reference for
+    /// [`SmallBasis::div_round32_short`]).
     #[inline(always)]
     pub(super) fn div_round32_with<const SIGNED: bool>(&self, n: i32, shift: u32) -> i32 {
         let k = shift - 10;
@@ -208,6 +353,11 @@ impl TriangleSetup {
             o: [HALF_PIXEL - v[0].x, HALF_PIXEL - v[0].y],
             area2,
             half: (area / 2) as i32,
+            // Only ARMv6-M divides by it (`area` is not 0).
+            recip: match NonZeroU32::new(area) {
+                Some(a) if cfg!(microraster_narrow_multiply) => Recip16::new(a),
+                _ => Recip16::default(),
+            },
         };
         let z = Self::plane_small(f, t, 0)?;
         let planes = if gouraud {
@@ -256,13 +406,45 @@ impl TriangleSetup {
         let gx = f.div_round32(n1, shift);
         let gy = f.div_round32(n2, shift);
         let base = (v[0] << frac) + (1 << (frac - 1));
-        let t = gx as i64 * f.o[0] as i64 + gy as i64 * f.o[1] as i64;
         Some(Plane {
             gx,
             gy,
-            k: base.wrapping_add((t >> SUBPIXEL_BITS) as i32),
+            k: base.wrapping_add(offset_term(gx, gy, f.o)),
         })
     }
+}
+
+/// The plane constant's term `(gx ox + gy oy) >> SUBPIXEL_BITS` wrapped to
+/// `i32` (as `plane_small` adds it), for `|gx|, |gy| < 2^31`.
+///
+/// On ARMv6-M without `i64` products (each a library call there): with
+/// `o = 16 a + b` and `g = 16 h + l` (`b`, `l` in `0..16`, arithmetic
+/// shifts), `g o = 16 (g a + h b) + l b`, so
+/// `floor((gx ox + gy oy) / 16) = gx ax + gy ay + hx bx + hy by +
+/// floor((lx bx + ly by) / 16)` exactly; the last sum is below 2^9 and
+/// the rest is needed only modulo 2^32 (wrapping `i32` products).
+#[inline(always)]
+fn offset_term(gx: i32, gy: i32, o: [i32; 2]) -> i32 {
+    if cfg!(microraster_narrow_multiply) {
+        offset_term_split(gx, gy, o)
+    } else {
+        let t = gx as i64 * o[0] as i64 + gy as i64 * o[1] as i64;
+        (t >> SUBPIXEL_BITS) as i32
+    }
+}
+
+/// [`offset_term`] from `i32` products (ARMv6-M).
+#[inline(always)]
+pub(super) fn offset_term_split(gx: i32, gy: i32, o: [i32; 2]) -> i32 {
+    const MASK: i32 = (1 << SUBPIXEL_BITS) - 1;
+    let (ax, bx) = (o[0] >> SUBPIXEL_BITS, o[0] & MASK);
+    let (ay, by) = (o[1] >> SUBPIXEL_BITS, o[1] & MASK);
+    let low = ((gx & MASK) * bx + (gy & MASK) * by) >> SUBPIXEL_BITS;
+    gx.wrapping_mul(ax)
+        .wrapping_add(gy.wrapping_mul(ay))
+        .wrapping_add((gx >> SUBPIXEL_BITS).wrapping_mul(bx))
+        .wrapping_add((gy >> SUBPIXEL_BITS).wrapping_mul(by))
+        .wrapping_add(low)
 }
 
 /// `c`'s magnitude, less one when `c` is negative: or-ed over several
