@@ -192,10 +192,10 @@ impl Pow2Rgb565<'_> {
             quad.at = at;
             // Written out: `map` over the four was left out of line.
             quad.texels = [
-                rgb565_to_rgb888(self.at(x0, y0)),
-                rgb565_to_rgb888(self.at(x1, y0)),
-                rgb565_to_rgb888(self.at(x0, y1)),
-                rgb565_to_rgb888(self.at(x1, y1)),
+                expand(self.at(x0, y0)),
+                expand(self.at(x1, y0)),
+                expand(self.at(x0, y1)),
+                expand(self.at(x1, y1)),
             ];
         }
         // The four weights of the module docs, each at most 2^24, summing
@@ -213,6 +213,33 @@ impl Pow2Rgb565<'_> {
         }
         acc.map(|a| (a >> (2 * WEIGHT_BITS)) as u8)
     }
+}
+
+/// [`rgb565_to_rgb888`] for every 5-bit channel value (at `c`) and 6-bit
+/// one (at `32 + c`).
+static EXPANDED: [u8; 96] = {
+    let mut t = [0; 96];
+    let mut c = 0;
+    while c < 64 {
+        let [_, g, b] = rgb565_to_rgb888(c << 5 | c & 31);
+        if c < 32 {
+            t[c as usize] = b;
+        }
+        t[32 + c as usize] = g;
+        c += 1;
+    }
+    t
+};
+
+/// [`rgb565_to_rgb888`] by [`EXPANDED`]: a load per channel rather than a
+/// shift and an or.
+#[inline(always)]
+fn expand(raw: u16) -> [u8; 3] {
+    [
+        EXPANDED[(raw >> 11) as usize],
+        EXPANDED[32 + ((raw >> 5) & 63) as usize],
+        EXPANDED[(raw & 31) as usize],
+    ]
 }
 
 /// The four texels of a bilinear sample, expanded to 8 bits, and where
