@@ -11,7 +11,7 @@ use super::{
     VertexInput,
 };
 use crate::scene::Draw;
-use crate::texture::{rgb565_to_rgb888, FromTexel, Pow2Rgb565, Sampler, Texture};
+use crate::texture::{rgb565_to_rgb888, FromTexel, Pow2Rgb565, Quad, Sampler, Texture};
 use embedded_graphics::pixelcolor::Rgb888;
 use fixed::types::I16F16;
 
@@ -281,9 +281,9 @@ impl<C: From<Rgb888> + 'static> FragmentShader<C> for Gouraud {
 /// the colour at raw 16.16 coordinates `(u, v)`, in 8 bits per channel
 /// and in the target's format.
 trait Texels {
-    fn rgb(&self, u: i32, v: i32) -> [u8; 3];
+    fn rgb(&mut self, u: i32, v: i32) -> [u8; 3];
     #[inline(always)]
-    fn target<C: FromTexel>(&self, u: i32, v: i32) -> C {
+    fn target<C: FromTexel>(&mut self, u: i32, v: i32) -> C {
         C::from_rgb888(self.rgb(u, v))
     }
 }
@@ -295,30 +295,31 @@ struct Nearest565<'t>(Pow2Rgb565<'t>);
 
 impl Texels for Nearest565<'_> {
     #[inline(always)]
-    fn rgb(&self, u: i32, v: i32) -> [u8; 3] {
+    fn rgb(&mut self, u: i32, v: i32) -> [u8; 3] {
         rgb565_to_rgb888(self.0.nearest(u, v))
     }
     #[inline(always)]
-    fn target<C: FromTexel>(&self, u: i32, v: i32) -> C {
+    fn target<C: FromTexel>(&mut self, u: i32, v: i32) -> C {
         C::from_rgb565(self.0.nearest(u, v))
     }
 }
 
-/// [`Sampler::BilinearRgb565`].
+/// [`Sampler::BilinearRgb565`], with the last four texels read (a span's
+/// pixels reuse them while they fall between the same four).
 #[derive(Clone, Copy)]
-struct Bilinear565<'t>(Pow2Rgb565<'t>);
+struct Bilinear565<'t>(Pow2Rgb565<'t>, Quad);
 
 impl Texels for Bilinear565<'_> {
     #[inline(always)]
-    fn rgb(&self, u: i32, v: i32) -> [u8; 3] {
-        self.0.bilinear(u, v)
+    fn rgb(&mut self, u: i32, v: i32) -> [u8; 3] {
+        self.0.bilinear_reusing(u, v, &mut self.1)
     }
 }
 
 /// [`Sampler::General`]: [`Texture::sample`].
 impl Texels for &Texture<'_> {
     #[inline(always)]
-    fn rgb(&self, u: i32, v: i32) -> [u8; 3] {
+    fn rgb(&mut self, u: i32, v: i32) -> [u8; 3] {
         self.sample(I16F16::from_bits(u), I16F16::from_bits(v))
     }
 }
@@ -353,7 +354,9 @@ where
     };
     match texture.sampler() {
         Sampler::NearestRgb565(t) => span.shade_with(LIT, TexelPixel::<_, LIT>(Nearest565(t))),
-        Sampler::BilinearRgb565(t) => span.shade_with(LIT, TexelPixel::<_, LIT>(Bilinear565(t))),
+        Sampler::BilinearRgb565(t) => {
+            span.shade_with(LIT, TexelPixel::<_, LIT>(Bilinear565(t, Quad::NONE)))
+        }
         Sampler::General(t) => span.shade_unspecialised(LIT, TexelPixel::<_, LIT>(t)),
     }
 }
@@ -373,7 +376,7 @@ where
             spans.each(|s| s.shade_with(LIT, TexelPixel::<_, LIT>(Nearest565(t))))
         }
         Sampler::BilinearRgb565(t) => {
-            spans.each(|s| s.shade_with(LIT, TexelPixel::<_, LIT>(Bilinear565(t))))
+            spans.each(|s| s.shade_with(LIT, TexelPixel::<_, LIT>(Bilinear565(t, Quad::NONE))))
         }
         Sampler::General(t) => spans.each(|s| s.shade_unspecialised(LIT, TexelPixel::<_, LIT>(t))),
     }

@@ -134,6 +134,7 @@ mod tests;
 
 use axis::Axis;
 use fixed::types::I16F16;
+pub(crate) use sampler::Quad;
 pub use sampler::{FromTexel, Pow2Rgb565, Sampler};
 
 /// The largest width or height accepted by [`Texture::new`]: 32,768 texels.

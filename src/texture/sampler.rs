@@ -5,7 +5,6 @@
 //! its texels read in place; every other texture goes through
 //! [`Texture::sample`]. Both give the same colour at every coordinate.
 
-use super::bilinear::blend_channel;
 use super::{rgb565_to_rgb888, Filter, Texels, Texture, Wrap, HALF, WEIGHT_BITS};
 use embedded_graphics::pixelcolor::raw::RawU16;
 use embedded_graphics::pixelcolor::{
@@ -163,6 +162,17 @@ impl Pow2Rgb565<'_> {
     /// as [`Texture::sample`], the four reads inlined.
     #[inline(always)]
     pub fn bilinear(&self, u: i32, v: i32) -> [u8; 3] {
+        let mut quad = Quad::NONE;
+        self.bilinear_reusing(u, v, &mut quad)
+    }
+
+    /// [`bilinear`](Self::bilinear), reading the four texels only if they
+    /// are not those of `quad`, and leaving them there: along a span of a
+    /// magnified texture, consecutive pixels mostly fall between the same
+    /// four texels, and reading and expanding them again is most of a
+    /// sample.
+    #[inline(always)]
+    pub(crate) fn bilinear_reusing(&self, u: i32, v: i32, quad: &mut Quad) -> [u8; 3] {
         let taps = |raw: i32, axis: usize| {
             let s = ((raw as u32) << self.log2[axis]).wrapping_add(HALF);
             let j = s >> 16;
@@ -175,14 +185,77 @@ impl Pow2Rgb565<'_> {
         };
         let (x0, x1, fx) = taps(u, 0);
         let (y0, y1, fy) = taps(v, 1);
-        let a = rgb565_to_rgb888(self.at(x0, y0));
-        let b = rgb565_to_rgb888(self.at(x1, y0));
-        let c = rgb565_to_rgb888(self.at(x0, y1));
-        let d = rgb565_to_rgb888(self.at(x1, y1));
-        let mut out = [0; 3];
-        for (k, o) in out.iter_mut().enumerate() {
-            *o = blend_channel(a[k], b[k], c[k], d[k], fx, fy);
+        // `(x0, y0)` decides the other three, and is below the texel
+        // count, so below `Quad::NONE`'s.
+        let at = (y0 << self.log2[0]) | x0;
+        if at != quad.at {
+            quad.at = at;
+            // Written out: `map` over the four was left out of line.
+            quad.texels = [
+                expand(self.at(x0, y0)),
+                expand(self.at(x1, y0)),
+                expand(self.at(x0, y1)),
+                expand(self.at(x1, y1)),
+            ];
         }
-        out
+        // The four weights of the module docs, each at most 2^24, summing
+        // to 2^24: from one product, the others by subtraction.
+        let w11 = fx * fy;
+        let w10 = (fx << WEIGHT_BITS) - w11;
+        let w01 = (fy << WEIGHT_BITS) - w11;
+        let w00 = (((1 << WEIGHT_BITS) - fx) << WEIGHT_BITS) - w01;
+        // Every partial sum is at most the whole, `255 · 2^24 + 2^23`.
+        let mut acc = [1 << (2 * WEIGHT_BITS - 1); 3];
+        for (c, w) in quad.texels.iter().zip([w00, w10, w01, w11]) {
+            for (a, c) in acc.iter_mut().zip(c) {
+                *a += w * *c as u32;
+            }
+        }
+        acc.map(|a| (a >> (2 * WEIGHT_BITS)) as u8)
     }
+}
+
+/// [`rgb565_to_rgb888`] for every 5-bit channel value (at `c`) and 6-bit
+/// one (at `32 + c`).
+static EXPANDED: [u8; 96] = {
+    let mut t = [0; 96];
+    let mut c = 0;
+    while c < 64 {
+        let [_, g, b] = rgb565_to_rgb888(c << 5 | c & 31);
+        if c < 32 {
+            t[c as usize] = b;
+        }
+        t[32 + c as usize] = g;
+        c += 1;
+    }
+    t
+};
+
+/// [`rgb565_to_rgb888`] by [`EXPANDED`]: a load per channel rather than a
+/// shift and an or.
+#[inline(always)]
+fn expand(raw: u16) -> [u8; 3] {
+    [
+        EXPANDED[(raw >> 11) as usize],
+        EXPANDED[32 + ((raw >> 5) & 63) as usize],
+        EXPANDED[(raw & 31) as usize],
+    ]
+}
+
+/// The four texels of a bilinear sample, expanded to 8 bits, and where
+/// they were read (the index of the top left one): see
+/// [`Pow2Rgb565::bilinear_reusing`].
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Quad {
+    at: u32,
+    texels: [[u8; 3]; 4],
+}
+
+impl Quad {
+    /// No texels yet: an index no texture has (a slice of `u16` is
+    /// shorter than 2^31 entries).
+    pub(crate) const NONE: Quad = Quad {
+        at: u32::MAX,
+        texels: [[0; 3]; 4],
+    };
 }

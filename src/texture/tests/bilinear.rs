@@ -151,3 +151,37 @@ fn bilinear_at_texel_centres_is_nearest() {
         }
     }
 }
+
+/// The sampler's power-of-two `Rgb565` path, with its four texels kept
+/// from one sample to the next, gives [`Texture::sample`]'s colour: along
+/// walks in small steps (the texels reused, or one texel over), and after
+/// jumps (read anew).
+#[test]
+fn pow2_rgb565_bilinear_matches_sample() {
+    let mut rng = XorShift(0x0BAD_F00D);
+    for (w, h) in [(1, 1), (1, 8), (2, 2), (4, 1), (8, 32), (32, 32), (64, 16)] {
+        let texels: Vec<u16> = (0..w * h).map(|_| rng.next() as u16).collect();
+        let t = Texture::new(w, h, Texels::Rgb565(&texels))
+            .unwrap()
+            .filter(Filter::Bilinear);
+        let Sampler::BilinearRgb565(p) = t.sampler() else {
+            panic!("{w}x{h} not on the fast path");
+        };
+        let mut quad = Quad::NONE;
+        for _ in 0..200 {
+            let (mut u, mut v) = (rng.coordinate(), rng.coordinate());
+            let step = [rng.next() as i32 % 3_000, rng.next() as i32 % 3_000];
+            for _ in 0..40 {
+                let expected = t.sample(fx(u), fx(v));
+                assert_eq!(
+                    p.bilinear_reusing(u, v, &mut quad),
+                    expected,
+                    "{w}x{h} {u} {v}"
+                );
+                assert_eq!(p.bilinear(u, v), expected, "{w}x{h} {u} {v}");
+                u = u.wrapping_add(step[0]);
+                v = v.wrapping_add(step[1]);
+            }
+        }
+    }
+}
