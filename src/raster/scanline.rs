@@ -159,13 +159,15 @@ fn ceil_div_rem32(n: i32, d: NonZeroU32) -> (i32, i32) {
 /// the clip rectangle altogether.
 const CHECK_ROWS: i32 = 16;
 
-/// Whether the triangle `v`, of twice signed area `area2 != 0`, may cover a
-/// pixel centre of `clip`: false only when every centre of `clip` lies
-/// strictly outside one of its edges, which no fill-rule tie can change.
-/// A cheap test (one corner per edge) that lets a tile skip the row walk of
-/// a triangle whose bounding box merely overlaps it.
+/// Whether the triangle `v`, of positive twice signed area when
+/// `positive` (negative otherwise; zero covers nothing, whatever this
+/// says), may cover a pixel centre of `clip`: false only when every
+/// centre of `clip` lies strictly outside one of its edges, which no
+/// fill-rule tie can change. A cheap test (one corner per edge) that lets
+/// a tile skip the row walk of a triangle whose bounding box merely
+/// overlaps it.
 #[inline]
-fn may_cover(v: &[SubPoint; 3], area2: i64, clip: PixelRect) -> bool {
+fn may_cover(v: &[SubPoint; 3], positive: bool, clip: PixelRect) -> bool {
     if clip.is_empty() {
         return false;
     }
@@ -175,9 +177,9 @@ fn may_cover(v: &[SubPoint; 3], area2: i64, clip: PixelRect) -> bool {
     for k in 0..3 {
         let (p, q) = (v[k], v[(k + 1) % 3]);
         let (mut ex, mut ey) = (q.x as i64 - p.x as i64, q.y as i64 - p.y as i64);
-        // E(c) = ex (c.y - p.y) - ey (c.x - p.x) has the sign of `area2` on
+        // E(c) = ex (c.y - p.y) - ey (c.x - p.x) has the sign of the area on
         // the inner side; flip it so the inner side is positive.
-        if area2 < 0 {
+        if !positive {
             (ex, ey) = (-ex, -ey);
         }
         // The corner centre where E is largest.
@@ -213,13 +215,18 @@ pub(crate) fn find_spans(v: &[SubPoint; 3], clip: PixelRect, out: &mut [Span]) -
     if a.y > b.y {
         core::mem::swap(&mut a, &mut b);
     }
-    // Within the guard band the edge vectors fit i32.
-    let cross = super::signed_area2_banded(&[a, b, c]);
-    if cross == 0 || clip.is_empty() {
-        return 0;
-    }
-    // cross > 0: the middle vertex is right of the long edge a -> c.
-    let long_on_left = cross > 0;
+    // The middle vertex is right of the long edge a -> c when twice the
+    // signed area, `(b - a) x (c - a)`, is positive: the two products are
+    // compared rather than subtracted, and only that one bit stays live.
+    // Within the guard band the edge vectors fit i32. Neither a zero area
+    // nor an empty clip is tested: a triangle of zero area has its edges
+    // on one line, so each row's left and right columns are equal and
+    // every span is empty (and `may_cover` may reject it), and an empty
+    // clip's rows are empty and its spans clamped empty (a triangle
+    // within its columns then lies within one column, whose spans are
+    // empty too).
+    let long_on_left =
+        crate::math::mul_wide(b.x - a.x, c.y - a.y) > crate::math::mul_wide(c.x - a.x, b.y - a.y);
     let row_top = first_centre_at_or_after(a.y).max(clip.y0);
     let row_mid = first_centre_at_or_after(b.y);
     let mut row_end = first_centre_at_or_after(c.y).min(clip.y1);
@@ -232,7 +239,7 @@ pub(crate) fn find_spans(v: &[SubPoint; 3], clip: PixelRect, out: &mut [Span]) -
     if row_end - row_top > CHECK_ROWS
         && !may_cover(
             &[a, b, c],
-            cross,
+            long_on_left,
             PixelRect::new(clip.x0, row_top, clip.x1, row_end),
         )
     {
@@ -649,7 +656,7 @@ mod tests {
             }
             assert_eq!(all, by_row, "{v:?} {clip:?}");
             let area2 = crate::raster::signed_area2(&v);
-            if area2 != 0 && !may_cover(&v, area2, clip) {
+            if area2 != 0 && !may_cover(&v, area2 > 0, clip) {
                 assert!(by_row.is_empty(), "{v:?} {clip:?}");
                 rejected += 1;
             }
