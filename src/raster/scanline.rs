@@ -100,17 +100,7 @@ impl EdgeStepper {
                 (den & -up) - n,
             )
         } else {
-            // x_edge(y_c) - ½px, times den, as a sub-pixel numerator:
-            // (p.x - ½) * dy + (y_c - p.y) * dx, over SUBPIXEL * dy (< 2^39).
-            let num = (p.x - HALF_PIXEL) as i64 * dy.get() as i64 + t as i64 * dx as i64;
-            let den = NonZeroU32::new(den as u32).unwrap_or(NonZeroU32::MIN);
-            match i32::try_from(num) {
-                Ok(n) => ceil_div_rem32(n, den),
-                Err(_) => {
-                    let (c, r) = ceil_div_rem(num, den.get() as i64);
-                    (c as i32, r as i32)
-                }
-            }
+            far_start(p, dx, dy, t)
         };
         // Within the guard band every quantity here fits i32; see the
         // module docs of `crate::vertex` for the bound.
@@ -120,6 +110,27 @@ impl EdgeStepper {
             step_col,
             step_err: r * SUBPIXEL,
             den,
+        }
+    }
+}
+
+/// The start column of the edge from `p`, `dx` across and `dy` down, at
+/// `t` sub-pixels below `p`, and the remainder of its ceiling, for a start
+/// that a tile's top clips lower than the edge's own first row (see
+/// [`EdgeStepper::new`]). Out of line: four edge set-ups share it, for
+/// the rare start that a tile's top clips (the OLED firmware's flash).
+#[inline(never)]
+fn far_start(p: SubPoint, dx: i32, dy: NonZeroU32, t: i32) -> (i32, i32) {
+    // x_edge(y_c) - ½px, times den, as a sub-pixel numerator:
+    // (p.x - ½) * dy + (y_c - p.y) * dx, over SUBPIXEL * dy (< 2^39).
+    let num = (p.x - HALF_PIXEL) as i64 * dy.get() as i64 + t as i64 * dx as i64;
+    let den = dy.get() * SUBPIXEL as u32;
+    let den = NonZeroU32::new(den).unwrap_or(NonZeroU32::MIN);
+    match i32::try_from(num) {
+        Ok(n) => ceil_div_rem32(n, den),
+        Err(_) => {
+            let (c, r) = ceil_div_rem(num, den.get() as i64);
+            (c as i32, r as i32)
         }
     }
 }
@@ -159,13 +170,15 @@ fn ceil_div_rem32(n: i32, d: NonZeroU32) -> (i32, i32) {
 /// the clip rectangle altogether.
 const CHECK_ROWS: i32 = 16;
 
-/// Whether the triangle `v`, of twice signed area `area2 != 0`, may cover a
-/// pixel centre of `clip`: false only when every centre of `clip` lies
-/// strictly outside one of its edges, which no fill-rule tie can change.
-/// A cheap test (one corner per edge) that lets a tile skip the row walk of
-/// a triangle whose bounding box merely overlaps it.
+/// Whether the triangle `v`, of positive twice signed area when
+/// `positive` (negative otherwise; zero covers nothing, whatever this
+/// says), may cover a pixel centre of `clip`: false only when every
+/// centre of `clip` lies strictly outside one of its edges, which no
+/// fill-rule tie can change. A cheap test (one corner per edge) that lets
+/// a tile skip the row walk of a triangle whose bounding box merely
+/// overlaps it.
 #[inline]
-fn may_cover(v: &[SubPoint; 3], area2: i64, clip: PixelRect) -> bool {
+fn may_cover(v: &[SubPoint; 3], positive: bool, clip: PixelRect) -> bool {
     if clip.is_empty() {
         return false;
     }
@@ -175,9 +188,9 @@ fn may_cover(v: &[SubPoint; 3], area2: i64, clip: PixelRect) -> bool {
     for k in 0..3 {
         let (p, q) = (v[k], v[(k + 1) % 3]);
         let (mut ex, mut ey) = (q.x as i64 - p.x as i64, q.y as i64 - p.y as i64);
-        // E(c) = ex (c.y - p.y) - ey (c.x - p.x) has the sign of `area2` on
+        // E(c) = ex (c.y - p.y) - ey (c.x - p.x) has the sign of the area on
         // the inner side; flip it so the inner side is positive.
-        if area2 < 0 {
+        if !positive {
             (ex, ey) = (-ex, -ey);
         }
         // The corner centre where E is largest.
@@ -213,13 +226,18 @@ pub(crate) fn find_spans(v: &[SubPoint; 3], clip: PixelRect, out: &mut [Span]) -
     if a.y > b.y {
         core::mem::swap(&mut a, &mut b);
     }
-    // Within the guard band the edge vectors fit i32.
-    let cross = super::signed_area2_banded(&[a, b, c]);
-    if cross == 0 || clip.is_empty() {
-        return 0;
-    }
-    // cross > 0: the middle vertex is right of the long edge a -> c.
-    let long_on_left = cross > 0;
+    // The middle vertex is right of the long edge a -> c when twice the
+    // signed area, `(b - a) x (c - a)`, is positive: the two products are
+    // compared rather than subtracted, and only that one bit stays live.
+    // Within the guard band the edge vectors fit i32. Neither a zero area
+    // nor an empty clip is tested: a triangle of zero area has its edges
+    // on one line, so each row's left and right columns are equal and
+    // every span is empty (and `may_cover` may reject it), and an empty
+    // clip's rows are empty and its spans clamped empty (a triangle
+    // within its columns then lies within one column, whose spans are
+    // empty too).
+    let long_on_left =
+        crate::math::mul_wide(b.x - a.x, c.y - a.y) > crate::math::mul_wide(c.x - a.x, b.y - a.y);
     let row_top = first_centre_at_or_after(a.y).max(clip.y0);
     let row_mid = first_centre_at_or_after(b.y);
     let mut row_end = first_centre_at_or_after(c.y).min(clip.y1);
@@ -232,7 +250,7 @@ pub(crate) fn find_spans(v: &[SubPoint; 3], clip: PixelRect, out: &mut [Span]) -
     if row_end - row_top > CHECK_ROWS
         && !may_cover(
             &[a, b, c],
-            cross,
+            long_on_left,
             PixelRect::new(clip.x0, row_top, clip.x1, row_end),
         )
     {
@@ -274,15 +292,37 @@ pub(crate) fn find_spans(v: &[SubPoint; 3], clip: PixelRect, out: &mut [Span]) -
         | hi.wrapping_sub(b.x)
         | hi.wrapping_sub(c.x);
     let inside = cfg!(any(target_pointer_width = "32", test)) && outside >= 0;
-    let long = EdgeStepper::new::<false>(a, c, row_top);
-    let (short, stop) = if row_top < row_mid {
-        (
-            EdgeStepper::new::<false>(a, b, row_top),
-            row_mid.min(row_end),
-        )
+    // The short edge of the first row, and where its half ends.
+    let ((p, q), stop) = if row_top < row_mid {
+        ((a, b), row_mid.min(row_end))
     } else {
-        (EdgeStepper::new::<false>(b, c, row_top), row_end)
+        ((b, c), row_end)
     };
+    if inside {
+        // Both edges set up packed straight away: fewer live values than
+        // two `EdgeStepper`s packed afterwards.
+        let long = Packed::new::<false>(a, c, row_top);
+        let short = Packed::new::<false>(p, q, row_top);
+        let (mut left, mut right) = if long_on_left {
+            (long, short)
+        } else {
+            (short, long)
+        };
+        let n = half_packed(out, 0, row_top, stop, &mut left, &mut right);
+        if stop >= row_end {
+            return n;
+        }
+        // The lower half, from `stop == row_mid`.
+        let lower = Packed::new::<true>(b, c, stop);
+        if long_on_left {
+            right = lower;
+        } else {
+            left = lower;
+        }
+        return half_packed(out, n, stop, row_end, &mut left, &mut right);
+    }
+    let long = EdgeStepper::new::<false>(a, c, row_top);
+    let short = EdgeStepper::new::<false>(p, q, row_top);
     let (mut left, mut right) = if long_on_left {
         (long, short)
     } else {
@@ -306,21 +346,6 @@ pub(crate) fn find_spans(v: &[SubPoint; 3], clip: PixelRect, out: &mut [Span]) -
     }
     // On a 32-bit core, a copy of the row loop for each half: the one loop
     // kept the lower half's set-up live across the upper half's rows.
-    if inside {
-        let (mut left, mut right) = (left.packed(), right.packed());
-        let n = half_packed(out, 0, row_top, stop, &mut left, &mut right);
-        if stop >= row_end {
-            return n;
-        }
-        // The lower half, from `stop == row_mid`.
-        let lower = EdgeStepper::new::<true>(b, c, stop).packed();
-        if long_on_left {
-            right = lower;
-        } else {
-            left = lower;
-        }
-        return half_packed(out, n, stop, row_end, &mut left, &mut right);
-    }
     let (x0, x1) = (clip.x0, clip.x1);
     let n = half::<true>(out, 0, row_top, stop, &mut left, &mut right, x0, x1);
     if stop >= row_end {
@@ -378,6 +403,49 @@ impl EdgeStepper {
             s: (self.step_err << PACKED_BITS) + self.step_col,
             d: (self.den << PACKED_BITS) + 1,
         }
+    }
+}
+
+impl Packed {
+    /// [`EdgeStepper::new`], packed: the edge's columns must lie within
+    /// `0..PACKED_COLS` and its height within [`PACKED_DY`].
+    ///
+    /// The start's error term and column come packed from the numerator
+    /// `n` of the near start with no test of its sign: with `P = 16 Q +
+    /// R`, the word `-n << PACKED_BITS` plus `Q + 1` is negative exactly
+    /// when the ceiling is `Q + 1` (`n > 0`), the word of the error term
+    /// `-n` and that column; otherwise the carry of the row loop, taking
+    /// `d` off, gives the error term `-n - den` and the column `Q`.
+    #[inline(always)]
+    fn new<const NEAR: bool>(p: SubPoint, q: SubPoint, row: i32) -> Self {
+        let dx = q.x - p.x;
+        let dy = q.y - p.y;
+        debug_assert!(dy > 0 && dy <= PACKED_DY);
+        let dy = NonZeroU32::new(dy as u32).unwrap_or(NonZeroU32::MIN);
+        let (step_col, r) = ceil_div_rem32(dx, dy);
+        const SHIFT: u32 = PACKED_BITS + SUBPIXEL_BITS;
+        // `den << PACKED_BITS` plus one, `den = SUBPIXEL dy` at most 2^20.
+        let d = ((dy.get() as i32) << SHIFT) + 1;
+        let s = (r << SHIFT) + step_col;
+        let t = row * SUBPIXEL + HALF_PIXEL - p.y;
+        debug_assert!(!NEAR || (t as u32) < SUBPIXEL as u32);
+        let w = if NEAR || (t as u32) < SUBPIXEL as u32 {
+            // As in `EdgeStepper::new`: |n| < den.
+            let big_p = p.x - HALF_PIXEL + t * step_col;
+            let n = dy.get() as i32 * (big_p & (SUBPIXEL - 1)) - t * r;
+            let w = (-n << PACKED_BITS) + (big_p >> SUBPIXEL_BITS) + 1;
+            if w >= 0 {
+                w - d
+            } else {
+                w
+            }
+        } else {
+            let (col, rem) = far_start(p, dx, dy, t);
+            // The error term `rem - den`, and the column.
+            ((rem - (d >> PACKED_BITS)) << PACKED_BITS) | col
+        };
+        debug_assert_eq!(w, EdgeStepper::new::<false>(p, q, row).packed().p);
+        Self { p: w, s, d }
     }
 }
 
@@ -649,7 +717,7 @@ mod tests {
             }
             assert_eq!(all, by_row, "{v:?} {clip:?}");
             let area2 = crate::raster::signed_area2(&v);
-            if area2 != 0 && !may_cover(&v, area2, clip) {
+            if area2 != 0 && !may_cover(&v, area2 > 0, clip) {
                 assert!(by_row.is_empty(), "{v:?} {clip:?}");
                 rejected += 1;
             }
