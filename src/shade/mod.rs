@@ -46,6 +46,8 @@ pub(crate) use convert::{rgb, rgb16, rgb565_bits, rgb_scalar};
 use embedded_graphics::pixelcolor::Rgb888;
 use setup::Basis;
 pub(crate) use setup::{Corners, TriangleSetup};
+#[cfg_attr(not(microraster_narrow_multiply), allow(unused_imports))]
+pub(crate) use small::Recip16;
 
 /// Fraction bits of interpolated depth.
 pub const Z_FRAC: u32 = 14;
