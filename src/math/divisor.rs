@@ -267,7 +267,7 @@ impl Short {
             .filter(|d| (8..1 << 31).contains(d))?;
         let nz = core::num::NonZeroU32::new(d)?;
         // k in 1..=28, t in 3..=30.
-        let k = d.leading_zeros();
+        let k = crate::shade::leading_zeros(nz);
         let t = 31 - k;
         let f = Recip16::new(nz);
         let a = 31.min(t + 12);
