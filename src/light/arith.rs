@@ -340,7 +340,7 @@ pub(super) fn exp2_neg(q: u64) -> u32 {
 /// `floor(x / 255)` for any `u32`, exact, by shifts and adds (a Cortex-M0+
 /// has no divider, and no multiply-high for a division by a constant).
 #[inline]
-pub(super) fn div255(x: u32) -> u32 {
+pub(crate) fn div255(x: u32) -> u32 {
     // x/256 + x/2^16 + x/2^24, each floored: at most x/255 (the rest of
     // the series x/256 + x/2^16 + ...) and less than 3 + 2^32/(255 · 2^24)
     // below it, so the remainder r lies in [0, 1022) ...

@@ -225,6 +225,7 @@ use std::{format, println, string::String, vec::Vec};
 #[cfg(test)]
 mod tests;
 
+pub(crate) use arith::div255;
 pub use setup::LightSetup;
 pub(crate) use setup::{check_lighting, directional, model_checks, one_light};
 

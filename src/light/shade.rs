@@ -206,7 +206,15 @@ impl Core {
             let nl = g >> 8;
             for c in 0..3 {
                 let k = self.ambient[c] as u32 * 256 + color[c] as u32 * nl;
-                out[c] = ((base[c] as u32 * k + FULL / 2) / FULL).min(255) as u8;
+                let x = base[c] as u32 * k + FULL / 2;
+                // As `vertex::setup`'s Lambert path: ARMv6-M's division
+                // by a constant is a library call, `div255` is not.
+                let q = if cfg!(microraster_narrow_multiply) {
+                    div255(x >> 8)
+                } else {
+                    x / FULL
+                };
+                out[c] = q.min(255) as u8;
             }
             return out;
         }

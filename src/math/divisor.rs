@@ -1,6 +1,7 @@
 //! Exact division of many dividends by one divisor: the attribute set-up's
 //! and the vertex stage's divisions, as each kind of core does them best.
 
+use crate::shade::Recip16;
 use core::num::{NonZeroU32, NonZeroU64};
 
 /// Exact integer division of many dividends by one divisor, through the
@@ -235,9 +236,9 @@ fn div_long(d: NonZeroU64, m: u64) -> u64 {
 /// undershoots `m / d` by less than `m / 2^K < 1` (as `r > 2^K / d - 1`)
 /// and never overshoots it, so it is `floor(m / d)` or one less, which the
 /// remainder test corrects. The reciprocal itself is a long division of
-/// `2^K`: `2^31 / d`, then the remaining `l - 1` zero bits in digits of as
-/// many bits as `d` has leading zeros (so every partial dividend fits
-/// `u32`): two or three divisions for `d` of 2^7 to 2^22.
+/// `2^K` in digits of [`Recip16`] (a table look-up, a Newton step, then
+/// per digit two `MULS` and one correction), where ARMv6-M's library
+/// division took about a hundred instructions a digit: see [`Short::new`].
 #[derive(Clone, Copy, Debug)]
 #[cfg_attr(not(microraster_narrow_multiply), allow(dead_code))]
 struct Short {
@@ -250,18 +251,37 @@ struct Short {
 #[cfg_attr(not(microraster_narrow_multiply), allow(dead_code))]
 impl Short {
     /// `d`'s reciprocal, if `8 <= d < 2^31`.
+    ///
+    /// With `t = l - 1` (3..=30), `K = 31 + t`. The long division of
+    /// `2^K` by `d` starts from the partial dividend `2^a`, `a = min(31,
+    /// t + 12)` (within [`Recip16::digit`]'s range `2^(t + 13)` and
+    /// `u32`), then brings down the other `K - a` zero bits in digits of
+    /// `min(12, 31 - t)` bits: each partial dividend `rem 2^s < d 2^s <
+    /// 2^(t + 1 + s)` fits `u32` and the digit's range. Three digits for
+    /// `d` below 2^21, four up to 2^23. The quotient is exactly
+    /// `floor(2^K / d)`, as the library's division gave.
     #[inline(always)]
     fn new(d: NonZeroU64) -> Option<Self> {
         let d = u32::try_from(d.get())
             .ok()
             .filter(|d| (8..1 << 31).contains(d))?;
         let nz = core::num::NonZeroU32::new(d)?;
-        // k in 1..=28. d < 2^31: the first digit is `2^31 / d`, then
-        // `l - 1` zero bits are left to bring down, l = 32 - k.
-        let k = d.leading_zeros();
-        let first = (1u32 << 31) / nz;
-        // r stays below 2^32 (r <= 2^31).
-        let (r, _) = shift_in_zeros(first, (1u32 << 31) - first * d, nz, 31 - k);
+        // k in 1..=28, t in 3..=30.
+        let k = crate::shade::leading_zeros(nz);
+        let t = 31 - k;
+        let f = Recip16::new(nz);
+        let a = 31.min(t + 12);
+        let (mut r, mut rem) = f.digit(1 << a);
+        let s = 12.min(k);
+        let mut left = 31 + t - a;
+        while left > 0 {
+            let s = s.min(left);
+            let (digit, next) = f.digit(rem << s);
+            // r stays below 2^32 (r <= 2^31 at the end).
+            r = (r << s) | digit;
+            rem = next;
+            left -= s;
+        }
         Some(Self { d, r, bits: 62 - k })
     }
 
@@ -430,6 +450,32 @@ mod tests {
         for _ in 0..100_000 {
             let d = (next(1 << 32) << 31 | next(1 << 31)) >> next(62) | 1;
             check(d, next(1 << 32) << 32 | next(1 << 32), next(63));
+        }
+    }
+
+    /// [`Short`]'s reciprocal from [`Recip16`] digits is the 64-bit
+    /// division's `floor(2^K / d)`: every divisor below 2^21 and around
+    /// every power of two up to 2^31, and at random.
+    #[test]
+    fn short_reciprocal_is_the_quotient() {
+        let check = |d: u32| {
+            let s = Short::new(NonZeroU64::new(d as u64).unwrap()).unwrap();
+            let bits = 62 - d.leading_zeros();
+            assert_eq!((s.d, s.bits), (d, bits));
+            assert_eq!(s.r as u64, (1u64 << bits) / d as u64, "{d}");
+        };
+        for d in 8..1 << 21 {
+            check(d);
+        }
+        for b in 21..31 {
+            for d in (1u32 << b) - 2_000..((1u64 << b) + 2_000).min((1 << 31) - 1) as u32 {
+                check(d);
+            }
+        }
+        check((1 << 31) - 1);
+        let mut next = crate::testing::rng();
+        for _ in 0..1_000_000 {
+            check(((next(1 << 31) as u32) >> next(28)).max(8));
         }
     }
 

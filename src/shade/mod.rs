@@ -46,6 +46,8 @@ pub(crate) use convert::{rgb, rgb16, rgb565_bits, rgb_scalar};
 use embedded_graphics::pixelcolor::Rgb888;
 use setup::Basis;
 pub(crate) use setup::{Corners, TriangleSetup};
+#[cfg_attr(not(microraster_narrow_multiply), allow(unused_imports))]
+pub(crate) use small::{leading_zeros, Recip16};
 
 /// Fraction bits of interpolated depth.
 pub const Z_FRAC: u32 = 14;
@@ -619,6 +621,18 @@ mod tests {
     /// by less than 5.1 (3.1 where `d < 2^16` is exact), and at most 2^16.
     #[test]
     fn short_reciprocal_is_within_its_bounds() {
+        // (And the inline leading zeros: every bit position, both ends.)
+        for b in 0..32 {
+            for d in [
+                1u32 << b,
+                (1 << b) | 1,
+                ((2u64 << b) - 1) as u32,
+                0x9e37_79b9 >> (31 - b),
+            ] {
+                let d = NonZeroU32::new(d.max(1)).unwrap();
+                assert_eq!(leading_zeros_search(d), d.leading_zeros(), "{d}");
+            }
+        }
         for d in 1u32..1 << 21 {
             let f = Recip16::new(NonZeroU32::new(d).unwrap());
             let (r, t) = (f.r as u64, 31 - d.leading_zeros());

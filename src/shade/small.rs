@@ -57,8 +57,13 @@ pub(super) struct SmallBasis {
 /// `2^31 / (d' (d' + 1)) < 2` apart (`d' >= 2^15`). For `t < 3`
 /// (`d < 8`) `r` is stored times `2^(3 - t)`, so that every digit's
 /// product drops the same 19 bits.
+///
+/// The same holds for any `d < 2^31` (`t <= 30`: `d'` and `r` are as
+/// for `t = 16..=20`), with every `x < 2^32` of the range from `t = 19`
+/// up: ARMv6-M's vertex stage builds `w`'s 32-bit reciprocal from such
+/// digits (`math::divisor`'s `Short`).
 #[derive(Clone, Copy, Debug, Default)]
-pub(super) struct Recip16 {
+pub(crate) struct Recip16 {
     d: u32,
     pub(super) r: u32,
     /// `s = max(t - 3, 0)`: the dividend's bits dropped before the product.
@@ -66,10 +71,10 @@ pub(super) struct Recip16 {
 }
 
 impl Recip16 {
-    /// `d`'s reciprocal, for `d < 2^21`.
+    /// `d`'s reciprocal, for `d < 2^31`.
     #[inline(always)]
-    pub(super) fn new(d: NonZeroU32) -> Self {
-        let t = 31 - d.leading_zeros();
+    pub(crate) fn new(d: NonZeroU32) -> Self {
+        let t = 31 - leading_zeros(d);
         let r = if t <= 15 {
             recip31(d.get() << (15 - t)) << 3u32.saturating_sub(t)
         } else {
@@ -99,7 +104,7 @@ impl Recip16 {
     /// `floor(x / d)` or one less: its remainder `x - q' d` (no wrap:
     /// `q' d <= x`) is below `2 d`, and one compare corrects both.
     #[inline(always)]
-    pub(super) fn digit(&self, x: u32) -> (u32, u32) {
+    pub(crate) fn digit(&self, x: u32) -> (u32, u32) {
         let q = ((x >> self.s) * self.r) >> 19;
         let rem = x - q * self.d;
         if rem >= self.d {
@@ -108,6 +113,33 @@ impl Recip16 {
             (q, rem)
         }
     }
+}
+
+/// `d.leading_zeros()`; on ARMv6-M, which has no `CLZ`, by a binary
+/// search inline ([`leading_zeros_search`]) rather than the library's
+/// `__clzsi2` call: about 73,000 instructions off the `demo` frame.
+#[inline(always)]
+pub(crate) fn leading_zeros(d: NonZeroU32) -> u32 {
+    if cfg!(microraster_narrow_multiply) {
+        leading_zeros_search(d)
+    } else {
+        d.leading_zeros()
+    }
+}
+
+/// `d.leading_zeros()` by five compares and shifts: with `x = d 2^n`, a
+/// step of `s` bits shifts when `x`'s top `s` bits are clear (so `d`'s
+/// top bit stays within `x`'s top `s` bits after each step).
+#[inline(always)]
+pub(super) fn leading_zeros_search(d: NonZeroU32) -> u32 {
+    let (mut x, mut n) = (d.get(), 0);
+    for s in [16, 8, 4, 2, 1] {
+        if x >> (32 - s) == 0 {
+            x <<= s;
+            n += s;
+        }
+    }
+    n
 }
 
 /// `floor(2^31 / (2^15 + (i + 1) 2^7))` for `i` in `0..256`: [`recip31`]'s

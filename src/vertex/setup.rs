@@ -96,7 +96,16 @@ impl Lambert {
         for c in 0..3 {
             // At most 2^17.
             let k = self.ambient[c] * 256 + self.color[c] * ndotl;
-            out[c] = ((base[c] as u32 * k + 32_640) / 65_280).min(255) as u8;
+            let x = base[c] as u32 * k + 32_640;
+            // floor(x / 65,280) = floor(floor(x / 256) / 255): ARMv6-M,
+            // without a multiply-high, divides by a constant through the
+            // library (about a hundred instructions), `div255` in eight.
+            let q = if cfg!(microraster_narrow_multiply) {
+                crate::light::div255(x >> 8)
+            } else {
+                x / 65_280
+            };
+            out[c] = q.min(255) as u8;
         }
         out
     }
