@@ -95,18 +95,22 @@ impl DrawOrder {
 /// The fixed-point set-up of the last draw a clipped triangle needed.
 pub(super) type SetupCache = Option<(usize, DrawSetup)>;
 
+/// The vertices' least and greatest `x` and `y`, in that order.
+#[inline(always)]
+fn extent(v: &[SubPoint; 3]) -> [i32; 4] {
+    [
+        v[0].x.min(v[1].x).min(v[2].x),
+        v[0].x.max(v[1].x).max(v[2].x),
+        v[0].y.min(v[1].y).min(v[2].y),
+        v[0].y.max(v[1].y).max(v[2].y),
+    ]
+}
+
 /// The pixels whose centres may be covered by a triangle with these
 /// vertices: [`PixelRect::covering`], inlined into the binning loop.
 #[inline(always)]
 pub(super) fn covering(v: &[SubPoint; 3]) -> PixelRect {
-    let (xmin, xmax) = (
-        v[0].x.min(v[1].x).min(v[2].x),
-        v[0].x.max(v[1].x).max(v[2].x),
-    );
-    let (ymin, ymax) = (
-        v[0].y.min(v[1].y).min(v[2].y),
-        v[0].y.max(v[1].y).max(v[2].y),
-    );
+    let [xmin, xmax, ymin, ymax] = extent(v);
     PixelRect::new(
         first_centre_at_or_after(xmin),
         first_centre_at_or_after(ymin),
@@ -128,14 +132,7 @@ pub(super) fn covering(v: &[SubPoint; 3]) -> PixelRect {
 /// grown by their margin.
 #[inline(always)]
 pub(super) fn reach(v: &[SubPoint; 3], margin: i32) -> PixelRect {
-    let (xmin, xmax) = (
-        v[0].x.min(v[1].x).min(v[2].x),
-        v[0].x.max(v[1].x).max(v[2].x),
-    );
-    let (ymin, ymax) = (
-        v[0].y.min(v[1].y).min(v[2].y),
-        v[0].y.max(v[1].y).max(v[2].y),
-    );
+    let [xmin, xmax, ymin, ymax] = extent(v);
     let end = margin + (margin != 0) as i32;
     PixelRect::new(
         first_centre_at_or_after(xmin) - margin,

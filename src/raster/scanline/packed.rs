@@ -1,0 +1,144 @@
+//! The scanline walk's edges packed into one word each ([`Packed`]), and
+//! the row loop that steps them ([`half_packed`]): how a 32-bit core walks
+//! a triangle that lies within its tile's columns.
+
+use super::{ceil_div_rem32, far_start, EdgeStepper};
+use crate::raster::{Span, SubPoint, HALF_PIXEL, SUBPIXEL, SUBPIXEL_BITS};
+use core::num::NonZeroU32;
+
+/// Bits of a [`Packed`] edge's column.
+const PACKED_BITS: u32 = 10;
+
+/// Columns a [`Packed`] edge may take, `0..PACKED_COLS`, less one: a step
+/// passes through its column plus one before a carry takes it back.
+pub(super) const PACKED_COLS: i32 = (1 << PACKED_BITS) - 1;
+
+/// Height in sub-pixels up to which an edge can be [`Packed`]: its error
+/// term, shifted, and a step's column change (below 2^14 for an edge
+/// within `PACKED_COLS` columns) then fit an `i32` with room to spare.
+pub(super) const PACKED_DY: i32 = 1 << 16;
+
+/// An [`EdgeStepper`] whose columns lie within `0..PACKED_COLS` (a
+/// triangle within a tile's columns), with its column in the low
+/// [`PACKED_BITS`] of one word and its error term above: a row's step is
+/// one add, and the carry one compare and one subtract, with three words
+/// live per edge rather than five, so that the row loop of a 32-bit core
+/// keeps both edges in registers.
+///
+/// The error term is negative, and the column stays within its bits at
+/// every row of the edge (the step's column change, before and after a
+/// carry, lands on the columns of two rows of the edge, or one past), so
+/// the word is negative exactly when the error term is: the same compare
+/// as [`half`](super::half)'s, the same columns. Only the step past an edge's last
+/// row may take the column out of its bits, and that value is never read.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Packed {
+    /// `err << PACKED_BITS | col`.
+    p: i32,
+    /// `step_err << PACKED_BITS + step_col`.
+    s: i32,
+    /// `den << PACKED_BITS + 1`: a carry takes one column back.
+    d: i32,
+}
+
+impl EdgeStepper {
+    /// This edge [`Packed`]; its column at the current row must lie
+    /// within `0..PACKED_COLS` and its height within [`PACKED_DY`].
+    #[inline(always)]
+    fn packed(&self) -> Packed {
+        debug_assert!((0..PACKED_COLS).contains(&self.col));
+        debug_assert!(self.den <= PACKED_DY * SUBPIXEL);
+        Packed {
+            p: (self.err << PACKED_BITS) | self.col,
+            s: (self.step_err << PACKED_BITS) + self.step_col,
+            d: (self.den << PACKED_BITS) + 1,
+        }
+    }
+}
+
+impl Packed {
+    /// [`EdgeStepper::new`], packed: the edge's columns must lie within
+    /// `0..PACKED_COLS` and its height within [`PACKED_DY`].
+    ///
+    /// The start's error term and column come packed from the numerator
+    /// `n` of the near start with no test of its sign: with `P = 16 Q +
+    /// R`, the word `-n << PACKED_BITS` plus `Q + 1` is negative exactly
+    /// when the ceiling is `Q + 1` (`n > 0`), the word of the error term
+    /// `-n` and that column; otherwise the carry of the row loop, taking
+    /// `d` off, gives the error term `-n - den` and the column `Q`.
+    #[inline(always)]
+    pub(super) fn new<const NEAR: bool>(p: SubPoint, q: SubPoint, row: i32) -> Self {
+        let dx = q.x - p.x;
+        let dy = q.y - p.y;
+        debug_assert!(dy > 0 && dy <= PACKED_DY);
+        let dy = NonZeroU32::new(dy as u32).unwrap_or(NonZeroU32::MIN);
+        let (step_col, r) = ceil_div_rem32(dx, dy);
+        const SHIFT: u32 = PACKED_BITS + SUBPIXEL_BITS;
+        // `den << PACKED_BITS` plus one, `den = SUBPIXEL dy` at most 2^20.
+        let d = ((dy.get() as i32) << SHIFT) + 1;
+        let s = (r << SHIFT) + step_col;
+        let t = row * SUBPIXEL + HALF_PIXEL - p.y;
+        debug_assert!(!NEAR || (t as u32) < SUBPIXEL as u32);
+        let w = if NEAR || (t as u32) < SUBPIXEL as u32 {
+            // As in `EdgeStepper::new`: |n| < den.
+            let big_p = p.x - HALF_PIXEL + t * step_col;
+            let n = dy.get() as i32 * (big_p & (SUBPIXEL - 1)) - t * r;
+            let w = (-n << PACKED_BITS) + (big_p >> SUBPIXEL_BITS) + 1;
+            if w >= 0 {
+                w - d
+            } else {
+                w
+            }
+        } else {
+            let (col, rem) = far_start(p, dx, dy, t);
+            // The error term `rem - den`, and the column.
+            ((rem - (d >> PACKED_BITS)) << PACKED_BITS) | col
+        };
+        debug_assert_eq!(w, EdgeStepper::new::<false>(p, q, row).packed().p);
+        Self { p: w, s, d }
+    }
+}
+
+/// [`half`](super::half) for [`Packed`] edges, without clamps (the triangle lies
+/// within the columns), as a 32-bit core walks most small triangles.
+#[inline(always)]
+pub(super) fn half_packed(
+    out: &mut [Span],
+    n: usize,
+    row: i32,
+    stop: i32,
+    left: &mut Packed,
+    right: &mut Packed,
+) -> usize {
+    const MASK: i32 = (1 << PACKED_BITS) - 1;
+    let (mut lp, ls, ld) = (left.p, left.s, left.d);
+    let (mut rp, rs, rd) = (right.p, right.s, right.d);
+    let len = out.len();
+    let mut rest = &mut out[n.min(len)..];
+    for j in row..stop {
+        let s = Span {
+            j,
+            x0: lp & MASK,
+            x1: rp & MASK,
+        };
+        // Written whether empty or not, kept only if not: no branch.
+        let r = core::mem::take(&mut rest);
+        let Some(o) = r.first_mut() else {
+            // No slot left: the caller's rows never exceed them.
+            break;
+        };
+        *o = s;
+        let k = (s.x0 < s.x1) as usize;
+        rest = &mut r[k..];
+        lp += ls;
+        if lp >= 0 {
+            lp -= ld;
+        }
+        rp += rs;
+        if rp >= 0 {
+            rp -= rd;
+        }
+    }
+    (left.p, right.p) = (lp, rp);
+    len - rest.len()
+}
