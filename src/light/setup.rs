@@ -124,6 +124,29 @@ impl<const N: usize> LightSetup<N> {
         Ok(Self { lights, core })
     }
 
+    /// [`new`](Self::new) built in `slot` (left `None` on an error): the
+    /// set-up is about 500 bytes, and a second copy on the stack would be
+    /// on a frame's deepest path (the vertex stage's draw set-up).
+    pub(crate) fn new_in<'s>(
+        slot: &'s mut Option<Self>,
+        lighting: &Lighting<'_>,
+        model: &Mat4,
+        eye: Vec3,
+    ) -> Result<&'s Self, LightError> {
+        let s = slot.insert(Self {
+            lights: [FixedLight::OFF; N],
+            core: Core::OFF,
+        });
+        let made = Core::new(lighting, model, eye, &mut s.lights).map(|core| s.core = core);
+        match (made, slot) {
+            (Ok(()), Some(s)) => Ok(s),
+            (made, slot) => {
+                *slot = None;
+                Err(made.err().unwrap_or(LightError::BadMatrix))
+            }
+        }
+    }
+
     /// The lit colour of a vertex.
     ///
     /// `base` is the vertex or draw colour (it multiplies the material's
@@ -161,6 +184,16 @@ impl<const N: usize> LightSetup<N> {
 /// depend on `N` lives here, so that it is compiled once (in this crate)
 /// rather than once per instance and codegen unit of every user.
 impl Core {
+    /// No light, no fog: what [`LightSetup::new_in`] starts from.
+    const OFF: Self = Self {
+        count: 0,
+        ambient: [0; 3],
+        eye: [0; 3],
+        fog: FixedFog::None,
+        fog_color: [0; 3],
+        coarse: false,
+    };
+
     /// [`LightSetup::new`] into the light slots `lights`.
     pub(super) fn new(
         lighting: &Lighting<'_>,

@@ -170,7 +170,7 @@ impl<'f, P> ScanState<'f, P> {
     pub(super) fn new(frame: &'f FrameState<'f>) -> Self {
         Self {
             cur: DrawCursor::new(frame),
-            cache: None,
+            cache: SetupCache::empty(),
             frustum: None,
             cluster: 0,
             cluster_end: 0,

@@ -169,7 +169,7 @@ where
             dear: 0,
             taken: 0,
             rescan: false,
-            cache: None,
+            cache: SetupCache::empty(),
             stats: FrameStats {
                 triangles_in: done.triangles as u32,
                 vertices: done.transformed,

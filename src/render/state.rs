@@ -93,7 +93,23 @@ impl DrawOrder {
 }
 
 /// The fixed-point set-up of the last draw a clipped triangle needed.
-pub(super) type SetupCache = Option<(usize, DrawSetup)>;
+pub(super) struct SetupCache {
+    /// The draw whose set-up `setup` holds, when it holds one.
+    draw: usize,
+    setup: Option<DrawSetup>,
+}
+
+impl SetupCache {
+    /// Holding no draw's set-up. A function, not a constant: a constant
+    /// is copied from flash in full (about 650 bytes of it), where this
+    /// writes the `None`.
+    pub(super) fn empty() -> Self {
+        Self {
+            draw: 0,
+            setup: None,
+        }
+    }
+}
 
 /// The vertices' least and greatest `x` and `y`, in that order.
 #[inline(always)]
@@ -227,21 +243,27 @@ impl FrameState<'_> {
     /// instructions of `memcpy` each time).
     #[inline(always)]
     pub(super) fn setup<'c>(&self, d: usize, cache: &'c mut SetupCache) -> Option<&'c DrawSetup> {
-        if !matches!(cache, Some((c, _)) if *c == d) {
+        if cache.draw != d || cache.setup.is_none() {
             self.setup_again(d, cache)?;
         }
-        cache.as_ref().map(|(_, s)| s)
+        cache.setup.as_ref()
     }
 
-    /// [`setup`](Self::setup) when the cache holds another draw's.
+    /// [`setup`](Self::setup) when the cache holds another draw's: built
+    /// in the cache's slot.
     #[inline(never)]
     fn setup_again(&self, d: usize, cache: &mut SetupCache) -> Option<()> {
-        let s = with_lighting(self.light.as_ref(), self.lighting, |lighting| {
-            (self.make_setup)(&self.draws[d], &self.view_proj, lighting, self.eye)
+        cache.draw = d;
+        with_lighting(self.light.as_ref(), self.lighting, |lighting| {
+            (self.make_setup)(
+                &mut cache.setup,
+                &self.draws[d],
+                &self.view_proj,
+                lighting,
+                self.eye,
+            )
         })
-        .ok()?;
-        *cache = Some((d, s));
-        Some(())
+        .ok()
     }
 
     /// Whether a triangle or polygon of twice signed screen area `area2`

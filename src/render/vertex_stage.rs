@@ -5,7 +5,7 @@ use super::{Config, Features, Path, Profiler, RenderError, Stage, MAX_LIGHTS, MA
 use crate::cull::Frustum;
 use crate::light::{DirectionalLight, LightError, LightSetup, Lighting};
 use crate::math::{Mat4, Vec3};
-use crate::mesh::Indices;
+use crate::mesh::{Indices, Mesh};
 use crate::scene::Draw;
 use crate::scene::{Blend, Light, Scene, Shading};
 use crate::shade::DepthTest;
@@ -28,15 +28,26 @@ pub(super) struct Transformed {
 
 /// How a frame sets up a draw: with or without the general lighting
 /// ([`Features::LIGHTING`]), chosen once so that the other is not linked.
-pub(super) type SetupFn =
-    fn(&Draw<'_>, &Mat4, Option<&Lighting<'_>>, Vec3) -> Result<DrawSetup, VertexError>;
+/// Built in the caller's slot ([`DrawSetup::new_in`]), so that the set-up
+/// is on the stack once.
+pub(super) type SetupFn = fn(
+    &mut Option<DrawSetup>,
+    &Draw<'_>,
+    &Mat4,
+    Option<&Lighting<'_>>,
+    Vec3,
+) -> Result<(), VertexError>;
 
 /// The [`SetupFn`] of the paths `P` links.
 pub(super) fn setup_fn<P: Features>() -> SetupFn {
     if P::LIGHTING {
-        DrawSetup::with_lighting::<true>
+        |slot, draw, view_proj, lighting, eye| {
+            DrawSetup::new_in::<true>(slot, draw, view_proj, lighting, eye).map(|_| ())
+        }
     } else {
-        DrawSetup::with_lighting::<false>
+        |slot, draw, view_proj, lighting, eye| {
+            DrawSetup::new_in::<false>(slot, draw, view_proj, lighting, eye).map(|_| ())
+        }
     }
 }
 
@@ -224,13 +235,17 @@ fn transform<F>(
         // or not; a draw wholly outside the frustum is then not
         // transformed (its vertices cannot overflow what is never
         // computed), and binning skips it the same way.
-        // Read in place: moving the set-up out of its `Result` would keep
-        // a second copy of it (about 600 bytes, its `LightSetup`) on the
-        // stack, on the frame's deepest path.
-        let made = make(draw, view_proj, lighting, eye);
-        let setup = match &made {
-            Ok(setup) => setup,
-            Err(e) => return Err(draw_error(di, *e)),
+        // Built in place, one slot for every draw: a second copy of it
+        // (about 600 bytes, its `LightSetup`) would be on the stack, on
+        // the frame's deepest path. Read from the local slot, not through
+        // a reference the call returns, which the compiler could not tell
+        // from the vertex buffer (the loop would reload it per vertex).
+        let mut made = None;
+        let made_ok = make(&mut made, draw, view_proj, lighting, eye);
+        let setup = match (made_ok, &made) {
+            (Ok(()), Some(setup)) => setup,
+            (Err(e), _) => return Err(draw_error(di, e)),
+            (Ok(()), None) => return Err(draw_error(di, VertexError::BadMatrix)),
         };
         let out = &mut vertices[base..base + draw.mesh.vertex_count()];
         base += draw.mesh.vertex_count();
@@ -264,13 +279,28 @@ fn transform<F>(
             // The range lies within the mesh (checked when the
             // mesh was built).
             // The colour after the projection (see `screen_vertex_lit`).
-            for (i, sv) in out[range].iter_mut().enumerate() {
-                let pos = setup
-                    .clip_position(draw.mesh, first + i)
-                    .map_err(|error| RenderError::Draw { draw: di, error })?;
-                *sv = viewport.screen_vertex_lit(&pos, || setup.lit_color(draw.mesh, first + i));
-            }
+            run_vertices(setup, draw.mesh, first, viewport, &mut out[range])
+                .map_err(|error| RenderError::Draw { draw: di, error })?;
         }
     }
     Ok(count)
+}
+
+/// The vertex loop of one run of a draw's vertices, `first` on, into
+/// `out`. A function of its own: its arguments tell the compiler that the
+/// set-up (built in place by a call it cannot see) is not the vertex
+/// buffer, so that the loop keeps the set-up's values in registers.
+#[inline(never)]
+fn run_vertices(
+    setup: &DrawSetup,
+    mesh: &Mesh<'_>,
+    first: usize,
+    viewport: &Viewport,
+    out: &mut [ScreenVertex],
+) -> Result<(), VertexError> {
+    for (i, sv) in out.iter_mut().enumerate() {
+        let pos = setup.clip_position(mesh, first + i)?;
+        *sv = viewport.screen_vertex_lit(&pos, || setup.lit_color(mesh, first + i));
+    }
+    Ok(())
 }

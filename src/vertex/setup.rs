@@ -150,6 +150,24 @@ impl DrawSetup {
         lighting: Option<&Lighting<'_>>,
         eye: Vec3,
     ) -> Result<Self, VertexError> {
+        let mut slot = None;
+        Self::new_in::<GENERAL>(&mut slot, draw, view_proj, lighting, eye)?;
+        slot.ok_or(VertexError::BadMatrix)
+    }
+
+    /// [`with_lighting`](Self::with_lighting) built in `slot` (left `None`
+    /// on an error). The renderer's way: the set-up holds a
+    /// [`LightSetup`] of [`MAX_LIGHTS`] lights (about 500 bytes), and
+    /// building it in place keeps a second copy off the stack of the vertex
+    /// stage, the frame's deepest path.
+    pub(crate) fn new_in<'s, const GENERAL: bool>(
+        slot: &'s mut Option<Self>,
+        draw: &Draw<'_>,
+        view_proj: &Mat4,
+        lighting: Option<&Lighting<'_>>,
+        eye: Vec3,
+    ) -> Result<&'s Self, VertexError> {
+        *slot = None;
         let m = &draw.transform;
         if !m.is_finite() {
             return Err(VertexError::BadMatrix);
@@ -164,41 +182,51 @@ impl DrawSetup {
             .iter()
             .all(|c| (c.r() & c.g() & c.b()) == 255);
         let dark = (material.specular.r() | material.specular.g() | material.specular.b()) == 0;
-        // The renderer checked the lights themselves (with an identity
-        // model matrix): what is left to fail is this draw's matrix.
-        let (light, lambert) = match lighting {
-            Some(l) if GENERAL => {
-                let light = LightSetup::new(l, m, eye).map_err(|_| VertexError::BadMatrix)?;
-                let lambert = match white && dark {
-                    true => light.single_directional().map(Lambert::new),
-                    false => None,
-                };
-                (Some(light), lambert)
-            }
-            Some(l) => (None, Self::one_light(l, m, eye, white && dark)?),
-            None => (None, None),
-        };
-        let general: Option<GeneralShade> = match (&light, &lambert) {
-            (Some(_), None) if GENERAL => Some(|l, m, b, p, n| l.shade(m, b, p, n)),
-            _ => None,
-        };
-        // Unlit vertices (no normals) need no lighting at all.
-        if lighting.is_some()
-            && lambert.is_none()
-            && general.is_none()
-            && draw.mesh.normals().is_some()
-        {
-            return Err(VertexError::GeneralLighting);
-        }
-        Ok(Self {
+        let s = slot.insert(Self {
             mvp,
             bounded: mvp.bounded(draw.mesh.extent()),
-            light,
-            lambert,
-            general,
+            light: None,
+            lambert: None,
+            general: None,
             material: draw.material,
             color: [draw.color.r(), draw.color.g(), draw.color.b()],
-        })
+        });
+        // The renderer checked the lights themselves (with an identity
+        // model matrix): what is left to fail is this draw's matrix.
+        let lit = match lighting {
+            Some(l) if GENERAL => match LightSetup::new_in(&mut s.light, l, m, eye) {
+                Ok(light) => {
+                    s.lambert = match white && dark {
+                        true => light.single_directional().map(Lambert::new),
+                        false => None,
+                    };
+                    if s.lambert.is_none() {
+                        s.general = Some(|l, m, b, p, n| l.shade(m, b, p, n));
+                    }
+                    Ok(())
+                }
+                Err(_) => Err(VertexError::BadMatrix),
+            },
+            Some(l) => Self::one_light(l, m, eye, white && dark).map(|lambert| s.lambert = lambert),
+            None => Ok(()),
+        };
+        // Unlit vertices (no normals) need no lighting at all.
+        let unlit = lighting.is_some()
+            && s.lambert.is_none()
+            && s.general.is_none()
+            && draw.mesh.normals().is_some();
+        let failed = match (lit, unlit) {
+            (Err(e), _) => Some(e),
+            (Ok(()), true) => Some(VertexError::GeneralLighting),
+            (Ok(()), false) => None,
+        };
+        match (failed, slot) {
+            (None, Some(s)) => Ok(s),
+            (failed, slot) => {
+                *slot = None;
+                Err(failed.unwrap_or(VertexError::BadMatrix))
+            }
+        }
     }
 
     /// The fast path's set-up without the general lighting's code: for
