@@ -265,18 +265,12 @@ pub(crate) fn find_spans(v: &[SubPoint; 3], clip: PixelRect, out: &mut [Span]) -
     if a.y > b.y {
         core::mem::swap(&mut a, &mut b);
     }
-    // The middle vertex is right of the long edge a -> c when twice the
-    // signed area, `(b - a) x (c - a)`, is positive: the two products are
-    // compared rather than subtracted, and only that one bit stays live.
-    // Within the guard band the edge vectors fit i32. Neither a zero area
-    // nor an empty clip is tested: a triangle of zero area has its edges
-    // on one line, so each row's left and right columns are equal and
-    // every span is empty (and `may_cover` may reject it), and an empty
-    // clip's rows are empty and its spans clamped empty (a triangle
-    // within its columns then lies within one column, whose spans are
-    // empty too).
-    let long_on_left =
-        crate::math::mul_wide(b.x - a.x, c.y - a.y) > crate::math::mul_wide(c.x - a.x, b.y - a.y);
+    // Neither a zero area nor an empty clip is tested: a triangle of zero
+    // area has its edges on one line, so each row's left and right
+    // columns are equal and every span is empty (and `may_cover` may
+    // reject it), and an empty clip's rows are empty and its spans
+    // clamped empty (a triangle within its columns then lies within one
+    // column, whose spans are empty too).
     let row_top = first_centre_at_or_after(a.y).max(clip.y0);
     let row_mid = first_centre_at_or_after(b.y);
     let mut row_end = first_centre_at_or_after(c.y).min(clip.y1);
@@ -287,11 +281,7 @@ pub(crate) fn find_spans(v: &[SubPoint; 3], clip: PixelRect, out: &mut [Span]) -
     // centre of the clipped block strictly outside (a tile that the
     // triangle's bounding box overlaps but the triangle misses).
     if row_end - row_top > CHECK_ROWS
-        && !may_cover(
-            &[a, b, c],
-            long_on_left,
-            PixelRect::new(clip.x0, row_top, clip.x1, row_end),
-        )
+        && misses(a, b, c, PixelRect::new(clip.x0, row_top, clip.x1, row_end))
     {
         return 0;
     }
@@ -338,6 +328,12 @@ pub(crate) fn find_spans(v: &[SubPoint; 3], clip: PixelRect, out: &mut [Span]) -
         ((b, c), row_end)
     };
     if inside {
+        // The orientation in `i32`, which holds it here: the vertices lie
+        // within `16 x0 - 7 ..= 16 x1 + 8` with `x1 < PACKED_COLS`, their
+        // x differences below 2^14, and their y within `PACKED_DY` (2^16),
+        // so each product is below 2^30. (The 64-bit products, computed
+        // for every triangle before, were spilled to the stack.)
+        let long_on_left = (b.x - a.x) * (c.y - a.y) > (c.x - a.x) * (b.y - a.y);
         // Both edges set up packed straight away: fewer live values than
         // two `EdgeStepper`s packed afterwards.
         let long = Packed::new::<false>(a, c, row_top);
@@ -360,6 +356,7 @@ pub(crate) fn find_spans(v: &[SubPoint; 3], clip: PixelRect, out: &mut [Span]) -
         }
         return half_packed(out, n, stop, row_end, &mut left, &mut right);
     }
+    let long_on_left = long_on_left(a, b, c);
     let long = EdgeStepper::new::<false>(a, c, row_top);
     let short = EdgeStepper::new::<false>(p, q, row_top);
     let (mut left, mut right) = if long_on_left {
@@ -393,6 +390,27 @@ pub(crate) fn find_spans(v: &[SubPoint; 3], clip: PixelRect, out: &mut [Span]) -
     // The lower half, from `stop == row_mid`.
     lower_half(b, c, stop, long_on_left, &mut left, &mut right);
     half::<true>(out, n, stop, row_end, &mut left, &mut right, x0, x1)
+}
+
+/// Whether the middle vertex `b` (vertices sorted by y) is right of the
+/// long edge `a -> c`: twice the signed area, `(b - a) x (c - a)`, is
+/// positive. The two products are compared rather than subtracted, and
+/// only that one bit stays live. Within the guard band the edge vectors
+/// fit `i32`. A zero area gives false (see [`find_spans`]).
+#[inline(always)]
+fn long_on_left(a: SubPoint, b: SubPoint, c: SubPoint) -> bool {
+    crate::math::mul_wide(b.x - a.x, c.y - a.y) > crate::math::mul_wide(c.x - a.x, b.y - a.y)
+}
+
+/// Whether the triangle `a, b, c` (sorted by y) misses every pixel centre
+/// of `clip` ([`may_cover`]). Out of line, as only a triangle of more
+/// than [`CHECK_ROWS`] rows in a tile asks: the walk then computes the
+/// orientation only where it needs it, in `i32` for a triangle within
+/// its tile's columns (inlined, the 64-bit orientation was computed for
+/// every triangle and spilled; the M3's `demo` -26 K instructions).
+#[inline(never)]
+fn misses(a: SubPoint, b: SubPoint, c: SubPoint, clip: PixelRect) -> bool {
+    !may_cover(&[a, b, c], long_on_left(a, b, c), clip)
 }
 
 /// Starts the lower half at `row`: the short edge becomes `b -> c`, on
