@@ -474,8 +474,8 @@ fn half<const REST: bool>(
                 break;
             };
             *o = s;
-            let k = (s.x0 < s.x1) as usize;
-            rest = &mut r[k..];
+            // A select of the two slices (see `half_packed`).
+            rest = if s.x0 < s.x1 { &mut r[1..] } else { r };
         } else {
             if let Some(o) = out.get_mut(n) {
                 *o = s;

@@ -128,8 +128,9 @@ pub(super) fn half_packed(
             break;
         };
         *o = s;
-        let k = (s.x0 < s.x1) as usize;
-        rest = &mut r[k..];
+        // A select of the two slices, which Thumb-2 predicates (two adds),
+        // where `&mut r[k..]` of a 0 or 1 took six instructions.
+        rest = if s.x0 < s.x1 { &mut r[1..] } else { r };
         lp += ls;
         if lp >= 0 {
             lp -= ld;
