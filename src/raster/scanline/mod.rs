@@ -211,22 +211,31 @@ const CHECK_ROWS: i32 = 16;
 
 /// Whether the triangle `v`, of positive twice signed area when
 /// `positive` (negative otherwise; zero covers nothing, whatever this
-/// says), may cover a pixel centre of `clip`: false only when every
-/// centre of `clip` lies strictly outside one of its edges, which no
-/// fill-rule tie can change. A cheap test (one corner per edge) that lets
-/// a tile skip the row walk of a triangle whose bounding box merely
+/// says), may cover a pixel centre of `clip`: false only when no centre
+/// of `clip` can be covered, as every centre of its part within 2^20
+/// pixels of the origin lies strictly outside one of its edges (which no
+/// fill-rule tie can change), and the triangle, within the guard band,
+/// covers none beyond. A cheap test (one corner per edge) that lets a
+/// tile skip the row walk of a triangle whose bounding box merely
 /// overlaps it.
+///
+/// The clip so clamped, the corners' offsets from a vertex fit `i32`
+/// (below 2^25 sub-pixels), as do the edge vectors (2^19): each edge's
+/// test is two 32 x 32-bit products (the `i64` ones took 400 bytes of
+/// the OLED firmware's flash).
 #[inline]
 fn may_cover(v: &[SubPoint; 3], positive: bool, clip: PixelRect) -> bool {
-    if clip.is_empty() {
+    const L: i32 = 1 << 20;
+    let (x0, x1) = (clip.x0.clamp(-L, L), clip.x1.clamp(-L, L));
+    let (y0, y1) = (clip.y0.clamp(-L, L), clip.y1.clamp(-L, L));
+    if x0 >= x1 || y0 >= y1 {
         return false;
     }
-    let (s, h) = (SUBPIXEL as i64, HALF_PIXEL as i64);
-    let (xl, xh) = (clip.x0 as i64 * s + h, (clip.x1 as i64 - 1) * s + h);
-    let (yl, yh) = (clip.y0 as i64 * s + h, (clip.y1 as i64 - 1) * s + h);
+    let (xl, xh) = (x0 * SUBPIXEL + HALF_PIXEL, (x1 - 1) * SUBPIXEL + HALF_PIXEL);
+    let (yl, yh) = (y0 * SUBPIXEL + HALF_PIXEL, (y1 - 1) * SUBPIXEL + HALF_PIXEL);
     for k in 0..3 {
         let (p, q) = (v[k], v[(k + 1) % 3]);
-        let (mut ex, mut ey) = (q.x as i64 - p.x as i64, q.y as i64 - p.y as i64);
+        let (mut ex, mut ey) = (q.x - p.x, q.y - p.y);
         // E(c) = ex (c.y - p.y) - ey (c.x - p.x) has the sign of the area on
         // the inner side; flip it so the inner side is positive.
         if !positive {
@@ -235,7 +244,7 @@ fn may_cover(v: &[SubPoint; 3], positive: bool, clip: PixelRect) -> bool {
         // The corner centre where E is largest.
         let cx = if ey < 0 { xh } else { xl };
         let cy = if ex > 0 { yh } else { yl };
-        if ex * (cy - p.y as i64) - ey * (cx - p.x as i64) < 0 {
+        if crate::math::mul_wide(ex, cy - p.y) < crate::math::mul_wide(ey, cx - p.x) {
             return false;
         }
     }
