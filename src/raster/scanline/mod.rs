@@ -444,7 +444,11 @@ fn long_on_left(a: SubPoint, b: SubPoint, c: SubPoint) -> bool {
 /// orientation only where it needs it, in `i32` for a triangle within
 /// its tile's columns (inlined, the 64-bit orientation was computed for
 /// every triangle and spilled; the M3's `demo` -26 K instructions).
-#[inline(never)]
+///
+/// A 64-bit host has the registers for it inline (out of line there,
+/// x86-64 `demo` measured +3 %, `fill` +3.6 %).
+#[cfg_attr(target_pointer_width = "64", inline(always))]
+#[cfg_attr(not(target_pointer_width = "64"), inline(never))]
 fn misses(a: SubPoint, b: SubPoint, c: SubPoint, clip: PixelRect) -> bool {
     !may_cover(&[a, b, c], long_on_left(a, b, c), clip)
 }
