@@ -61,15 +61,6 @@ impl<C, F: ShaderSet<C>, const TW: usize, const TH: usize> Target<'_, C, F, TW, 
 where
     C: From<Rgb888>,
 {
-    /// Notes the rows of the first `count` spans of `found` (at least
-    /// one, top to bottom), about to be drawn: per triangle and tile,
-    /// never per pixel.
-    #[inline(always)]
-    fn drawn(&mut self, count: usize) {
-        let last = self.found[..count].last().map_or(i32::MIN, |s| s.j);
-        self.rows = (self.rows.0.min(self.found[0].j), self.rows.1.max(last));
-    }
-
     /// Records in the tile the rows drawn (see [`TileBuffer::written`]).
     #[inline(always)]
     pub(super) fn finish(&mut self) {
@@ -81,6 +72,19 @@ where
                 .written((first - y0) as usize, (last - y0) as usize);
         }
     }
+}
+
+/// The first `count` spans of `found`, about to be drawn, with their
+/// rows noted in `rows` (see [`Target::rows`]); `None` when there is
+/// none. Per triangle and tile, never per pixel. (`count` is at most
+/// `TH`, a span per row: taken by `get`, without a panic's call and
+/// location in flash.)
+#[inline(always)]
+fn drawn<'f>(found: &'f [Span], count: usize, rows: &mut (i32, i32)) -> Option<&'f [Span]> {
+    let found = found.get(..count)?;
+    let (first, last) = (found.first()?, found.last()?);
+    *rows = (rows.0.min(first.j), rows.1.max(last.j));
+    Some(found)
 }
 
 /// Draws one triangle into the tile, Gouraud or flat shaded (`flat` is the
@@ -105,23 +109,15 @@ where
 {
     let v = [sv[0].xy(), sv[1].xy(), sv[2].xy()];
     let count = (to.shaders.find)(&v, to.rect, &mut to.found);
-    if count == 0 {
+    let Some(found) = drawn(&to.found, count, &mut to.rows) else {
         return 0;
-    }
-    to.drawn(count);
+    };
     let shade = if gouraud {
         to.shaders.gouraud
     } else {
         to.shaders.flat
     };
-    shade(
-        to.tile,
-        to.rect,
-        sv,
-        flat,
-        &to.found[..count],
-        to.shaders.out.test,
-    )
+    shade(to.tile, to.rect, sv, flat, found, to.shaders.out.test)
 }
 
 /// [`fill`] for a triangle coloured by a fragment shader.
@@ -139,19 +135,10 @@ where
 {
     let v = tri.corners.0.map(|v| v.xy());
     let count = (pass.find)(&v, to.rect, &mut to.found);
-    if count == 0 {
+    let Some(found) = drawn(&to.found, count, &mut to.rows) else {
         return 0;
-    }
-    to.drawn(count);
-    (pass.shade)(
-        to.tile,
-        to.rect,
-        tri,
-        &to.found[..count],
-        pass.shader,
-        texture,
-        pass.out,
-    )
+    };
+    (pass.shade)(to.tile, to.rect, tri, found, pass.shader, texture, pass.out)
 }
 
 /// The first phase of [`fill`] with the scanline rasterizer: records the
@@ -222,9 +209,16 @@ where
     })
 }
 
-/// Calls `shade` with the tile's colour and depth rows, the place of each
-/// span of `found` and the fragments written so far, which it returns with
-/// its own added (so that a span loop can count in the running total).
+/// Calls `shade` with the tile's colour and depth buffers, the place of
+/// each span of `found` and the fragments written so far, which it returns
+/// with its own added (so that a span loop can count in the running total).
+///
+/// The buffers are passed whole, as one slice each, and each span's
+/// [`SpanPos::ox`] is the screen column that the slice's first element
+/// would have on the span's row: the span loop's one range check then
+/// holds the span in the tile, where a row's index took a check (and a
+/// panic's call and location in flash) of its own. The same instructions
+/// a span on the M3.
 #[inline(always)]
 fn each_span<C, const TW: usize, const TH: usize>(
     tile: &mut TileBuffer<C, TW, TH>,
@@ -233,15 +227,18 @@ fn each_span<C, const TW: usize, const TH: usize>(
     mut shade: impl FnMut(&mut [C], &mut [u16], SpanPos, u32) -> u32,
 ) -> u32 {
     let mut n = 0;
+    let (color, depth) = (tile.color.as_flattened_mut(), tile.depth.as_flattened_mut());
     for &Span { j, x0, x1 } in found {
-        let row = (j - rect.y0) as usize;
+        // Within the tile (the walk clips the spans to it): at most
+        // `TW * TH`, far below 2^31.
+        let row = (j - rect.y0) * TW as i32;
         let sp = SpanPos {
-            ox: rect.x0,
+            ox: rect.x0 - row,
             j,
             x0,
             x1,
         };
-        n = shade(&mut tile.color[row][..], &mut tile.depth[row][..], sp, n);
+        n = shade(color, depth, sp, n);
     }
     n
 }

@@ -148,8 +148,9 @@ impl DepthFn for DepthTest {
     }
 }
 
-/// Where a span lies: screen row `j`, columns `x0..x1`, in a tile row whose
-/// first pixel is screen column `ox`.
+/// Where a span lies: screen row `j`, columns `x0..x1`, in a slice of
+/// pixels whose first would be screen column `ox` on row `j` (a tile row
+/// starting at `ox`, or the whole tile: see `render::fill::each_span`).
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct SpanPos {
     pub ox: i32,

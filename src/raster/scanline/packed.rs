@@ -1,26 +1,39 @@
 //! The scanline walk's edges packed into one word each ([`Packed`]), and
 //! the row loop that steps them ([`half_packed`]): how a 32-bit core walks
-//! a triangle that lies within its tile's columns.
+//! a triangle whose columns lie within `0..PACKED_COLS`, without clamps
+//! when they lie within its tile's columns too.
 
 use super::{ceil_div_rem32, far_start, EdgeStepper};
 use crate::raster::{Span, SubPoint, HALF_PIXEL, SUBPIXEL, SUBPIXEL_BITS};
 use core::num::NonZeroU32;
 
 /// Bits of a [`Packed`] edge's column.
-const PACKED_BITS: u32 = 10;
+const COL_BITS: u32 = 10;
+
+/// Where a [`Packed`] edge's column starts: bit 1, not 0, so that the
+/// column is read by one bit-field extract (`ubfx` on Arm), which leaves
+/// the word in its register. A mask of the low bits made the M3 copy each
+/// word before clearing its upper bits in place (two instructions a row).
+const COL_SHIFT: u32 = 1;
+
+/// Bits below a [`Packed`] edge's error term: the column and bit 0
+/// (always clear).
+const PACKED_BITS: u32 = COL_BITS + COL_SHIFT;
 
 /// Columns a [`Packed`] edge may take, `0..PACKED_COLS`, less one: a step
 /// passes through its column plus one before a carry takes it back.
-pub(super) const PACKED_COLS: i32 = (1 << PACKED_BITS) - 1;
+pub(super) const PACKED_COLS: i32 = (1 << COL_BITS) - 1;
 
 /// Height in sub-pixels up to which an edge can be [`Packed`]: its error
-/// term, shifted, and a step's column change (below 2^14 for an edge
-/// within `PACKED_COLS` columns) then fit an `i32` with room to spare.
-pub(super) const PACKED_DY: i32 = 1 << 16;
+/// term (below `SUBPIXEL * PACKED_DY`, 2^19), shifted, and a step's column
+/// change (below 2^14 for an edge within `PACKED_COLS` columns) then fit
+/// an `i32` with room to spare. 2,048 pixels: taller edges are walked as
+/// [`EdgeStepper`]s.
+pub(super) const PACKED_DY: i32 = 1 << 15;
 
 /// An [`EdgeStepper`] whose columns lie within `0..PACKED_COLS` (a
-/// triangle within a tile's columns), with its column in the low
-/// [`PACKED_BITS`] of one word and its error term above: a row's step is
+/// triangle within a tile's columns), with its column in [`COL_BITS`]
+/// from bit [`COL_SHIFT`] of one word and its error term above: a row's step is
 /// one add, and the carry one compare and one subtract, with three words
 /// live per edge rather than five, so that the row loop of a 32-bit core
 /// keeps both edges in registers.
@@ -33,11 +46,12 @@ pub(super) const PACKED_DY: i32 = 1 << 16;
 /// row may take the column out of its bits, and that value is never read.
 #[derive(Clone, Copy, Debug)]
 pub(super) struct Packed {
-    /// `err << PACKED_BITS | col`.
+    /// `err << PACKED_BITS | col << COL_SHIFT`.
     p: i32,
-    /// `step_err << PACKED_BITS + step_col`.
+    /// `step_err << PACKED_BITS + step_col << COL_SHIFT`.
     s: i32,
-    /// `den << PACKED_BITS + 1`: a carry takes one column back.
+    /// `den << PACKED_BITS + 1 << COL_SHIFT`: a carry takes one column
+    /// back.
     d: i32,
 }
 
@@ -49,9 +63,9 @@ impl EdgeStepper {
         debug_assert!((0..PACKED_COLS).contains(&self.col));
         debug_assert!(self.den <= PACKED_DY * SUBPIXEL);
         Packed {
-            p: (self.err << PACKED_BITS) | self.col,
-            s: (self.step_err << PACKED_BITS) + self.step_col,
-            d: (self.den << PACKED_BITS) + 1,
+            p: (self.err << PACKED_BITS) | (self.col << COL_SHIFT),
+            s: (self.step_err << PACKED_BITS) + (self.step_col << COL_SHIFT),
+            d: (self.den << PACKED_BITS) + (1 << COL_SHIFT),
         }
     }
 }
@@ -62,7 +76,8 @@ impl Packed {
     ///
     /// The start's error term and column come packed from the numerator
     /// `n` of the near start with no test of its sign: with `P = 16 Q +
-    /// R`, the word `-n << PACKED_BITS` plus `Q + 1` is negative exactly
+    /// R`, the word `-n << PACKED_BITS` plus `Q + 1 << COL_SHIFT` is
+    /// negative exactly
     /// when the ceiling is `Q + 1` (`n > 0`), the word of the error term
     /// `-n` and that column; otherwise the carry of the row loop, taking
     /// `d` off, gives the error term `-n - den` and the column `Q`.
@@ -74,16 +89,20 @@ impl Packed {
         let dy = NonZeroU32::new(dy as u32).unwrap_or(NonZeroU32::MIN);
         let (step_col, r) = ceil_div_rem32(dx, dy);
         const SHIFT: u32 = PACKED_BITS + SUBPIXEL_BITS;
-        // `den << PACKED_BITS` plus one, `den = SUBPIXEL dy` at most 2^20.
-        let d = ((dy.get() as i32) << SHIFT) + 1;
-        let s = (r << SHIFT) + step_col;
+        // `den << PACKED_BITS` plus one column, `den = SUBPIXEL dy` at
+        // most 2^19.
+        let d = ((dy.get() as i32) << SHIFT) + (1 << COL_SHIFT);
+        let s = (r << SHIFT) + (step_col << COL_SHIFT);
         let t = row * SUBPIXEL + HALF_PIXEL - p.y;
         debug_assert!(!NEAR || (t as u32) < SUBPIXEL as u32);
         let w = if NEAR || (t as u32) < SUBPIXEL as u32 {
             // As in `EdgeStepper::new`: |n| < den.
             let big_p = p.x - HALF_PIXEL + t * step_col;
             let n = dy.get() as i32 * (big_p & (SUBPIXEL - 1)) - t * r;
-            let w = (-n << PACKED_BITS) + (big_p >> SUBPIXEL_BITS) + 1;
+            // The column `Q + 1` from bit 1 by one shift: bit 0 takes bit
+            // 3 of `P`, which no step or carry changes (both are even),
+            // and which the row loop never reads.
+            let w = (-n << PACKED_BITS) + (big_p >> (SUBPIXEL_BITS - COL_SHIFT)) + (1 << COL_SHIFT);
             if w >= 0 {
                 w - d
             } else {
@@ -92,34 +111,44 @@ impl Packed {
         } else {
             let (col, rem) = far_start(p, dx, dy, t);
             // The error term `rem - den`, and the column.
-            ((rem - (d >> PACKED_BITS)) << PACKED_BITS) | col
+            ((rem - (d >> PACKED_BITS)) << PACKED_BITS) | (col << COL_SHIFT)
         };
-        debug_assert_eq!(w, EdgeStepper::new::<false>(p, q, row).packed().p);
+        debug_assert_eq!(w & !1, EdgeStepper::new::<false>(p, q, row).packed().p);
         Self { p: w, s, d }
     }
 }
 
-/// [`half`](super::half) for [`Packed`] edges, without clamps (the triangle lies
-/// within the columns), as a 32-bit core walks most small triangles.
+/// [`half`](super::half) for [`Packed`] edges: with `CLAMP`, the spans
+/// clipped to columns `x0..x1` (a triangle across its tile's side
+/// columns), without (a triangle within them; `x0` and `x1` unused), as a
+/// 32-bit core walks most triangles.
 #[inline(always)]
-pub(super) fn half_packed(
+#[allow(clippy::too_many_arguments)]
+pub(super) fn half_packed<const CLAMP: bool>(
     out: &mut [Span],
     n: usize,
     row: i32,
     stop: i32,
     left: &mut Packed,
     right: &mut Packed,
+    x0: i32,
+    x1: i32,
 ) -> usize {
-    const MASK: i32 = (1 << PACKED_BITS) - 1;
+    const MASK: i32 = (1 << COL_BITS) - 1;
     let (mut lp, ls, ld) = (left.p, left.s, left.d);
     let (mut rp, rs, rd) = (right.p, right.s, right.d);
     let len = out.len();
     let mut rest = &mut out[n.min(len)..];
     for j in row..stop {
-        let s = Span {
-            j,
-            x0: lp & MASK,
-            x1: rp & MASK,
+        let (c0, c1) = ((lp >> COL_SHIFT) & MASK, (rp >> COL_SHIFT) & MASK);
+        let s = if CLAMP {
+            Span {
+                j,
+                x0: c0.max(x0),
+                x1: c1.min(x1),
+            }
+        } else {
+            Span { j, x0: c0, x1: c1 }
         };
         // Written whether empty or not, kept only if not: no branch.
         let r = core::mem::take(&mut rest);
@@ -128,8 +157,9 @@ pub(super) fn half_packed(
             break;
         };
         *o = s;
-        let k = (s.x0 < s.x1) as usize;
-        rest = &mut r[k..];
+        // A select of the two slices, which Thumb-2 predicates (two adds),
+        // where `&mut r[k..]` of a 0 or 1 took six instructions.
+        rest = if s.x0 < s.x1 { &mut r[1..] } else { r };
         lp += ls;
         if lp >= 0 {
             lp -= ld;
