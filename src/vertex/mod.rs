@@ -48,6 +48,7 @@ pub use setup::{DrawSetup, VertexError, MAX_LIGHTS};
 
 use crate::math::{div_digits, WDivisor};
 use crate::raster::{SubPoint, SUBPIXEL};
+use crate::shade::Recip16;
 use core::num::{NonZeroU32, NonZeroU64};
 
 /// Outside `x >= -w`.
@@ -362,7 +363,13 @@ impl Viewport {
     #[inline(always)]
     pub(crate) fn project_inside(&self, p: &[i32; 4]) -> (SubPoint, u16) {
         if !LONG_DIVISION {
-            return self.project(p);
+            if !crate::math::SPLIT {
+                return self.project(p);
+            }
+            return match NonZeroU32::new(p[3] as u32) {
+                Some(w) if w.get() >> DIGITS_W_BITS == 0 => self.project_recip(p, w),
+                _ => self.project_wide(p[0], p[1], p[2], p[3]),
+            };
         }
         match NonZeroU32::new(p[3] as u32) {
             Some(w) if w.get() >> DIGITS_W_BITS == 0 => self.project_digits(p, w),
@@ -408,6 +415,61 @@ impl Viewport {
         // floor((2w 65535 + w) / w) / 2 = 65535, no clamp.
         let n = (p[2] + w.get() as i32) as u32 as u64 * 65_535;
         let z = div_digits(n + w.get() as u64, w, k) >> 1;
+        debug_assert!(z <= 65_535);
+        (SubPoint::new(x, y), z as u16)
+    }
+
+    /// [`project`](Self::project) of a vertex without [`MUST_CLIP`] bits
+    /// and `w < 2^23` by `w`'s 16-bit reciprocal ([`Recip16`]), for
+    /// ARMv6-M, which has neither a divide instruction nor a 32 x 32 ->
+    /// 64-bit multiply: every quotient is three digits of a long division
+    /// ([`Recip16::digit`]: two `MULS` and one correction each), with no
+    /// 64-bit product, where `w`'s 32-bit reciprocal and its 64-bit
+    /// multiply-highs took about 350 instructions a vertex more. The
+    /// quotients are the same.
+    ///
+    /// x's quotient `floor((|x| hw + e) / w)` (`e = floor(w / 2)`,
+    /// `|x| <= 4w`, `hw <= 2^15`) from `|x| = a w + b` (`b < w`) and `hw =
+    /// c1 2^7 + c0` (`c1 <= 2^8`, `c0 < 2^7`): with `b c1 = d1 w + r1`,
+    /// `|x| hw + e = (a hw + d1 2^7) w + (r1 2^7 + b c0 + e)`, the last
+    /// term below `w (2^8 + 1)`; so the quotient is `a hw + d1 2^7 +
+    /// floor((r1 2^7 + b c0 + e) / w)`. Likewise y. Depth's `floor((c
+    /// 65535 + w) / w)` (`c = z + w` in `0..=2w`) from `c = a w + b` and
+    /// `b 2^8 = d1 w + r1`: `c 65535 + w = (a 65535 + d1 2^8) w + (r1 2^8
+    /// + w - b)`, the last term below `w (2^8 + 1)`. Every digit's dividend
+    /// is below `w 2^12` (within [`Recip16::digit`]'s range) and, with
+    /// `w < 2^23`, below `2^32`.
+    #[inline(always)]
+    #[cfg_attr(not(microraster_narrow_multiply), allow(dead_code))]
+    pub(crate) fn project_recip(&self, p: &[i32; 4], w: NonZeroU32) -> (SubPoint, u16) {
+        debug_assert!(w.get() >> DIGITS_W_BITS == 0 && w.get() as i64 >= W_MIN);
+        let f = Recip16::new(w);
+        let wu = w.get();
+        let half = wu / 2;
+        // floor((m c + half) / w) for m <= 4w, c <= 2^15.
+        let mul_div = |m: u32, c: u32| -> u32 {
+            let (a, b) = f.digit(m);
+            let (d1, r1) = f.digit(b * (c >> 7));
+            let (d0, _) = f.digit((r1 << 7) + b * (c & 127) + half);
+            a * c + (d1 << 7) + d0
+        };
+        // div_round(n h, w) with the sign of n.
+        let round = |n: i32, h: u32| -> i32 {
+            let q = mul_div(n.unsigned_abs(), h) as i32;
+            if n < 0 {
+                -q
+            } else {
+                q
+            }
+        };
+        let x = self.half_w as i32 + round(p[0], self.half_w as u32);
+        let y = self.half_h as i32 - round(p[1], self.half_h as u32);
+        // -w <= z <= w: c in 0..=2w, and the quotient at most 2 * 65535 + 1.
+        let c = (p[2] + wu as i32) as u32;
+        let (a, b) = f.digit(c);
+        let (d1, r1) = f.digit(b << 8);
+        let (d0, _) = f.digit((r1 << 8) + (wu - b));
+        let z = (a * 65_535 + (d1 << 8) + d0) >> 1;
         debug_assert!(z <= 65_535);
         (SubPoint::new(x, y), z as u16)
     }
@@ -678,6 +740,7 @@ mod tests {
                 if w >> DIGITS_W_BITS == 0 {
                     let nz = NonZeroU32::new(w as u32).unwrap();
                     assert_eq!(vp.project_digits(&p, nz), vp.project(&p), "{p:?}");
+                    assert_eq!(vp.project_recip(&p, nz), vp.project(&p), "{p:?}");
                 }
             }
         }
