@@ -25,6 +25,9 @@ pub(super) struct FrameState<'a> {
     pub(super) eye: crate::math::Vec3,
     /// Cull draws outside the frustum ([`Config::frustum_cull`](super::Config::frustum_cull)).
     pub(super) cull_draws: bool,
+    /// The draws the vertex stage found wholly outside the frustum (bit
+    /// `d` for draw `d`, of the first 64).
+    pub(super) outside: u64,
     /// The order draws are visited in, when sorted
     /// ([`Config::sort_draws`](super::Config::sort_draws)); `None` for submission order.
     pub(super) order: Option<DrawOrder>,
@@ -208,15 +211,25 @@ impl FrameState<'_> {
         }
     }
 
-    /// The view frustum in the model space of draw `d`, when culling is on
-    /// (the same answers every time it is asked: the tests are
-    /// deterministic, so binning, rescans and the vertex stage agree).
-    pub(super) fn frustum<P: Features>(&self, d: usize) -> Option<Frustum> {
+    /// Whether draw `d` lies wholly outside the view frustum, and, when
+    /// culling is on and the draw has clusters, its frustum in the draw's
+    /// model space to test them (the same answers every time it is asked:
+    /// the tests are deterministic, so binning, rescans and the vertex
+    /// stage agree). For the first 64 draws without clusters the answer
+    /// is the vertex stage's ([`FrameState::outside`]): a frustum costs a
+    /// `Mat4` product, 16 `f32` divisions and six planes' set-up.
+    pub(super) fn view_test<P: Features>(&self, d: usize) -> (bool, Option<Frustum>) {
         // Known at compile time without culling: no frustum code linked.
-        match P::CULL && self.cull_draws {
-            true => Frustum::new(&self.view_proj, &self.draws[d]),
-            false => None,
+        if !(P::CULL && self.cull_draws) {
+            return (false, None);
         }
+        let draw = &self.draws[d];
+        if d < 64 && draw.mesh.clusters().is_none() {
+            return (self.outside >> d & 1 != 0, None);
+        }
+        let frustum = Frustum::new(&self.view_proj, draw);
+        let outside = frustum.as_ref().is_some_and(|f| f.excludes_mesh(draw.mesh));
+        (outside, frustum)
     }
 
     /// The fixed-point set-up of draw `d`, from `cache` or computed again
@@ -236,8 +249,10 @@ impl FrameState<'_> {
     /// [`setup`](Self::setup) when the cache holds another draw's.
     #[inline(never)]
     fn setup_again(&self, d: usize, cache: &mut SetupCache) -> Option<()> {
+        let draw = &self.draws[d];
+        let mvp = (self.view_proj * draw.transform).normalized();
         let s = with_lighting(self.light.as_ref(), self.lighting, |lighting| {
-            (self.make_setup)(&self.draws[d], &self.view_proj, lighting, self.eye)
+            (self.make_setup)(draw, mvp.as_ref(), lighting, self.eye)
         })
         .ok()?;
         *cache = Some((d, s));

@@ -150,13 +150,27 @@ impl DrawSetup {
         lighting: Option<&Lighting<'_>>,
         eye: Vec3,
     ) -> Result<Self, VertexError> {
+        let mvp = (*view_proj * draw.transform).normalized();
+        Self::from_normalized::<GENERAL>(draw, mvp.as_ref(), lighting, eye)
+    }
+
+    /// [`with_lighting`](Self::with_lighting) from `view_proj *
+    /// draw.transform` already [`normalized`](Mat4::normalized) (`None`
+    /// where that failed): the vertex stage makes the product once for
+    /// the set-up and the draw's frustum.
+    pub(crate) fn from_normalized<const GENERAL: bool>(
+        draw: &Draw<'_>,
+        mvp: Option<&Mat4>,
+        lighting: Option<&Lighting<'_>>,
+        eye: Vec3,
+    ) -> Result<Self, VertexError> {
         let m = &draw.transform;
         if !m.is_finite() {
             return Err(VertexError::BadMatrix);
         }
         // Normalized: the same picture whatever the scene's units.
-        let mvp = (*view_proj * *m)
-            .to_fixed_normalized()
+        let mvp = mvp
+            .and_then(Mat4::fixed_whole)
             .ok_or(VertexError::BadMatrix)?;
         use embedded_graphics::prelude::RgbColor;
         let material = &draw.material;
