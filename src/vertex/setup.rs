@@ -100,15 +100,30 @@ impl Lambert {
             // floor(x / 65,280) = floor(floor(x / 256) / 255): ARMv6-M,
             // without a multiply-high, divides by a constant through the
             // library (about a hundred instructions), `div255` in eight.
-            let q = if cfg!(microraster_narrow_multiply) {
-                crate::light::div255(x >> 8)
+            out[c] = if cfg!(microraster_narrow_multiply) {
+                crate::light::div255(x >> 8).min(255) as u8
+            } else if cfg!(target_pointer_width = "32") {
+                div65280_sat(x)
             } else {
-                x / 65_280
+                (x / 65_280).min(255) as u8
             };
-            out[c] = q.min(255) as u8;
         }
         out
     }
+}
+
+/// `floor(x / 65,280)`, at most 255, for `x < 2^31` (the Lambert colour's
+/// `x` is below 2^26): the quotient by the multiply-high LLVM makes of it
+/// (`floor(x 0x8080_8081 / 2^47)`, exact for every `u32`), its upper word
+/// taken as signed (below 2^31 for such `x`, so the shift is the same) so
+/// that the clamp to `0..=255` is one `USAT` on ARMv7-M, where the
+/// unsigned minimum took a compare, an `IT` and a conditional shift a
+/// channel.
+#[inline(always)]
+fn div65280_sat(x: u32) -> u8 {
+    debug_assert!(x < 1 << 31);
+    let high = ((x as u64 * 0x8080_8081) >> 32) as u32 as i32;
+    (high >> 15).clamp(0, 255) as u8
 }
 
 /// `(d >> 24).clamp(0, 256)` from `d`'s upper word, which is 0 exactly
@@ -349,6 +364,24 @@ mod tests {
         }
         for _ in 0..100_000 {
             check(((next(1 << 32) << 32 | next(1 << 32)) as i64) >> next(64));
+        }
+    }
+
+    /// The saturated quotient by 65,280 of the Lambert colour is the
+    /// division's, for every `x` below 2^31 (every 127th value, the ends
+    /// of each quotient's range, and the top of the range).
+    #[test]
+    fn div65280_sat_is_the_clamped_quotient() {
+        let check = |x: u32| assert_eq!(div65280_sat(x), (x / 65_280).min(255) as u8, "{x}");
+        for x in (0..1u32 << 31).step_by(127) {
+            check(x);
+        }
+        for q in 1..32_896u32 {
+            check(q * 65_280);
+            check(q * 65_280 - 1);
+        }
+        for x in (1 << 31) - 1_000..1 << 31 {
+            check(x);
         }
     }
 
