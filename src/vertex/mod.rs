@@ -302,6 +302,10 @@ pub struct Viewport {
     half_w: i64,
     /// Half the height, in sub-pixels.
     half_h: i64,
+    /// [`Viewport::project_inside`] divides by a `w` below this in 32 bits
+    /// ([`Viewport::project_digits`]): below `2^23`, and such that `(4 w h
+    /// + w / 2) < 2^32` for either half side `h`.
+    short_w: u32,
 }
 
 impl Viewport {
@@ -309,9 +313,13 @@ impl Viewport {
     /// (checked by the renderer).
     pub fn new(width: u32, height: u32) -> Self {
         debug_assert!((1..=MAX_VIEWPORT).contains(&width) && (1..=MAX_VIEWPORT).contains(&height));
+        let (half_w, half_h) = (width * SUBPIXEL as u32 / 2, height * SUBPIXEL as u32 / 2);
+        // w (4 h + 1) <= 2^32 - 1 bounds 4 w h + w / 2.
+        let short_w = (u32::MAX / (4 * half_w.max(half_h) + 1) + 1).min(1 << DIGITS_W_BITS);
         Self {
-            half_w: width as i64 * SUBPIXEL as i64 / 2,
-            half_h: height as i64 * SUBPIXEL as i64 / 2,
+            half_w: half_w as i64,
+            half_h: half_h as i64,
+            short_w,
         }
     }
 
@@ -372,13 +380,14 @@ impl Viewport {
             };
         }
         match NonZeroU32::new(p[3] as u32) {
-            Some(w) if w.get() >> DIGITS_W_BITS == 0 => self.project_digits(p, w),
+            Some(w) if w.get() < self.short_w => self.project_digits(p, w),
             _ => self.project_wide(p[0], p[1], p[2], p[3]),
         }
     }
 
     /// [`project`](Self::project), out of line: for the rare vertex of
-    /// [`project_inside`](Self::project_inside) with `w >= 2^23`. (The
+    /// [`project_inside`](Self::project_inside) with `w` from `short_w` up
+    /// (for 320 x 240 and a normalized matrix, more than 6.4 units). (The
     /// coordinates by value: a reference would keep the vertex in memory.)
     #[inline(never)]
     #[cold]
@@ -387,21 +396,23 @@ impl Viewport {
     }
 
     /// [`project`](Self::project) of a vertex without [`MUST_CLIP`] bits
-    /// and `w < 2^23` by 32-bit long division: every dividend is below
-    /// `(4 * 2^15 + 2) w < 2^(l + 18)`, `l` the bits of `w`, so below
-    /// `2^(32 + k)` with `k = 32 - l >= 9` its leading zeros, as
-    /// [`div_digits`] needs; its quotients are below `2^18`.
+    /// and `w` below `short_w` (and `2^23`) by 32-bit division: x's and
+    /// y's dividends `|x| h + w / 2 <= 4 w h + w / 2` fit 32 bits, so
+    /// each quotient is one division (where the long division below took
+    /// two and their shifts); depth's dividend is below `(2 * 65535 + 1)
+    /// w < 2^(l + 17)`, `l` the bits of `w`, so below `2^(32 + k)` with `k
+    /// = 32 - l >= 9` its leading zeros, as [`div_digits`] needs.
     #[inline(always)]
     pub(crate) fn project_digits(&self, p: &[i32; 4], w: NonZeroU32) -> (SubPoint, u16) {
-        debug_assert!(w.get() >> DIGITS_W_BITS == 0 && w.get() as i64 >= W_MIN);
+        debug_assert!(w.get() < self.short_w && w.get() as i64 >= W_MIN);
         let k = w.leading_zeros();
-        let half = w.get() as u64 / 2;
+        let half = w.get() / 2;
         // Half a viewport side in sub-pixels is at most 2^15; |x|, |y| <=
-        // 4w < 2^25.
-        let (hw, hh) = (self.half_w as u32 as u64, self.half_h as u32 as u64);
+        // 4w.
+        let (hw, hh) = (self.half_w as u32, self.half_h as u32);
         // div_round(n hw, w) with the sign of n.
-        let round = |n: i32, h: u64| -> i32 {
-            let q = div_digits(n.unsigned_abs() as u64 * h + half, w, k) as i32;
+        let round = |n: i32, h: u32| -> i32 {
+            let q = ((n.unsigned_abs() * h + half) / w) as i32;
             if n < 0 {
                 -q
             } else {
@@ -726,6 +737,8 @@ mod tests {
                 let w = match i % 8 {
                     0 => W_MIN + next(16) as i64,
                     1 => (1 << DIGITS_W_BITS) - 1 - next(4) as i64,
+                    // The largest w of the 32-bit quotients.
+                    2 => vp.short_w as i64 - 1 - next(4) as i64,
                     _ => W_MIN + (next(1 << 28) >> next(24)) as i64,
                 } as i32;
                 let g = GUARD_K as i32 * w;
@@ -737,9 +750,11 @@ mod tests {
                 let p = [c(g), c(g), c(w), w];
                 assert_eq!(outcode(&p) & MUST_CLIP, 0, "{p:?}");
                 assert_eq!(vp.project_inside(&p), vp.project(&p), "{p:?}");
-                if w >> DIGITS_W_BITS == 0 {
-                    let nz = NonZeroU32::new(w as u32).unwrap();
+                let nz = NonZeroU32::new(w as u32).unwrap();
+                if nz.get() < vp.short_w {
                     assert_eq!(vp.project_digits(&p, nz), vp.project(&p), "{p:?}");
+                }
+                if w >> DIGITS_W_BITS == 0 {
                     assert_eq!(vp.project_recip(&p, nz), vp.project(&p), "{p:?}");
                 }
             }
