@@ -80,17 +80,27 @@ impl Lambert {
     #[inline(always)]
     fn shade(&self, n: crate::mesh::Vec3Fx, base: [u8; 3]) -> [u8; 3] {
         use crate::math::mul_wide;
-        let d = mul_wide(n[0].to_bits(), self.dir[0])
-            + mul_wide(n[1].to_bits(), self.dir[1])
-            + mul_wide(n[2].to_bits(), self.dir[2]);
-        // n·l in 1/256 steps, floored, clamped to [0, 1]. On 32-bit cores
-        // from d's upper word, which is 0 exactly when d >> 24 is 0 to 255
-        // (the 64-bit clamp took twice the instructions on the Cortex-M3);
-        // 64-bit ones keep the clamp, which measured fewer there.
-        let ndotl = if cfg!(target_pointer_width = "64") {
-            (d >> 24).clamp(0, 256) as u32
-        } else {
-            clamp_ndotl_words(d)
+        let n = [n[0].to_bits(), n[1].to_bits(), n[2].to_bits()];
+        let wide = || {
+            let d = mul_wide(n[0], self.dir[0])
+                + mul_wide(n[1], self.dir[1])
+                + mul_wide(n[2], self.dir[2]);
+            // n·l in 1/256 steps, floored, clamped to [0, 1]. On 32-bit
+            // cores from d's upper word, which is 0 exactly when d >> 24 is
+            // 0 to 255 (the 64-bit clamp took twice the instructions on
+            // the Cortex-M3); 64-bit ones keep the clamp, which measured
+            // fewer there.
+            if cfg!(target_pointer_width = "64") {
+                (d >> 24).clamp(0, 256) as u32
+            } else {
+                clamp_ndotl_words(d)
+            }
+        };
+        // ARMv6-M builds each 64-bit product from four 16-bit ones: a
+        // normal within ±1 takes n·l from six 32-bit products instead.
+        let ndotl = match crate::math::SPLIT {
+            true => ndotl_narrow(n, self.dir).unwrap_or_else(wide),
+            false => wide(),
         };
         let mut out = [0u8; 3];
         for c in 0..3 {
@@ -124,6 +134,26 @@ fn div65280_sat(x: u32) -> u8 {
     debug_assert!(x < 1 << 31);
     let high = ((x as u64 * 0x8080_8081) >> 32) as u32 as i32;
     (high >> 15).clamp(0, 255) as u8
+}
+
+/// The Lambert fast path's n·l, `(n·l >> 24).clamp(0, 256)`, in 32-bit
+/// products, when every `|n[i]| <= 2^16` and `|l[i]| <= 2^20`; `None`
+/// otherwise. With `n[i] = h[i] 2^8 + o[i]` (`|h[i]| <= 2^8`, `0 <= o[i] <
+/// 2^8`), `n·l = 2^8 A + B` for `A = Σ h[i] l[i]` and `B = Σ o[i] l[i]`,
+/// each below `3 2^28` in magnitude; so `floor(n·l / 2^8) = A + floor(B /
+/// 2^8)` fits `i32`, and shifting it by 16 more floors `n·l / 2^24`.
+#[inline(always)]
+fn ndotl_narrow(n: [i32; 3], l: [i32; 3]) -> Option<u32> {
+    let within = |v: i32, m: u32| v.unsigned_abs() <= m;
+    if !(n.iter().all(|&v| within(v, 1 << 16)) && l.iter().all(|&v| within(v, 1 << 20))) {
+        return None;
+    }
+    let (mut a, mut b) = (0i32, 0i32);
+    for i in 0..3 {
+        a += (n[i] >> 8) * l[i];
+        b += (n[i] & 0xff) * l[i];
+    }
+    Some(((a + (b >> 8)) >> 16).clamp(0, 256) as u32)
 }
 
 /// `(d >> 24).clamp(0, 256)` from `d`'s upper word, which is 0 exactly
@@ -382,6 +412,68 @@ mod tests {
         }
         for x in (1 << 31) - 1_000..1 << 31 {
             check(x);
+        }
+    }
+
+    /// The narrow n·l is the 64-bit one wherever it is taken: random and
+    /// extreme normals and light directions within its bounds, and just
+    /// beyond them (where it declines).
+    #[test]
+    fn narrow_ndotl_is_the_wide_one() {
+        let mut next = crate::testing::rng();
+        let wide = |n: [i32; 3], l: [i32; 3]| {
+            let d: i64 = (0..3).map(|i| n[i] as i64 * l[i] as i64).sum();
+            (d >> 24).clamp(0, 256) as u32
+        };
+        let ends = [
+            -(1 << 16) - 1,
+            -(1 << 16),
+            -(1 << 16) + 1,
+            -256,
+            -255,
+            -1,
+            0,
+            1,
+            255,
+            256,
+            (1 << 16) - 1,
+            1 << 16,
+            (1 << 16) + 1,
+        ];
+        let lends = [
+            -(1 << 20) - 1,
+            -(1 << 20),
+            -(1 << 16),
+            -1,
+            0,
+            1,
+            1 << 16,
+            1 << 20,
+            (1 << 20) + 1,
+        ];
+        for &a in &ends {
+            for &b in &ends {
+                for &c in &ends {
+                    for &l in &lends {
+                        for l in [[l, l, l], [l, -l, l], [-l, l, 1 << 16]] {
+                            let n = [a, b, c];
+                            let inside = n.iter().all(|v: &i32| v.unsigned_abs() <= 1 << 16)
+                                && l.iter().all(|v: &i32| v.unsigned_abs() <= 1 << 20);
+                            assert_eq!(
+                                ndotl_narrow(n, l),
+                                inside.then(|| wide(n, l)),
+                                "{n:?} {l:?}"
+                            );
+                        }
+                    }
+                }
+            }
+        }
+        for _ in 0..1_000_000 {
+            let mut r = |m: u64| (next(2 * m + 1) as i64 - m as i64) as i32;
+            let n = [r(1 << 16), r(1 << 16), r(1 << 16)];
+            let l = [r(1 << 20), r(1 << 20), r(1 << 20)];
+            assert_eq!(ndotl_narrow(n, l), Some(wide(n, l)), "{n:?} {l:?}");
         }
     }
 
