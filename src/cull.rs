@@ -133,7 +133,14 @@ impl Frustum {
         // Normalized as the vertex stage normalizes it (the planes are
         // homogeneous too, so the test does not change), so that its
         // 16.16 matrix is this one rounded.
-        let m = (*view_proj * draw.transform).normalized()?;
+        Self::from_normalized(&(*view_proj * draw.transform).normalized()?, draw)
+    }
+
+    /// [`new`](Self::new) from `view_proj * draw.transform` already
+    /// [`normalized`](Mat4::normalized) (`m`): the vertex stage's product,
+    /// which it converts to 16.16 too.
+    pub(crate) fn from_normalized(m: &Mat4, draw: &Draw<'_>) -> Option<Self> {
+        let m = *m;
         // The vertex stage's 16.16 matrix differs from this one by at most
         // 2^-17 per element, and a transformed coordinate by at most
         // (3 E + 2) 2^-17 with E the largest model coordinate; a plane sums

@@ -406,7 +406,14 @@ impl Mat4 {
     /// assert!(flat.to_fixed_normalized().is_none());
     /// ```
     pub fn to_fixed_normalized(&self) -> Option<FixedMat4> {
-        let n = self.normalized()?;
+        self.normalized()?.fixed_whole()
+    }
+
+    /// The conversion of [`to_fixed_normalized`](Self::to_fixed_normalized)
+    /// of a matrix already [`normalized`](Self::normalized) (`self`): `None`
+    /// when an element is out of range or a row would be lost.
+    pub(crate) fn fixed_whole(&self) -> Option<FixedMat4> {
+        let n = self;
         let fixed = n.to_fixed()?;
         let lost =
             (0..4).any(|r| (0..4).any(|c| n.m[c][r] != 0.0) && (0..4).all(|c| fixed.m[c][r] == 0));

@@ -54,9 +54,9 @@ pub(super) fn bin_pass<const TW: usize, const TH: usize, const HILBERT: bool, P:
         };
         let verts = &frame.vertices[base..base + draw.mesh.vertex_count()];
         vbase += verts.len();
-        let frustum = frame.frustum::<P>(d);
+        let (outside, frustum) = frame.view_test::<P>(d);
         let n = draw.mesh.triangle_count();
-        if frustum.as_ref().is_some_and(|f| f.excludes_mesh(draw.mesh)) {
+        if outside {
             t += n;
             tally.fates[Fate::Rejected as usize] += n as u32;
             tally.draws_culled += 1;

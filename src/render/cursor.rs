@@ -213,8 +213,9 @@ impl<P: Features> Iterator for TileList<'_, '_, P> {
             // The same tests as binning's, in the same order.
             let mesh = frame.draws[cur.draw].mesh;
             if t == cur.first {
-                *frustum = frame.frustum::<P>(cur.draw);
-                if frustum.as_ref().is_some_and(|f| f.excludes_mesh(mesh)) {
+                let outside;
+                (outside, *frustum) = frame.view_test::<P>(cur.draw);
+                if outside {
                     *next = cur.end;
                     continue;
                 }

@@ -155,6 +155,7 @@ where
             cull: config.cull,
             // `frustum` also asks `P::CULL`, at compile time.
             cull_draws: config.frustum_cull,
+            outside: done.outside,
             frame: PixelRect::new(0, 0, size.width as i32, size.height as i32),
         };
         Self {

@@ -25,6 +25,9 @@ pub(super) struct FrameState<'a> {
     pub(super) eye: crate::math::Vec3,
     /// Cull draws outside the frustum ([`Config::frustum_cull`](super::Config::frustum_cull)).
     pub(super) cull_draws: bool,
+    /// The draws the vertex stage found wholly outside the frustum (bit
+    /// `d` for draw `d`, of the first 64).
+    pub(super) outside: u64,
     /// The order draws are visited in, when sorted
     /// ([`Config::sort_draws`](super::Config::sort_draws)); `None` for submission order.
     pub(super) order: Option<DrawOrder>,
@@ -214,6 +217,35 @@ pub(super) fn keeps(cull: CullMode, area2: i64) -> bool {
     }
 }
 
+/// [`keeps`] of the signed area of a triangle within the guard band
+/// ([`signed_area2_banded`]). On ARMv6-M, whose 32 x 32 -> 64-bit products
+/// are built from four 16-bit ones, a triangle whose edge vectors from
+/// vertex 0 lie within `-(2^15 - 1)..=2^15` (nearly every triangle the
+/// binning loop sees) takes its area from two 32-bit products: each is at
+/// most `2^30` in magnitude, and their difference within `±(2^31 -
+/// 2^15)`, exact in `i32`.
+#[inline(always)]
+fn keeps_banded(cull: CullMode, v: &[SubPoint; 3]) -> bool {
+    if crate::math::SPLIT {
+        if let Some(area2) = narrow_area2(v) {
+            return keeps(cull, area2 as i64);
+        }
+    }
+    keeps(cull, signed_area2_banded(v))
+}
+
+/// [`signed_area2_banded`] in `i32` products, when the edge vectors from
+/// vertex 0 lie within `-(2^15 - 1)..=2^15` (see [`keeps_banded`]).
+#[inline(always)]
+fn narrow_area2(v: &[SubPoint; 3]) -> Option<i32> {
+    let (x1, y1) = (v[1].x - v[0].x, v[1].y - v[0].y);
+    let (x2, y2) = (v[2].x - v[0].x, v[2].y - v[0].y);
+    // Each `d + 2^15 - 1` in `0..2^16` (the coordinates are within ±2^18,
+    // so neither the differences nor the sums wrap).
+    let lift = |d: i32| (d + 0x7fff) as u32;
+    ((lift(x1) | lift(y1) | lift(x2) | lift(y2)) >> 16 == 0).then(|| x1 * y2 - x2 * y1)
+}
+
 impl FrameState<'_> {
     /// The draw visited `k`-th.
     #[inline(always)]
@@ -224,15 +256,25 @@ impl FrameState<'_> {
         }
     }
 
-    /// The view frustum in the model space of draw `d`, when culling is on
-    /// (the same answers every time it is asked: the tests are
-    /// deterministic, so binning, rescans and the vertex stage agree).
-    pub(super) fn frustum<P: Features>(&self, d: usize) -> Option<Frustum> {
+    /// Whether draw `d` lies wholly outside the view frustum, and, when
+    /// culling is on and the draw has clusters, its frustum in the draw's
+    /// model space to test them (the same answers every time it is asked:
+    /// the tests are deterministic, so binning, rescans and the vertex
+    /// stage agree). For the first 64 draws without clusters the answer
+    /// is the vertex stage's ([`FrameState::outside`]): a frustum costs a
+    /// `Mat4` product, 16 `f32` divisions and six planes' set-up.
+    pub(super) fn view_test<P: Features>(&self, d: usize) -> (bool, Option<Frustum>) {
         // Known at compile time without culling: no frustum code linked.
-        match P::CULL && self.cull_draws {
-            true => Frustum::new(&self.view_proj, &self.draws[d]),
-            false => None,
+        if !(P::CULL && self.cull_draws) {
+            return (false, None);
         }
+        let draw = &self.draws[d];
+        if d < 64 && draw.mesh.clusters().is_none() {
+            return (self.outside >> d & 1 != 0, None);
+        }
+        let frustum = Frustum::new(&self.view_proj, draw);
+        let outside = frustum.as_ref().is_some_and(|f| f.excludes_mesh(draw.mesh));
+        (outside, frustum)
     }
 
     /// The fixed-point set-up of draw `d`, from `cache` or computed again
@@ -254,14 +296,10 @@ impl FrameState<'_> {
     #[inline(never)]
     fn setup_again(&self, d: usize, cache: &mut SetupCache) -> Option<()> {
         cache.draw = d;
+        let draw = &self.draws[d];
+        let mvp = (self.view_proj * draw.transform).normalized();
         with_lighting(self.light.as_ref(), self.lighting, |lighting| {
-            (self.make_setup)(
-                &mut cache.setup,
-                &self.draws[d],
-                &self.view_proj,
-                lighting,
-                self.eye,
-            )
+            (self.make_setup)(&mut cache.setup, draw, mvp.as_ref(), lighting, self.eye)
         })
         .ok()
     }
@@ -316,9 +354,7 @@ impl FrameState<'_> {
                 );
             }
             let v = [sv[0].xy(), sv[1].xy(), sv[2].xy()];
-            // Screen vertices lie within the guard band.
-            let area2 = signed_area2_banded(&v);
-            if !keeps(cull, area2) {
+            if !keeps_banded(cull, &v) {
                 // Culled: counted by the binning pass as the rest (see
                 // `Tally`), but on ARMv6-M, whose binning loop measured
                 // 27,000 instructions slower without this count on the
@@ -356,7 +392,62 @@ impl FrameState<'_> {
 
 #[cfg(test)]
 mod tests {
-    use super::reach;
+    use super::{narrow_area2, reach};
+
+    /// The `i32` area is the 64-bit one wherever it is taken, and is taken
+    /// for edge vectors up to the ends of its range: random triangles
+    /// within the guard band, of every size, and edge vectors at and just
+    /// beyond `-(2^15 - 1)` and `2^15`.
+    #[test]
+    fn narrow_area_is_the_signed_area() {
+        use crate::raster::{signed_area2, SubPoint};
+        let mut next = crate::testing::rng();
+        let mut taken = 0;
+        for _ in 0..500_000 {
+            let span = 1i64 << next(20);
+            let mut c = || (next(2 * span as u64 + 1) as i64 - span) as i32;
+            let v = [
+                SubPoint::new(c(), c()),
+                SubPoint::new(c(), c()),
+                SubPoint::new(c(), c()),
+            ];
+            if let Some(a) = narrow_area2(&v) {
+                assert_eq!(a as i64, signed_area2(&v), "{v:?}");
+                taken += 1;
+            }
+        }
+        assert!(taken > 100_000, "{taken}");
+        let ends = [
+            -(1 << 15) - 1,
+            -(1 << 15),
+            -(1 << 15) + 1,
+            0,
+            (1 << 15) - 1,
+            1 << 15,
+            (1 << 15) + 1,
+        ];
+        for x1 in ends {
+            for y1 in ends {
+                for x2 in ends {
+                    for y2 in ends {
+                        let v = [
+                            SubPoint::new(7, -3),
+                            SubPoint::new(7 + x1, y1 - 3),
+                            SubPoint::new(7 + x2, y2 - 3),
+                        ];
+                        let inside = [x1, y1, x2, y2]
+                            .iter()
+                            .all(|d| (-(1 << 15) + 1..=1 << 15).contains(d));
+                        assert_eq!(
+                            narrow_area2(&v).map(i64::from),
+                            inside.then(|| signed_area2(&v)),
+                            "{v:?}"
+                        );
+                    }
+                }
+            }
+        }
+    }
     use crate::raster::{scanline::spans, PixelRect, SubPoint};
 
     /// Every centre a filled triangle covers lies within `reach` with no

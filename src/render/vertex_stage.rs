@@ -24,16 +24,21 @@ pub(super) struct Transformed {
     pub(super) triangles: usize,
     /// Vertices actually transformed (none of culled draws and clusters).
     pub(super) transformed: u32,
+    /// Bit `d` set when draw `d` (of the first 64) lies wholly outside
+    /// the view frustum: binning asks this rather than building the
+    /// draw's frustum again ([`FrameState::view_test`](super::state::FrameState::view_test)).
+    pub(super) outside: u64,
 }
 
 /// How a frame sets up a draw: with or without the general lighting
 /// ([`Features::LIGHTING`]), chosen once so that the other is not linked.
 /// Built in the caller's slot ([`DrawSetup::new_in`]), so that the set-up
-/// is on the stack once.
+/// is on the stack once. It takes the draw's `view_proj * transform`,
+/// normalized (`None` where that failed).
 pub(super) type SetupFn = fn(
     &mut Option<DrawSetup>,
     &Draw<'_>,
-    &Mat4,
+    Option<&Mat4>,
     Option<&Lighting<'_>>,
     Vec3,
 ) -> Result<(), VertexError>;
@@ -41,12 +46,12 @@ pub(super) type SetupFn = fn(
 /// The [`SetupFn`] of the paths `P` links.
 pub(super) fn setup_fn<P: Features>() -> SetupFn {
     if P::LIGHTING {
-        |slot, draw, view_proj, lighting, eye| {
-            DrawSetup::new_in::<true>(slot, draw, view_proj, lighting, eye).map(|_| ())
+        |slot, draw, mvp, lighting, eye| {
+            DrawSetup::new_in::<true>(slot, draw, mvp, lighting, eye).map(|_| ())
         }
     } else {
-        |slot, draw, view_proj, lighting, eye| {
-            DrawSetup::new_in::<false>(slot, draw, view_proj, lighting, eye).map(|_| ())
+        |slot, draw, mvp, lighting, eye| {
+            DrawSetup::new_in::<false>(slot, draw, mvp, lighting, eye).map(|_| ())
         }
     }
 }
@@ -191,7 +196,7 @@ where
 
     profiler.enter(Stage::Vertex);
     let viewport = Viewport::new(size.width, size.height);
-    let transformed = with_lighting(scene.light.as_ref(), scene.lighting, |lighting| {
+    let (transformed, outside) = with_lighting(scene.light.as_ref(), scene.lighting, |lighting| {
         let cull = P::CULL && config.frustum_cull;
         transform(
             cull,
@@ -211,11 +216,14 @@ where
         vertices: needed,
         triangles,
         transformed,
+        outside,
     })
 }
 
 /// The vertex stage: every vertex of every draw in view (or of every
-/// cluster in view) to a [`ScreenVertex`]; returns how many.
+/// cluster in view) to a [`ScreenVertex`]; returns how many, and which of
+/// the first 64 draws lie wholly outside the frustum
+/// ([`Transformed::outside`]).
 #[inline(never)]
 #[allow(clippy::too_many_arguments)]
 fn transform<F>(
@@ -227,9 +235,10 @@ fn transform<F>(
     eye: Vec3,
     viewport: &Viewport,
     vertices: &mut [ScreenVertex],
-) -> Result<u32, RenderError> {
+) -> Result<(u32, u64), RenderError> {
     let mut base = 0;
     let mut count = 0u32;
+    let mut outside = 0u64;
     for (di, draw) in scene.draws.iter().enumerate() {
         // The set-up checks the draw's matrix whether the draw is seen
         // or not; a draw wholly outside the frustum is then not
@@ -240,8 +249,11 @@ fn transform<F>(
         // the frame's deepest path. Read from the local slot, not through
         // a reference the call returns, which the compiler could not tell
         // from the vertex buffer (the loop would reload it per vertex).
+        // The draw's product, once for its set-up and its frustum (each
+        // made it apart: a `Mat4` product and 16 `f32` divisions).
+        let mvp = (*view_proj * draw.transform).normalized();
         let mut made = None;
-        let made_ok = make(&mut made, draw, view_proj, lighting, eye);
+        let made_ok = make(&mut made, draw, mvp.as_ref(), lighting, eye);
         let setup = match (made_ok, &made) {
             (Ok(()), Some(setup)) => setup,
             (Err(e), _) => return Err(draw_error(di, e)),
@@ -250,10 +262,13 @@ fn transform<F>(
         let out = &mut vertices[base..base + draw.mesh.vertex_count()];
         base += draw.mesh.vertex_count();
         let frustum = match cull {
-            true => Frustum::new(view_proj, draw),
+            true => mvp.as_ref().and_then(|m| Frustum::from_normalized(m, draw)),
             false => None,
         };
         if frustum.as_ref().is_some_and(|f| f.excludes_mesh(draw.mesh)) {
+            if di < 64 {
+                outside |= 1 << di;
+            }
             continue;
         }
         // The clusters in view one by one (the others' vertices are
@@ -283,7 +298,7 @@ fn transform<F>(
                 .map_err(|error| RenderError::Draw { draw: di, error })?;
         }
     }
-    Ok(count)
+    Ok((count, outside))
 }
 
 /// The vertex loop of one run of a draw's vertices, `first` on, into

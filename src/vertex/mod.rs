@@ -48,6 +48,7 @@ pub use setup::{DrawSetup, VertexError, MAX_LIGHTS};
 
 use crate::math::{div_digits, WDivisor};
 use crate::raster::{SubPoint, SUBPIXEL};
+use crate::shade::Recip16;
 use core::num::{NonZeroU32, NonZeroU64};
 
 /// Outside `x >= -w`.
@@ -301,6 +302,10 @@ pub struct Viewport {
     half_w: i64,
     /// Half the height, in sub-pixels.
     half_h: i64,
+    /// [`Viewport::project_inside`] divides by a `w` below this in 32 bits
+    /// ([`Viewport::project_digits`]): below `2^23`, and such that `(4 w h
+    /// + w / 2) < 2^32` for either half side `h`.
+    short_w: u32,
 }
 
 impl Viewport {
@@ -308,9 +313,13 @@ impl Viewport {
     /// (checked by the renderer).
     pub fn new(width: u32, height: u32) -> Self {
         debug_assert!((1..=MAX_VIEWPORT).contains(&width) && (1..=MAX_VIEWPORT).contains(&height));
+        let (half_w, half_h) = (width * SUBPIXEL as u32 / 2, height * SUBPIXEL as u32 / 2);
+        // w (4 h + 1) <= 2^32 - 1 bounds 4 w h + w / 2.
+        let short_w = (u32::MAX / (4 * half_w.max(half_h) + 1) + 1).min(1 << DIGITS_W_BITS);
         Self {
-            half_w: width as i64 * SUBPIXEL as i64 / 2,
-            half_h: height as i64 * SUBPIXEL as i64 / 2,
+            half_w: half_w as i64,
+            half_h: half_h as i64,
+            short_w,
         }
     }
 
@@ -362,16 +371,23 @@ impl Viewport {
     #[inline(always)]
     pub(crate) fn project_inside(&self, p: &[i32; 4]) -> (SubPoint, u16) {
         if !LONG_DIVISION {
-            return self.project(p);
+            if !crate::math::SPLIT {
+                return self.project(p);
+            }
+            return match NonZeroU32::new(p[3] as u32) {
+                Some(w) if w.get() >> DIGITS_W_BITS == 0 => self.project_recip(p, w),
+                _ => self.project_wide(p[0], p[1], p[2], p[3]),
+            };
         }
         match NonZeroU32::new(p[3] as u32) {
-            Some(w) if w.get() >> DIGITS_W_BITS == 0 => self.project_digits(p, w),
+            Some(w) if w.get() < self.short_w => self.project_digits(p, w),
             _ => self.project_wide(p[0], p[1], p[2], p[3]),
         }
     }
 
     /// [`project`](Self::project), out of line: for the rare vertex of
-    /// [`project_inside`](Self::project_inside) with `w >= 2^23`. (The
+    /// [`project_inside`](Self::project_inside) with `w` from `short_w` up
+    /// (for 320 x 240 and a normalized matrix, more than 6.4 units). (The
     /// coordinates by value: a reference would keep the vertex in memory.)
     #[inline(never)]
     #[cold]
@@ -380,21 +396,23 @@ impl Viewport {
     }
 
     /// [`project`](Self::project) of a vertex without [`MUST_CLIP`] bits
-    /// and `w < 2^23` by 32-bit long division: every dividend is below
-    /// `(4 * 2^15 + 2) w < 2^(l + 18)`, `l` the bits of `w`, so below
-    /// `2^(32 + k)` with `k = 32 - l >= 9` its leading zeros, as
-    /// [`div_digits`] needs; its quotients are below `2^18`.
+    /// and `w` below `short_w` (and `2^23`) by 32-bit division: x's and
+    /// y's dividends `|x| h + w / 2 <= 4 w h + w / 2` fit 32 bits, so
+    /// each quotient is one division (where the long division below took
+    /// two and their shifts); depth's dividend is below `(2 * 65535 + 1)
+    /// w < 2^(l + 17)`, `l` the bits of `w`, so below `2^(32 + k)` with `k
+    /// = 32 - l >= 9` its leading zeros, as [`div_digits`] needs.
     #[inline(always)]
     pub(crate) fn project_digits(&self, p: &[i32; 4], w: NonZeroU32) -> (SubPoint, u16) {
-        debug_assert!(w.get() >> DIGITS_W_BITS == 0 && w.get() as i64 >= W_MIN);
+        debug_assert!(w.get() < self.short_w && w.get() as i64 >= W_MIN);
         let k = w.leading_zeros();
-        let half = w.get() as u64 / 2;
+        let half = w.get() / 2;
         // Half a viewport side in sub-pixels is at most 2^15; |x|, |y| <=
-        // 4w < 2^25.
-        let (hw, hh) = (self.half_w as u32 as u64, self.half_h as u32 as u64);
+        // 4w.
+        let (hw, hh) = (self.half_w as u32, self.half_h as u32);
         // div_round(n hw, w) with the sign of n.
-        let round = |n: i32, h: u64| -> i32 {
-            let q = div_digits(n.unsigned_abs() as u64 * h + half, w, k) as i32;
+        let round = |n: i32, h: u32| -> i32 {
+            let q = ((n.unsigned_abs() * h + half) / w) as i32;
             if n < 0 {
                 -q
             } else {
@@ -408,6 +426,61 @@ impl Viewport {
         // floor((2w 65535 + w) / w) / 2 = 65535, no clamp.
         let n = (p[2] + w.get() as i32) as u32 as u64 * 65_535;
         let z = div_digits(n + w.get() as u64, w, k) >> 1;
+        debug_assert!(z <= 65_535);
+        (SubPoint::new(x, y), z as u16)
+    }
+
+    /// [`project`](Self::project) of a vertex without [`MUST_CLIP`] bits
+    /// and `w < 2^23` by `w`'s 16-bit reciprocal ([`Recip16`]), for
+    /// ARMv6-M, which has neither a divide instruction nor a 32 x 32 ->
+    /// 64-bit multiply: every quotient is three digits of a long division
+    /// ([`Recip16::digit`]: two `MULS` and one correction each), with no
+    /// 64-bit product, where `w`'s 32-bit reciprocal and its 64-bit
+    /// multiply-highs took about 350 instructions a vertex more. The
+    /// quotients are the same.
+    ///
+    /// x's quotient `floor((|x| hw + e) / w)` (`e = floor(w / 2)`,
+    /// `|x| <= 4w`, `hw <= 2^15`) from `|x| = a w + b` (`b < w`) and `hw =
+    /// c1 2^7 + c0` (`c1 <= 2^8`, `c0 < 2^7`): with `b c1 = d1 w + r1`,
+    /// `|x| hw + e = (a hw + d1 2^7) w + (r1 2^7 + b c0 + e)`, the last
+    /// term below `w (2^8 + 1)`; so the quotient is `a hw + d1 2^7 +
+    /// floor((r1 2^7 + b c0 + e) / w)`. Likewise y. Depth's `floor((c
+    /// 65535 + w) / w)` (`c = z + w` in `0..=2w`) from `c = a w + b` and
+    /// `b 2^8 = d1 w + r1`: `c 65535 + w = (a 65535 + d1 2^8) w + (r1 2^8
+    /// + w - b)`, the last term below `w (2^8 + 1)`. Every digit's dividend
+    /// is below `w 2^12` (within [`Recip16::digit`]'s range) and, with
+    /// `w < 2^23`, below `2^32`.
+    #[inline(always)]
+    #[cfg_attr(not(microraster_narrow_multiply), allow(dead_code))]
+    pub(crate) fn project_recip(&self, p: &[i32; 4], w: NonZeroU32) -> (SubPoint, u16) {
+        debug_assert!(w.get() >> DIGITS_W_BITS == 0 && w.get() as i64 >= W_MIN);
+        let f = Recip16::new(w);
+        let wu = w.get();
+        let half = wu / 2;
+        // floor((m c + half) / w) for m <= 4w, c <= 2^15.
+        let mul_div = |m: u32, c: u32| -> u32 {
+            let (a, b) = f.digit(m);
+            let (d1, r1) = f.digit(b * (c >> 7));
+            let (d0, _) = f.digit((r1 << 7) + b * (c & 127) + half);
+            a * c + (d1 << 7) + d0
+        };
+        // div_round(n h, w) with the sign of n.
+        let round = |n: i32, h: u32| -> i32 {
+            let q = mul_div(n.unsigned_abs(), h) as i32;
+            if n < 0 {
+                -q
+            } else {
+                q
+            }
+        };
+        let x = self.half_w as i32 + round(p[0], self.half_w as u32);
+        let y = self.half_h as i32 - round(p[1], self.half_h as u32);
+        // -w <= z <= w: c in 0..=2w, and the quotient at most 2 * 65535 + 1.
+        let c = (p[2] + wu as i32) as u32;
+        let (a, b) = f.digit(c);
+        let (d1, r1) = f.digit(b << 8);
+        let (d0, _) = f.digit((r1 << 8) + (wu - b));
+        let z = (a * 65_535 + (d1 << 8) + d0) >> 1;
         debug_assert!(z <= 65_535);
         (SubPoint::new(x, y), z as u16)
     }
@@ -664,6 +737,8 @@ mod tests {
                 let w = match i % 8 {
                     0 => W_MIN + next(16) as i64,
                     1 => (1 << DIGITS_W_BITS) - 1 - next(4) as i64,
+                    // The largest w of the 32-bit quotients.
+                    2 => vp.short_w as i64 - 1 - next(4) as i64,
                     _ => W_MIN + (next(1 << 28) >> next(24)) as i64,
                 } as i32;
                 let g = GUARD_K as i32 * w;
@@ -675,9 +750,12 @@ mod tests {
                 let p = [c(g), c(g), c(w), w];
                 assert_eq!(outcode(&p) & MUST_CLIP, 0, "{p:?}");
                 assert_eq!(vp.project_inside(&p), vp.project(&p), "{p:?}");
-                if w >> DIGITS_W_BITS == 0 {
-                    let nz = NonZeroU32::new(w as u32).unwrap();
+                let nz = NonZeroU32::new(w as u32).unwrap();
+                if nz.get() < vp.short_w {
                     assert_eq!(vp.project_digits(&p, nz), vp.project(&p), "{p:?}");
+                }
+                if w >> DIGITS_W_BITS == 0 {
+                    assert_eq!(vp.project_recip(&p, nz), vp.project(&p), "{p:?}");
                 }
             }
         }

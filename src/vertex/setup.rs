@@ -80,17 +80,27 @@ impl Lambert {
     #[inline(always)]
     fn shade(&self, n: crate::mesh::Vec3Fx, base: [u8; 3]) -> [u8; 3] {
         use crate::math::mul_wide;
-        let d = mul_wide(n[0].to_bits(), self.dir[0])
-            + mul_wide(n[1].to_bits(), self.dir[1])
-            + mul_wide(n[2].to_bits(), self.dir[2]);
-        // n·l in 1/256 steps, floored, clamped to [0, 1]. On 32-bit cores
-        // from d's upper word, which is 0 exactly when d >> 24 is 0 to 255
-        // (the 64-bit clamp took twice the instructions on the Cortex-M3);
-        // 64-bit ones keep the clamp, which measured fewer there.
-        let ndotl = if cfg!(target_pointer_width = "64") {
-            (d >> 24).clamp(0, 256) as u32
-        } else {
-            clamp_ndotl_words(d)
+        let n = [n[0].to_bits(), n[1].to_bits(), n[2].to_bits()];
+        let wide = || {
+            let d = mul_wide(n[0], self.dir[0])
+                + mul_wide(n[1], self.dir[1])
+                + mul_wide(n[2], self.dir[2]);
+            // n·l in 1/256 steps, floored, clamped to [0, 1]. On 32-bit
+            // cores from d's upper word, which is 0 exactly when d >> 24 is
+            // 0 to 255 (the 64-bit clamp took twice the instructions on
+            // the Cortex-M3); 64-bit ones keep the clamp, which measured
+            // fewer there.
+            if cfg!(target_pointer_width = "64") {
+                (d >> 24).clamp(0, 256) as u32
+            } else {
+                clamp_ndotl_words(d)
+            }
+        };
+        // ARMv6-M builds each 64-bit product from four 16-bit ones: a
+        // normal within ±1 takes n·l from six 32-bit products instead.
+        let ndotl = match crate::math::SPLIT {
+            true => ndotl_narrow(n, self.dir).unwrap_or_else(wide),
+            false => wide(),
         };
         let mut out = [0u8; 3];
         for c in 0..3 {
@@ -100,15 +110,50 @@ impl Lambert {
             // floor(x / 65,280) = floor(floor(x / 256) / 255): ARMv6-M,
             // without a multiply-high, divides by a constant through the
             // library (about a hundred instructions), `div255` in eight.
-            let q = if cfg!(microraster_narrow_multiply) {
-                crate::light::div255(x >> 8)
+            out[c] = if cfg!(microraster_narrow_multiply) {
+                crate::light::div255(x >> 8).min(255) as u8
+            } else if cfg!(target_pointer_width = "32") {
+                div65280_sat(x)
             } else {
-                x / 65_280
+                (x / 65_280).min(255) as u8
             };
-            out[c] = q.min(255) as u8;
         }
         out
     }
+}
+
+/// `floor(x / 65,280)`, at most 255, for `x < 2^31` (the Lambert colour's
+/// `x` is below 2^26): the quotient by the multiply-high LLVM makes of it
+/// (`floor(x 0x8080_8081 / 2^47)`, exact for every `u32`), its upper word
+/// taken as signed (below 2^31 for such `x`, so the shift is the same) so
+/// that the clamp to `0..=255` is one `USAT` on ARMv7-M, where the
+/// unsigned minimum took a compare, an `IT` and a conditional shift a
+/// channel.
+#[inline(always)]
+fn div65280_sat(x: u32) -> u8 {
+    debug_assert!(x < 1 << 31);
+    let high = ((x as u64 * 0x8080_8081) >> 32) as u32 as i32;
+    (high >> 15).clamp(0, 255) as u8
+}
+
+/// The Lambert fast path's n·l, `(n·l >> 24).clamp(0, 256)`, in 32-bit
+/// products, when every `|n[i]| <= 2^16` and `|l[i]| <= 2^20`; `None`
+/// otherwise. With `n[i] = h[i] 2^8 + o[i]` (`|h[i]| <= 2^8`, `0 <= o[i] <
+/// 2^8`), `n·l = 2^8 A + B` for `A = Σ h[i] l[i]` and `B = Σ o[i] l[i]`,
+/// each below `3 2^28` in magnitude; so `floor(n·l / 2^8) = A + floor(B /
+/// 2^8)` fits `i32`, and shifting it by 16 more floors `n·l / 2^24`.
+#[inline(always)]
+fn ndotl_narrow(n: [i32; 3], l: [i32; 3]) -> Option<u32> {
+    let within = |v: i32, m: u32| v.unsigned_abs() <= m;
+    if !(n.iter().all(|&v| within(v, 1 << 16)) && l.iter().all(|&v| within(v, 1 << 20))) {
+        return None;
+    }
+    let (mut a, mut b) = (0i32, 0i32);
+    for i in 0..3 {
+        a += (n[i] >> 8) * l[i];
+        b += (n[i] & 0xff) * l[i];
+    }
+    Some(((a + (b >> 8)) >> 16).clamp(0, 256) as u32)
 }
 
 /// `(d >> 24).clamp(0, 256)` from `d`'s upper word, which is 0 exactly
@@ -150,20 +195,24 @@ impl DrawSetup {
         lighting: Option<&Lighting<'_>>,
         eye: Vec3,
     ) -> Result<Self, VertexError> {
+        let mvp = (*view_proj * draw.transform).normalized();
         let mut slot = None;
-        Self::new_in::<GENERAL>(&mut slot, draw, view_proj, lighting, eye)?;
+        Self::new_in::<GENERAL>(&mut slot, draw, mvp.as_ref(), lighting, eye)?;
         slot.ok_or(VertexError::BadMatrix)
     }
 
-    /// [`with_lighting`](Self::with_lighting) built in `slot` (left `None`
-    /// on an error). The renderer's way: the set-up holds a
-    /// [`LightSetup`] of [`MAX_LIGHTS`] lights (about 500 bytes), and
-    /// building it in place keeps a second copy off the stack of the vertex
-    /// stage, the frame's deepest path.
+    /// [`with_lighting`](Self::with_lighting) from `view_proj *
+    /// draw.transform` already [`normalized`](Mat4::normalized) (`None`
+    /// where that failed), built in `slot` (left `None` on an error). The
+    /// renderer's way: the vertex stage makes the product once for the
+    /// set-up and the draw's frustum; and the set-up holds a
+    /// [`LightSetup`] of [`MAX_LIGHTS`] lights (about 500 bytes), which
+    /// built in place is not copied on the stack of the vertex stage, the
+    /// frame's deepest path.
     pub(crate) fn new_in<'s, const GENERAL: bool>(
         slot: &'s mut Option<Self>,
         draw: &Draw<'_>,
-        view_proj: &Mat4,
+        mvp: Option<&Mat4>,
         lighting: Option<&Lighting<'_>>,
         eye: Vec3,
     ) -> Result<&'s Self, VertexError> {
@@ -173,8 +222,8 @@ impl DrawSetup {
             return Err(VertexError::BadMatrix);
         }
         // Normalized: the same picture whatever the scene's units.
-        let mvp = (*view_proj * *m)
-            .to_fixed_normalized()
+        let mvp = mvp
+            .and_then(Mat4::fixed_whole)
             .ok_or(VertexError::BadMatrix)?;
         use embedded_graphics::prelude::RgbColor;
         let material = &draw.material;
@@ -363,6 +412,86 @@ mod tests {
         }
         for _ in 0..100_000 {
             check(((next(1 << 32) << 32 | next(1 << 32)) as i64) >> next(64));
+        }
+    }
+
+    /// The saturated quotient by 65,280 of the Lambert colour is the
+    /// division's, for every `x` below 2^31 (every 127th value, the ends
+    /// of each quotient's range, and the top of the range).
+    #[test]
+    fn div65280_sat_is_the_clamped_quotient() {
+        let check = |x: u32| assert_eq!(div65280_sat(x), (x / 65_280).min(255) as u8, "{x}");
+        for x in (0..1u32 << 31).step_by(127) {
+            check(x);
+        }
+        for q in 1..32_896u32 {
+            check(q * 65_280);
+            check(q * 65_280 - 1);
+        }
+        for x in (1 << 31) - 1_000..1 << 31 {
+            check(x);
+        }
+    }
+
+    /// The narrow n·l is the 64-bit one wherever it is taken: random and
+    /// extreme normals and light directions within its bounds, and just
+    /// beyond them (where it declines).
+    #[test]
+    fn narrow_ndotl_is_the_wide_one() {
+        let mut next = crate::testing::rng();
+        let wide = |n: [i32; 3], l: [i32; 3]| {
+            let d: i64 = (0..3).map(|i| n[i] as i64 * l[i] as i64).sum();
+            (d >> 24).clamp(0, 256) as u32
+        };
+        let ends = [
+            -(1 << 16) - 1,
+            -(1 << 16),
+            -(1 << 16) + 1,
+            -256,
+            -255,
+            -1,
+            0,
+            1,
+            255,
+            256,
+            (1 << 16) - 1,
+            1 << 16,
+            (1 << 16) + 1,
+        ];
+        let lends = [
+            -(1 << 20) - 1,
+            -(1 << 20),
+            -(1 << 16),
+            -1,
+            0,
+            1,
+            1 << 16,
+            1 << 20,
+            (1 << 20) + 1,
+        ];
+        for &a in &ends {
+            for &b in &ends {
+                for &c in &ends {
+                    for &l in &lends {
+                        for l in [[l, l, l], [l, -l, l], [-l, l, 1 << 16]] {
+                            let n = [a, b, c];
+                            let inside = n.iter().all(|v: &i32| v.unsigned_abs() <= 1 << 16)
+                                && l.iter().all(|v: &i32| v.unsigned_abs() <= 1 << 20);
+                            assert_eq!(
+                                ndotl_narrow(n, l),
+                                inside.then(|| wide(n, l)),
+                                "{n:?} {l:?}"
+                            );
+                        }
+                    }
+                }
+            }
+        }
+        for _ in 0..1_000_000 {
+            let mut r = |m: u64| (next(2 * m + 1) as i64 - m as i64) as i32;
+            let n = [r(1 << 16), r(1 << 16), r(1 << 16)];
+            let l = [r(1 << 20), r(1 << 20), r(1 << 20)];
+            assert_eq!(ndotl_narrow(n, l), Some(wide(n, l)), "{n:?} {l:?}");
         }
     }
 
