@@ -164,7 +164,9 @@ impl<'a, C, V: Varyings> TriangleSpans<'a, C, V> {
             texture,
             out,
         } = self;
-        let opaque = out.opaque();
+        // A triangle whose varyings' differences do not fit `i32` takes
+        // the general loop (`PerspectiveSetup::fits`).
+        let opaque = out.opaque() && setup.fits();
         let mut n = 0;
         for &Span { j, x0, x1 } in found {
             // The spans lie inside the tile (the walk clips them to it).
@@ -216,7 +218,9 @@ pub struct SpanInput<'a, C, V> {
     pub(crate) test: DepthTest,
     pub(crate) write: bool,
     /// Whether the draw is opaque, with the default depth test and
-    /// writes (`Output::opaque`, decided per triangle and tile).
+    /// writes (`Output::opaque`, decided per triangle and tile), and the
+    /// triangle's varyings' differences fit `i32`
+    /// (`PerspectiveSetup::fits`).
     pub(crate) opaque: bool,
 }
 

@@ -136,6 +136,15 @@ pub(crate) struct PerspectiveSetup<V> {
     /// `Q`, `B1`, `B2`.
     planes: [WidePlane; 3],
     var: [V; 3],
+    /// The varyings' differences `a1 - a0`, `a2 - a0`, wrapped to 16.16
+    /// bits (see [`values_fit`](Self::values_fit)); set only where
+    /// [`FIT_PRODUCTS`].
+    #[cfg(not(target_pointer_width = "64"))]
+    dvar: [V; 2],
+    /// Every difference of `dvar` is exact (none wrapped): the opaque span
+    /// loops may take them ([`fits`](Self::fits)).
+    #[cfg(not(target_pointer_width = "64"))]
+    fits: bool,
     /// The provoking vertex's colour.
     flat: [u8; 3],
     /// No gradient of `planes` was clamped: span starts in `i32`
@@ -178,6 +187,29 @@ impl<V: Varyings> PerspectiveSetup<V> {
         // varyings: with them, `Gouraud`'s long-span loops compiled worse
         // on the Cortex-M3 (BENCHMARKS.md).
         let small = V::LEN > 0;
+        // The differences once per triangle, in `i32` when they fit (every
+        // mesh's but texture coordinates repeated tens of thousands of
+        // times across one triangle).
+        #[cfg(not(target_pointer_width = "64"))]
+        let mut dvar = [V::zeroed(); 2];
+        #[cfg(not(target_pointer_width = "64"))]
+        let mut fits = true;
+        #[cfg(not(target_pointer_width = "64"))]
+        for (d, a) in dvar.iter_mut().zip(&t.var[1..]) {
+            if !FIT_PRODUCTS {
+                break;
+            }
+            for ((o, a), a0) in d
+                .as_mut_slice()
+                .iter_mut()
+                .zip(a.as_slice())
+                .zip(t.var[0].as_slice())
+            {
+                let (v, wrapped) = a.to_bits().overflowing_sub(a0.to_bits());
+                fits &= !wrapped;
+                *o = I16F16::from_bits(v);
+            }
+        }
         #[allow(unused_mut)]
         let mut s = Self {
             draw: t.draw,
@@ -190,6 +222,10 @@ impl<V: Varyings> PerspectiveSetup<V> {
             #[cfg(not(target_pointer_width = "64"))]
             narrow: false,
             var: t.var,
+            #[cfg(not(target_pointer_width = "64"))]
+            dvar,
+            #[cfg(not(target_pointer_width = "64"))]
+            fits,
             flat: t.corners.0[0].color,
             color: [
                 [
@@ -221,6 +257,18 @@ impl<V: Varyings> PerspectiveSetup<V> {
         return self.narrow;
         #[cfg(target_pointer_width = "64")]
         false
+    }
+
+    /// Whether the opaque span loops may take the triangle: its varyings'
+    /// differences fit `i32` ([`values_fit`](Self::values_fit)). A
+    /// triangle whose do not takes the general loop, which computes them
+    /// in `i64`.
+    #[inline(always)]
+    pub(crate) fn fits(&self) -> bool {
+        #[cfg(not(target_pointer_width = "64"))]
+        return V::LEN == 0 || !FIT_PRODUCTS || self.fits;
+        #[cfg(target_pointer_width = "64")]
+        true
     }
 
     /// Index of the triangle's draw in the scene.
@@ -255,6 +303,46 @@ impl<V: Varyings> PerspectiveSetup<V> {
             *o = I16F16::from_bits(lerp32(a0[k].to_bits(), a1[k].to_bits(), a2[k].to_bits(), w));
         }
         (out, self.color_at(w, interpolate_color))
+    }
+
+    /// [`values`](Self::values) (`affine`) or
+    /// [`values_weighted`](Self::values_weighted) for a triangle that
+    /// [`fits`](Self::fits): the same bits from the differences of
+    /// `dvar`, each an `i32`, so that each product is one 32x32 to 64-bit
+    /// multiply (`SMULL`, `SMLAL` on a Cortex-M3) rather than a 64x32 one
+    /// (two or three instructions, and twice the values to load). Only
+    /// where [`FIT_PRODUCTS`]; elsewhere as before.
+    #[inline(always)]
+    pub(crate) fn values_fit(
+        &self,
+        (b1, b2): (i32, i32),
+        interpolate_color: bool,
+        affine: bool,
+    ) -> (V, [i32; 3]) {
+        #[cfg(not(target_pointer_width = "64"))]
+        if FIT_PRODUCTS {
+            debug_assert!(self.fits());
+            let mut out = V::zeroed();
+            let [a0, d1, d2] = [
+                self.var[0].as_slice(),
+                self.dvar[0].as_slice(),
+                self.dvar[1].as_slice(),
+            ];
+            for (k, o) in out.as_mut_slice().iter_mut().enumerate() {
+                *o = I16F16::from_bits(lerp_fit(
+                    a0[k].to_bits(),
+                    d1[k].to_bits(),
+                    d2[k].to_bits(),
+                    (b1, b2),
+                ));
+            }
+            return (out, self.color_at((b1, b2), interpolate_color));
+        }
+        if affine {
+            self.values((b1, b2), interpolate_color)
+        } else {
+            self.values_weighted((b1, b2), interpolate_color)
+        }
     }
 
     /// The varyings and colour (8.16 per channel) at weights `(b1, b2)`.
@@ -386,6 +474,28 @@ fn scale_q32(wmin: u32, w: u32) -> i64 {
 /// on the M4F).
 const NARROW_MULTIPLY: bool = cfg!(microraster_narrow_multiply);
 
+/// Whether the opaque span loops take the varyings' differences per
+/// triangle in `i32` ([`PerspectiveSetup::values_fit`]): on 32-bit cores
+/// with a 32x32 to 64-bit multiply (Cortex-M3 `fill-nearest-affine` 88.7
+/// to 70.7 instructions per fragment). Not on ARMv6-M (no such multiply,
+/// [`lerp32`] instead), nor on 64-bit hosts, where a 64-bit product is
+/// one instruction anyway and the set-up per triangle only cost
+/// (`demo-textured-lit` +0.8 % on x86-64).
+#[cfg_attr(target_pointer_width = "64", allow(dead_code))]
+const FIT_PRODUCTS: bool = !NARROW_MULTIPLY && cfg!(not(target_pointer_width = "64"));
+
+/// `a0 + ((d1 b1 + d2 b2 + 2^15) >> 16)` wrapped to `i32`, for exact
+/// differences `d1`, `d2` that fit `i32`: the bits of
+/// [`PerspectiveSetup::values`]' `i64` formula (whose sum is the same, and
+/// whose result is the same modulo 2^32), with 32x32 to 64-bit products.
+/// `|b| < 2^20`, so the sum stays below 2^52.
+#[cfg_attr(target_pointer_width = "64", allow(dead_code))]
+#[inline(always)]
+fn lerp_fit(a0: i32, d1: i32, d2: i32, (b1, b2): (i32, i32)) -> i32 {
+    let s = d1 as i64 * b1 as i64 + d2 as i64 * b2 as i64 + (1 << 15);
+    a0.wrapping_add((s >> 16) as i32)
+}
+
 /// `a0 + ((d1 b1 + d2 b2 + 2^15) >> 16)` wrapped to `i32`, with
 /// `d_i = a_i - a0` exact (up to 33 bits) and weights `b` in `0..=2^16`,
 /// in 32-bit arithmetic: the same bits as the `i64` formula of
@@ -456,6 +566,53 @@ mod tests {
                 "{a:?} {w:?}"
             );
         }
+    }
+
+    /// `lerp_fit` gives the `i64` formula of `values` wherever the
+    /// differences fit `i32`, for the weights of every mode (exact in
+    /// `0..=2^16`, affine `B >> 12` of either sign).
+
+    #[test]
+    fn lerp_fit_matches_the_wide_formula() {
+        let mut next = crate::testing::rng();
+        let wide = |a0: i32, a1: i32, a2: i32, (b1, b2): (i32, i32)| -> i32 {
+            let base = a0 as i64;
+            let (d1, d2) = (a1 as i64 - base, a2 as i64 - base);
+            (base + ((d1 * b1 as i64 + d2 * b2 as i64 + (1 << 15)) >> 16)) as i32
+        };
+        let edges = [i32::MIN, i32::MIN + 1, -65_536, -1, 0, 1, 65_535, i32::MAX];
+        let mut checked = 0;
+        for _ in 0..300_000 {
+            let mut a = [0i32; 3];
+            for v in &mut a {
+                *v = match next(4) {
+                    0 => edges[next(edges.len() as u64) as usize],
+                    1 => next(1 << 18) as i32 - (1 << 17),
+                    _ => next(1 << 32) as u32 as i32,
+                };
+            }
+            let (Some(d1), Some(d2)) = (a[1].checked_sub(a[0]), a[2].checked_sub(a[0])) else {
+                continue;
+            };
+            let w = match next(3) {
+                0 => (next(65_537) as i32, next(65_537) as i32),
+                1 => {
+                    let b1 = next(65_537) as i32;
+                    (b1, 65_536 - b1)
+                }
+                _ => (
+                    next(1 << 18) as i32 - (1 << 17),
+                    next(1 << 18) as i32 - (1 << 17),
+                ),
+            };
+            assert_eq!(
+                lerp_fit(a[0], d1, d2, w),
+                wide(a[0], a[1], a[2], w),
+                "{a:?} {w:?}"
+            );
+            checked += 1;
+        }
+        assert!(checked > 100_000, "{checked}");
     }
 
     /// The `i32` span starts of 32-bit targets give the `i64` ones at

@@ -137,11 +137,11 @@ impl<C, V: Varyings> SpanInput<'_, C, V> {
                 let (varyings, color) = if !weighted {
                     (V::zeroed(), [0; 3])
                 } else if WEIGHTS == AFFINE {
-                    p.values((b1 >> 12, b2 >> 12), ic)
+                    p.values_fit((b1 >> 12, b2 >> 12), ic, true)
                 } else if WEIGHTS == SHIFTED {
-                    p.values_weighted(shifted_weights(q, b1, b2, sh), ic)
+                    p.values_fit(shifted_weights(q, b1, b2, sh), ic, false)
                 } else {
-                    p.values_weighted(weights(q, b1, b2), ic)
+                    p.values_fit(weights(q, b1, b2), ic, false)
                 };
                 let it = Interpolated {
                     x: x0 + k as i32,
