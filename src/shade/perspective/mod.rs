@@ -138,12 +138,14 @@ pub(crate) struct PerspectiveSetup<V> {
     var: [V; 3],
     /// The varyings' differences `a1 - a0`, `a2 - a0`, wrapped to 16.16
     /// bits (see [`values_fit`](Self::values_fit)); set only where
-    /// [`FIT_PRODUCTS`].
-    #[cfg(not(target_pointer_width = "64"))]
+    /// [`FINE`].
     dvar: [V; 2],
+    /// Each varying's `a0 · 2^16 + 2^15`, wrapped: the start of its
+    /// fraction to 32 bits (see [`values_fit`](Self::values_fit)); set
+    /// only where [`FINE`].
+    fine0: V,
     /// Every difference of `dvar` is exact (none wrapped): the opaque span
     /// loops may take them ([`fits`](Self::fits)).
-    #[cfg(not(target_pointer_width = "64"))]
     fits: bool,
     /// The provoking vertex's colour.
     flat: [u8; 3],
@@ -190,24 +192,24 @@ impl<V: Varyings> PerspectiveSetup<V> {
         // The differences once per triangle, in `i32` when they fit (every
         // mesh's but texture coordinates repeated tens of thousands of
         // times across one triangle).
-        #[cfg(not(target_pointer_width = "64"))]
         let mut dvar = [V::zeroed(); 2];
-        #[cfg(not(target_pointer_width = "64"))]
         let mut fits = true;
-        #[cfg(not(target_pointer_width = "64"))]
-        for (d, a) in dvar.iter_mut().zip(&t.var[1..]) {
-            if !FIT_PRODUCTS {
-                break;
+        let mut fine0 = V::zeroed();
+        if FINE {
+            for (o, a0) in fine0.as_mut_slice().iter_mut().zip(t.var[0].as_slice()) {
+                *o = I16F16::from_bits((a0.to_bits() << 16).wrapping_add(1 << 15));
             }
-            for ((o, a), a0) in d
-                .as_mut_slice()
-                .iter_mut()
-                .zip(a.as_slice())
-                .zip(t.var[0].as_slice())
-            {
-                let (v, wrapped) = a.to_bits().overflowing_sub(a0.to_bits());
-                fits &= !wrapped;
-                *o = I16F16::from_bits(v);
+            for (d, a) in dvar.iter_mut().zip(&t.var[1..]) {
+                for ((o, a), a0) in d
+                    .as_mut_slice()
+                    .iter_mut()
+                    .zip(a.as_slice())
+                    .zip(t.var[0].as_slice())
+                {
+                    let (v, wrapped) = a.to_bits().overflowing_sub(a0.to_bits());
+                    fits &= !wrapped;
+                    *o = I16F16::from_bits(v);
+                }
             }
         }
         #[allow(unused_mut)]
@@ -222,9 +224,8 @@ impl<V: Varyings> PerspectiveSetup<V> {
             #[cfg(not(target_pointer_width = "64"))]
             narrow: false,
             var: t.var,
-            #[cfg(not(target_pointer_width = "64"))]
             dvar,
-            #[cfg(not(target_pointer_width = "64"))]
+            fine0,
             fits,
             flat: t.corners.0[0].color,
             color: [
@@ -265,10 +266,7 @@ impl<V: Varyings> PerspectiveSetup<V> {
     /// in `i64`.
     #[inline(always)]
     pub(crate) fn fits(&self) -> bool {
-        #[cfg(not(target_pointer_width = "64"))]
-        return V::LEN == 0 || !FIT_PRODUCTS || self.fits;
-        #[cfg(target_pointer_width = "64")]
-        true
+        V::LEN == 0 || !FIT_PRODUCTS || self.fits
     }
 
     /// Index of the triangle's draw in the scene.
@@ -312,37 +310,50 @@ impl<V: Varyings> PerspectiveSetup<V> {
     /// multiply (`SMULL`, `SMLAL` on a Cortex-M3) rather than a 64x32 one
     /// (two or three instructions, and twice the values to load). Only
     /// where [`FIT_PRODUCTS`]; elsewhere as before.
+    ///
+    /// Where [`FIT_PRODUCTS`], also each varying's fraction to 32 bits
+    /// (see [`Interpolated`]'s `fine`): the low word of the same sum with
+    /// `a0` scaled in, `T = a0 · 2^16 + 2^15 + d1 b1 + d2 b2`, whose bits
+    /// 16 to 31 are the value's (`floor(T / 2^16)`) low 16 bits. The low
+    /// word of a product depends only on the low words of its factors, so
+    /// wrapping 32-bit products (two `MLA`s) give it exactly. A shader that
+    /// needs only the fraction (a repeated power-of-two texture) leaves the
+    /// value unused, and the compiler drops its 64-bit sums.
     #[inline(always)]
     pub(crate) fn values_fit(
         &self,
         (b1, b2): (i32, i32),
         interpolate_color: bool,
         affine: bool,
-    ) -> (V, [i32; 3]) {
-        #[cfg(not(target_pointer_width = "64"))]
-        if FIT_PRODUCTS {
+    ) -> (V, [i32; 3], Option<V>) {
+        let [a0, d1, d2, f0] = [
+            self.var[0].as_slice(),
+            self.dvar[0].as_slice(),
+            self.dvar[1].as_slice(),
+            self.fine0.as_slice(),
+        ];
+        let (out, color) = if FIT_PRODUCTS {
             debug_assert!(self.fits());
             let mut out = V::zeroed();
-            let [a0, d1, d2] = [
-                self.var[0].as_slice(),
-                self.dvar[0].as_slice(),
-                self.dvar[1].as_slice(),
-            ];
             for (k, o) in out.as_mut_slice().iter_mut().enumerate() {
-                *o = I16F16::from_bits(lerp_fit(
-                    a0[k].to_bits(),
-                    d1[k].to_bits(),
-                    d2[k].to_bits(),
-                    (b1, b2),
-                ));
+                let (d1, d2) = (d1[k].to_bits(), d2[k].to_bits());
+                *o = I16F16::from_bits(lerp_fit(a0[k].to_bits(), d1, d2, (b1, b2)));
             }
-            return (out, self.color_at((b1, b2), interpolate_color));
-        }
-        if affine {
+            (out, self.color_at((b1, b2), interpolate_color))
+        } else if affine {
             self.values((b1, b2), interpolate_color)
         } else {
             self.values_weighted((b1, b2), interpolate_color)
-        }
+        };
+        let fine = FINE.then(|| {
+            let mut fine = V::zeroed();
+            for (k, f) in fine.as_mut_slice().iter_mut().enumerate() {
+                let (d1, d2) = (d1[k].to_bits(), d2[k].to_bits());
+                *f = I16F16::from_bits(fine_fit(f0[k].to_bits(), d1, d2, (b1, b2)));
+            }
+            fine
+        });
+        (out, color, fine)
     }
 
     /// The varyings and colour (8.16 per channel) at weights `(b1, b2)`.
@@ -479,17 +490,34 @@ const NARROW_MULTIPLY: bool = cfg!(microraster_narrow_multiply);
 /// with a 32x32 to 64-bit multiply (Cortex-M3 `fill-nearest-affine` 88.7
 /// to 70.7 instructions per fragment). Not on ARMv6-M (no such multiply,
 /// [`lerp32`] instead), nor on 64-bit hosts, where a 64-bit product is
-/// one instruction anyway and the set-up per triangle only cost
-/// (`demo-textured-lit` +0.8 % on x86-64).
-#[cfg_attr(target_pointer_width = "64", allow(dead_code))]
+/// one instruction anyway (with the differences set up for this alone,
+/// `demo-textured-lit` took +0.8 % on x86-64).
 const FIT_PRODUCTS: bool = !NARROW_MULTIPLY && cfg!(not(target_pointer_width = "64"));
+
+/// Whether the opaque span loops compute the varyings' fractions to 32
+/// bits ([`PerspectiveSetup::values_fit`]), with which a repeated
+/// power-of-two texture is addressed in wrapping 32-bit products: two
+/// multiplies and adds and a shift per coordinate, where the value took
+/// its 64-bit sum and a shift and a mask (`fill-nearest-exact` per
+/// fragment 83.9 to 72.9 on the Cortex-M3, 72.9 to 65.0 on x86-64).
+const FINE: bool = !NARROW_MULTIPLY;
+
+/// The low word of `a0 · 2^16 + 2^15 + d1 b1 + d2 b2` for `f0 = a0 · 2^16
+/// + 2^15` and differences `d1`, `d2` wrapped (exact modulo 2^32): its
+/// bits 16 to 31 are the low 16 bits of [`PerspectiveSetup::values`]'
+/// value, whatever the differences (see
+/// [`values_fit`](PerspectiveSetup::values_fit)).
+#[inline(always)]
+fn fine_fit(f0: i32, d1: i32, d2: i32, (b1, b2): (i32, i32)) -> i32 {
+    f0.wrapping_add(d1.wrapping_mul(b1))
+        .wrapping_add(d2.wrapping_mul(b2))
+}
 
 /// `a0 + ((d1 b1 + d2 b2 + 2^15) >> 16)` wrapped to `i32`, for exact
 /// differences `d1`, `d2` that fit `i32`: the bits of
 /// [`PerspectiveSetup::values`]' `i64` formula (whose sum is the same, and
 /// whose result is the same modulo 2^32), with 32x32 to 64-bit products.
 /// `|b| < 2^20`, so the sum stays below 2^52.
-#[cfg_attr(target_pointer_width = "64", allow(dead_code))]
 #[inline(always)]
 fn lerp_fit(a0: i32, d1: i32, d2: i32, (b1, b2): (i32, i32)) -> i32 {
     let s = d1 as i64 * b1 as i64 + d2 as i64 * b2 as i64 + (1 << 15);
@@ -613,6 +641,49 @@ mod tests {
             checked += 1;
         }
         assert!(checked > 100_000, "{checked}");
+    }
+
+    /// `fine_fit`'s bits 16 to 31 are the low 16 bits of the `i64`
+    /// formula's value, for any differences (wrapped when they do not fit)
+    /// and the weights of every mode.
+
+    #[test]
+    fn fine_fit_gives_the_value_s_low_bits() {
+        let mut next = crate::testing::rng();
+        let wide = |a0: i32, a1: i32, a2: i32, (b1, b2): (i32, i32)| -> i32 {
+            let base = a0 as i64;
+            let (d1, d2) = (a1 as i64 - base, a2 as i64 - base);
+            (base + ((d1 * b1 as i64 + d2 * b2 as i64 + (1 << 15)) >> 16)) as i32
+        };
+        let edges = [i32::MIN, i32::MIN + 1, -65_536, -1, 0, 1, 65_535, i32::MAX];
+        for _ in 0..300_000 {
+            let mut a = [0i32; 3];
+            for v in &mut a {
+                *v = match next(4) {
+                    0 => edges[next(edges.len() as u64) as usize],
+                    1 => next(1 << 18) as i32 - (1 << 17),
+                    _ => next(1 << 32) as u32 as i32,
+                };
+            }
+            let w = match next(3) {
+                0 => (next(65_537) as i32, next(65_537) as i32),
+                1 => {
+                    let b1 = next(65_537) as i32;
+                    (b1, 65_536 - b1)
+                }
+                _ => (
+                    next(1 << 18) as i32 - (1 << 17),
+                    next(1 << 18) as i32 - (1 << 17),
+                ),
+            };
+            let f0 = (a[0] << 16).wrapping_add(1 << 15);
+            let fine = fine_fit(f0, a[1].wrapping_sub(a[0]), a[2].wrapping_sub(a[0]), w);
+            assert_eq!(
+                fine as u32 >> 16,
+                wide(a[0], a[1], a[2], w) as u32 & 0xFFFF,
+                "{a:?} {w:?}"
+            );
+        }
     }
 
     /// The `i32` span starts of 32-bit targets give the `i64` ones at
