@@ -64,8 +64,8 @@ pub struct Interpolated<V> {
     /// clamped (see [`Interpolated::rgb`]). Zeros unless the span was
     /// shaded with colour interpolation on.
     pub color: [i32; 3],
-    /// Where the span loop has them (the opaque loops on 32-bit cores
-    /// with a 32x32 to 64-bit multiply): each varying's fraction to 32
+    /// Where the span loop has them (the opaque loops): each varying's
+    /// fraction to 32
     /// bits, as an `I16F16`'s raw bits. Its bits 16 to 31 are the low 16
     /// bits of the varying's raw value (`frac(v) · 2^16`), its bits 0 to 15
     /// the part that the 16.16 value rounds away (plus one half). All that

@@ -137,12 +137,10 @@ pub(crate) struct PerspectiveSetup<V> {
     planes: [WidePlane; 3],
     var: [V; 3],
     /// The varyings' differences `a1 - a0`, `a2 - a0`, wrapped to 16.16
-    /// bits (see [`values_fit`](Self::values_fit)); set only where
-    /// [`FINE`].
+    /// bits (see [`values_fit`](Self::values_fit)).
     dvar: [V; 2],
     /// Each varying's `a0 · 2^16 + 2^15`, wrapped: the start of its
-    /// fraction to 32 bits (see [`values_fit`](Self::values_fit)); set
-    /// only where [`FINE`].
+    /// fraction to 32 bits (see [`values_fit`](Self::values_fit)).
     fine0: V,
     /// Every difference of `dvar` is exact (none wrapped): the opaque span
     /// loops may take them ([`fits`](Self::fits)).
@@ -195,21 +193,19 @@ impl<V: Varyings> PerspectiveSetup<V> {
         let mut dvar = [V::zeroed(); 2];
         let mut fits = true;
         let mut fine0 = V::zeroed();
-        if FINE {
-            for (o, a0) in fine0.as_mut_slice().iter_mut().zip(t.var[0].as_slice()) {
-                *o = I16F16::from_bits((a0.to_bits() << 16).wrapping_add(1 << 15));
-            }
-            for (d, a) in dvar.iter_mut().zip(&t.var[1..]) {
-                for ((o, a), a0) in d
-                    .as_mut_slice()
-                    .iter_mut()
-                    .zip(a.as_slice())
-                    .zip(t.var[0].as_slice())
-                {
-                    let (v, wrapped) = a.to_bits().overflowing_sub(a0.to_bits());
-                    fits &= !wrapped;
-                    *o = I16F16::from_bits(v);
-                }
+        for (o, a0) in fine0.as_mut_slice().iter_mut().zip(t.var[0].as_slice()) {
+            *o = I16F16::from_bits((a0.to_bits() << 16).wrapping_add(1 << 15));
+        }
+        for (d, a) in dvar.iter_mut().zip(&t.var[1..]) {
+            for ((o, a), a0) in d
+                .as_mut_slice()
+                .iter_mut()
+                .zip(a.as_slice())
+                .zip(t.var[0].as_slice())
+            {
+                let (v, wrapped) = a.to_bits().overflowing_sub(a0.to_bits());
+                fits &= !wrapped;
+                *o = I16F16::from_bits(v);
             }
         }
         #[allow(unused_mut)]
@@ -311,14 +307,17 @@ impl<V: Varyings> PerspectiveSetup<V> {
     /// (two or three instructions, and twice the values to load). Only
     /// where [`FIT_PRODUCTS`]; elsewhere as before.
     ///
-    /// Where [`FIT_PRODUCTS`], also each varying's fraction to 32 bits
+    /// Also each varying's fraction to 32 bits
     /// (see [`Interpolated`]'s `fine`): the low word of the same sum with
     /// `a0` scaled in, `T = a0 · 2^16 + 2^15 + d1 b1 + d2 b2`, whose bits
     /// 16 to 31 are the value's (`floor(T / 2^16)`) low 16 bits. The low
     /// word of a product depends only on the low words of its factors, so
     /// wrapping 32-bit products (two `MLA`s) give it exactly. A shader that
     /// needs only the fraction (a repeated power-of-two texture) leaves the
-    /// value unused, and the compiler drops its 64-bit sums.
+    /// value unused, and the compiler drops its 64-bit sums
+    /// (`fill-nearest-exact` per fragment 83.9 to 72.9 on the Cortex-M3,
+    /// 72.9 to 65.0 on x86-64; `demo-textured-lit` -3.3 % on ARMv6-M, whose
+    /// `lerp32` goes unused too).
     #[inline(always)]
     pub(crate) fn values_fit(
         &self,
@@ -345,15 +344,12 @@ impl<V: Varyings> PerspectiveSetup<V> {
         } else {
             self.values_weighted((b1, b2), interpolate_color)
         };
-        let fine = FINE.then(|| {
-            let mut fine = V::zeroed();
-            for (k, f) in fine.as_mut_slice().iter_mut().enumerate() {
-                let (d1, d2) = (d1[k].to_bits(), d2[k].to_bits());
-                *f = I16F16::from_bits(fine_fit(f0[k].to_bits(), d1, d2, (b1, b2)));
-            }
-            fine
-        });
-        (out, color, fine)
+        let mut fine = V::zeroed();
+        for (k, f) in fine.as_mut_slice().iter_mut().enumerate() {
+            let (d1, d2) = (d1[k].to_bits(), d2[k].to_bits());
+            *f = I16F16::from_bits(fine_fit(f0[k].to_bits(), d1, d2, (b1, b2)));
+        }
+        (out, color, Some(fine))
     }
 
     /// The varyings and colour (8.16 per channel) at weights `(b1, b2)`.
@@ -493,14 +489,6 @@ const NARROW_MULTIPLY: bool = cfg!(microraster_narrow_multiply);
 /// one instruction anyway (with the differences set up for this alone,
 /// `demo-textured-lit` took +0.8 % on x86-64).
 const FIT_PRODUCTS: bool = !NARROW_MULTIPLY && cfg!(not(target_pointer_width = "64"));
-
-/// Whether the opaque span loops compute the varyings' fractions to 32
-/// bits ([`PerspectiveSetup::values_fit`]), with which a repeated
-/// power-of-two texture is addressed in wrapping 32-bit products: two
-/// multiplies and adds and a shift per coordinate, where the value took
-/// its 64-bit sum and a shift and a mask (`fill-nearest-exact` per
-/// fragment 83.9 to 72.9 on the Cortex-M3, 72.9 to 65.0 on x86-64).
-const FINE: bool = !NARROW_MULTIPLY;
 
 /// The low word of `a0 · 2^16 + 2^15 + d1 b1 + d2 b2` for `f0 = a0 · 2^16
 /// + 2^15` and differences `d1`, `d2` wrapped (exact modulo 2^32): its
