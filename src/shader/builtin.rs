@@ -286,6 +286,19 @@ trait Texels {
     fn target<C: FromTexel>(&mut self, u: i32, v: i32) -> C {
         C::from_rgb888(self.rgb(u, v))
     }
+    /// [`rgb`](Self::rgb) from the coordinates' fractions to 32 bits
+    /// ([`Interpolated`]'s `fine`), where the texture is addressed by
+    /// them alone (repeated, power-of-two sides); `None` otherwise.
+    #[inline(always)]
+    fn rgb_fine(&mut self, _fu: u32, _fv: u32) -> Option<[u8; 3]> {
+        None
+    }
+    /// [`target`](Self::target) from the fractions, as
+    /// [`rgb_fine`](Self::rgb_fine).
+    #[inline(always)]
+    fn target_fine<C: FromTexel>(&mut self, fu: u32, fv: u32) -> Option<C> {
+        self.rgb_fine(fu, fv).map(C::from_rgb888)
+    }
 }
 
 /// [`Sampler::NearestRgb565`]: the texel's bits go to the target as they
@@ -302,6 +315,14 @@ impl Texels for Nearest565<'_> {
     fn target<C: FromTexel>(&mut self, u: i32, v: i32) -> C {
         C::from_rgb565(self.0.nearest(u, v))
     }
+    #[inline(always)]
+    fn rgb_fine(&mut self, fu: u32, fv: u32) -> Option<[u8; 3]> {
+        Some(rgb565_to_rgb888(self.0.nearest_fine(fu, fv)))
+    }
+    #[inline(always)]
+    fn target_fine<C: FromTexel>(&mut self, fu: u32, fv: u32) -> Option<C> {
+        Some(C::from_rgb565(self.0.nearest_fine(fu, fv)))
+    }
 }
 
 /// [`Sampler::BilinearRgb565`], with the last four texels read (a span's
@@ -313,6 +334,10 @@ impl Texels for Bilinear565<'_> {
     #[inline(always)]
     fn rgb(&mut self, u: i32, v: i32) -> [u8; 3] {
         self.0.bilinear_reusing(u, v, &mut self.1)
+    }
+    #[inline(always)]
+    fn rgb_fine(&mut self, fu: u32, fv: u32) -> Option<[u8; 3]> {
+        Some(self.0.bilinear_fine(fu, fv, &mut self.1))
     }
 }
 
@@ -332,6 +357,22 @@ struct TexelPixel<T, const LIT: bool>(T);
 impl<C: FromTexel, T: Texels, const LIT: bool> PixelFn<[I16F16; 2], C> for TexelPixel<T, LIT> {
     #[inline(always)]
     fn pixel(&mut self, p: &Interpolated<[I16F16; 2]>) -> Option<C> {
+        // The fractions where the loop has them and the texture is
+        // addressed by them (then the varyings go unused, and their sums
+        // are not computed).
+        if let Some([fu, fv]) = p.fine {
+            let (fu, fv) = (fu.to_bits() as u32, fv.to_bits() as u32);
+            let c = if LIT {
+                self.0
+                    .rgb_fine(fu, fv)
+                    .map(|t| C::from_rgb888(modulate(t, p.rgb())))
+            } else {
+                self.0.target_fine(fu, fv)
+            };
+            if c.is_some() {
+                return c;
+            }
+        }
         let [u, v] = p.varyings;
         let (u, v) = (u.to_bits(), v.to_bits());
         Some(if LIT {

@@ -64,6 +64,14 @@ pub struct Interpolated<V> {
     /// clamped (see [`Interpolated::rgb`]). Zeros unless the span was
     /// shaded with colour interpolation on.
     pub color: [i32; 3],
+    /// Where the span loop has them (the opaque loops): each varying's
+    /// fraction to 32
+    /// bits, as an `I16F16`'s raw bits. Its bits 16 to 31 are the low 16
+    /// bits of the varying's raw value (`frac(v) · 2^16`), its bits 0 to 15
+    /// the part that the 16.16 value rounds away (plus one half). All that
+    /// a repeated power-of-two texture reads, from wrapping 32-bit
+    /// products (see `PerspectiveSetup::values_fit`).
+    pub(crate) fine: Option<V>,
 }
 
 impl<V> Interpolated<V> {
@@ -164,7 +172,9 @@ impl<'a, C, V: Varyings> TriangleSpans<'a, C, V> {
             texture,
             out,
         } = self;
-        let opaque = out.opaque();
+        // A triangle whose varyings' differences do not fit `i32` takes
+        // the general loop (`PerspectiveSetup::fits`).
+        let opaque = out.opaque() && setup.fits();
         let mut n = 0;
         for &Span { j, x0, x1 } in found {
             // The spans lie inside the tile (the walk clips them to it).
@@ -216,7 +226,9 @@ pub struct SpanInput<'a, C, V> {
     pub(crate) test: DepthTest,
     pub(crate) write: bool,
     /// Whether the draw is opaque, with the default depth test and
-    /// writes (`Output::opaque`, decided per triangle and tile).
+    /// writes (`Output::opaque`, decided per triangle and tile), and the
+    /// triangle's varyings' differences fit `i32`
+    /// (`PerspectiveSetup::fits`).
     pub(crate) opaque: bool,
 }
 

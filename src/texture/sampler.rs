@@ -110,6 +110,9 @@ pub struct Pow2Rgb565<'t> {
     log2: [u32; 2],
     /// `side - 1`.
     mask: [u32; 2],
+    /// For [`nearest_fine`](Self::nearest_fine): `32 - log2` of the
+    /// width, `32 - log2` of both sides, and `(height - 1) << log2(width)`.
+    fine: [u32; 3],
 }
 
 impl<'t> Texture<'t> {
@@ -121,12 +124,25 @@ impl<'t> Texture<'t> {
             && self.u.wrap == Wrap::Repeat
             && self.v.wrap == Wrap::Repeat;
         match self.texels {
-            Texels::Rgb565(texels) if fast => {
+            // Nearest needs a width of two texels or more
+            // ([`Pow2Rgb565::nearest_fine`]); a texture one texel wide
+            // takes the general path.
+            Texels::Rgb565(texels)
+                if fast && (self.filter == Filter::Bilinear || self.u.log2 > 0) =>
+            {
+                let log2 = [self.u.log2 as u32, self.v.log2 as u32];
                 let p = Pow2Rgb565 {
                     texels,
                     shift: [self.u.shift as u32, self.v.shift as u32],
-                    log2: [self.u.log2 as u32, self.v.log2 as u32],
+                    log2,
                     mask: [self.u.size - 1, self.v.size - 1],
+                    // Sides of at most 2^15: the shifts are below 32 for
+                    // a width of 2 or more (and unused otherwise).
+                    fine: [
+                        32 - log2[0],
+                        32u32.saturating_sub(log2[0] + log2[1]),
+                        (self.v.size - 1) << log2[0],
+                    ],
                 };
                 match self.filter {
                     Filter::Nearest => Sampler::NearestRgb565(p),
@@ -156,6 +172,30 @@ impl Pow2Rgb565<'_> {
         let x = (u >> self.shift[0]) as u32 & self.mask[0];
         let y = (v >> self.shift[1]) as u32 & self.mask[1];
         self.at(x, y)
+    }
+
+    /// [`nearest`](Self::nearest) from the coordinates' fractions to 32
+    /// bits (`fu`, `fv`; see [`Interpolated`](crate::shader::span::Interpolated)'s
+    /// `fine`), for a width of two texels or more: `x`, the raw `u`'s
+    /// bits `shift..16`, are `fu`'s top `log2` bits, and `y`, with the
+    /// row's `log2(width)` below it, `fv`'s top `log2(width) + log2(height)`
+    /// bits masked; no sign or mask for `x`, one shift for both of `y`'s.
+    #[inline(always)]
+    pub(crate) fn nearest_fine(&self, fu: u32, fv: u32) -> u16 {
+        let x = fu >> self.fine[0];
+        let y = (fv >> self.fine[1]) & self.fine[2];
+        match self.texels.get((y | x) as usize) {
+            Some(&c) => c,
+            None => 0,
+        }
+    }
+
+    /// [`bilinear_reusing`](Self::bilinear_reusing) from the coordinates'
+    /// fractions to 32 bits: its taps and weights read only the raw
+    /// coordinates' low 16 bits, which are the fractions' top 16.
+    #[inline(always)]
+    pub(crate) fn bilinear_fine(&self, fu: u32, fv: u32, quad: &mut Quad) -> [u8; 3] {
+        self.bilinear_reusing((fu >> 16) as i32, (fv >> 16) as i32, quad)
     }
 
     /// The bilinear sample at `(u, v)`: the same taps, weights and blend

@@ -136,6 +136,15 @@ pub(crate) struct PerspectiveSetup<V> {
     /// `Q`, `B1`, `B2`.
     planes: [WidePlane; 3],
     var: [V; 3],
+    /// The varyings' differences `a1 - a0`, `a2 - a0`, wrapped to 16.16
+    /// bits (see [`values_fit`](Self::values_fit)).
+    dvar: [V; 2],
+    /// Each varying's `a0 · 2^16 + 2^15`, wrapped: the start of its
+    /// fraction to 32 bits (see [`values_fit`](Self::values_fit)).
+    fine0: V,
+    /// Every difference of `dvar` is exact (none wrapped): the opaque span
+    /// loops may take them ([`fits`](Self::fits)).
+    fits: bool,
     /// The provoking vertex's colour.
     flat: [u8; 3],
     /// No gradient of `planes` was clamped: span starts in `i32`
@@ -178,6 +187,27 @@ impl<V: Varyings> PerspectiveSetup<V> {
         // varyings: with them, `Gouraud`'s long-span loops compiled worse
         // on the Cortex-M3 (BENCHMARKS.md).
         let small = V::LEN > 0;
+        // The differences once per triangle, in `i32` when they fit (every
+        // mesh's but texture coordinates repeated tens of thousands of
+        // times across one triangle).
+        let mut dvar = [V::zeroed(); 2];
+        let mut fits = true;
+        let mut fine0 = V::zeroed();
+        for (o, a0) in fine0.as_mut_slice().iter_mut().zip(t.var[0].as_slice()) {
+            *o = I16F16::from_bits((a0.to_bits() << 16).wrapping_add(1 << 15));
+        }
+        for (d, a) in dvar.iter_mut().zip(&t.var[1..]) {
+            for ((o, a), a0) in d
+                .as_mut_slice()
+                .iter_mut()
+                .zip(a.as_slice())
+                .zip(t.var[0].as_slice())
+            {
+                let (v, wrapped) = a.to_bits().overflowing_sub(a0.to_bits());
+                fits &= !wrapped;
+                *o = I16F16::from_bits(v);
+            }
+        }
         #[allow(unused_mut)]
         let mut s = Self {
             draw: t.draw,
@@ -190,6 +220,9 @@ impl<V: Varyings> PerspectiveSetup<V> {
             #[cfg(not(target_pointer_width = "64"))]
             narrow: false,
             var: t.var,
+            dvar,
+            fine0,
+            fits,
             flat: t.corners.0[0].color,
             color: [
                 [
@@ -221,6 +254,15 @@ impl<V: Varyings> PerspectiveSetup<V> {
         return self.narrow;
         #[cfg(target_pointer_width = "64")]
         false
+    }
+
+    /// Whether the opaque span loops may take the triangle: its varyings'
+    /// differences fit `i32` ([`values_fit`](Self::values_fit)). A
+    /// triangle whose do not takes the general loop, which computes them
+    /// in `i64`.
+    #[inline(always)]
+    pub(crate) fn fits(&self) -> bool {
+        V::LEN == 0 || !FIT_PRODUCTS || self.fits
     }
 
     /// Index of the triangle's draw in the scene.
@@ -255,6 +297,59 @@ impl<V: Varyings> PerspectiveSetup<V> {
             *o = I16F16::from_bits(lerp32(a0[k].to_bits(), a1[k].to_bits(), a2[k].to_bits(), w));
         }
         (out, self.color_at(w, interpolate_color))
+    }
+
+    /// [`values`](Self::values) (`affine`) or
+    /// [`values_weighted`](Self::values_weighted) for a triangle that
+    /// [`fits`](Self::fits): the same bits from the differences of
+    /// `dvar`, each an `i32`, so that each product is one 32x32 to 64-bit
+    /// multiply (`SMULL`, `SMLAL` on a Cortex-M3) rather than a 64x32 one
+    /// (two or three instructions, and twice the values to load). Only
+    /// where [`FIT_PRODUCTS`]; elsewhere as before.
+    ///
+    /// Also each varying's fraction to 32 bits
+    /// (see [`Interpolated`]'s `fine`): the low word of the same sum with
+    /// `a0` scaled in, `T = a0 · 2^16 + 2^15 + d1 b1 + d2 b2`, whose bits
+    /// 16 to 31 are the value's (`floor(T / 2^16)`) low 16 bits. The low
+    /// word of a product depends only on the low words of its factors, so
+    /// wrapping 32-bit products (two `MLA`s) give it exactly. A shader that
+    /// needs only the fraction (a repeated power-of-two texture) leaves the
+    /// value unused, and the compiler drops its 64-bit sums
+    /// (`fill-nearest-exact` per fragment 83.9 to 72.9 on the Cortex-M3,
+    /// 72.9 to 65.0 on x86-64; `demo-textured-lit` -3.3 % on ARMv6-M, whose
+    /// `lerp32` goes unused too).
+    #[inline(always)]
+    pub(crate) fn values_fit(
+        &self,
+        (b1, b2): (i32, i32),
+        interpolate_color: bool,
+        affine: bool,
+    ) -> (V, [i32; 3], Option<V>) {
+        let [a0, d1, d2, f0] = [
+            self.var[0].as_slice(),
+            self.dvar[0].as_slice(),
+            self.dvar[1].as_slice(),
+            self.fine0.as_slice(),
+        ];
+        let (out, color) = if FIT_PRODUCTS {
+            debug_assert!(self.fits());
+            let mut out = V::zeroed();
+            for (k, o) in out.as_mut_slice().iter_mut().enumerate() {
+                let (d1, d2) = (d1[k].to_bits(), d2[k].to_bits());
+                *o = I16F16::from_bits(lerp_fit(a0[k].to_bits(), d1, d2, (b1, b2)));
+            }
+            (out, self.color_at((b1, b2), interpolate_color))
+        } else if affine {
+            self.values((b1, b2), interpolate_color)
+        } else {
+            self.values_weighted((b1, b2), interpolate_color)
+        };
+        let mut fine = V::zeroed();
+        for (k, f) in fine.as_mut_slice().iter_mut().enumerate() {
+            let (d1, d2) = (d1[k].to_bits(), d2[k].to_bits());
+            *f = I16F16::from_bits(fine_fit(f0[k].to_bits(), d1, d2, (b1, b2)));
+        }
+        (out, color, Some(fine))
     }
 
     /// The varyings and colour (8.16 per channel) at weights `(b1, b2)`.
@@ -386,6 +481,37 @@ fn scale_q32(wmin: u32, w: u32) -> i64 {
 /// on the M4F).
 const NARROW_MULTIPLY: bool = cfg!(microraster_narrow_multiply);
 
+/// Whether the opaque span loops take the varyings' differences per
+/// triangle in `i32` ([`PerspectiveSetup::values_fit`]): on 32-bit cores
+/// with a 32x32 to 64-bit multiply (Cortex-M3 `fill-nearest-affine` 88.7
+/// to 70.7 instructions per fragment). Not on ARMv6-M (no such multiply,
+/// [`lerp32`] instead), nor on 64-bit hosts, where a 64-bit product is
+/// one instruction anyway (with the differences set up for this alone,
+/// `demo-textured-lit` took +0.8 % on x86-64).
+const FIT_PRODUCTS: bool = !NARROW_MULTIPLY && cfg!(not(target_pointer_width = "64"));
+
+/// The low word of `a0 · 2^16 + 2^15 + d1 b1 + d2 b2` for `f0 = a0 · 2^16
+/// + 2^15` and differences `d1`, `d2` wrapped (exact modulo 2^32): its
+/// bits 16 to 31 are the low 16 bits of [`PerspectiveSetup::values`]'
+/// value, whatever the differences (see
+/// [`values_fit`](PerspectiveSetup::values_fit)).
+#[inline(always)]
+fn fine_fit(f0: i32, d1: i32, d2: i32, (b1, b2): (i32, i32)) -> i32 {
+    f0.wrapping_add(d1.wrapping_mul(b1))
+        .wrapping_add(d2.wrapping_mul(b2))
+}
+
+/// `a0 + ((d1 b1 + d2 b2 + 2^15) >> 16)` wrapped to `i32`, for exact
+/// differences `d1`, `d2` that fit `i32`: the bits of
+/// [`PerspectiveSetup::values`]' `i64` formula (whose sum is the same, and
+/// whose result is the same modulo 2^32), with 32x32 to 64-bit products.
+/// `|b| < 2^20`, so the sum stays below 2^52.
+#[inline(always)]
+fn lerp_fit(a0: i32, d1: i32, d2: i32, (b1, b2): (i32, i32)) -> i32 {
+    let s = d1 as i64 * b1 as i64 + d2 as i64 * b2 as i64 + (1 << 15);
+    a0.wrapping_add((s >> 16) as i32)
+}
+
 /// `a0 + ((d1 b1 + d2 b2 + 2^15) >> 16)` wrapped to `i32`, with
 /// `d_i = a_i - a0` exact (up to 33 bits) and weights `b` in `0..=2^16`,
 /// in 32-bit arithmetic: the same bits as the `i64` formula of
@@ -453,6 +579,96 @@ mod tests {
             assert_eq!(
                 lerp32(a[0], a[1], a[2], w),
                 wide(a[0], a[1], a[2], w),
+                "{a:?} {w:?}"
+            );
+        }
+    }
+
+    /// `lerp_fit` gives the `i64` formula of `values` wherever the
+    /// differences fit `i32`, for the weights of every mode (exact in
+    /// `0..=2^16`, affine `B >> 12` of either sign).
+
+    #[test]
+    fn lerp_fit_matches_the_wide_formula() {
+        let mut next = crate::testing::rng();
+        let wide = |a0: i32, a1: i32, a2: i32, (b1, b2): (i32, i32)| -> i32 {
+            let base = a0 as i64;
+            let (d1, d2) = (a1 as i64 - base, a2 as i64 - base);
+            (base + ((d1 * b1 as i64 + d2 * b2 as i64 + (1 << 15)) >> 16)) as i32
+        };
+        let edges = [i32::MIN, i32::MIN + 1, -65_536, -1, 0, 1, 65_535, i32::MAX];
+        let mut checked = 0;
+        for _ in 0..300_000 {
+            let mut a = [0i32; 3];
+            for v in &mut a {
+                *v = match next(4) {
+                    0 => edges[next(edges.len() as u64) as usize],
+                    1 => next(1 << 18) as i32 - (1 << 17),
+                    _ => next(1 << 32) as u32 as i32,
+                };
+            }
+            let (Some(d1), Some(d2)) = (a[1].checked_sub(a[0]), a[2].checked_sub(a[0])) else {
+                continue;
+            };
+            let w = match next(3) {
+                0 => (next(65_537) as i32, next(65_537) as i32),
+                1 => {
+                    let b1 = next(65_537) as i32;
+                    (b1, 65_536 - b1)
+                }
+                _ => (
+                    next(1 << 18) as i32 - (1 << 17),
+                    next(1 << 18) as i32 - (1 << 17),
+                ),
+            };
+            assert_eq!(
+                lerp_fit(a[0], d1, d2, w),
+                wide(a[0], a[1], a[2], w),
+                "{a:?} {w:?}"
+            );
+            checked += 1;
+        }
+        assert!(checked > 100_000, "{checked}");
+    }
+
+    /// `fine_fit`'s bits 16 to 31 are the low 16 bits of the `i64`
+    /// formula's value, for any differences (wrapped when they do not fit)
+    /// and the weights of every mode.
+
+    #[test]
+    fn fine_fit_gives_the_value_s_low_bits() {
+        let mut next = crate::testing::rng();
+        let wide = |a0: i32, a1: i32, a2: i32, (b1, b2): (i32, i32)| -> i32 {
+            let base = a0 as i64;
+            let (d1, d2) = (a1 as i64 - base, a2 as i64 - base);
+            (base + ((d1 * b1 as i64 + d2 * b2 as i64 + (1 << 15)) >> 16)) as i32
+        };
+        let edges = [i32::MIN, i32::MIN + 1, -65_536, -1, 0, 1, 65_535, i32::MAX];
+        for _ in 0..300_000 {
+            let mut a = [0i32; 3];
+            for v in &mut a {
+                *v = match next(4) {
+                    0 => edges[next(edges.len() as u64) as usize],
+                    1 => next(1 << 18) as i32 - (1 << 17),
+                    _ => next(1 << 32) as u32 as i32,
+                };
+            }
+            let w = match next(3) {
+                0 => (next(65_537) as i32, next(65_537) as i32),
+                1 => {
+                    let b1 = next(65_537) as i32;
+                    (b1, 65_536 - b1)
+                }
+                _ => (
+                    next(1 << 18) as i32 - (1 << 17),
+                    next(1 << 18) as i32 - (1 << 17),
+                ),
+            };
+            let f0 = (a[0] << 16).wrapping_add(1 << 15);
+            let fine = fine_fit(f0, a[1].wrapping_sub(a[0]), a[2].wrapping_sub(a[0]), w);
+            assert_eq!(
+                fine as u32 >> 16,
+                wide(a[0], a[1], a[2], w) as u32 & 0xFFFF,
                 "{a:?} {w:?}"
             );
         }

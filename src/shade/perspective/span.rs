@@ -134,20 +134,21 @@ impl<C, V: Varyings> SpanInput<'_, C, V> {
         for (k, (c, d)) in self.color.iter_mut().zip(self.depth.iter_mut()).enumerate() {
             let zz = depth16(z);
             if zz <= *d {
-                let (varyings, color) = if !weighted {
-                    (V::zeroed(), [0; 3])
+                let (varyings, color, fine) = if !weighted {
+                    (V::zeroed(), [0; 3], None)
                 } else if WEIGHTS == AFFINE {
-                    p.values((b1 >> 12, b2 >> 12), ic)
+                    p.values_fit((b1 >> 12, b2 >> 12), ic, true)
                 } else if WEIGHTS == SHIFTED {
-                    p.values_weighted(shifted_weights(q, b1, b2, sh), ic)
+                    p.values_fit(shifted_weights(q, b1, b2, sh), ic, false)
                 } else {
-                    p.values_weighted(weights(q, b1, b2), ic)
+                    p.values_fit(weights(q, b1, b2), ic, false)
                 };
                 let it = Interpolated {
                     x: x0 + k as i32,
                     depth: zz,
                     varyings,
                     color,
+                    fine,
                 };
                 if let Some(out) = fragment.pixel(&it) {
                     *c = out;
@@ -207,6 +208,7 @@ impl<C, V: Varyings> SpanInput<'_, C, V> {
                         depth: zz,
                         varyings,
                         color,
+                        fine: None,
                     };
                     n += put.put(&it, c, d) as u32;
                 }
@@ -266,6 +268,7 @@ impl<C, V: Varyings> SpanInput<'_, C, V> {
                             depth: zz,
                             varyings: var,
                             color: col,
+                            fine: None,
                         };
                         n += put.put(&it, c, d) as u32;
                     }

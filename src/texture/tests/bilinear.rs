@@ -179,6 +179,14 @@ fn pow2_rgb565_bilinear_matches_sample() {
                     "{w}x{h} {u} {v}"
                 );
                 assert_eq!(p.bilinear(u, v), expected, "{w}x{h} {u} {v}");
+                // From the fractions to 32 bits: the raw values' low 16
+                // bits on top, any bits below.
+                let (fu, fv) = ((u as u32) << 16 | rng.next() >> 16, (v as u32) << 16);
+                assert_eq!(
+                    p.bilinear_fine(fu, fv, &mut quad),
+                    expected,
+                    "{w}x{h} {u} {v}"
+                );
                 u = u.wrapping_add(step[0]);
                 v = v.wrapping_add(step[1]);
             }

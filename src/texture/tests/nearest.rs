@@ -156,3 +156,50 @@ fn nearest_any_size_matches_reference() {
         }
     }
 }
+
+/// The sampler's power-of-two `Rgb565` nearest path from the coordinates'
+/// fractions to 32 bits (`nearest_fine`: the raw values' low 16 bits on
+/// top, any bits below) gives [`Texture::sample`]'s texel, for every
+/// shape it takes (two texels wide or more); one texel wide, the texture
+/// takes the general path.
+#[test]
+fn pow2_rgb565_nearest_fine_matches_sample() {
+    let mut rng = XorShift(0x1234_5678);
+    for lw in 0..=15u32 {
+        for lh in [0, 1, 3, 15 - lw.min(14), lw.min(15)] {
+            let (w, h) = (1u32 << lw, 1u32 << lh);
+            if w * h > 1 << 16 {
+                continue;
+            }
+            let texels: Vec<u16> = (0..w * h).map(|_| rng.next() as u16).collect();
+            let t = Texture::new(w, h, Texels::Rgb565(&texels)).unwrap();
+            let p = match t.sampler() {
+                Sampler::NearestRgb565(p) => p,
+                _ => {
+                    assert_eq!(w, 1, "{w}x{h} not on the fast path");
+                    continue;
+                }
+            };
+            let raws = (0..500)
+                .map(|_| (rng.coordinate(), rng.coordinate()))
+                .chain(
+                    SPECIAL
+                        .iter()
+                        .flat_map(|&u| SPECIAL.iter().map(move |&v| (u, v))),
+                );
+            for (u, v) in raws.collect::<Vec<_>>() {
+                let (fu, fv) = (
+                    (u as u32) << 16 | rng.next() >> 16,
+                    (v as u32) << 16 | 0xFFFF,
+                );
+                let expected = t.sample(fx(u), fx(v));
+                assert_eq!(p.nearest(u, v), p.nearest_fine(fu, fv), "{w}x{h} {u} {v}");
+                assert_eq!(
+                    rgb565_to_rgb888(p.nearest_fine(fu, fv)),
+                    expected,
+                    "{w}x{h} {u} {v}"
+                );
+            }
+        }
+    }
+}
