@@ -10,7 +10,7 @@ use crate::shader::{FragmentShader, Perspective, ShaderSet, TriangleSpans};
 use crate::texture::Texture;
 use crate::tile::TileBuffer;
 use crate::vertex::ScreenVertex;
-use embedded_graphics::pixelcolor::{PixelColor, Rgb888};
+use embedded_graphics::pixelcolor::{PixelColor, Rgb565, Rgb888};
 
 /// The first phase of [`fill`] and [`fill_shaded`]: records the spans of
 /// a triangle in the tile (one per row at most) and returns how many.
@@ -198,7 +198,19 @@ where
 {
     let dt = D::new(test);
     let corners = &Corners(sv);
-    let setup = &TriangleSetup::for_spans::<GOURAUD>(corners);
+    // The default depth comparison (known at compile time: no state) with
+    // depth writes, into `Rgb565`: the span loops of nearly every frame on
+    // a microcontroller, which get the small set-up inlined (see
+    // `TriangleSetup::for_spans_inline`; constants, decided at compile
+    // time).
+    let common = WRITE
+        && core::mem::size_of::<D>() == 0
+        && core::any::TypeId::of::<C>() == core::any::TypeId::of::<Rgb565>();
+    let setup = &if common {
+        TriangleSetup::for_spans_inline::<GOURAUD>(corners)
+    } else {
+        TriangleSetup::for_spans::<GOURAUD>(corners)
+    };
     let flat = crate::shade::rgb::<C>(flat[0], flat[1], flat[2]);
     each_span(tile, rect, found, |color, depth, sp, n| {
         if GOURAUD {
