@@ -347,32 +347,20 @@ pub(crate) fn find_spans(v: &[SubPoint; 3], clip: PixelRect, out: &mut [Span]) -
         // two `EdgeStepper`s packed afterwards.
         let long = Packed::new::<false>(a, c, row_top);
         let short = Packed::new::<false>(p, q, row_top);
-        let (mut left, mut right) = if long_on_left {
-            (long, short)
-        } else {
-            (short, long)
-        };
+        let (mut left, mut right) = sides(long_on_left, long, short);
         let n = half_packed(out, 0, row_top, stop, &mut left, &mut right);
         if stop >= row_end {
             return n;
         }
         // The lower half, from `stop == row_mid`.
         let lower = Packed::new::<true>(b, c, stop);
-        if long_on_left {
-            right = lower;
-        } else {
-            left = lower;
-        }
+        replace_short(long_on_left, lower, &mut left, &mut right);
         return half_packed(out, n, stop, row_end, &mut left, &mut right);
     }
     let long_on_left = long_on_left(a, b, c);
     let long = EdgeStepper::new::<false>(a, c, row_top);
     let short = EdgeStepper::new::<false>(p, q, row_top);
-    let (mut left, mut right) = if long_on_left {
-        (long, short)
-    } else {
-        (short, long)
-    };
+    let (mut left, mut right) = sides(long_on_left, long, short);
     if cfg!(all(target_pointer_width = "64", not(test))) {
         // One copy of the row loop for both halves: with a 64-bit host's
         // registers, a copy for each half measured slower (x86-64 `fill`
@@ -437,7 +425,30 @@ fn lower_half(
     left: &mut EdgeStepper,
     right: &mut EdgeStepper,
 ) {
-    let lower = EdgeStepper::new::<true>(b, c, row);
+    replace_short(
+        long_on_left,
+        EdgeStepper::new::<true>(b, c, row),
+        left,
+        right,
+    );
+}
+
+/// The left and right edges of the upper half's rows, the long edge (from
+/// the top vertex to the bottom one) on the left when `long_on_left`: for
+/// the packed edges and the general ones alike.
+#[inline(always)]
+fn sides<E>(long_on_left: bool, long: E, short: E) -> (E, E) {
+    if long_on_left {
+        (long, short)
+    } else {
+        (short, long)
+    }
+}
+
+/// The lower half's short edge `lower` in place of the upper half's, on
+/// the side the long edge leaves free.
+#[inline(always)]
+fn replace_short<E>(long_on_left: bool, lower: E, left: &mut E, right: &mut E) {
     if long_on_left {
         *right = lower;
     } else {
@@ -653,13 +664,8 @@ mod tests {
     /// for the early rejection), against one call over all of `clip`.
     #[test]
     fn early_rejection_changes_no_span() {
-        let mut x = 0x9e37_79b9_7f4a_7c15u64;
-        let mut next = move |m: u64| {
-            x ^= x << 13;
-            x ^= x >> 7;
-            x ^= x << 17;
-            (x % m) as i32
-        };
+        let mut rng = crate::testing::rng();
+        let mut next = move |m: u64| rng(m) as i32;
         let mut rejected = 0;
         for _ in 0..3_000 {
             let p = |a: i32, b: i32| SubPoint::new(a - 200, b - 200);

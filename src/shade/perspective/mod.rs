@@ -552,80 +552,73 @@ fn lerp32(a0: i32, a1: i32, a2: i32, (b1, b2): (i32, i32)) -> i32 {
 mod tests {
     use super::*;
 
+    /// The `i64` formula of `values`: `a0 + (d1 b1 + d2 b2 + 2^15) >> 16`
+    /// with `d1 = a1 - a0`, `d2 = a2 - a0`.
+    fn wide([a0, a1, a2]: [i32; 3], (b1, b2): (i32, i32)) -> i32 {
+        let base = a0 as i64;
+        let (d1, d2) = (a1 as i64 - base, a2 as i64 - base);
+        (base + ((d1 * b1 as i64 + d2 * b2 as i64 + (1 << 15)) >> 16)) as i32
+    }
+
+    /// Three vertex values: the ends of the range, small ones, or any.
+    fn values(next: &mut impl FnMut(u64) -> u64) -> [i32; 3] {
+        let edges = [i32::MIN, i32::MIN + 1, -65_536, -1, 0, 1, 65_535, i32::MAX];
+        let mut a = [0i32; 3];
+        for v in &mut a {
+            *v = match next(4) {
+                0 => edges[next(edges.len() as u64) as usize],
+                1 => next(1 << 18) as i32 - (1 << 17),
+                _ => next(1 << 32) as u32 as i32,
+            };
+        }
+        a
+    }
+
+    /// Weights of every mode: exact in `0..=2^16` (summing to `2^16` or
+    /// not), affine `B >> 12` of either sign.
+    fn weights(next: &mut impl FnMut(u64) -> u64) -> (i32, i32) {
+        match next(3) {
+            0 => (next(65_537) as i32, next(65_537) as i32),
+            1 => {
+                let b1 = next(65_537) as i32;
+                (b1, 65_536 - b1)
+            }
+            _ => (
+                next(1 << 18) as i32 - (1 << 17),
+                next(1 << 18) as i32 - (1 << 17),
+            ),
+        }
+    }
+
     #[test]
     fn lerp32_matches_the_wide_formula() {
         let mut next = crate::testing::rng();
-        let wide = |a0: i32, a1: i32, a2: i32, (b1, b2): (i32, i32)| -> i32 {
-            let base = a0 as i64;
-            let (d1, d2) = (a1 as i64 - base, a2 as i64 - base);
-            (base + ((d1 * b1 as i64 + d2 * b2 as i64 + (1 << 15)) >> 16)) as i32
-        };
-        let edges = [i32::MIN, i32::MIN + 1, -65_536, -1, 0, 1, 65_535, i32::MAX];
         for _ in 0..300_000 {
-            let mut a = [0i32; 3];
-            for v in &mut a {
-                *v = match next(4) {
-                    0 => edges[next(edges.len() as u64) as usize],
-                    1 => next(1 << 18) as i32 - (1 << 17),
-                    _ => next(1 << 32) as u32 as i32,
-                };
-            }
+            let a = values(&mut next);
             let b1 = next(65_537) as i32;
             let b2 = match next(3) {
                 0 => 65_536 - b1,
                 _ => next(65_537) as i32,
             };
             let w = (b1, b2);
-            assert_eq!(
-                lerp32(a[0], a[1], a[2], w),
-                wide(a[0], a[1], a[2], w),
-                "{a:?} {w:?}"
-            );
+            assert_eq!(lerp32(a[0], a[1], a[2], w), wide(a, w), "{a:?} {w:?}");
         }
     }
 
     /// `lerp_fit` gives the `i64` formula of `values` wherever the
     /// differences fit `i32`, for the weights of every mode (exact in
     /// `0..=2^16`, affine `B >> 12` of either sign).
-
     #[test]
     fn lerp_fit_matches_the_wide_formula() {
         let mut next = crate::testing::rng();
-        let wide = |a0: i32, a1: i32, a2: i32, (b1, b2): (i32, i32)| -> i32 {
-            let base = a0 as i64;
-            let (d1, d2) = (a1 as i64 - base, a2 as i64 - base);
-            (base + ((d1 * b1 as i64 + d2 * b2 as i64 + (1 << 15)) >> 16)) as i32
-        };
-        let edges = [i32::MIN, i32::MIN + 1, -65_536, -1, 0, 1, 65_535, i32::MAX];
         let mut checked = 0;
         for _ in 0..300_000 {
-            let mut a = [0i32; 3];
-            for v in &mut a {
-                *v = match next(4) {
-                    0 => edges[next(edges.len() as u64) as usize],
-                    1 => next(1 << 18) as i32 - (1 << 17),
-                    _ => next(1 << 32) as u32 as i32,
-                };
-            }
+            let a = values(&mut next);
             let (Some(d1), Some(d2)) = (a[1].checked_sub(a[0]), a[2].checked_sub(a[0])) else {
                 continue;
             };
-            let w = match next(3) {
-                0 => (next(65_537) as i32, next(65_537) as i32),
-                1 => {
-                    let b1 = next(65_537) as i32;
-                    (b1, 65_536 - b1)
-                }
-                _ => (
-                    next(1 << 18) as i32 - (1 << 17),
-                    next(1 << 18) as i32 - (1 << 17),
-                ),
-            };
-            assert_eq!(
-                lerp_fit(a[0], d1, d2, w),
-                wide(a[0], a[1], a[2], w),
-                "{a:?} {w:?}"
-            );
+            let w = weights(&mut next);
+            assert_eq!(lerp_fit(a[0], d1, d2, w), wide(a, w), "{a:?} {w:?}");
             checked += 1;
         }
         assert!(checked > 100_000, "{checked}");
@@ -634,50 +627,21 @@ mod tests {
     /// `fine_fit`'s bits 16 to 31 are the low 16 bits of the `i64`
     /// formula's value, for any differences (wrapped when they do not fit)
     /// and the weights of every mode.
-
     #[test]
     fn fine_fit_gives_the_value_s_low_bits() {
         let mut next = crate::testing::rng();
-        let wide = |a0: i32, a1: i32, a2: i32, (b1, b2): (i32, i32)| -> i32 {
-            let base = a0 as i64;
-            let (d1, d2) = (a1 as i64 - base, a2 as i64 - base);
-            (base + ((d1 * b1 as i64 + d2 * b2 as i64 + (1 << 15)) >> 16)) as i32
-        };
-        let edges = [i32::MIN, i32::MIN + 1, -65_536, -1, 0, 1, 65_535, i32::MAX];
         for _ in 0..300_000 {
-            let mut a = [0i32; 3];
-            for v in &mut a {
-                *v = match next(4) {
-                    0 => edges[next(edges.len() as u64) as usize],
-                    1 => next(1 << 18) as i32 - (1 << 17),
-                    _ => next(1 << 32) as u32 as i32,
-                };
-            }
-            let w = match next(3) {
-                0 => (next(65_537) as i32, next(65_537) as i32),
-                1 => {
-                    let b1 = next(65_537) as i32;
-                    (b1, 65_536 - b1)
-                }
-                _ => (
-                    next(1 << 18) as i32 - (1 << 17),
-                    next(1 << 18) as i32 - (1 << 17),
-                ),
-            };
+            let a = values(&mut next);
+            let w = weights(&mut next);
             let f0 = (a[0] << 16).wrapping_add(1 << 15);
             let fine = fine_fit(f0, a[1].wrapping_sub(a[0]), a[2].wrapping_sub(a[0]), w);
-            assert_eq!(
-                fine as u32 >> 16,
-                wide(a[0], a[1], a[2], w) as u32 & 0xFFFF,
-                "{a:?} {w:?}"
-            );
+            assert_eq!(fine as u32 >> 16, wide(a, w) as u32 & 0xFFFF, "{a:?} {w:?}");
         }
     }
 
     /// The `i32` span starts of 32-bit targets give the `i64` ones at
     /// every span start of a triangle whose gradients were not clamped,
     /// large triangles and far vertices included.
-
     #[test]
     fn narrow_span_starts_match() {
         use crate::raster::{scanline::spans, PixelRect, SubPoint};
