@@ -24,6 +24,23 @@ impl Features for Lines {
     const SORT: bool = false;
 }
 
+/// [`Triangles`] with one of its two triangle paths: a firmware that
+/// draws only Gouraud (or only flat) triangles.
+struct Only<const GOURAUD: bool>;
+impl<const GOURAUD: bool> Features for Only<GOURAUD> {
+    const HILBERT: bool = false;
+    const SHADERS: bool = false;
+    const LINES: bool = false;
+    const BLEND: bool = false;
+    const CULL: bool = false;
+    const SORT: bool = false;
+    const DEPTH_TESTS: bool = false;
+    const LIGHTING: bool = false;
+    const U32_INDICES: bool = false;
+    const FLAT: bool = !GOURAUD;
+    const GOURAUD: bool = GOURAUD;
+}
+
 fn render<P: Features, F: ShaderSet<Rgb565>>(
     scene: &Scene<'_, F>,
     config: Config<Rgb565>,
@@ -69,6 +86,42 @@ fn fewer_paths_draw_the_same_triangles() {
             RenderError::Unsupported {
                 draw: None,
                 path: Path::DepthTests
+            }
+        );
+    }
+}
+
+#[test]
+fn one_triangle_path_draws_like_both_and_refuses_the_other() {
+    let assets = DemoAssets::new();
+    let (knot, cube) = (assets.knot(), cube());
+    let config = Config::new(SIZE, Rgb565::new(1, 2, 3));
+    for (shading, path) in [
+        (Shading::Gouraud, Path::Gouraud),
+        (Shading::Flat, Path::Flat),
+    ] {
+        let d = draws(&knot, &cube, 0.4, shading);
+        let scene = Scene::new(camera(SIZE.width, SIZE.height), &d).light(light());
+        let (both, stats) = render::<Triangles, _>(&scene, config).unwrap();
+        assert!(stats.pixels_shaded > 3000, "{stats:?}");
+        let (gouraud, flat) = (
+            render::<Only<true>, _>(&scene, config),
+            render::<Only<false>, _>(&scene, config),
+        );
+        let (drawn, refused) = if shading == Shading::Gouraud {
+            (gouraud, flat)
+        } else {
+            (flat, gouraud)
+        };
+        let (one, s) = drawn.unwrap();
+        assert!(one == both, "{shading:?}: the same image");
+        assert_eq!(s.pixels_shaded, stats.pixels_shaded);
+        // Both draws use the one shading: the first is named.
+        assert_eq!(
+            refused.unwrap_err(),
+            RenderError::Unsupported {
+                draw: Some(0),
+                path
             }
         );
     }

@@ -71,14 +71,22 @@ where
                 test: cfg.depth_test,
                 write: WRITE,
             },
-            gouraud: shade::<C, D, WRITE, true, TW, TH>,
-            flat: shade::<C, D, WRITE, false, TW, TH>,
-            flat_t: if P::BLEND {
+            gouraud: if P::GOURAUD {
+                shade::<C, D, WRITE, true, TW, TH>
+            } else {
+                shade_nothing::<C, TW, TH>
+            },
+            flat: if P::FLAT {
+                shade::<C, D, WRITE, false, TW, TH>
+            } else {
+                shade_nothing::<C, TW, TH>
+            },
+            flat_t: if P::BLEND && P::FLAT {
                 shade_custom::<C, shader::Flat, TW, TH>
             } else {
                 shade_none::<C, shader::Flat, TW, TH>
             },
-            gouraud_t: if P::BLEND {
+            gouraud_t: if P::BLEND && P::GOURAUD {
                 shade_custom::<C, shader::Gouraud, TW, TH>
             } else {
                 shade_none::<C, shader::Gouraud, TW, TH>
@@ -129,6 +137,21 @@ impl<'g, C, G: FragmentShader<C>, const TW: usize, const TH: usize> ShaderPass<'
         self.out = f(self.out);
         self
     }
+}
+
+/// The [`ShadeFn`] of a triangle path the renderer does not link
+/// ([`Features::FLAT`], [`Features::GOURAUD`]): never called, since
+/// `begin` refuses a scene with such a draw, and it draws nothing, so the
+/// path's set-up and span loop are left out.
+fn shade_nothing<C, const TW: usize, const TH: usize>(
+    _: &mut TileBuffer<C, TW, TH>,
+    _: &PixelRect,
+    _: [&ScreenVertex; 3],
+    _: [u8; 3],
+    _: &[Span],
+    _: DepthTest,
+) -> u32 {
+    0
 }
 
 /// The fragment-shader function of a path the renderer does not link

@@ -73,6 +73,13 @@ pub trait Features {
     /// [`Scene::light`](crate::scene::Scene::light)) on the default
     /// material.
     const LIGHTING: bool = true;
+    /// Flat triangles: [`Shading::Flat`](crate::scene::Shading::Flat)
+    /// (their attribute set-up and span loop).
+    const FLAT: bool = true;
+    /// Gouraud triangles:
+    /// [`Shading::Gouraud`](crate::scene::Shading::Gouraud) (their
+    /// attribute set-up and span loop, the largest of the triangle paths).
+    const GOURAUD: bool = true;
     /// Meshes with `u32` vertex indices ([`Mesh::new_u32`]); without it
     /// only `u16` meshes are binned, and a draw of a `u32` mesh is refused.
     ///
@@ -122,6 +129,10 @@ pub enum Path {
     Lighting,
     /// [`Features::U32_INDICES`].
     U32Indices,
+    /// [`Features::FLAT`].
+    Flat,
+    /// [`Features::GOURAUD`].
+    Gouraud,
 }
 
 impl core::fmt::Display for Path {
@@ -134,6 +145,8 @@ impl core::fmt::Display for Path {
             Path::DepthTests => "depth tests other than LessEqual with writes",
             Path::Lighting => "the general lighting",
             Path::U32Indices => "u32 mesh indices",
+            Path::Flat => "flat triangles",
+            Path::Gouraud => "Gouraud triangles",
         })
     }
 }

@@ -183,8 +183,14 @@ where
         if d.blend != Blend::Opaque && !P::BLEND {
             return Err(unsupported(Path::Blend));
         }
-        if d.shading == Shading::Shader && !P::SHADERS {
-            return Err(unsupported(Path::Shaders));
+        for (shading, linked, path) in [
+            (Shading::Shader, P::SHADERS, Path::Shaders),
+            (Shading::Flat, P::FLAT, Path::Flat),
+            (Shading::Gouraud, P::GOURAUD, Path::Gouraud),
+        ] {
+            if d.shading == shading && !linked {
+                return Err(unsupported(path));
+            }
         }
         if d.shading == Shading::Shader {
             let index = d.shader as usize;

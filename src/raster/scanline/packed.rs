@@ -1,6 +1,7 @@
 //! The scanline walk's edges packed into one word each ([`Packed`]), and
 //! the row loop that steps them ([`half_packed`]): how a 32-bit core walks
-//! a triangle that lies within its tile's columns.
+//! a triangle whose columns lie within `0..PACKED_COLS`, without clamps
+//! when they lie within its tile's columns too.
 
 use super::{ceil_div_rem32, far_start, EdgeStepper};
 use crate::raster::{Span, SubPoint, HALF_PIXEL, SUBPIXEL, SUBPIXEL_BITS};
@@ -117,16 +118,21 @@ impl Packed {
     }
 }
 
-/// [`half`](super::half) for [`Packed`] edges, without clamps (the triangle lies
-/// within the columns), as a 32-bit core walks most small triangles.
+/// [`half`](super::half) for [`Packed`] edges: with `CLAMP`, the spans
+/// clipped to columns `x0..x1` (a triangle across its tile's side
+/// columns), without (a triangle within them; `x0` and `x1` unused), as a
+/// 32-bit core walks most triangles.
 #[inline(always)]
-pub(super) fn half_packed(
+#[allow(clippy::too_many_arguments)]
+pub(super) fn half_packed<const CLAMP: bool>(
     out: &mut [Span],
     n: usize,
     row: i32,
     stop: i32,
     left: &mut Packed,
     right: &mut Packed,
+    x0: i32,
+    x1: i32,
 ) -> usize {
     const MASK: i32 = (1 << COL_BITS) - 1;
     let (mut lp, ls, ld) = (left.p, left.s, left.d);
@@ -134,10 +140,15 @@ pub(super) fn half_packed(
     let len = out.len();
     let mut rest = &mut out[n.min(len)..];
     for j in row..stop {
-        let s = Span {
-            j,
-            x0: (lp >> COL_SHIFT) & MASK,
-            x1: (rp >> COL_SHIFT) & MASK,
+        let (c0, c1) = ((lp >> COL_SHIFT) & MASK, (rp >> COL_SHIFT) & MASK);
+        let s = if CLAMP {
+            Span {
+                j,
+                x0: c0.max(x0),
+                x1: c1.min(x1),
+            }
+        } else {
+            Span { j, x0: c0, x1: c1 }
         };
         // Written whether empty or not, kept only if not: no branch.
         let r = core::mem::take(&mut rest);
