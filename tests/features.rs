@@ -9,7 +9,7 @@ mod support;
 use common::*;
 use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
 use microraster::prelude::*;
-use microraster::render::{All, Features, Path, Triangles};
+use microraster::render::{All, Features, GouraudTriangles, Path, Triangles};
 use microraster::shader::Gouraud;
 use support::Capture;
 
@@ -24,10 +24,10 @@ impl Features for Lines {
     const SORT: bool = false;
 }
 
-/// [`Triangles`] with one of its two triangle paths: a firmware that
-/// draws only Gouraud (or only flat) triangles.
-struct Only<const GOURAUD: bool>;
-impl<const GOURAUD: bool> Features for Only<GOURAUD> {
+/// [`Triangles`] without Gouraud: a firmware that draws flat triangles
+/// only (the library's [`GouraudTriangles`] is the other half).
+struct FlatTriangles;
+impl Features for FlatTriangles {
     const HILBERT: bool = false;
     const SHADERS: bool = false;
     const LINES: bool = false;
@@ -37,8 +37,7 @@ impl<const GOURAUD: bool> Features for Only<GOURAUD> {
     const DEPTH_TESTS: bool = false;
     const LIGHTING: bool = false;
     const U32_INDICES: bool = false;
-    const FLAT: bool = !GOURAUD;
-    const GOURAUD: bool = GOURAUD;
+    const GOURAUD: bool = false;
 }
 
 fn render<P: Features, F: ShaderSet<Rgb565>>(
@@ -105,8 +104,8 @@ fn one_triangle_path_draws_like_both_and_refuses_the_other() {
         let (both, stats) = render::<Triangles, _>(&scene, config).unwrap();
         assert!(stats.pixels_shaded > 3000, "{stats:?}");
         let (gouraud, flat) = (
-            render::<Only<true>, _>(&scene, config),
-            render::<Only<false>, _>(&scene, config),
+            render::<GouraudTriangles, _>(&scene, config),
+            render::<FlatTriangles, _>(&scene, config),
         );
         let (drawn, refused) = if shading == Shading::Gouraud {
             (gouraud, flat)

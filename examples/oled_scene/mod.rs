@@ -7,7 +7,7 @@ use embedded_graphics::pixelcolor::{Gray4, Rgb888};
 use fixed::types::I16F16;
 use microraster::mesh::Vec3Fx;
 use microraster::prelude::*;
-use microraster::render::Features;
+use microraster::render::GouraudTriangles;
 use microraster::shapes::{torus_knot, torus_knot_size};
 
 /// Panel size.
@@ -24,28 +24,10 @@ pub const VERTICES: usize = torus_knot_size(SEGMENTS, SIDES).0;
 /// Triangles of the knot.
 pub const TRIANGLES: usize = torus_knot_size(SEGMENTS, SIDES).1;
 
-/// What the firmware draws: Gouraud triangles, with the scanline
-/// rasterizer, the default depth test, one directional light and `u16`
-/// indices; every other path (flat triangles too) is left out of its
-/// flash.
-pub struct GouraudTriangles;
-
-impl Features for GouraudTriangles {
-    const HILBERT: bool = false;
-    const SHADERS: bool = false;
-    const LINES: bool = false;
-    const BLEND: bool = false;
-    const CULL: bool = false;
-    const SORT: bool = false;
-    const DEPTH_TESTS: bool = false;
-    const LIGHTING: bool = false;
-    const U32_INDICES: bool = false;
-    const FLAT: bool = false;
-}
-
 /// 32x32 tiles: the panel is 4 x 2 tiles, and every tile starts on an even
 /// column as the SSD0323's two-pixels-per-byte columns need. The firmware
-/// links only the paths it draws ([`GouraudTriangles`]).
+/// draws Gouraud triangles only, and links nothing else
+/// ([`GouraudTriangles`]).
 pub type OledRenderer = Renderer<Gray4, 32, 32, GouraudTriangles>;
 /// Room for the knot and all 8 tiles in one binning pass.
 pub type OledWorkspace = Workspace<VERTICES, 1536, 8>;

@@ -15,7 +15,7 @@ use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
 use fixed::types::I16F16;
 use microraster::mesh::Vec3Fx;
 use microraster::prelude::*;
-use microraster::render::{Frame, Triangles};
+use microraster::render::{Frame, GouraudTriangles};
 use microraster::shapes::{
     torus_knot, torus_knot_size, CUBE_NORMALS, CUBE_POSITIONS, CUBE_TRIANGLES,
 };
@@ -51,16 +51,17 @@ pub const BIN_ENTRIES: usize = 2048;
 
 /// The firmware's renderer: Rgb565 in the panel's byte order
 /// ([`Rgb565Be`], so that DMA sends a finished tile as it is), in 32x32
-/// tiles, flat and Gouraud triangles only ([`Triangles`]: nothing else is
+/// tiles, Gouraud triangles only ([`GouraudTriangles`]: nothing else is
 /// linked).
-pub type PicoRenderer = Renderer<Rgb565Be, TILE, TILE, Triangles>;
+pub type PicoRenderer = Renderer<Rgb565Be, TILE, TILE, GouraudTriangles>;
 /// The same renderer in plain [`Rgb565`], the host's reference: its
 /// frames are the firmware's pixel for pixel, each pixel's two bytes in
 /// the MCU's order instead of the wire's.
-pub type Rgb565Renderer = Renderer<Rgb565, TILE, TILE, Triangles>;
+pub type Rgb565Renderer = Renderer<Rgb565, TILE, TILE, GouraudTriangles>;
 /// A frame of [`PicoRenderer`]'s, begun without a renderer
 /// ([`Frame::begin`]): what the double-buffered firmwares draw.
-pub type PicoFrame<'a> = Frame<'a, Rgb565Be, microraster::shader::NoShader, TILE, TILE, Triangles>;
+pub type PicoFrame<'a> =
+    Frame<'a, Rgb565Be, microraster::shader::NoShader, TILE, TILE, GouraudTriangles>;
 /// One of the firmware's two tile buffers: one is drawn into while DMA
 /// sends the other.
 pub type PicoTile = TileBuffer<Rgb565Be, TILE, TILE>;

@@ -9,8 +9,8 @@
 /// says at compile time which of them a [`Renderer`](super::Renderer)
 /// supports; the code of the others is never reached, and the optimiser
 /// leaves it out. [`All`] (the default) supports everything;
-/// [`Triangles`] only flat and Gouraud triangles; a firmware can name its
-/// own set.
+/// [`Triangles`] only flat and Gouraud triangles, [`GouraudTriangles`]
+/// only Gouraud ones; a firmware can name its own set.
 ///
 /// A scene that asks for a path its renderer does not link is refused by
 /// [`Renderer::begin`](super::Renderer::begin) with
@@ -109,6 +109,27 @@ impl Features for Triangles {
     const DEPTH_TESTS: bool = false;
     const LIGHTING: bool = false;
     const U32_INDICES: bool = false;
+}
+
+/// Gouraud triangles only: [`Triangles`] without flat shading, the
+/// smallest set that draws lit meshes (flat triangles' set-up and span
+/// loop left out too). A draw with
+/// [`Shading::Flat`](crate::scene::Shading::Flat) is refused with
+/// [`Path::Flat`].
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct GouraudTriangles;
+
+impl Features for GouraudTriangles {
+    const HILBERT: bool = false;
+    const SHADERS: bool = false;
+    const LINES: bool = false;
+    const BLEND: bool = false;
+    const CULL: bool = false;
+    const SORT: bool = false;
+    const DEPTH_TESTS: bool = false;
+    const LIGHTING: bool = false;
+    const U32_INDICES: bool = false;
+    const FLAT: bool = false;
 }
 
 /// A path a [`Features`] type can leave out, named in

@@ -90,7 +90,7 @@ pub use crate::vertex::MAX_LIGHTS;
 pub use bin::CHUNK;
 pub use config::Config;
 pub use error::RenderError;
-pub use features::{All, Features, Path, Triangles};
+pub use features::{All, Features, GouraudTriangles, Path, Triangles};
 pub use frame::Frame;
 pub(crate) use frame::Pick;
 pub use state::MAX_SORTED_DRAWS;
