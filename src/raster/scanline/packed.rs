@@ -1,5 +1,5 @@
 //! The scanline walk's edges packed into one word each ([`Packed`]), and
-//! the row loop that steps them ([`half_packed`]): how a 32-bit core walks
+//! the row loop that steps them ([`half_packed`]): how the walk takes
 //! a triangle that lies within its tile's columns.
 
 use super::{ceil_div_rem32, far_start, EdgeStepper};
@@ -118,7 +118,7 @@ impl Packed {
 }
 
 /// [`half`](super::half) for [`Packed`] edges, without clamps (the triangle lies
-/// within the columns), as a 32-bit core walks most small triangles.
+/// within the columns), as the walk takes most small triangles.
 #[inline(always)]
 pub(super) fn half_packed(
     out: &mut [Span],
