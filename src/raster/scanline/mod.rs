@@ -259,8 +259,8 @@ fn may_cover(v: &[SubPoint; 3], positive: bool, clip: PixelRect) -> bool {
 /// The long edge a -> c (vertices sorted by y) is on the left when the
 /// middle vertex b is right of it. The short edge is a -> b for rows whose
 /// centre lies above b, then b -> c. Both halves run through the same row
-/// loop ([`half`]: once, or on 32-bit cores a copy for each half, of it
-/// or of [`half_packed`]), and no row tests which edge is on which side.
+/// loop (a copy for each half, of [`half`] or of [`half_packed`]), and no
+/// row tests which edge is on which side.
 #[inline(always)]
 pub(crate) fn find_spans(v: &[SubPoint; 3], clip: PixelRect, out: &mut [Span]) -> usize {
     // Sort by y: a on top, c at the bottom.
@@ -300,12 +300,13 @@ pub(crate) fn find_spans(v: &[SubPoint; 3], clip: PixelRect, out: &mut [Span]) -
     }
     // Whether every span lies within the clip's columns: its columns are
     // those of the edges between the vertices, so the vertices' extent
-    // bounds them. On a 32-bit core, a triangle inside its tile's columns
-    // (most of a mesh's small ones) then takes a row loop with no clamps,
-    // whose two fewer live values spare it loads from the stack. A 64-bit
-    // host has the registers for the clamps, and there the second loop
-    // measured slower (x86-64 `demo` +0.8 %, `fill` +3.6 %); the unit
-    // tests take it there too.
+    // bounds them. A triangle inside its tile's columns (most of a mesh's
+    // small ones) then takes a row loop with no clamps, whose two fewer
+    // live values spare it loads from the stack on a 32-bit core. On
+    // x86-64 that loop without packing measured slower (`demo` +0.8 %,
+    // `fill` +3.6 %), packed faster: `demo` 4,701,139 -> 4,641,680
+    // instructions, `rock` 3,910,785 -> 3,860,305, `fill` 9.70 -> 9.81
+    // per pixel (its quads take the other loop, whose code moved).
     //
     // The loop without clamps also packs each edge's column and error
     // term into one word ([`Packed`]), which needs the columns within
@@ -329,7 +330,7 @@ pub(crate) fn find_spans(v: &[SubPoint; 3], clip: PixelRect, out: &mut [Span]) -
         | hi.wrapping_sub(a.x)
         | hi.wrapping_sub(b.x)
         | hi.wrapping_sub(c.x);
-    let inside = cfg!(any(target_pointer_width = "32", test)) && outside >= 0;
+    let inside = outside >= 0;
     // Otherwise, whether the edges can still be packed: their columns
     // within `0..PACKED_COLS` (the vertices within `-7..=16 (PACKED_COLS
     // - 1) + 8`, as above), walked with clamps (a triangle across its
@@ -389,31 +390,19 @@ pub(crate) fn find_spans(v: &[SubPoint; 3], clip: PixelRect, out: &mut [Span]) -
     let long = EdgeStepper::new::<false>(a, c, row_top);
     let short = EdgeStepper::new::<false>(p, q, row_top);
     let (mut left, mut right) = sides(long_on_left, long, short);
-    if cfg!(all(target_pointer_width = "64", not(test))) {
-        // One copy of the row loop for both halves: with a 64-bit host's
-        // registers, a copy for each half measured slower (x86-64 `fill`
-        // +0.8 %, over its target). The unit tests take the 32-bit path.
-        let (mut row, mut stop, mut n) = (row_top, stop, 0);
-        loop {
-            n = half::<false>(out, n, row, stop, &mut left, &mut right, clip.x0, clip.x1);
-            if stop >= row_end {
-                return n;
-            }
-            // Only reached after the upper half, with `stop == row_mid`.
-            row = stop;
-            lower_half(b, c, row, long_on_left, &mut left, &mut right);
-            stop = row_end;
-        }
-    }
-    // On a 32-bit core, a copy of the row loop for each half: the one loop
-    // kept the lower half's set-up live across the upper half's rows.
-    let n = half::<true>(out, 0, row_top, stop, &mut left, &mut right, x0, x1);
+    // A copy of the row loop for each half: the one loop kept the lower
+    // half's set-up live across the upper half's rows. (On x86-64 one loop
+    // had measured faster before the packed walk took the triangles within
+    // their tile's columns; with it, the two copies: `demo` 4,641,680 ->
+    // 4,585,091 instructions, `rock` 3,860,305 -> 3,819,141, `fill` 9.81
+    // -> 9.71 per pixel, with `SLOTS_LEFT`.)
+    let n = half::<SLOTS_LEFT>(out, 0, row_top, stop, &mut left, &mut right, x0, x1);
     if stop >= row_end {
         return n;
     }
     // The lower half, from `stop == row_mid`.
     lower_half(b, c, stop, long_on_left, &mut left, &mut right);
-    half::<true>(out, n, stop, row_end, &mut left, &mut right, x0, x1)
+    half::<SLOTS_LEFT>(out, n, stop, row_end, &mut left, &mut right, x0, x1)
 }
 
 /// Whether the middle vertex `b` (vertices sorted by y) is right of the
@@ -483,16 +472,20 @@ fn replace_short<E>(long_on_left: bool, lower: E, left: &mut E, right: &mut E) {
     }
 }
 
+/// [`half`]'s `REST` where [`find_spans`] calls it: on 32-bit cores, and
+/// in the unit tests, which thereby walk as those cores do.
+const SLOTS_LEFT: bool = cfg!(any(target_pointer_width = "32", test));
+
 /// Walks the rows `row..stop` between the edges `left` and `right`,
 /// recording the non-empty spans, clipped to columns `x0..x1`, in `out`
-/// from `out[n]` on; returns the new count. (A 32-bit core walks a
-/// triangle within the columns by [`half_packed`] instead.)
+/// from `out[n]` on; returns the new count. (A triangle within the
+/// columns is walked by [`half_packed`] instead.)
 ///
 /// With `REST`, a span is written to the first of the slots left, which a
 /// non-empty one then leaves (a pointer and a length in registers, where
 /// the other way keeps the base, the count and the length): fewer live
 /// values in the loop on a 32-bit core, slower on a 64-bit host (x86-64
-/// `demo` +1.5 %).
+/// `demo` +1.5 %; see [`SLOTS_LEFT`]).
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 fn half<const REST: bool>(

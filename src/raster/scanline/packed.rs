@@ -1,7 +1,7 @@
 //! The scanline walk's edges packed into one word each ([`Packed`]), and
-//! the row loop that steps them ([`half_packed`]): how a 32-bit core walks
-//! a triangle whose columns lie within `0..PACKED_COLS`, without clamps
-//! when they lie within its tile's columns too.
+//! the row loop that steps them ([`half_packed`]): how the walk takes a
+//! triangle that lies within its tile's columns, and on a 32-bit core
+//! one whose columns lie within `0..PACKED_COLS` (with clamps).
 
 use super::{ceil_div_rem32, far_start, EdgeStepper};
 use crate::raster::{Span, SubPoint, HALF_PIXEL, SUBPIXEL, SUBPIXEL_BITS};
@@ -120,8 +120,8 @@ impl Packed {
 
 /// [`half`](super::half) for [`Packed`] edges: with `CLAMP`, the spans
 /// clipped to columns `x0..x1` (a triangle across its tile's side
-/// columns), without (a triangle within them; `x0` and `x1` unused), as a
-/// 32-bit core walks most triangles.
+/// columns), without (a triangle within them; `x0` and `x1` unused), as the walk
+/// takes most small triangles.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 pub(super) fn half_packed<const CLAMP: bool>(
