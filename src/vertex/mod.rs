@@ -387,11 +387,13 @@ impl Viewport {
 
     /// [`project`](Self::project), out of line: for the rare vertex of
     /// [`project_inside`](Self::project_inside) with `w` from `short_w` up
-    /// (for 320 x 240 and a normalized matrix, more than 6.4 units). (The
-    /// coordinates by value: a reference would keep the vertex in memory.)
+    /// (for 320 x 240 and a normalized matrix, more than 6.4 units), and
+    /// for the clipper's vertices (rare too: one copy of the projection's
+    /// long divisions for both). (The coordinates by value: a reference
+    /// would keep the vertex in memory.)
     #[inline(never)]
     #[cold]
-    fn project_wide(&self, x: i32, y: i32, z: i32, w: i32) -> (SubPoint, u16) {
+    pub(crate) fn project_wide(&self, x: i32, y: i32, z: i32, w: i32) -> (SubPoint, u16) {
         self.project(&[x, y, z, w])
     }
 
