@@ -313,9 +313,5 @@ fn run_vertices(
     viewport: &Viewport,
     out: &mut [ScreenVertex],
 ) -> Result<(), VertexError> {
-    for (i, sv) in out.iter_mut().enumerate() {
-        let pos = setup.clip_position(mesh, first + i)?;
-        *sv = viewport.screen_vertex_lit(&pos, || setup.lit_color(mesh, first + i));
-    }
-    Ok(())
+    setup.screen_vertices(mesh, first, viewport, out)
 }
