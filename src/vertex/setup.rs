@@ -38,6 +38,10 @@ pub struct DrawSetup {
     /// `mvp` cannot overflow on this draw's mesh (see
     /// [`FixedMat4::bounded`]), so vertices take the unchecked transform.
     bounded: bool,
+    /// On cores without a 32 x 32 -> 64-bit multiply (ARMv6-M), `mvp` is
+    /// also [`narrow`](FixedMat4::narrow) for the mesh: the vertex loop
+    /// transforms in 32-bit products. Always `false` elsewhere.
+    narrow: bool,
     light: Option<LightSetup<MAX_LIGHTS>>,
     /// The same lighting when it is one directional light on a white
     /// material without highlights or fog: a dozen instructions per vertex
@@ -242,6 +246,9 @@ impl DrawSetup {
         let s = slot.insert(Self {
             mvp,
             bounded: mvp.bounded(draw.mesh.extent()),
+            narrow: crate::math::SPLIT
+                && mvp.bounded(draw.mesh.extent())
+                && mvp.narrow(draw.mesh.extent()),
             light: None,
             lambert: None,
             general: None,
@@ -346,7 +353,13 @@ impl DrawSetup {
             .positions()
             .get(run.clone())
             .ok_or(VertexError::OutOfRange { vertex: first })?;
-        let common = match (&self.lambert, self.bounded, mesh.colors(), mesh.normals()) {
+        // On ARMv6-M the common case's matrix is narrow too (its 32-bit
+        // products; the others' by the 64-bit ones, out of line).
+        let quick = match crate::math::SPLIT {
+            true => self.narrow,
+            false => self.bounded,
+        };
+        let common = match (&self.lambert, quick, mesh.colors(), mesh.normals()) {
             (Some(l), true, None, Some(normals)) => normals.get(run).map(|s| (l, s)),
             _ => None,
         };
@@ -361,13 +374,11 @@ impl DrawSetup {
             .zip(positions.iter().zip(normals))
             .enumerate()
         {
-            let pos = match fast {
-                true => self.mvp.transform_point_bounded([
-                    p[0].to_bits(),
-                    p[1].to_bits(),
-                    p[2].to_bits(),
-                ]),
-                false => self.clip_position_apart(mesh, first + k)?,
+            let p = [p[0].to_bits(), p[1].to_bits(), p[2].to_bits()];
+            let pos = match (fast, crate::math::SPLIT) {
+                (true, true) => self.mvp.transform_point_narrow(p),
+                (true, false) => self.mvp.transform_point_bounded(p),
+                (false, _) => self.clip_position_apart(mesh, first + k)?,
             };
             *o = viewport.screen_vertex_lit(&pos, || match fast {
                 true => l.shade(*nv, self.color),
