@@ -369,19 +369,25 @@ impl Mat4 {
     /// assert_eq!(Mat4 { m: [[0.0; 4]; 4] }.normalized(), None);
     /// ```
     pub fn normalized(&self) -> Option<Self> {
-        if !self.is_finite() {
-            return None;
-        }
-        let big = self.m.iter().flatten().fold(0.0f32, |b, v| b.max(v.abs()));
-        // 2^-100: the elements within 2^-17 of it are normal f32s.
-        if big < f32::from_bits(27 << 23) {
-            return None;
-        }
+        let big = self.normal_scale()?;
         let mut out = *self;
         for v in out.m.iter_mut().flatten() {
             *v /= big;
         }
         Some(out)
+    }
+
+    /// What [`normalized`](Self::normalized) divides by, the largest
+    /// element's magnitude; `None` exactly where it returns `None`. The
+    /// renderer checks the camera by this alone: its product normalized
+    /// was never used, and took 16 `f32` divisions a frame.
+    pub(crate) fn normal_scale(&self) -> Option<f32> {
+        if !self.is_finite() {
+            return None;
+        }
+        let big = self.m.iter().flatten().fold(0.0f32, |b, v| b.max(v.abs()));
+        // 2^-100: the elements within 2^-17 of it are normal f32s.
+        (big >= f32::from_bits(27 << 23)).then_some(big)
     }
 
     /// [`normalized`](Self::normalized), converted to 16.16: what the vertex
