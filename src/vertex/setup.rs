@@ -73,14 +73,6 @@ struct Lambert {
 }
 
 impl Lambert {
-    /// A light of no colour: what [`DrawSetup::screen_vertices`] holds
-    /// where it has none (and reads none).
-    const NONE: Self = Lambert {
-        dir: [0; 3],
-        color: [0; 3],
-        ambient: [0; 3],
-    };
-
     fn new((dir, color, ambient): ([i32; 3], [u8; 3], [u8; 3])) -> Self {
         Lambert {
             dir,
@@ -331,14 +323,13 @@ impl DrawSetup {
     ///
     /// What holds for the whole draw is asked once, not per vertex: in the
     /// common case (a matrix [`bounded`](FixedMat4::bounded) for the mesh,
-    /// no vertex colours, the Lambert fast path on the mesh's normals) the
-    /// loop walks the positions and normals as two slices, with no index
-    /// check and no test of the matrix, the colours or the lighting; any
-    /// other draw takes both values from the general functions, out of
-    /// line. One loop for both (a flag per vertex), so that the projection
-    /// (the loop's bulk) is compiled once: a loop of its own for the
-    /// common case measured 22 K instructions fewer a frame on the
-    /// Cortex-M3 but its 500 bytes did not fit the OLED firmware.
+    /// on ARMv6-M [`narrow`](FixedMat4::narrow) too, no vertex colours,
+    /// the Lambert fast path on the mesh's normals) a loop of its own walks
+    /// the positions and normals as two slices, with no index check and no
+    /// test of the matrix, the colours or the lighting; any other draw
+    /// takes both values from the general functions, out of line. (One
+    /// loop for both, with a flag per vertex, was 22 K instructions a
+    /// frame slower on the Cortex-M3 and 292 bytes smaller.)
     #[inline(always)]
     pub(crate) fn screen_vertices(
         &self,
@@ -363,27 +354,23 @@ impl DrawSetup {
             (Some(l), true, None, Some(normals)) => normals.get(run).map(|s| (l, s)),
             _ => None,
         };
-        // Outside the common case the light and the normals are never read
-        // (any slice of the run's length will do).
-        let (fast, (l, normals)) = match common {
-            Some(c) => (true, c),
-            None => (false, (&Lambert::NONE, positions)),
-        };
-        for (k, (o, (p, nv))) in out
-            .iter_mut()
-            .zip(positions.iter().zip(normals))
-            .enumerate()
-        {
-            let p = [p[0].to_bits(), p[1].to_bits(), p[2].to_bits()];
-            let pos = match (fast, crate::math::SPLIT) {
-                (true, true) => self.mvp.transform_point_narrow(p),
-                (true, false) => self.mvp.transform_point_bounded(p),
-                (false, _) => self.clip_position_apart(mesh, first + k)?,
-            };
-            *o = viewport.screen_vertex_lit(&pos, || match fast {
-                true => l.shade(*nv, self.color),
-                false => self.lit_color_apart(mesh, first + k),
-            });
+        match common {
+            Some((l, normals)) => {
+                for (o, (p, nv)) in out.iter_mut().zip(positions.iter().zip(normals)) {
+                    let p = [p[0].to_bits(), p[1].to_bits(), p[2].to_bits()];
+                    let pos = match crate::math::SPLIT {
+                        true => self.mvp.transform_point_narrow(p),
+                        false => self.mvp.transform_point_bounded(p),
+                    };
+                    *o = viewport.screen_vertex_lit(&pos, || l.shade(*nv, self.color));
+                }
+            }
+            None => {
+                for (k, o) in out.iter_mut().enumerate() {
+                    let pos = self.clip_position_apart(mesh, first + k)?;
+                    *o = viewport.screen_vertex_lit(&pos, || self.lit_color_apart(mesh, first + k));
+                }
+            }
         }
         Ok(())
     }
