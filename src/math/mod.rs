@@ -369,19 +369,25 @@ impl Mat4 {
     /// assert_eq!(Mat4 { m: [[0.0; 4]; 4] }.normalized(), None);
     /// ```
     pub fn normalized(&self) -> Option<Self> {
-        if !self.is_finite() {
-            return None;
-        }
-        let big = self.m.iter().flatten().fold(0.0f32, |b, v| b.max(v.abs()));
-        // 2^-100: the elements within 2^-17 of it are normal f32s.
-        if big < f32::from_bits(27 << 23) {
-            return None;
-        }
+        let big = self.normal_scale()?;
         let mut out = *self;
         for v in out.m.iter_mut().flatten() {
             *v /= big;
         }
         Some(out)
+    }
+
+    /// What [`normalized`](Self::normalized) divides by, the largest
+    /// element's magnitude; `None` exactly where it returns `None`. The
+    /// renderer checks the camera by this alone: its product normalized
+    /// was never used, and took 16 `f32` divisions a frame.
+    pub(crate) fn normal_scale(&self) -> Option<f32> {
+        if !self.is_finite() {
+            return None;
+        }
+        let big = self.m.iter().flatten().fold(0.0f32, |b, v| b.max(v.abs()));
+        // 2^-100: the elements within 2^-17 of it are normal f32s.
+        (big >= f32::from_bits(27 << 23)).then_some(big)
     }
 
     /// [`normalized`](Self::normalized), converted to 16.16: what the vertex
@@ -503,6 +509,46 @@ impl FixedMat4 {
                 + (1 << 15);
             sum < 1 << 47
         })
+    }
+
+    /// Whether [`transform_point_narrow`](Self::transform_point_narrow) is
+    /// exact for every point whose coordinates are at most `extent` in
+    /// magnitude, for a matrix also [`bounded`](Self::bounded) for it: the
+    /// elements that multiply coordinates at most `2^16` (1.0: those of a
+    /// normalized matrix) and `extent` at most `2^21`.
+    pub(crate) fn narrow(&self, extent: u32) -> bool {
+        extent <= 1 << 21
+            && self.m[..3]
+                .iter()
+                .flatten()
+                .all(|v| v.unsigned_abs() <= 1 << 16)
+    }
+
+    /// [`transform_point_bounded`](Self::transform_point_bounded) in 32-bit
+    /// products, for a matrix [`narrow`](Self::narrow) and bounded for the
+    /// point's extent: on ARMv6-M each 64-bit product is four 16-bit ones
+    /// and their carries, here each is two `MULS`.
+    ///
+    /// With `p[i] = a[i] 2^8 + b[i]` (`0 <= b[i] < 2^8`, so `|a[i]| <=
+    /// 2^13`), a row's `Σ m[i] p[i] = 2^8 A + B` for `A = Σ m[i] a[i]` and
+    /// `B = Σ m[i] b[i]`, below `3 2^29` and `3 2^24` in magnitude: both
+    /// exact in `i32`. Then `floor((Σ m[i] p[i] + 2^15) / 2^16) = floor((A +
+    /// floor((B + 2^15) / 2^8)) / 2^8)`, the sum below `2^31` in magnitude,
+    /// and the translation (a multiple of `2^16` in the bounded transform's
+    /// sum) is added after the shift; the result is the bounded one's,
+    /// which fits `i32`.
+    #[inline(always)]
+    pub(crate) fn transform_point_narrow(&self, p: [i32; 3]) -> [i32; 4] {
+        let m = &self.m;
+        let a = p.map(|v| v >> 8);
+        let b = p.map(|v| v & 0xff);
+        let mut out = [0i32; 4];
+        for (r, o) in out.iter_mut().enumerate() {
+            let hi = m[0][r] * a[0] + m[1][r] * a[1] + m[2][r] * a[2];
+            let lo = m[0][r] * b[0] + m[1][r] * b[1] + m[2][r] * b[2];
+            *o = m[3][r].wrapping_add((hi + ((lo + (1 << 15)) >> 8)) >> 8);
+        }
+        out
     }
 
     /// The `w` row of [`transform_point_bounded`](Self::transform_point_bounded),
@@ -774,6 +820,60 @@ mod tests {
         assert!(Mat4::scale(Vec3::new(f32::INFINITY, 1.0, 1.0))
             .to_fixed()
             .is_none());
+    }
+
+    /// The narrow transform is the bounded one wherever it is taken:
+    /// random matrices with elements within ±2^16 (the translation any),
+    /// points within extents up to 2^21, their extremes among them.
+    #[test]
+    fn narrow_transform_matches_the_bounded_one() {
+        let mut next = crate::testing::rng();
+        let mut taken = 0;
+        for _ in 0..20_000 {
+            let e = |next: &mut dyn FnMut(u64) -> u64| {
+                let bits = next(18);
+                (next(2 << bits) as i64 - (1 << bits)).clamp(-(1 << 16), 1 << 16) as i32
+            };
+            let mut m = FixedMat4 { m: [[0; 4]; 4] };
+            for c in 0..3 {
+                for r in 0..4 {
+                    m.m[c][r] = e(&mut next);
+                }
+            }
+            for r in 0..4 {
+                m.m[3][r] = next(1 << 32) as u32 as i32 >> next(32);
+            }
+            let extent = match next(4) {
+                0 => 1 << 21,
+                _ => (next(1 << 21) + 1) as u32,
+            };
+            if !(m.bounded(extent) && m.narrow(extent)) {
+                continue;
+            }
+            taken += 1;
+            let x = extent as i64;
+            for k in 0..16 {
+                let mut c = || match k {
+                    0 => x,
+                    1 => -x,
+                    _ => next(2 * x as u64 + 1) as i64 - x,
+                } as i32;
+                let p = [c(), c(), c()];
+                assert_eq!(
+                    m.transform_point_narrow(p),
+                    m.transform_point_bounded(p),
+                    "{m:?} {p:?}"
+                );
+            }
+        }
+        assert!(taken > 1_000, "{taken}");
+        let full = FixedMat4 {
+            m: [[1 << 16; 4]; 4],
+        };
+        assert!(full.narrow(1 << 21) && !full.narrow((1 << 21) + 1));
+        let mut wide = full;
+        wide.m[2][3] = (1 << 16) + 1;
+        assert!(!wide.narrow(1));
     }
 
     #[test]

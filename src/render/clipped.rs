@@ -80,7 +80,8 @@ impl FrameState<'_> {
             return Fate::Rejected;
         }
         let project = |k: usize| -> ScreenVertex {
-            let (p, z) = self.viewport.project(&poly[k].pos);
+            let [x, y, z, w] = poly[k].pos;
+            let (p, z) = self.viewport.project_wide(x, y, z, w);
             let c = poly[k].color;
             // Inside the guard band up to clipping round-off: within
             // `(K + 1.07) * 2^15 < 2^18` sub-pixels, in the 24-bit fields.

@@ -137,7 +137,7 @@ where
     // camera in any units is fine; only a non-finite or zero one is bad.
     // (Not `to_fixed_normalized`: a camera alone may lose a row that a
     // draw's model matrix restores.)
-    if view_proj.normalized().is_none() {
+    if view_proj.normal_scale().is_none() {
         return Err(RenderError::BadCamera);
     }
     let eye = scene.camera.eye();
@@ -319,9 +319,5 @@ fn run_vertices(
     viewport: &Viewport,
     out: &mut [ScreenVertex],
 ) -> Result<(), VertexError> {
-    for (i, sv) in out.iter_mut().enumerate() {
-        let pos = setup.clip_position(mesh, first + i)?;
-        *sv = viewport.screen_vertex_lit(&pos, || setup.lit_color(mesh, first + i));
-    }
-    Ok(())
+    setup.screen_vertices(mesh, first, viewport, out)
 }

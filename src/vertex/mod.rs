@@ -387,12 +387,46 @@ impl Viewport {
 
     /// [`project`](Self::project), out of line: for the rare vertex of
     /// [`project_inside`](Self::project_inside) with `w` from `short_w` up
-    /// (for 320 x 240 and a normalized matrix, more than 6.4 units). (The
-    /// coordinates by value: a reference would keep the vertex in memory.)
+    /// (for 320 x 240 and a normalized matrix, more than 6.4 units), and
+    /// for the clipper's vertices (rare too: one copy of the projection's
+    /// long divisions for both). (The coordinates by value: a reference
+    /// would keep the vertex in memory.)
     #[inline(never)]
     #[cold]
-    fn project_wide(&self, x: i32, y: i32, z: i32, w: i32) -> (SubPoint, u16) {
-        self.project(&[x, y, z, w])
+    pub(crate) fn project_wide(&self, x: i32, y: i32, z: i32, w: i32) -> (SubPoint, u16) {
+        match LONG_DIVISION {
+            true => self.project_plain(&[x, y, z, w]),
+            false => self.project(&[x, y, z, w]),
+        }
+    }
+
+    /// [`project`](Self::project) by three 64-bit divisions (the library's
+    /// on 32-bit cores): the same quotients, `n / w` rounded to nearest,
+    /// ties away from zero. [`project_wide`](Self::project_wide)'s, where
+    /// `w`'s reciprocal and its multiply-highs were about 400 bytes more
+    /// code for the rare vertex far away or clipped.
+    #[inline(always)]
+    #[cfg_attr(not(test), allow(dead_code))]
+    fn project_plain(&self, p: &[i32; 4]) -> (SubPoint, u16) {
+        let w = NonZeroU64::new((p[3] as i64).max(1) as u64).unwrap_or(NonZeroU64::MIN);
+        let half = w.get() / 2;
+        // div_round(n, w), for |n| < 2^48.
+        let round = |n: i64| -> i64 {
+            let q = ((n.unsigned_abs() + half) / w) as i64;
+            if n < 0 {
+                -q
+            } else {
+                q
+            }
+        };
+        let (hw, hh) = (self.half_w as i32, self.half_h as i32);
+        let x = self.half_w + round(crate::math::mul_wide(p[0], hw));
+        let y = self.half_h - round(crate::math::mul_wide(p[1], hh));
+        // div_round(n, 2w) = floor((|n| + w) / w) / 2, as in `project`.
+        let n = (p[2] as i64 + w.get() as i64) * 65_535;
+        let z = (((n.unsigned_abs() + w.get()) / w) >> 1) as i64;
+        let z = if n < 0 { -z } else { z }.clamp(0, 65_535);
+        (SubPoint::new(x as i32, y as i32), z as u16)
     }
 
     /// [`project`](Self::project) of a vertex without [`MUST_CLIP`] bits
@@ -782,6 +816,7 @@ mod tests {
             };
             let p = [c(), c(), c(), w as i32];
             let (s, z) = vp.project(&p);
+            assert_eq!(vp.project_plain(&p), (s, z), "{p:?}");
             let ex = vp.half_w + div_round(p[0] as i64 * vp.half_w, w);
             let ey = vp.half_h - div_round(p[1] as i64 * vp.half_h, w);
             let ez = div_round((p[2] as i64 + w) * 65_535, 2 * w).clamp(0, 65_535);
