@@ -46,6 +46,35 @@ pub trait FromTexel: From<Rgb888> {
     fn from_rgb888([r, g, b]: [u8; 3]) -> Self {
         Self::from(Rgb888::new(r, g, b))
     }
+
+    /// The colour of an `Rgb565` texel with bits `raw` lit by `light`
+    /// (as [`TexturedLit`](crate::shader::TexturedLit) modulates it): must
+    /// equal [`from_rgb888`](Self::from_rgb888) of its `Rgb888` expansion
+    /// times `light / 255` per channel, rounded
+    /// ([`mul255`](crate::shader::mul255)), which the default returns.
+    #[inline(always)]
+    fn from_lit_rgb565(raw: u16, light: [u8; 3]) -> Self {
+        let [r, g, b] = rgb565_to_rgb888(raw);
+        Self::from_rgb888([
+            crate::shader::mul255(r, light[0]),
+            crate::shader::mul255(g, light[1]),
+            crate::shader::mul255(b, light[2]),
+        ])
+    }
+}
+
+/// [`FromTexel::from_lit_rgb565`]'s bits for the `Rgb565` targets: each
+/// channel's product by [`mul255`](crate::shader::mul255)'s identity
+/// `round(p / 255) = ((p + 128) · 257) >> 16` (for `p <= 255 · 255`),
+/// with `e · 257 = e | e << 8` for the expanded channel `e`, so a channel
+/// is one multiply-add and a shift (no separate rounding steps), then
+/// the table's conversion to 5 or 6 bits, as `from_rgb888` takes it.
+#[inline(always)]
+fn lit565_bits(raw: u16, light: [u8; 3]) -> u16 {
+    let [r, g, b] = rgb565_to_rgb888(raw);
+    // At most 65,535 · 255 + 32,896 < 2^24: no overflow.
+    let m = |e: u8, l: u8| ((((e as u32) << 8 | e as u32) * l as u32 + 32_896) >> 16) as u8;
+    crate::shade::rgb565_bits(m(r, light[0]), m(g, light[1]), m(b, light[2]))
 }
 
 impl FromTexel for Rgb565 {
@@ -62,6 +91,12 @@ impl FromTexel for Rgb565 {
     fn from_rgb888([r, g, b]: [u8; 3]) -> Self {
         Rgb565::from(RawU16::new(crate::shade::rgb565_bits(r, g, b)))
     }
+
+    /// By [`lit565_bits`].
+    #[inline(always)]
+    fn from_lit_rgb565(raw: u16, light: [u8; 3]) -> Self {
+        Rgb565::from(RawU16::new(lit565_bits(raw, light)))
+    }
 }
 
 impl FromTexel for crate::sink::Rgb565Be {
@@ -74,6 +109,12 @@ impl FromTexel for crate::sink::Rgb565Be {
     #[inline(always)]
     fn from_rgb888([r, g, b]: [u8; 3]) -> Self {
         Self::from(RawU16::new(crate::shade::rgb565_bits(r, g, b)))
+    }
+
+    /// As `Rgb565`'s.
+    #[inline(always)]
+    fn from_lit_rgb565(raw: u16, light: [u8; 3]) -> Self {
+        Self::from(RawU16::new(lit565_bits(raw, light)))
     }
 }
 
@@ -298,4 +339,33 @@ impl Quad {
         at: u32::MAX,
         texels: [[0; 3]; 4],
     };
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// [`lit565_bits`] against the default (`Rgb888`, `mul255`, the
+    /// table) for every channel value and light, each channel on its own
+    /// (they do not mix).
+    #[test]
+    fn lit565_is_the_default() {
+        for l in 0..=255u8 {
+            let light = [l, 255 - l, l ^ 0x5A];
+            for t in 0..64u16 {
+                let raw = (t >> 1) << 11 | t << 5 | (31 - (t >> 1));
+                let [r, g, b] = rgb565_to_rgb888(raw);
+                let want = Rgb565::from(Rgb888::new(
+                    crate::shader::mul255(r, light[0]),
+                    crate::shader::mul255(g, light[1]),
+                    crate::shader::mul255(b, light[2]),
+                ));
+                assert_eq!(
+                    Rgb565::from_lit_rgb565(raw, light),
+                    want,
+                    "{raw:04x} {light:?}"
+                );
+            }
+        }
+    }
 }
