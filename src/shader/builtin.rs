@@ -299,6 +299,19 @@ trait Texels {
     fn target_fine<C: FromTexel>(&mut self, fu: u32, fv: u32) -> Option<C> {
         self.rgb_fine(fu, fv).map(C::from_rgb888)
     }
+    /// [`rgb`](Self::rgb) modulated by `light` ([`modulate`]), in the
+    /// target's format.
+    #[inline(always)]
+    fn lit<C: FromTexel>(&mut self, u: i32, v: i32, light: [u8; 3]) -> C {
+        C::from_rgb888(modulate(self.rgb(u, v), light))
+    }
+    /// [`lit`](Self::lit) from the fractions, as
+    /// [`rgb_fine`](Self::rgb_fine).
+    #[inline(always)]
+    fn lit_fine<C: FromTexel>(&mut self, fu: u32, fv: u32, light: [u8; 3]) -> Option<C> {
+        self.rgb_fine(fu, fv)
+            .map(|t| C::from_rgb888(modulate(t, light)))
+    }
 }
 
 /// [`Sampler::NearestRgb565`]: the texel's bits go to the target as they
@@ -322,6 +335,14 @@ impl Texels for Nearest565<'_> {
     #[inline(always)]
     fn target_fine<C: FromTexel>(&mut self, fu: u32, fv: u32) -> Option<C> {
         Some(C::from_rgb565(self.0.nearest_fine(fu, fv)))
+    }
+    #[inline(always)]
+    fn lit<C: FromTexel>(&mut self, u: i32, v: i32, light: [u8; 3]) -> C {
+        C::from_lit_rgb565(self.0.nearest(u, v), light)
+    }
+    #[inline(always)]
+    fn lit_fine<C: FromTexel>(&mut self, fu: u32, fv: u32, light: [u8; 3]) -> Option<C> {
+        Some(C::from_lit_rgb565(self.0.nearest_fine(fu, fv), light))
     }
 }
 
@@ -363,9 +384,7 @@ impl<C: FromTexel, T: Texels, const LIT: bool> PixelFn<[I16F16; 2], C> for Texel
         if let Some([fu, fv]) = p.fine {
             let (fu, fv) = (fu.to_bits() as u32, fv.to_bits() as u32);
             let c = if LIT {
-                self.0
-                    .rgb_fine(fu, fv)
-                    .map(|t| C::from_rgb888(modulate(t, p.rgb())))
+                self.0.lit_fine(fu, fv, p.rgb())
             } else {
                 self.0.target_fine(fu, fv)
             };
@@ -376,7 +395,7 @@ impl<C: FromTexel, T: Texels, const LIT: bool> PixelFn<[I16F16; 2], C> for Texel
         let [u, v] = p.varyings;
         let (u, v) = (u.to_bits(), v.to_bits());
         Some(if LIT {
-            C::from_rgb888(modulate(self.0.rgb(u, v), p.rgb()))
+            self.0.lit(u, v, p.rgb())
         } else {
             self.0.target(u, v)
         })
