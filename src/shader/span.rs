@@ -43,7 +43,9 @@
 
 use crate::raster::Span;
 use crate::scene::Blend;
-use crate::shade::perspective::{span_input, Output, PerspectiveSetup, AFFINE, CLAMPED, SHIFTED};
+use crate::shade::perspective::{
+    span_input, Output, PerspectiveSetup, AFFINE, CLAMPED, COLOUR_LOOP, SHIFTED,
+};
 use crate::shade::{Corners, DepthTest, SpanPos};
 use crate::shader::{Fragment, FragmentShader, Perspective, Varyings};
 use crate::texture::Texture;
@@ -322,6 +324,9 @@ impl<'a, C, V: Varyings> SpanInput<'a, C, V> {
             _ if opaque && !weighted => self.run_opaque::<AFFINE>(interpolate_color, fragment, 0),
             Perspective::Exact if opaque && self.len() >= OPAQUE_EXACT_MIN => {
                 match self.opaque_shift() {
+                    Some(sh) if COLOUR_LOOP && V::LEN == 0 && interpolate_color => {
+                        self.run_colour_shifted(fragment, sh)
+                    }
                     Some(sh) => self.run_opaque::<SHIFTED>(interpolate_color, fragment, sh),
                     None => self.run_put(interpolate_color, fragment),
                 }

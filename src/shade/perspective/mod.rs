@@ -39,7 +39,7 @@ mod barycentric;
 mod span;
 
 pub(crate) use barycentric::{signed_weights, weights};
-pub(crate) use span::{span_input, Output, AFFINE, CLAMPED, SHIFTED};
+pub(crate) use span::{span_input, Output, AFFINE, CLAMPED, COLOUR_LOOP, SHIFTED};
 
 /// `1 / w` of the nearest vertex, scaled.
 const Q_ONE: i64 = 1 << 28;
@@ -154,7 +154,7 @@ pub(crate) struct PerspectiveSetup<V> {
     narrow: bool,
     /// Per channel: `c0 · 2^16 + 2^15` (the rounding bias), `c1 - c0`,
     /// `c2 - c0`, ready for the span loop.
-    color: [[i32; 3]; 3],
+    pub(super) color: [[i32; 3]; 3],
 }
 
 impl<V: Varyings> PerspectiveSetup<V> {
