@@ -62,8 +62,8 @@ fn to6(v: u8) -> u16 {
     TO565[256 + v as usize] as u16
 }
 
-/// [`TO565`]'s channels already in their places in the 16 bits: red at
-/// `v`, green at `256 + v`, blue at `512 + v`. On 64-bit hosts, where
+/// The 5- and 6-bit channels of [`table`] already in their places in the
+/// 16 bits: red at `v`, green at `256 + v`, blue at `512 + v`. On 64-bit hosts, where
 /// 1,536 bytes of table cost nothing that matters and a pixel then takes
 /// three loads and two `or`s, without the two shifts (x86-64's `demo`
 /// -2 instructions a written pixel).

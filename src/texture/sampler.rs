@@ -120,7 +120,9 @@ impl FromTexel for Rgb565 {
         Rgb565::from(RawU16::new(crate::shade::rgb565_bits(r, g, b)))
     }
 
-    /// By [`lit565_bits`].
+    /// Each channel expanded and multiplied by the light in one step and
+    /// rounded as the default does, then put in place by the 512-byte
+    /// table (the crate's `lit565_bits`), without the `Rgb888` round trip.
     #[inline(always)]
     fn from_lit_rgb565(raw: u16, light: [u8; 3]) -> Self {
         Rgb565::from(RawU16::new(lit565_bits(raw, light)))
