@@ -26,19 +26,7 @@ impl Features for Lines {
 
 /// [`Triangles`] without Gouraud: a firmware that draws flat triangles
 /// only (the library's [`GouraudTriangles`] is the other half).
-struct FlatTriangles;
-impl Features for FlatTriangles {
-    const HILBERT: bool = false;
-    const SHADERS: bool = false;
-    const LINES: bool = false;
-    const BLEND: bool = false;
-    const CULL: bool = false;
-    const SORT: bool = false;
-    const DEPTH_TESTS: bool = false;
-    const LIGHTING: bool = false;
-    const U32_INDICES: bool = false;
-    const GOURAUD: bool = false;
-}
+type FlatTriangles = Triangles<true, false>;
 
 fn render<P: Features, F: ShaderSet<Rgb565>>(
     scene: &Scene<'_, F>,

@@ -95,11 +95,14 @@ impl Features for All {}
 
 /// Flat and Gouraud triangles only, with the scanline rasterizer, the
 /// default depth test, one directional light, `u16` mesh indices and no
-/// frustum culling: the smallest firmware.
+/// frustum culling: the smallest firmware. Its parameters say which of the
+/// two triangle paths it keeps ([`Features::FLAT`],
+/// [`Features::GOURAUD`]); `Triangles` keeps both, [`GouraudTriangles`]
+/// Gouraud only.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct Triangles;
+pub struct Triangles<const FLAT: bool = true, const GOURAUD: bool = true>;
 
-impl Features for Triangles {
+impl<const FLAT: bool, const GOURAUD: bool> Features for Triangles<FLAT, GOURAUD> {
     const HILBERT: bool = false;
     const SHADERS: bool = false;
     const LINES: bool = false;
@@ -109,6 +112,8 @@ impl Features for Triangles {
     const DEPTH_TESTS: bool = false;
     const LIGHTING: bool = false;
     const U32_INDICES: bool = false;
+    const FLAT: bool = FLAT;
+    const GOURAUD: bool = GOURAUD;
 }
 
 /// Gouraud triangles only: [`Triangles`] without flat shading, the
@@ -116,21 +121,7 @@ impl Features for Triangles {
 /// loop left out too). A draw with
 /// [`Shading::Flat`](crate::scene::Shading::Flat) is refused with
 /// [`Path::Flat`].
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct GouraudTriangles;
-
-impl Features for GouraudTriangles {
-    const HILBERT: bool = false;
-    const SHADERS: bool = false;
-    const LINES: bool = false;
-    const BLEND: bool = false;
-    const CULL: bool = false;
-    const SORT: bool = false;
-    const DEPTH_TESTS: bool = false;
-    const LIGHTING: bool = false;
-    const U32_INDICES: bool = false;
-    const FLAT: bool = false;
-}
+pub type GouraudTriangles = Triangles<false, true>;
 
 /// A path a [`Features`] type can leave out, named in
 /// [`RenderError::Unsupported`](super::RenderError::Unsupported).
