@@ -98,6 +98,16 @@ fn main() {
     ) {
         println!("cargo:rustc-cfg=microraster_narrow_multiply");
     }
+    // The Gouraud shader's loop of its own (`shade::perspective`'s
+    // `COLOUR_LOOP`): on 32-bit Arm cores with a long multiply (Thumb-2),
+    // where it is faster; anywhere with `MICRORASTER_COLOUR_LOOP=1`, so
+    // that the host's span-shader and golden tests can run it too (CI).
+    println!("cargo::rustc-check-cfg=cfg(microraster_colour_loop)");
+    println!("cargo:rerun-if-env-changed=MICRORASTER_COLOUR_LOOP");
+    let thumb2 = target.starts_with("thumbv7") || target.starts_with("thumbv8m.main");
+    if thumb2 || env::var("MICRORASTER_COLOUR_LOOP").is_ok_and(|v| v == "1") {
+        println!("cargo:rustc-cfg=microraster_colour_loop");
+    }
     println!("cargo::rustc-check-cfg=cfg(microraster_lm3s6965)");
     if let Some(map) = board_map(&target, board.as_deref()) {
         let out = PathBuf::from(env::var_os("OUT_DIR").expect("cargo sets OUT_DIR"));

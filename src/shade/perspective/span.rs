@@ -21,8 +21,10 @@ const RECIPROCAL: [i64; 17] = {
 /// takes [`SpanInput::run_colour_shifted`]: on Thumb-2 cores (32-bit Arm
 /// but ARMv6-M and ARMv8-M Baseline), where it was measured faster (see
 /// there). ARMv6-M's `fill-gouraud-exact` took 194.0 -> 200.3
-/// instructions per fragment with it.
-pub(crate) const COLOUR_LOOP: bool = cfg!(target_arch = "arm") && !NARROW_MULTIPLY;
+/// instructions per fragment with it. `build.rs` sets the cfg for those
+/// targets, and on any target with `MICRORASTER_COLOUR_LOOP=1`, so that
+/// CI runs the host's span-shader and golden tests through this loop too.
+pub(crate) const COLOUR_LOOP: bool = cfg!(microraster_colour_loop);
 
 /// [`SpanInput::run_opaque`]'s weights: affine (`B1`, `B2` shifted), or
 /// exact from [`shifted_weights`] with the span's shift, or exact from
