@@ -54,6 +54,7 @@ mod builtin;
 mod set;
 pub mod span;
 
+pub(crate) use builtin::modulate;
 pub use builtin::{mul255, DepthShade, Flat, Gouraud, Normals, Textured, TexturedLit};
 pub(crate) use set::check as check_in_set;
 pub use set::{ShaderSet, VisitShader};

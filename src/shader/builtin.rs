@@ -72,7 +72,7 @@ fn rgb<C: From<Rgb888>>([r, g, b]: [u8; 3]) -> C {
 
 /// `texel * light / 255` per channel, rounded (see [`mul255`]).
 #[inline(always)]
-fn modulate(t: [u8; 3], c: [u8; 3]) -> [u8; 3] {
+pub(crate) fn modulate(t: [u8; 3], c: [u8; 3]) -> [u8; 3] {
     [mul255(t[0], c[0]), mul255(t[1], c[1]), mul255(t[2], c[2])]
 }
 

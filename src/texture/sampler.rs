@@ -54,12 +54,7 @@ pub trait FromTexel: From<Rgb888> {
     /// ([`mul255`](crate::shader::mul255)), which the default returns.
     #[inline(always)]
     fn from_lit_rgb565(raw: u16, light: [u8; 3]) -> Self {
-        let [r, g, b] = rgb565_to_rgb888(raw);
-        Self::from_rgb888([
-            crate::shader::mul255(r, light[0]),
-            crate::shader::mul255(g, light[1]),
-            crate::shader::mul255(b, light[2]),
-        ])
+        Self::from_rgb888(crate::shader::modulate(rgb565_to_rgb888(raw), light))
     }
 }
 
@@ -384,12 +379,8 @@ mod tests {
             let light = [l, 255 - l, l ^ 0x5A];
             for t in 0..64u16 {
                 let raw = (t >> 1) << 11 | t << 5 | (31 - (t >> 1));
-                let [r, g, b] = rgb565_to_rgb888(raw);
-                let want = Rgb565::from(Rgb888::new(
-                    crate::shader::mul255(r, light[0]),
-                    crate::shader::mul255(g, light[1]),
-                    crate::shader::mul255(b, light[2]),
-                ));
+                let [r, g, b] = crate::shader::modulate(rgb565_to_rgb888(raw), light);
+                let want = Rgb565::from(Rgb888::new(r, g, b));
                 assert_eq!(
                     Rgb565::from_lit_rgb565(raw, light),
                     want,

@@ -339,10 +339,18 @@ impl Viewport {
         // measured 51,000 instructions slower with them taken together
         // (one check of the three dividends, one fallback for all).
         let d = WDivisor::new_long(NonZeroU64::new(w as u64).unwrap_or(NonZeroU64::MIN));
+        self.project_by(p, w, |m| d.div_split(m))
+    }
+
+    /// [`project`](Self::project) with `w = max(p[3], 1)` and `div(m) =
+    /// floor(m / w)`, for `m < 2^49`: each quotient `n / w` rounded to
+    /// nearest, ties away from zero.
+    #[inline(always)]
+    fn project_by(&self, p: &[i32; 4], w: i64, div: impl Fn(u64) -> u64) -> (SubPoint, u16) {
         let half = w as u64 / 2;
         // div_round(n, w), for |n| < 2^48.
         let round = |n: i64| -> i64 {
-            let q = d.div_split(n.unsigned_abs() + half) as i64;
+            let q = div(n.unsigned_abs() + half) as i64;
             if n < 0 {
                 -q
             } else {
@@ -356,7 +364,7 @@ impl Viewport {
         let y = self.half_h - round(crate::math::mul_wide(p[1], hh));
         // div_round(n, 2w) = floor((|n| + w) / (2w)) = floor((|n| + w) / w) / 2.
         let n = (p[2] as i64 + w) * 65_535;
-        let z = (d.div_split(n.unsigned_abs() + w as u64) >> 1) as i64;
+        let z = (div(n.unsigned_abs() + w as u64) >> 1) as i64;
         let z = if n < 0 { -z } else { z }.clamp(0, 65_535);
         (SubPoint::new(x as i32, y as i32), z as u16)
     }
@@ -408,25 +416,9 @@ impl Viewport {
     #[inline(always)]
     #[cfg_attr(not(test), allow(dead_code))]
     fn project_plain(&self, p: &[i32; 4]) -> (SubPoint, u16) {
-        let w = NonZeroU64::new((p[3] as i64).max(1) as u64).unwrap_or(NonZeroU64::MIN);
-        let half = w.get() / 2;
-        // div_round(n, w), for |n| < 2^48.
-        let round = |n: i64| -> i64 {
-            let q = ((n.unsigned_abs() + half) / w) as i64;
-            if n < 0 {
-                -q
-            } else {
-                q
-            }
-        };
-        let (hw, hh) = (self.half_w as i32, self.half_h as i32);
-        let x = self.half_w + round(crate::math::mul_wide(p[0], hw));
-        let y = self.half_h - round(crate::math::mul_wide(p[1], hh));
-        // div_round(n, 2w) = floor((|n| + w) / w) / 2, as in `project`.
-        let n = (p[2] as i64 + w.get() as i64) * 65_535;
-        let z = (((n.unsigned_abs() + w.get()) / w) >> 1) as i64;
-        let z = if n < 0 { -z } else { z }.clamp(0, 65_535);
-        (SubPoint::new(x as i32, y as i32), z as u16)
+        let w = (p[3] as i64).max(1);
+        let d = NonZeroU64::new(w as u64).unwrap_or(NonZeroU64::MIN);
+        self.project_by(p, w, |m| m / d)
     }
 
     /// [`project`](Self::project) of a vertex without [`MUST_CLIP`] bits

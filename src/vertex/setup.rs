@@ -235,12 +235,11 @@ impl DrawSetup {
             .iter()
             .all(|c| (c.r() & c.g() & c.b()) == 255);
         let dark = (material.specular.r() | material.specular.g() | material.specular.b()) == 0;
+        let (extent, bounded) = (draw.mesh.extent(), mvp.bounded(draw.mesh.extent()));
         let s = slot.insert(Self {
             mvp,
-            bounded: mvp.bounded(draw.mesh.extent()),
-            narrow: crate::math::SPLIT
-                && mvp.bounded(draw.mesh.extent())
-                && mvp.narrow(draw.mesh.extent()),
+            bounded,
+            narrow: crate::math::SPLIT && bounded && mvp.narrow(extent),
             light: None,
             lambert: None,
             general: None,
