@@ -48,10 +48,13 @@ pub fn sqrt(x: f32) -> f32 {
     y
 }
 
-/// The first 256 bits of 2/π after the binary point, most significant
-/// first: enough for the reduction of the largest `f32` (2^128 needs the
-/// bits from the 103rd on, and 96 of them).
-const TWO_OVER_PI: [u64; 4] = [
+/// 2/π in binary, most significant first: a zero word (the bits before
+/// the point, and the window's reach below them for angles under 2^26),
+/// then the first 256 bits after the point: enough for the reduction of
+/// the largest `f32` (2^128 needs the bits from the 103rd on, and 96 of
+/// them).
+const TWO_OVER_PI: [u64; 5] = [
+    0,
     0xa2f9_836e_4e44_1529,
     0xfc27_57d1_f534_ddc0,
     0xdb62_9599_3c43_9041,
@@ -69,29 +72,31 @@ const FRAC_PI_2_Q62: u64 = 0x6487_ed51_10b4_611a;
 /// `a = m 2^e` with a 24-bit integer `m`. The bits of 2/π before index
 /// `e - 1` contribute multiples of 4 to `a · 2/π` (whole turns), so only a
 /// 96-bit window of 2/π from there on is multiplied by `m`, exactly, in
-/// `u128`; the bits after the window change the product by less than
-/// 2^-70 quarter turns. The fraction of a quarter turn that is left is
-/// then multiplied by π/2 in integers and split into two `f32`s.
+/// `u128` (bits at index 0 and below, before the point, are zero); the
+/// bits after the window change the product by less than `m 2^-94`,
+/// 2^-70 quarter turns. The window starts at `e - 1` for every `e`, so
+/// the product's point is always at bit 94 and every shift but the
+/// window's is by a constant. The fraction of a quarter turn that is left
+/// is then multiplied by π/2 in integers and split into two `f32`s.
 fn reduce(a: f32) -> (u32, f32, f32) {
+    const SH: u32 = 94;
     let bits = a.to_bits();
     let m = u128::from((bits & 0x7f_ffff) | 0x80_0000);
     // a >= π/4, so e >= -24; a finite, so e <= 104.
     let e = (bits >> 23) as i32 - 150;
-    // The window: bits i0 ..= i0 + 95 of 2/π (the first bit after the
-    // point is bit 1), as an integer.
-    let i0 = (e - 1).max(1);
-    let start = (i0 - 1) as usize;
+    // The window: bits e - 1 ..= e + 94 of 2/π (the first bit after the
+    // point is bit 1, at 64 in the table), as an integer.
+    let start = (e + 62) as usize; // 38 ..= 166
     let (k, off) = (start / 64, start % 64);
     let hi = (u128::from(TWO_OVER_PI[k]) << 64) | u128::from(TWO_OVER_PI[k + 1]);
     let window = match off {
         0 => hi,
         _ => (hi << off) | u128::from(TWO_OVER_PI[k + 2] >> (64 - off)),
     } >> 32;
-    // a · 2/π = m · window · 2^-sh, modulo 4 and the ignored tail.
-    let sh = (i0 + 95 - e) as u32; // 94 ..= 120
-    let p = (m * window) & ((1u128 << (sh + 2)) - 1);
-    let one = 1u128 << sh;
-    let (mut n, frac) = ((p >> sh) as u32, p & (one - 1));
+    // a · 2/π = m · window · 2^-94, modulo 4 and the ignored tail.
+    let p = (m * window) & ((1u128 << (SH + 2)) - 1);
+    let one = 1u128 << SH;
+    let (mut n, frac) = ((p >> SH) as u32, p & (one - 1));
     // The nearest quadrant: a fraction above one half counts from the next.
     let negative = frac >= one >> 1;
     let mag = if negative {
@@ -113,7 +118,7 @@ fn reduce(a: f32) -> (u32, f32, f32) {
     // r <= π/4 and r_top >= 2^63, so the exponent is at most -64; a
     // remainder below 2^-60 (no f32 comes that close to a multiple of π/2)
     // would take the power of two out of f32's normal range: zero then.
-    let k = 66 - lz as i32 - lz2 as i32 - sh as i32 + 64;
+    let k = 66 - lz as i32 - lz2 as i32 - SH as i32 + 64;
     if !(-126..=0).contains(&k) {
         return (n & 3, 0.0, 0.0);
     }
@@ -122,7 +127,8 @@ fn reduce(a: f32) -> (u32, f32, f32) {
     // magnitude; both exact or once rounded as f32, then scaled by
     // powers of two, exactly.
     let head = ((r_top >> 39) + 1) >> 1; // at most 2^24
-    let tail = i64::try_from(i128::from(r_top) - (i128::from(head) << 40)).unwrap_or(0);
+                                         // Below 2^39 in magnitude, so exact from the wrapping difference.
+    let tail = r_top.wrapping_sub(head << 40) as i64;
     let unit = (1.0 / 16_777_216.0) * scale; // 2^(k - 24)
     let hi = head as f32 * unit;
     let lo = tail as f32 * (1.0 / 1_099_511_627_776.0) * unit;
