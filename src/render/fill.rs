@@ -14,7 +14,18 @@ use embedded_graphics::pixelcolor::{PixelColor, Rgb565, Rgb888};
 
 /// The first phase of [`fill`] and [`fill_shaded`]: records the spans of
 /// a triangle in the tile (one per row at most) and returns how many.
-pub(super) type FindFn = fn(&[SubPoint; 3], &PixelRect, &mut [Span]) -> usize;
+///
+/// It takes the triangle's vertices, whose positions it reads itself:
+/// the tile loop holds their addresses on the stack for the second phase
+/// anyway, where building the positions there took stores of all six
+/// coordinates per pair, loaded again by the walk.
+pub(super) type FindFn = fn(&[&ScreenVertex; 3], &PixelRect, &mut [Span]) -> usize;
+
+/// The screen positions of the vertices `sv`.
+#[inline(always)]
+fn points(sv: &[&ScreenVertex; 3]) -> [SubPoint; 3] {
+    [sv[0].xy(), sv[1].xy(), sv[2].xy()]
+}
 
 /// The first phase for `raster`, of the rasterizers `P` links (the
 /// scanline one when it links no other: the same spans).
@@ -27,16 +38,16 @@ pub(super) fn finder<P: Features>(raster: Rasterizer) -> FindFn {
 }
 
 /// [`hilbert::find_spans`] as a [`FindFn`].
-fn find_hilbert(v: &[SubPoint; 3], rect: &PixelRect, found: &mut [Span]) -> usize {
-    hilbert::find_spans(v, *rect, found)
+fn find_hilbert(sv: &[&ScreenVertex; 3], rect: &PixelRect, found: &mut [Span]) -> usize {
+    hilbert::find_spans(&points(sv), *rect, found)
 }
 
 /// [`Rasterizer::Auto`]: the whole tile at once when the triangle covers
 /// it, the scanline walk otherwise.
-fn find_auto(v: &[SubPoint; 3], rect: &PixelRect, found: &mut [Span]) -> usize {
-    match whole_tile(v, rect, found) {
+fn find_auto(sv: &[&ScreenVertex; 3], rect: &PixelRect, found: &mut [Span]) -> usize {
+    match whole_tile(&points(sv), rect, found) {
         Some(n) => n,
-        None => find_spans(v, rect, found),
+        None => find_spans(sv, rect, found),
     }
 }
 
@@ -107,8 +118,7 @@ where
     C: PixelColor + From<Rgb888> + Into<Rgb888> + 'static,
     F: ShaderSet<C>,
 {
-    let v = [sv[0].xy(), sv[1].xy(), sv[2].xy()];
-    let count = (to.shaders.find)(&v, to.rect, &mut to.found);
+    let count = (to.shaders.find)(&sv, to.rect, &mut to.found);
     let Some(found) = drawn(&to.found, count, &mut to.rows) else {
         return 0;
     };
@@ -133,8 +143,7 @@ where
     F: ShaderSet<C>,
     G: FragmentShader<C>,
 {
-    let v = tri.corners.0.map(|v| v.xy());
-    let count = (pass.find)(&v, to.rect, &mut to.found);
+    let count = (pass.find)(&tri.corners.0, to.rect, &mut to.found);
     let Some(found) = drawn(&to.found, count, &mut to.rows) else {
         return 0;
     };
@@ -146,9 +155,9 @@ where
 /// many (the Hilbert rasterizer finds the same spans). Out of line, so that
 /// the edge walk has the registers to itself.
 #[inline(never)]
-fn find_spans(v: &[SubPoint; 3], rect: &PixelRect, found: &mut [Span]) -> usize {
+fn find_spans(sv: &[&ScreenVertex; 3], rect: &PixelRect, found: &mut [Span]) -> usize {
     // `found` holds a span for each row of `rect` (TH).
-    scanline::find_spans(v, *rect, found)
+    scanline::find_spans(&points(sv), *rect, found)
 }
 
 /// For [`Rasterizer::Auto`]: when triangle `v`'s bounds hold the whole
