@@ -20,7 +20,7 @@ use embedded_graphics::pixelcolor::{PixelColor, Rgb888};
 pub(super) type ShadeFn<C, const TW: usize, const TH: usize> = fn(
     &mut TileBuffer<C, TW, TH>,
     &PixelRect,
-    [&ScreenVertex; 3],
+    &[&ScreenVertex; 3],
     [u8; 3],
     &[Span],
     DepthTest,
@@ -146,7 +146,7 @@ impl<'g, C, G: FragmentShader<C>, const TW: usize, const TH: usize> ShaderPass<'
 fn shade_nothing<C, const TW: usize, const TH: usize>(
     _: &mut TileBuffer<C, TW, TH>,
     _: &PixelRect,
-    _: [&ScreenVertex; 3],
+    _: &[&ScreenVertex; 3],
     _: [u8; 3],
     _: &[Span],
     _: DepthTest,

@@ -127,7 +127,7 @@ where
     } else {
         to.shaders.flat
     };
-    shade(to.tile, to.rect, sv, flat, found, to.shaders.out.test)
+    shade(to.tile, to.rect, &sv, flat, found, to.shaders.out.test)
 }
 
 /// [`fill`] for a triangle coloured by a fragment shader.
@@ -197,7 +197,7 @@ pub(super) fn shade<
 >(
     tile: &mut TileBuffer<C, TW, TH>,
     rect: &PixelRect,
-    sv: [&ScreenVertex; 3],
+    sv: &[&ScreenVertex; 3],
     flat: [u8; 3],
     found: &[Span],
     test: DepthTest,
@@ -206,7 +206,7 @@ where
     C: PixelColor + From<Rgb888> + Into<Rgb888> + 'static,
 {
     let dt = D::new(test);
-    let corners = &Corners(sv);
+    let corners = &Corners(*sv);
     // The default depth comparison (known at compile time: no state) with
     // depth writes, into `Rgb565`: the span loops of nearly every frame on
     // a microcontroller, which get the small set-up inlined (see
