@@ -98,8 +98,8 @@ fn drawn<'f>(found: &'f [Span], count: usize, rows: &mut (i32, i32)) -> Option<&
     Some(found)
 }
 
-/// Draws one triangle into the tile, Gouraud or flat shaded (`flat` is the
-/// colour of flat shading) by `shaders`.
+/// Draws one triangle into the tile, Gouraud or flat shaded (flat in the
+/// colour of its first vertex) by `shaders`.
 ///
 /// Two phases: the scanline rasterizer first walks the edges and records
 /// the triangle's spans in the tile in `found` (at most one per row), then,
@@ -111,7 +111,6 @@ fn drawn<'f>(found: &'f [Span], count: usize, rows: &mut (i32, i32)) -> Option<&
 pub(super) fn fill<C, F, const TW: usize, const TH: usize>(
     to: &mut Target<'_, C, F, TW, TH>,
     sv: [&ScreenVertex; 3],
-    flat: [u8; 3],
     gouraud: bool,
 ) -> u32
 where
@@ -127,7 +126,7 @@ where
     } else {
         to.shaders.flat
     };
-    shade(to.tile, to.rect, &sv, flat, found, to.shaders.out.test)
+    shade(to.tile, to.rect, &sv, found, to.shaders.out.test)
 }
 
 /// [`fill`] for a triangle coloured by a fragment shader.
@@ -198,7 +197,6 @@ pub(super) fn shade<
     tile: &mut TileBuffer<C, TW, TH>,
     rect: &PixelRect,
     sv: &[&ScreenVertex; 3],
-    flat: [u8; 3],
     found: &[Span],
     test: DepthTest,
 ) -> u32
@@ -220,7 +218,12 @@ where
     } else {
         TriangleSetup::for_spans::<GOURAUD>(corners)
     };
-    let flat = crate::shade::rgb::<C>(flat[0], flat[1], flat[2]);
+    // Flat shading's colour is the first vertex's (the tile loop gives a
+    // clipped piece the colour of the triangle's own first vertex there):
+    // read here, by the flat span loops only, rather than loaded and
+    // passed for every pair.
+    let [r, g, b] = sv[0].color;
+    let flat = crate::shade::rgb::<C>(r, g, b);
     each_span(tile, rect, found, |color, depth, sp, n| {
         if GOURAUD {
             span_gouraud::<C, D, WRITE>(dt, setup, corners, color, depth, sp, n)
