@@ -224,7 +224,7 @@ where
     // passed for every pair.
     let [r, g, b] = sv[0].color;
     let flat = crate::shade::rgb::<C>(r, g, b);
-    each_span(tile, rect, found, |color, depth, sp, n| {
+    each_span::<C, GOURAUD, TW, TH>(tile, rect, found, |color, depth, sp, n| {
         if GOURAUD {
             span_gouraud::<C, D, WRITE>(dt, setup, corners, color, depth, sp, n)
         } else {
@@ -243,8 +243,17 @@ where
 /// holds the span in the tile, where a row's index took a check (and a
 /// panic's call and location in flash) of its own. The same instructions
 /// a span on the M3.
+///
+/// With `BASE`, `ox` is the column of the tile's first element on screen
+/// row 0, computed once per pair, less the span's row: one shifted
+/// subtraction a span, where `ox` had been the tile's column less the
+/// span's row within the tile (the Cortex-M3's Gouraud span starts
+/// then keep fewer values in stack slots: `demo` 4,069,639 -> 4,035,521
+/// instructions, `rock` 3,353,413 -> 3,324,938). Not for the flat span
+/// loops, whose registers it moved: the M3's `fill` went from 15.03 to
+/// 15.86 instructions per pixel.
 #[inline(always)]
-fn each_span<C, const TW: usize, const TH: usize>(
+fn each_span<C, const BASE: bool, const TW: usize, const TH: usize>(
     tile: &mut TileBuffer<C, TW, TH>,
     rect: &PixelRect,
     found: &[Span],
@@ -252,12 +261,18 @@ fn each_span<C, const TW: usize, const TH: usize>(
 ) -> u32 {
     let mut n = 0;
     let (color, depth) = (tile.color.as_flattened_mut(), tile.depth.as_flattened_mut());
+    // Within the tile and the guard band: far below 2^31.
+    let base = rect.x0 + rect.y0 * TW as i32;
     for &Span { j, x0, x1 } in found {
         // Within the tile (the walk clips the spans to it): at most
         // `TW * TH`, far below 2^31.
         let row = (j - rect.y0) * TW as i32;
         let sp = SpanPos {
-            ox: rect.x0 - row,
+            ox: if BASE {
+                base - j * TW as i32
+            } else {
+                rect.x0 - row
+            },
             j,
             x0,
             x1,
