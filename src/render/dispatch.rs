@@ -17,14 +17,8 @@ use embedded_graphics::pixelcolor::{PixelColor, Rgb888};
 /// frame's depth writes and for `LessEqual` or any other depth test (see
 /// [`DepthFn`]): the only code that depends on them, so the tile loop
 /// exists once per colour and tile size.
-pub(super) type ShadeFn<C, const TW: usize, const TH: usize> = fn(
-    &mut TileBuffer<C, TW, TH>,
-    &PixelRect,
-    [&ScreenVertex; 3],
-    [u8; 3],
-    &[Span],
-    DepthTest,
-) -> u32;
+pub(super) type ShadeFn<C, const TW: usize, const TH: usize> =
+    fn(&mut TileBuffer<C, TW, TH>, &PixelRect, &[&ScreenVertex; 3], &[Span], DepthTest) -> u32;
 
 /// The second phase for a fragment shader `G`: one function per shader
 /// and colour type (the depth test is decided at run time there).
@@ -146,8 +140,7 @@ impl<'g, C, G: FragmentShader<C>, const TW: usize, const TH: usize> ShaderPass<'
 fn shade_nothing<C, const TW: usize, const TH: usize>(
     _: &mut TileBuffer<C, TW, TH>,
     _: &PixelRect,
-    _: [&ScreenVertex; 3],
-    _: [u8; 3],
+    _: &[&ScreenVertex; 3],
     _: &[Span],
     _: DepthTest,
 ) -> u32 {

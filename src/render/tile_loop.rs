@@ -96,12 +96,7 @@ where
         n += if any & MUST_CLIP != 0 {
             job.clipped(&cur, [i0, i1, i2], any, sv[0].color)
         } else {
-            fill(
-                &mut job.to,
-                sv,
-                sv[0].color,
-                cur.shading == Shading::Gouraud,
-            )
+            fill(&mut job.to, sv, cur.shading == Shading::Gouraud)
         };
     }
     if P::BLEND {
@@ -296,9 +291,13 @@ where
         let to = &mut self.to;
         let frame = self.frame;
         frame.clipped_pieces(cur.draw, idx, any, flat, self.cache, &mut |piece, flat| {
-            let sv = &piece.sv;
+            // Flat shading takes the colour of the first vertex.
+            let mut sv = piece.sv;
+            if !gouraud {
+                sv[0].color = flat;
+            }
             let sv = [&sv[0], &sv[1], &sv[2]];
-            n += fill(to, sv, flat, gouraud);
+            n += fill(to, sv, gouraud);
         });
         n
     }
