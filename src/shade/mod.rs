@@ -851,6 +851,45 @@ mod tests {
         assert!(applied > 50_000, "{applied} small set-ups");
     }
 
+    /// The general set-up with its colour planes out of line (32-bit
+    /// cores) against the inline one, on every target: the same planes,
+    /// on triangles small and large, slivers (wide) included.
+    #[test]
+    fn apart_setup_matches_the_inline_one() {
+        let mut next = crate::testing::rng();
+        let mut wide = 0;
+        for k in 0..100_000u64 {
+            let r = [24, 600, 2_100, 40_000, 1 << 22][k as usize % 5];
+            let mut p = || SubPoint::new(next(r) as i32 - 300, next(r) as i32 - 300);
+            let mut v = [p(), p(), p()];
+            if k % 7 == 0 {
+                // A sliver: the third vertex next to the first edge's
+                // midpoint.
+                v[2] = SubPoint::new((v[0].x + v[1].x) / 2 + 1, (v[0].y + v[1].y) / 2);
+            }
+            if crate::raster::signed_area2(&v) == 0 {
+                continue;
+            }
+            let sv = [0, 1, 2].map(|k| {
+                let z = next(65_536) as u16;
+                let color = [next(256) as u8, next(256) as u8, next(256) as u8];
+                ScreenVertex::new(v[k].x, v[k].y, z, 0, color)
+            });
+            let corners = Corners([&sv[0], &sv[1], &sv[2]]);
+            let f = Basis::with_small(&v, k % 2 == 0);
+            for gouraud in [false, true] {
+                let a = TriangleSetup::with_basis(&f, &corners, gouraud);
+                let b = TriangleSetup::with_basis_apart(&f, &corners, gouraud);
+                wide += a.wide as u32;
+                assert_eq!((a.wide, a.zstep), (b.wide, b.zstep), "{v:?}");
+                for (a, b) in a.planes.iter().zip(&b.planes) {
+                    assert_eq!((a.gx, a.gy, a.k), (b.gx, b.gy, b.k), "{v:?}");
+                }
+            }
+        }
+        assert!(wide > 0, "no wide triangle");
+    }
+
     #[test]
     fn depth16_is_the_integer_part() {
         for z in [

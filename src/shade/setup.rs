@@ -304,8 +304,50 @@ impl TriangleSetup {
             if let Some(s) = Self::small(v, t, gouraud) {
                 return s;
             }
+            if !cfg!(microraster_narrow_multiply) {
+                return Self::with_basis_apart(&Basis::new(v), t, gouraud);
+            }
         }
         Self::with_basis(&Basis::new(v), t, gouraud)
+    }
+
+    /// [`TriangleSetup::with_basis`] with the colour planes set up by one
+    /// out-of-line function, called per channel
+    /// ([`TriangleSetup::color_plane_apart`]), for 32-bit cores with a long
+    /// multiply, whose small triangles take [`TriangleSetup::small`]: the
+    /// general set-up is left for the others (large triangles, a few
+    /// slivers and steep depths), rare on such cores, where its three
+    /// colour planes unrolled took about 1.5 KB of flash (each plane's
+    /// 64-bit reciprocal divisions are a dozen long multiplies).
+    ///
+    /// The OLED firmware 46,196 -> 44,724 B, microraster's code in it
+    /// 25,584 -> 24,038 B; Cortex-M3 `demo` 4,113,898 -> 4,115,893
+    /// instructions, `rock` 3,387,223 -> 3,387,318, `fill` 15.12 -> 15.11
+    /// per pixel. Depth's plane stays inline: all four planes out of line
+    /// (one function, the attribute a run-time argument) took 2.2 KB off
+    /// but `fill` to 15.20 and `demo` +5,061. Not on ARMv6-M (`demo`
+    /// +14,252: the inline small set-up beside it lost registers).
+    #[inline(always)]
+    pub(super) fn with_basis_apart(f: &Basis, t: &Corners<'_>, gouraud: bool) -> Self {
+        let mut range = 0u64;
+        let mut planes = [Plane::default(); 4];
+        planes[0] = Self::plane(f, t, 0, &mut range);
+        if gouraud {
+            for (a, p) in planes.iter_mut().enumerate().skip(1) {
+                *p = Self::color_plane_apart(f, t, a, &mut range);
+            }
+        }
+        Self::finish(planes, range >= 2 * GRADIENT_LIMIT as u64)
+    }
+
+    /// [`TriangleSetup::plane`] of colour channel `a - 1`, out of line (see
+    /// [`TriangleSetup::with_basis_apart`]).
+    #[inline(never)]
+    fn color_plane_apart(f: &Basis, t: &Corners<'_>, a: usize, range: &mut u64) -> Plane {
+        let [u, v, w] = &t.0;
+        let c = a - 1;
+        let values = [u.color[c] as i64, v.color[c] as i64, w.color[c] as i64];
+        Self::plane_of(f, values, super::C_FRAC, range)
     }
 
     /// [`TriangleSetup::new`] on the triangle's [`Basis`] `f`, which the
@@ -339,6 +381,13 @@ impl TriangleSetup {
     #[inline(always)]
     fn plane(f: &Basis, t: &Corners<'_>, a: usize, range: &mut u64) -> Plane {
         let (values, frac) = t.values(a);
+        Self::plane_of(f, values, frac, range)
+    }
+
+    /// [`TriangleSetup::plane`] of the attribute with `values` at the
+    /// vertices and `frac` fraction bits.
+    #[inline(always)]
+    fn plane_of(f: &Basis, values: [i64; 3], frac: u32, range: &mut u64) -> Plane {
         let g = f.gradients(values, frac);
         *range |= (g.0 + GRADIENT_LIMIT) as u64 | (g.1 + GRADIENT_LIMIT) as u64;
         // Wrapping to i32 keeps everything `Plane::at` needs. Within ±LIMIT
