@@ -160,6 +160,96 @@ fn ndotl_narrow(n: [i32; 3], l: [i32; 3]) -> Option<u32> {
     Some(((a + (b >> 8)) >> 16).clamp(0, 256) as u32)
 }
 
+/// Whether the vertex stage's common loop reads its per-draw constants
+/// from a [`LoopConstants`]: on 32-bit cores with a 32 x 32 -> 64-bit
+/// multiply (the Cortex-M3 and M4, RISC-V `rv32im`).
+const LOOP_CONSTANTS: bool = cfg!(all(
+    target_pointer_width = "32",
+    not(microraster_narrow_multiply)
+));
+
+/// The per-draw constants of the vertex stage's common loop (a bounded
+/// matrix, the Lambert fast path, no vertex colours), laid out in the
+/// order the loop reads them and read through a reference the compiler
+/// cannot see into (`black_box`). The loop has more constants (28) than
+/// a Cortex-M3 has registers: held as values, the allocator spilled them
+/// to slots of their own and reloaded each with one `LDR` a vertex; read
+/// from here, neighbours load together (`LDRD`), the translation's two
+/// words straight into a row's accumulator, and the Lambert colour's
+/// constants are folded per draw (two per channel where there were
+/// three and a multiply more).
+#[derive(Clone, Copy, Debug)]
+#[cfg_attr(not(any(test, target_pointer_width = "32")), allow(dead_code))]
+struct LoopConstants {
+    /// Per row `r` of the matrix: the low and high words of `m[3][r] 2^16 +
+    /// 2^15` (translation and rounding, as in
+    /// [`FixedMat4::transform_point_bounded`]), then `m[0][r]`, `m[1][r]`
+    /// and `m[2][r]`.
+    rows: [[i32; 5]; 4],
+    /// The light's direction (as [`Lambert`]'s).
+    dir: [i32; 3],
+    /// Per channel `c`, with `base` the draw's colour: `base[c]
+    /// ambient[c] 256 + 32,640` and `base[c] color[c]`, so that
+    /// [`Lambert::shade`]'s `base[c] (ambient[c] 256 + color[c] n·l) +
+    /// 32,640` is one multiply-add (the same value: every term is below
+    /// `2^26`).
+    channels: [[u32; 2]; 3],
+}
+
+#[cfg_attr(not(any(test, target_pointer_width = "32")), allow(dead_code))]
+impl LoopConstants {
+    fn new(m: &FixedMat4, l: &Lambert, base: [u8; 3]) -> Self {
+        // Loops rather than `map`s, here and below: the size profile
+        // (the OLED firmware's) keeps a `map` as a loop through a
+        // temporary array and a `memcpy`.
+        let mut k = Self {
+            rows: [[0; 5]; 4],
+            dir: l.dir,
+            channels: [[0; 2]; 3],
+        };
+        for (r, row) in k.rows.iter_mut().enumerate() {
+            let t = (m.m[3][r] as i64) << 16 | 1 << 15;
+            *row = [t as i32, (t >> 32) as i32, m.m[0][r], m.m[1][r], m.m[2][r]];
+        }
+        for (c, ch) in k.channels.iter_mut().enumerate() {
+            let b = base[c] as u32;
+            *ch = [b * l.ambient[c] * 256 + 32_640, b * l.color[c]];
+        }
+        k
+    }
+
+    /// [`FixedMat4::transform_point_bounded`] of `p`: the same sums.
+    #[inline(always)]
+    fn transform(&self, p: [i32; 3]) -> [i32; 4] {
+        use crate::math::mul_wide;
+        let mut out = [0i32; 4];
+        for (o, k) in out.iter_mut().zip(&self.rows) {
+            let acc = ((k[1] as i64) << 32 | k[0] as u32 as i64)
+                .wrapping_add(mul_wide(k[2], p[0]))
+                .wrapping_add(mul_wide(k[3], p[1]))
+                .wrapping_add(mul_wide(k[4], p[2]));
+            *o = (acc >> 16) as i32;
+        }
+        out
+    }
+
+    /// [`Lambert::shade`] of normal `n` on the draw's colour: the same
+    /// colour.
+    #[inline(always)]
+    fn shade(&self, n: crate::mesh::Vec3Fx) -> [u8; 3] {
+        use crate::math::mul_wide;
+        let d = mul_wide(n[0].to_bits(), self.dir[0])
+            + mul_wide(n[1].to_bits(), self.dir[1])
+            + mul_wide(n[2].to_bits(), self.dir[2]);
+        let ndotl = clamp_ndotl_words(d);
+        let mut out = [0u8; 3];
+        for (o, &[a, c]) in out.iter_mut().zip(&self.channels) {
+            *o = div65280_sat(a + c * ndotl);
+        }
+        out
+    }
+}
+
 /// `(d >> 24).clamp(0, 256)` from `d`'s upper word, which is 0 exactly
 /// when `d >> 24` is 0 to 255: the Lambert fast path's n·l on 32-bit cores.
 #[inline(always)]
@@ -357,6 +447,17 @@ impl DrawSetup {
             _ => None,
         };
         match common {
+            Some((l, normals)) if LOOP_CONSTANTS => {
+                let k = LoopConstants::new(&self.mvp, l, self.color);
+                // Opaque: the loop loads each constant where it uses it,
+                // neighbours in one instruction (see `LoopConstants`).
+                let k = core::hint::black_box(&k);
+                for (o, (p, nv)) in out.iter_mut().zip(positions.iter().zip(normals)) {
+                    let p = [p[0].to_bits(), p[1].to_bits(), p[2].to_bits()];
+                    let pos = k.transform(p);
+                    *o = viewport.screen_vertex_lit(&pos, || k.shade(*nv));
+                }
+            }
             Some((l, normals)) => {
                 for (o, (p, nv)) in out.iter_mut().zip(positions.iter().zip(normals)) {
                     let p = [p[0].to_bits(), p[1].to_bits(), p[2].to_bits()];
@@ -607,7 +708,42 @@ mod tests {
                 let base = [next(256) as u8, next(256) as u8, next(256) as u8];
                 let general = setup.shade(&Material::new(), base, [0; 3], n.map(|v| v.to_bits()));
                 assert_eq!(fast.shade(n, base), general, "{n:?} {base:?}");
+                let k = LoopConstants::new(&FixedMat4 { m: [[0; 4]; 4] }, &fast, base);
+                assert_eq!(k.shade(n), general, "{n:?} {base:?}");
             }
         }
+    }
+
+    /// The common loop's rows are the bounded transform: random matrices
+    /// of every magnitude (the translation up to the `i32` extremes), and
+    /// points within an extent they are bounded for.
+    #[test]
+    fn loop_constants_transform_as_the_bounded_matrix() {
+        let mut next = crate::testing::rng();
+        let mut taken = 0;
+        let none = Lambert {
+            dir: [0; 3],
+            color: [0; 3],
+            ambient: [0; 3],
+        };
+        for _ in 0..50_000 {
+            let span = (1i64 << next(32)) - 1;
+            let mut e = || (next(2 * span as u64 + 1) as i64 - span) as i32;
+            let m = FixedMat4 {
+                m: [[0; 4]; 4].map(|c| c.map(|_| e())),
+            };
+            let extent = 1u32 << next(23);
+            if !m.bounded(extent) {
+                continue;
+            }
+            taken += 1;
+            let k = LoopConstants::new(&m, &none, [0; 3]);
+            for _ in 0..20 {
+                let ext = extent as i64;
+                let p = [0; 3].map(|_| (next(2 * ext as u64 + 1) as i64 - ext) as i32);
+                assert_eq!(k.transform(p), m.transform_point_bounded(p), "{m:?} {p:?}");
+            }
+        }
+        assert!(taken > 5_000, "{taken}");
     }
 }
