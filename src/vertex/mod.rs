@@ -46,7 +46,7 @@ mod setup;
 
 pub use setup::{DrawSetup, VertexError, MAX_LIGHTS};
 
-use crate::math::{div_digits, WDivisor};
+use crate::math::WDivisor;
 use crate::raster::{SubPoint, SUBPIXEL};
 use crate::shade::Recip16;
 use core::num::{NonZeroU32, NonZeroU64};
@@ -372,7 +372,7 @@ impl Viewport {
     /// [`project`](Self::project) of a vertex without [`MUST_CLIP`] bits
     /// (`W_MIN <= w`, `|x|, |y| <= K w`, `|z| <= w`): the same results.
     /// Where a 32-bit division is an instruction ([`LONG_DIVISION`]) and
-    /// `w < 2^23`, each quotient is two of them ([`div_digits`]) rather
+    /// `w < 2^23`, x's and y's quotients are one of them, depth's three, rather
     /// than a multiply-high by `w`'s 64-bit reciprocal, which itself took
     /// two to four divisions: on the Cortex-M3 about 110 instructions a
     /// vertex fewer.
@@ -425,13 +425,11 @@ impl Viewport {
     /// and `w` below `short_w` (and `2^23`) by 32-bit division: x's and
     /// y's dividends `|x| h + w / 2 <= 4 w h + w / 2` fit 32 bits, so
     /// each quotient is one division (where the long division below took
-    /// two and their shifts); depth's dividend is below `(2 * 65535 + 1)
-    /// w < 2^(l + 17)`, `l` the bits of `w`, so below `2^(32 + k)` with `k
-    /// = 32 - l >= 9` its leading zeros, as [`div_digits`] needs.
+    /// two and their shifts); depth's quotient is three digits of one
+    /// division each.
     #[inline(always)]
     pub(crate) fn project_digits(&self, p: &[i32; 4], w: NonZeroU32) -> (SubPoint, u16) {
         debug_assert!(w.get() < self.short_w && w.get() as i64 >= W_MIN);
-        let k = w.leading_zeros();
         let half = w.get() / 2;
         // Half a viewport side in sub-pixels is at most 2^15; |x|, |y| <=
         // 4w.
@@ -449,9 +447,18 @@ impl Viewport {
         let y = self.half_h as i32 - round(p[1], hh);
         // div_round((z + w) 65535, 2w) = floor(((z + w) 65535 + w) / w) / 2,
         // and -w <= z <= w: not negative, at most
-        // floor((2w 65535 + w) / w) / 2 = 65535, no clamp.
-        let n = (p[2] + w.get() as i32) as u32 as u64 * 65_535;
-        let z = div_digits(n + w.get() as u64, w, k) >> 1;
+        // floor((2w 65535 + w) / w) / 2 = 65535, no clamp. The quotient by
+        // three digits, as `project_recip` takes it (see there), each one
+        // division: `c = a w + b`, `b 2^8 = d1 w + r1`, then `(r1 2^8 + w
+        // - b) / w`; with `w < 2^23` every dividend is below `2^32`. (The
+        // 64-bit dividend's two divisions took its shifts and leading-zero
+        // count besides: 8 instructions a vertex more on the Cortex-M3.)
+        let wu = w.get();
+        let c = (p[2] + wu as i32) as u32;
+        let (a, b) = (c / w, c % w);
+        let (d1, r1) = ((b << 8) / w, (b << 8) % w);
+        let d0 = ((r1 << 8) + (wu - b)) / w;
+        let z = (a * 65_535 + (d1 << 8) + d0) >> 1;
         debug_assert!(z <= 65_535);
         (SubPoint::new(x, y), z as u16)
     }
@@ -750,7 +757,7 @@ mod tests {
         assert_eq!(div_round(-4, 3), -1);
     }
 
-    /// `project_inside` (two 32-bit divisions a quotient for `w < 2^23`)
+    /// `project_inside` (32-bit divisions for `w < 2^23`)
     /// against `project`, for vertices without `MUST_CLIP` bits: `w` from
     /// `W_MIN` to beyond 2^23, coordinates up to the guard band, the
     /// extremes of each.
