@@ -490,24 +490,23 @@ impl Viewport {
         let f = Recip16::new(w);
         let wu = w.get();
         let half = wu / 2;
-        // floor((m c + half) / w) for m <= 4w, c <= 2^15.
-        let mul_div = |m: u32, c: u32| -> u32 {
-            let (a, b) = f.digit(m);
-            let (d1, r1) = f.digit(b * (c >> 7));
-            let (d0, _) = f.digit((r1 << 7) + b * (c & 127) + half);
-            a * c + (d1 << 7) + d0
-        };
-        // div_round(n h, w) with the sign of n.
-        let round = |n: i32, h: u32| -> i32 {
-            let q = mul_div(n.unsigned_abs(), h) as i32;
+        // div_round(n h, w) with the sign of n: floor((|n| h + half) / w)
+        // for |n| <= 4w, h <= 2^15. A function inline, not a closure: LLVM
+        // kept the closure out of line (two calls a vertex).
+        #[inline(always)]
+        fn round(f: &Recip16, half: u32, n: i32, h: u32) -> i32 {
+            let (a, b) = f.digit(n.unsigned_abs());
+            let (d1, r1) = f.digit(b * (h >> 7));
+            let (d0, _) = f.digit((r1 << 7) + b * (h & 127) + half);
+            let q = (a * h + (d1 << 7) + d0) as i32;
             if n < 0 {
                 -q
             } else {
                 q
             }
-        };
-        let x = self.half_w as i32 + round(p[0], self.half_w as u32);
-        let y = self.half_h as i32 - round(p[1], self.half_h as u32);
+        }
+        let x = self.half_w as i32 + round(&f, half, p[0], self.half_w as u32);
+        let y = self.half_h as i32 - round(&f, half, p[1], self.half_h as u32);
         // -w <= z <= w: c in 0..=2w, and the quotient at most 2 * 65535 + 1.
         let c = (p[2] + wu as i32) as u32;
         let (a, b) = f.digit(c);
