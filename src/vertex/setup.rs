@@ -250,6 +250,61 @@ impl LoopConstants {
     }
 }
 
+/// The rows of a [`narrow`](FixedMat4::narrow) matrix for ARMv6-M's
+/// common vertex loop, its elements split rather than the point:
+/// [`FixedMat4::transform_point_narrow`] split each coordinate `p[i] =
+/// a[i] 2^8 + b[i]` per vertex (six values besides the point, more than
+/// Thumb-1's eight low registers held with the matrix: spilled, and each
+/// element copied before its `MULS`). Here each element `m = h 2^8 + l`
+/// (`0 <= l < 2^8`, `|h| <= 2^8` for `|m| <= 2^16`) is split once per
+/// draw, and a row's `Σ m[i] p[i] = 2^8 H + L` for `H = Σ h[i] p[i]` and
+/// `L = Σ l[i] p[i]`: with `|p[i]| <= 2^21` each product is below `2^29`
+/// in magnitude and each sum below `3 2^29`, exact in `i32`; then the
+/// rounding is `transform_point_narrow`'s, `floor((H + floor((L + 2^15) /
+/// 2^8)) / 2^8)`, and the same result. Read through an opaque reference
+/// (as [`LoopConstants`]), each element is loaded into the register its
+/// `MULS` overwrites.
+#[derive(Clone, Copy, Debug)]
+#[cfg_attr(not(any(test, microraster_narrow_multiply)), allow(dead_code))]
+struct NarrowRows {
+    /// Per row `r`: `h` of `m[0][r]`, `m[1][r]`, `m[2][r]`, then their
+    /// `l`, then the translation `m[3][r]`.
+    rows: [[i32; 7]; 4],
+}
+
+#[cfg_attr(not(any(test, microraster_narrow_multiply)), allow(dead_code))]
+impl NarrowRows {
+    fn new(m: &FixedMat4) -> Self {
+        let mut k = Self { rows: [[0; 7]; 4] };
+        for (r, row) in k.rows.iter_mut().enumerate() {
+            let e = [m.m[0][r], m.m[1][r], m.m[2][r]];
+            *row = [
+                e[0] >> 8,
+                e[1] >> 8,
+                e[2] >> 8,
+                e[0] & 0xff,
+                e[1] & 0xff,
+                e[2] & 0xff,
+                m.m[3][r],
+            ];
+        }
+        k
+    }
+
+    /// [`FixedMat4::transform_point_narrow`] of `p`, for the matrix this
+    /// was made of and a point within its narrow extent: the same point.
+    #[inline(always)]
+    fn transform(&self, p: [i32; 3]) -> [i32; 4] {
+        let mut out = [0i32; 4];
+        for (o, k) in out.iter_mut().zip(&self.rows) {
+            let h = k[0] * p[0] + k[1] * p[1] + k[2] * p[2];
+            let l = k[3] * p[0] + k[4] * p[1] + k[5] * p[2];
+            *o = k[6].wrapping_add((h + ((l + (1 << 15)) >> 8)) >> 8);
+        }
+        out
+    }
+}
+
 /// `(d >> 24).clamp(0, 256)` from `d`'s upper word, which is 0 exactly
 /// when `d >> 24` is 0 to 255: the Lambert fast path's n·l on 32-bit cores.
 #[inline(always)]
@@ -456,6 +511,17 @@ impl DrawSetup {
                     let p = [p[0].to_bits(), p[1].to_bits(), p[2].to_bits()];
                     let pos = k.transform(p);
                     *o = viewport.screen_vertex_lit(&pos, || k.shade(*nv));
+                }
+            }
+            Some((l, normals)) if crate::math::SPLIT => {
+                let k = NarrowRows::new(&self.mvp);
+                // Opaque, as `LoopConstants` (see `NarrowRows`): 10,000
+                // instructions a `demo` frame fewer than without.
+                let k = core::hint::black_box(&k);
+                for (o, (p, nv)) in out.iter_mut().zip(positions.iter().zip(normals)) {
+                    let p = [p[0].to_bits(), p[1].to_bits(), p[2].to_bits()];
+                    let pos = k.transform(p);
+                    *o = viewport.screen_vertex_lit(&pos, || l.shade(*nv, self.color));
                 }
             }
             Some((l, normals)) => {
@@ -742,6 +808,47 @@ mod tests {
                 let ext = extent as i64;
                 let p = [0; 3].map(|_| (next(2 * ext as u64 + 1) as i64 - ext) as i32);
                 assert_eq!(k.transform(p), m.transform_point_bounded(p), "{m:?} {p:?}");
+            }
+        }
+        assert!(taken > 5_000, "{taken}");
+    }
+
+    /// ARMv6-M's split rows are the narrow transform, hence the bounded
+    /// one: random narrow matrices (elements up to `±2^16`, translations
+    /// of any size) and points up to the narrow extent `2^21`, the
+    /// extremes included.
+    #[test]
+    fn narrow_rows_transform_as_the_bounded_matrix() {
+        let mut next = crate::testing::rng();
+        let mut taken = 0;
+        for i in 0..50_000 {
+            let mut e = |span: i64| (next(2 * span as u64 + 1) as i64 - span) as i32;
+            let mut m = FixedMat4 { m: [[0; 4]; 4] };
+            for c in 0..4 {
+                for r in 0..4 {
+                    m.m[c][r] = match (c, i % 7) {
+                        (3, _) => e((1 << (i % 31)) - 1),
+                        (_, 0) => [-(1 << 16), 1 << 16][(r + c) % 2],
+                        _ => e(1 << 16),
+                    };
+                }
+            }
+            let extent = 1u32 << (i % 22);
+            if !(m.bounded(extent) && m.narrow(extent)) {
+                continue;
+            }
+            taken += 1;
+            let k = NarrowRows::new(&m);
+            let ext = extent as i64;
+            for j in 0..20 {
+                let mut c = || match (j + i) % 5 {
+                    0 => extent as i32,
+                    1 => -(extent as i32),
+                    _ => (next(2 * ext as u64 + 1) as i64 - ext) as i32,
+                };
+                let p = [c(), c(), c()];
+                assert_eq!(k.transform(p), m.transform_point_bounded(p), "{m:?} {p:?}");
+                assert_eq!(k.transform(p), m.transform_point_narrow(p), "{m:?} {p:?}");
             }
         }
         assert!(taken > 5_000, "{taken}");
