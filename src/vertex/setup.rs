@@ -81,8 +81,9 @@ impl Lambert {
         }
     }
 
+    /// n·l in 1/256 steps, clamped to `0..=256` ([`shade`](Self::shade)'s).
     #[inline(always)]
-    fn shade(&self, n: crate::mesh::Vec3Fx, base: [u8; 3]) -> [u8; 3] {
+    fn ndotl(&self, n: crate::mesh::Vec3Fx) -> u32 {
         use crate::math::mul_wide;
         let n = [n[0].to_bits(), n[1].to_bits(), n[2].to_bits()];
         let wide = || {
@@ -102,10 +103,15 @@ impl Lambert {
         };
         // ARMv6-M builds each 64-bit product from four 16-bit ones: a
         // normal within ±1 takes n·l from six 32-bit products instead.
-        let ndotl = match crate::math::SPLIT {
+        match crate::math::SPLIT {
             true => ndotl_narrow(n, self.dir).unwrap_or_else(wide),
             false => wide(),
-        };
+        }
+    }
+
+    #[inline(always)]
+    fn shade(&self, n: crate::mesh::Vec3Fx, base: [u8; 3]) -> [u8; 3] {
+        let ndotl = self.ndotl(n);
         let mut out = [0u8; 3];
         for c in 0..3 {
             // At most 2^17.
@@ -270,12 +276,22 @@ struct NarrowRows {
     /// Per row `r`: `h` of `m[0][r]`, `m[1][r]`, `m[2][r]`, then their
     /// `l`, then the translation `m[3][r]`.
     rows: [[i32; 7]; 4],
+    /// The Lambert colour's factors per channel, folded per draw as in
+    /// [`LoopConstants`] (one `MULS` a channel fewer).
+    channels: [[u32; 2]; 3],
 }
 
 #[cfg_attr(not(any(test, microraster_narrow_multiply)), allow(dead_code))]
 impl NarrowRows {
-    fn new(m: &FixedMat4) -> Self {
-        let mut k = Self { rows: [[0; 7]; 4] };
+    fn new(m: &FixedMat4, l: &Lambert, base: [u8; 3]) -> Self {
+        let mut k = Self {
+            rows: [[0; 7]; 4],
+            channels: [[0; 2]; 3],
+        };
+        for (c, ch) in k.channels.iter_mut().enumerate() {
+            let b = base[c] as u32;
+            *ch = [b * l.ambient[c] * 256 + 32_640, b * l.color[c]];
+        }
         for (r, row) in k.rows.iter_mut().enumerate() {
             let e = [m.m[0][r], m.m[1][r], m.m[2][r]];
             *row = [
@@ -300,6 +316,19 @@ impl NarrowRows {
             let h = k[0] * p[0] + k[1] * p[1] + k[2] * p[2];
             let l = k[3] * p[0] + k[4] * p[1] + k[5] * p[2];
             *o = k[6].wrapping_add((h + ((l + (1 << 15)) >> 8)) >> 8);
+        }
+        out
+    }
+
+    /// [`Lambert::shade`] of normal `n` on the draw's colour, `l` the
+    /// light this was made with: the same colour.
+    #[inline(always)]
+    fn shade(&self, l: &Lambert, n: crate::mesh::Vec3Fx) -> [u8; 3] {
+        let ndotl = l.ndotl(n);
+        let mut out = [0u8; 3];
+        for (o, &[a, c]) in out.iter_mut().zip(&self.channels) {
+            // Lambert::shade's division on cores without a multiply-high.
+            *o = crate::light::div255((a + c * ndotl) >> 8).min(255) as u8;
         }
         out
     }
@@ -514,14 +543,14 @@ impl DrawSetup {
                 }
             }
             Some((l, normals)) if crate::math::SPLIT => {
-                let k = NarrowRows::new(&self.mvp);
+                let k = NarrowRows::new(&self.mvp, l, self.color);
                 // Opaque, as `LoopConstants` (see `NarrowRows`): 10,000
                 // instructions a `demo` frame fewer than without.
                 let k = core::hint::black_box(&k);
                 for (o, (p, nv)) in out.iter_mut().zip(positions.iter().zip(normals)) {
                     let p = [p[0].to_bits(), p[1].to_bits(), p[2].to_bits()];
                     let pos = k.transform(p);
-                    *o = viewport.screen_vertex_lit(&pos, || l.shade(*nv, self.color));
+                    *o = viewport.screen_vertex_lit(&pos, || k.shade(l, *nv));
                 }
             }
             Some((l, normals)) => {
@@ -776,6 +805,8 @@ mod tests {
                 assert_eq!(fast.shade(n, base), general, "{n:?} {base:?}");
                 let k = LoopConstants::new(&FixedMat4 { m: [[0; 4]; 4] }, &fast, base);
                 assert_eq!(k.shade(n), general, "{n:?} {base:?}");
+                let k = NarrowRows::new(&FixedMat4 { m: [[0; 4]; 4] }, &fast, base);
+                assert_eq!(k.shade(&fast, n), general, "{n:?} {base:?}");
             }
         }
     }
@@ -821,6 +852,11 @@ mod tests {
     fn narrow_rows_transform_as_the_bounded_matrix() {
         let mut next = crate::testing::rng();
         let mut taken = 0;
+        let none = Lambert {
+            dir: [0; 3],
+            color: [0; 3],
+            ambient: [0; 3],
+        };
         for i in 0..50_000 {
             let mut e = |span: i64| (next(2 * span as u64 + 1) as i64 - span) as i32;
             let mut m = FixedMat4 { m: [[0; 4]; 4] };
@@ -838,7 +874,7 @@ mod tests {
                 continue;
             }
             taken += 1;
-            let k = NarrowRows::new(&m);
+            let k = NarrowRows::new(&m, &none, [0; 3]);
             let ext = extent as i64;
             for j in 0..20 {
                 let mut c = || match (j + i) % 5 {
