@@ -168,22 +168,6 @@ pub(crate) fn shift_in_zeros(mut q: u32, mut r: u32, d: NonZeroU32, mut left: u3
     (q, r)
 }
 
-/// `floor(m / d)` by long division in two 32-bit steps, for `d` with `k`
-/// leading zeros and `m < 2^(32 + k)` whose quotient is below
-/// `2^32`: the upper digit from `m`'s upper `64 - k` bits (below `2^32`),
-/// the lower `k` bits from the remainder (below `d`, so `rem 2^k < 2^32`)
-/// and `m`'s lower `k` bits.
-#[inline(always)]
-pub(crate) fn div_digits(m: u64, d: NonZeroU32, k: u32) -> u32 {
-    debug_assert!(k == d.leading_zeros() && (1..32).contains(&k) && m >> (32 + k) == 0);
-    // `m >> k` from the two words: `1 <= k < 32`.
-    let high = (m as u32 >> k) | ((m >> 32) as u32) << (32 - k);
-    let q1 = high / d;
-    let rem = high - q1 * d.get();
-    let part = (rem << k) | (m as u32 & (u32::MAX >> (32 - k)));
-    (q1 << k) | (part / d)
-}
-
 /// The vertex stage's divisor `w` on ARMv6-M: [`Short`]'s 32-bit
 /// reciprocal when it applies (`8 <= w < 2^31` and the dividend below
 /// `2^(30 + bits of w)`: every vertex inside the guard band), else
@@ -363,31 +347,6 @@ pub(crate) type WDivisor = Divisor;
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    /// The 32-bit long division against the 64-bit one: every divisor
-    /// below 70,000 and around every power of two up to 2^31 (below it), with
-    /// dividends up to its limit `2^(32 + k)` (and quotients below 2^32).
-    #[test]
-    fn div_digits_is_the_quotient() {
-        let mut next = crate::testing::rng();
-        let check = |d: u32, m: u64| {
-            let nz = NonZeroU32::new(d).unwrap();
-            let k = d.leading_zeros();
-            let m = m.min((1u64 << (32 + k)) - 1).min(((d as u64) << 32) - 1);
-            assert_eq!(div_digits(m, nz, k) as u64, m / d as u64, "{m} / {d}");
-        };
-        // k >= 1: divisors below 2^31.
-        let divisors = (2..70_000u32).chain(
-            (17..32).flat_map(|b| (1u32 << b) - 100..((1u64 << b) + 100).min(1 << 31) as u32),
-        );
-        for d in divisors {
-            for m in [0, 1, d as u64 - 1, d as u64, u64::MAX] {
-                check(d, m);
-            }
-            check(d, next(1 << 32) << 32 | next(1 << 32));
-            check(d, (next(1 << 32) << 32 | next(1 << 32)) >> next(64));
-        }
-    }
 
     #[test]
     fn max_div_is_the_64_bit_quotient() {

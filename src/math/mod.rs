@@ -32,7 +32,7 @@ mod trig;
 mod wide;
 
 pub use cast::{f32_to_i32, f32_to_i64, f32_to_u64, f32_to_u8};
-pub(crate) use divisor::{div_digits, shift_in_zeros, Divisor, WDivisor};
+pub(crate) use divisor::{shift_in_zeros, Divisor, WDivisor};
 pub use trig::{sin_cos, sqrt, tan};
 pub(crate) use wide::{mul_wide, SPLIT};
 

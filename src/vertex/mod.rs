@@ -46,7 +46,7 @@ mod setup;
 
 pub use setup::{DrawSetup, VertexError, MAX_LIGHTS};
 
-use crate::math::{div_digits, WDivisor};
+use crate::math::WDivisor;
 use crate::raster::{SubPoint, SUBPIXEL};
 use crate::shade::Recip16;
 use core::num::{NonZeroU32, NonZeroU64};
@@ -239,8 +239,10 @@ pub fn outcode(p: &[i32; 4]) -> u8 {
     if inside {
         return 0;
     }
-    let (x, y, z, w) = (p[0] as i64, p[1] as i64, p[2] as i64, p[3] as i64);
-    outcode_slow(x, y, z, w)
+    match crate::math::SPLIT || cfg!(target_pointer_width = "64") {
+        true => outcode_slow_wide(p[0] as i64, p[1] as i64, p[2] as i64, p[3] as i64),
+        false => outcode_slow(p[0], p[1], p[2], p[3]),
+    }
 }
 
 /// Whether `p` is inside the view volume (`W_MIN <= w`, `|x|, |y|, |z| <=
@@ -263,9 +265,35 @@ fn inside_words(p: &[i32; 4]) -> bool {
         && p[2].unsigned_abs() <= wu
 }
 
-/// [`outcode`] of a vertex outside the view volume.
+/// [`outcode`] of a vertex outside the view volume. The coordinates as
+/// `i32`, widened here: four registers at each call on 32-bit cores, where
+/// four `i64` took eight and their sign extensions (84 bytes less flash in
+/// the OLED firmware).
 #[inline(never)]
-fn outcode_slow(x: i64, y: i64, z: i64, w: i64) -> u8 {
+#[cfg_attr(
+    any(microraster_narrow_multiply, target_pointer_width = "64"),
+    allow(dead_code)
+)]
+fn outcode_slow(x: i32, y: i32, z: i32, w: i32) -> u8 {
+    outcode_wide(x as i64, y as i64, z as i64, w as i64)
+}
+
+/// [`outcode_slow`] of `i64` coordinates, for ARMv6-M and 64-bit hosts:
+/// their vertex loops measured 12,000 (ARMv6-M) and 11,700 (x86-64)
+/// instructions a `demo` frame slower calling the `i32` one (registers
+/// allocated worse), though the call is rare.
+#[inline(never)]
+#[cfg_attr(
+    not(any(microraster_narrow_multiply, target_pointer_width = "64")),
+    allow(dead_code)
+)]
+fn outcode_slow_wide(x: i64, y: i64, z: i64, w: i64) -> u8 {
+    outcode_wide(x, y, z, w)
+}
+
+/// The outcode of `(x, y, z, w)`, every plane tested.
+#[inline(always)]
+fn outcode_wide(x: i64, y: i64, z: i64, w: i64) -> u8 {
     let mut c = 0;
     if x < -w {
         c |= OUT_LEFT;
@@ -372,7 +400,7 @@ impl Viewport {
     /// [`project`](Self::project) of a vertex without [`MUST_CLIP`] bits
     /// (`W_MIN <= w`, `|x|, |y| <= K w`, `|z| <= w`): the same results.
     /// Where a 32-bit division is an instruction ([`LONG_DIVISION`]) and
-    /// `w < 2^23`, each quotient is two of them ([`div_digits`]) rather
+    /// `w < 2^23`, x's and y's quotients are one of them, depth's three, rather
     /// than a multiply-high by `w`'s 64-bit reciprocal, which itself took
     /// two to four divisions: on the Cortex-M3 about 110 instructions a
     /// vertex fewer.
@@ -425,13 +453,11 @@ impl Viewport {
     /// and `w` below `short_w` (and `2^23`) by 32-bit division: x's and
     /// y's dividends `|x| h + w / 2 <= 4 w h + w / 2` fit 32 bits, so
     /// each quotient is one division (where the long division below took
-    /// two and their shifts); depth's dividend is below `(2 * 65535 + 1)
-    /// w < 2^(l + 17)`, `l` the bits of `w`, so below `2^(32 + k)` with `k
-    /// = 32 - l >= 9` its leading zeros, as [`div_digits`] needs.
+    /// two and their shifts); depth's quotient is three digits of one
+    /// division each.
     #[inline(always)]
     pub(crate) fn project_digits(&self, p: &[i32; 4], w: NonZeroU32) -> (SubPoint, u16) {
         debug_assert!(w.get() < self.short_w && w.get() as i64 >= W_MIN);
-        let k = w.leading_zeros();
         let half = w.get() / 2;
         // Half a viewport side in sub-pixels is at most 2^15; |x|, |y| <=
         // 4w.
@@ -449,9 +475,18 @@ impl Viewport {
         let y = self.half_h as i32 - round(p[1], hh);
         // div_round((z + w) 65535, 2w) = floor(((z + w) 65535 + w) / w) / 2,
         // and -w <= z <= w: not negative, at most
-        // floor((2w 65535 + w) / w) / 2 = 65535, no clamp.
-        let n = (p[2] + w.get() as i32) as u32 as u64 * 65_535;
-        let z = div_digits(n + w.get() as u64, w, k) >> 1;
+        // floor((2w 65535 + w) / w) / 2 = 65535, no clamp. The quotient by
+        // three digits, as `project_recip` takes it (see there), each one
+        // division: `c = a w + b`, `b 2^8 = d1 w + r1`, then `(r1 2^8 + w
+        // - b) / w`; with `w < 2^23` every dividend is below `2^32`. (The
+        // 64-bit dividend's two divisions took its shifts and leading-zero
+        // count besides: 8 instructions a vertex more on the Cortex-M3.)
+        let wu = w.get();
+        let c = (p[2] + wu as i32) as u32;
+        let (a, b) = (c / w, c % w);
+        let (d1, r1) = ((b << 8) / w, (b << 8) % w);
+        let d0 = ((r1 << 8) + (wu - b)) / w;
+        let z = (a * 65_535 + (d1 << 8) + d0) >> 1;
         debug_assert!(z <= 65_535);
         (SubPoint::new(x, y), z as u16)
     }
@@ -483,24 +518,23 @@ impl Viewport {
         let f = Recip16::new(w);
         let wu = w.get();
         let half = wu / 2;
-        // floor((m c + half) / w) for m <= 4w, c <= 2^15.
-        let mul_div = |m: u32, c: u32| -> u32 {
-            let (a, b) = f.digit(m);
-            let (d1, r1) = f.digit(b * (c >> 7));
-            let (d0, _) = f.digit((r1 << 7) + b * (c & 127) + half);
-            a * c + (d1 << 7) + d0
-        };
-        // div_round(n h, w) with the sign of n.
-        let round = |n: i32, h: u32| -> i32 {
-            let q = mul_div(n.unsigned_abs(), h) as i32;
+        // div_round(n h, w) with the sign of n: floor((|n| h + half) / w)
+        // for |n| <= 4w, h <= 2^15. A function inline, not a closure: LLVM
+        // kept the closure out of line (two calls a vertex).
+        #[inline(always)]
+        fn round(f: &Recip16, half: u32, n: i32, h: u32) -> i32 {
+            let (a, b) = f.digit(n.unsigned_abs());
+            let (d1, r1) = f.digit(b * (h >> 7));
+            let (d0, _) = f.digit((r1 << 7) + b * (h & 127) + half);
+            let q = (a * h + (d1 << 7) + d0) as i32;
             if n < 0 {
                 -q
             } else {
                 q
             }
-        };
-        let x = self.half_w as i32 + round(p[0], self.half_w as u32);
-        let y = self.half_h as i32 - round(p[1], self.half_h as u32);
+        }
+        let x = self.half_w as i32 + round(&f, half, p[0], self.half_w as u32);
+        let y = self.half_h as i32 - round(&f, half, p[1], self.half_h as u32);
         // -w <= z <= w: c in 0..=2w, and the quotient at most 2 * 65535 + 1.
         let c = (p[2] + wu as i32) as u32;
         let (a, b) = f.digit(c);
@@ -701,7 +735,7 @@ mod tests {
     #[test]
     fn the_inside_test_agrees_with_the_full_outcode() {
         let mut next = crate::testing::rng();
-        let full = |p: &[i32; 4]| outcode_slow(p[0] as i64, p[1] as i64, p[2] as i64, p[3] as i64);
+        let full = |p: &[i32; 4]| outcode_slow(p[0], p[1], p[2], p[3]);
         let ws = [
             i32::MIN,
             -1,
@@ -750,7 +784,7 @@ mod tests {
         assert_eq!(div_round(-4, 3), -1);
     }
 
-    /// `project_inside` (two 32-bit divisions a quotient for `w < 2^23`)
+    /// `project_inside` (32-bit divisions for `w < 2^23`)
     /// against `project`, for vertices without `MUST_CLIP` bits: `w` from
     /// `W_MIN` to beyond 2^23, coordinates up to the guard band, the
     /// extremes of each.

@@ -81,8 +81,9 @@ impl Lambert {
         }
     }
 
+    /// n·l in 1/256 steps, clamped to `0..=256` ([`shade`](Self::shade)'s).
     #[inline(always)]
-    fn shade(&self, n: crate::mesh::Vec3Fx, base: [u8; 3]) -> [u8; 3] {
+    fn ndotl(&self, n: crate::mesh::Vec3Fx) -> u32 {
         use crate::math::mul_wide;
         let n = [n[0].to_bits(), n[1].to_bits(), n[2].to_bits()];
         let wide = || {
@@ -102,10 +103,15 @@ impl Lambert {
         };
         // ARMv6-M builds each 64-bit product from four 16-bit ones: a
         // normal within ±1 takes n·l from six 32-bit products instead.
-        let ndotl = match crate::math::SPLIT {
+        match crate::math::SPLIT {
             true => ndotl_narrow(n, self.dir).unwrap_or_else(wide),
             false => wide(),
-        };
+        }
+    }
+
+    #[inline(always)]
+    fn shade(&self, n: crate::mesh::Vec3Fx, base: [u8; 3]) -> [u8; 3] {
+        let ndotl = self.ndotl(n);
         let mut out = [0u8; 3];
         for c in 0..3 {
             // At most 2^17.
@@ -158,6 +164,174 @@ fn ndotl_narrow(n: [i32; 3], l: [i32; 3]) -> Option<u32> {
         b += (n[i] & 0xff) * l[i];
     }
     Some(((a + (b >> 8)) >> 16).clamp(0, 256) as u32)
+}
+
+/// Whether the vertex stage's common loop reads its per-draw constants
+/// from a [`LoopConstants`]: on 32-bit cores with a 32 x 32 -> 64-bit
+/// multiply (the Cortex-M3 and M4, RISC-V `rv32im`).
+const LOOP_CONSTANTS: bool = cfg!(all(
+    target_pointer_width = "32",
+    not(microraster_narrow_multiply)
+));
+
+/// The per-draw constants of the vertex stage's common loop (a bounded
+/// matrix, the Lambert fast path, no vertex colours), laid out in the
+/// order the loop reads them and read through a reference the compiler
+/// cannot see into (`black_box`). The loop has more constants (28) than
+/// a Cortex-M3 has registers: held as values, the allocator spilled them
+/// to slots of their own and reloaded each with one `LDR` a vertex; read
+/// from here, neighbours load together (`LDRD`), the translation's two
+/// words straight into a row's accumulator, and the Lambert colour's
+/// constants are folded per draw (two per channel where there were
+/// three and a multiply more).
+#[derive(Clone, Copy, Debug)]
+#[cfg_attr(not(any(test, target_pointer_width = "32")), allow(dead_code))]
+struct LoopConstants {
+    /// Per row `r` of the matrix: the low and high words of `m[3][r] 2^16 +
+    /// 2^15` (translation and rounding, as in
+    /// [`FixedMat4::transform_point_bounded`]), then `m[0][r]`, `m[1][r]`
+    /// and `m[2][r]`.
+    rows: [[i32; 5]; 4],
+    /// The light's direction (as [`Lambert`]'s).
+    dir: [i32; 3],
+    /// Per channel `c`, with `base` the draw's colour: `base[c]
+    /// ambient[c] 256 + 32,640` and `base[c] color[c]`, so that
+    /// [`Lambert::shade`]'s `base[c] (ambient[c] 256 + color[c] n·l) +
+    /// 32,640` is one multiply-add (the same value: every term is below
+    /// `2^26`).
+    channels: [[u32; 2]; 3],
+}
+
+#[cfg_attr(not(any(test, target_pointer_width = "32")), allow(dead_code))]
+impl LoopConstants {
+    fn new(m: &FixedMat4, l: &Lambert, base: [u8; 3]) -> Self {
+        // Loops rather than `map`s, here and below: the size profile
+        // (the OLED firmware's) keeps a `map` as a loop through a
+        // temporary array and a `memcpy`.
+        let mut k = Self {
+            rows: [[0; 5]; 4],
+            dir: l.dir,
+            channels: [[0; 2]; 3],
+        };
+        for (r, row) in k.rows.iter_mut().enumerate() {
+            let t = (m.m[3][r] as i64) << 16 | 1 << 15;
+            *row = [t as i32, (t >> 32) as i32, m.m[0][r], m.m[1][r], m.m[2][r]];
+        }
+        for (c, ch) in k.channels.iter_mut().enumerate() {
+            let b = base[c] as u32;
+            *ch = [b * l.ambient[c] * 256 + 32_640, b * l.color[c]];
+        }
+        k
+    }
+
+    /// [`FixedMat4::transform_point_bounded`] of `p`: the same sums.
+    #[inline(always)]
+    fn transform(&self, p: [i32; 3]) -> [i32; 4] {
+        use crate::math::mul_wide;
+        let mut out = [0i32; 4];
+        for (o, k) in out.iter_mut().zip(&self.rows) {
+            let acc = ((k[1] as i64) << 32 | k[0] as u32 as i64)
+                .wrapping_add(mul_wide(k[2], p[0]))
+                .wrapping_add(mul_wide(k[3], p[1]))
+                .wrapping_add(mul_wide(k[4], p[2]));
+            *o = (acc >> 16) as i32;
+        }
+        out
+    }
+
+    /// [`Lambert::shade`] of normal `n` on the draw's colour: the same
+    /// colour.
+    #[inline(always)]
+    fn shade(&self, n: crate::mesh::Vec3Fx) -> [u8; 3] {
+        use crate::math::mul_wide;
+        let d = mul_wide(n[0].to_bits(), self.dir[0])
+            + mul_wide(n[1].to_bits(), self.dir[1])
+            + mul_wide(n[2].to_bits(), self.dir[2]);
+        let ndotl = clamp_ndotl_words(d);
+        let mut out = [0u8; 3];
+        for (o, &[a, c]) in out.iter_mut().zip(&self.channels) {
+            *o = div65280_sat(a + c * ndotl);
+        }
+        out
+    }
+}
+
+/// The rows of a [`narrow`](FixedMat4::narrow) matrix for ARMv6-M's
+/// common vertex loop, its elements split rather than the point:
+/// [`FixedMat4::transform_point_narrow`] split each coordinate `p[i] =
+/// a[i] 2^8 + b[i]` per vertex (six values besides the point, more than
+/// Thumb-1's eight low registers held with the matrix: spilled, and each
+/// element copied before its `MULS`). Here each element `m = h 2^8 + l`
+/// (`0 <= l < 2^8`, `|h| <= 2^8` for `|m| <= 2^16`) is split once per
+/// draw, and a row's `Σ m[i] p[i] = 2^8 H + L` for `H = Σ h[i] p[i]` and
+/// `L = Σ l[i] p[i]`: with `|p[i]| <= 2^21` each product is below `2^29`
+/// in magnitude and each sum below `3 2^29`, exact in `i32`; then the
+/// rounding is `transform_point_narrow`'s, `floor((H + floor((L + 2^15) /
+/// 2^8)) / 2^8)`, and the same result. Read through an opaque reference
+/// (as [`LoopConstants`]), each element is loaded into the register its
+/// `MULS` overwrites.
+#[derive(Clone, Copy, Debug)]
+#[cfg_attr(not(any(test, microraster_narrow_multiply)), allow(dead_code))]
+struct NarrowRows {
+    /// Per row `r`: `h` of `m[0][r]`, `m[1][r]`, `m[2][r]`, then their
+    /// `l`, then the translation `m[3][r]`.
+    rows: [[i32; 7]; 4],
+    /// The Lambert colour's factors per channel, folded per draw as in
+    /// [`LoopConstants`] (one `MULS` a channel fewer).
+    channels: [[u32; 2]; 3],
+}
+
+#[cfg_attr(not(any(test, microraster_narrow_multiply)), allow(dead_code))]
+impl NarrowRows {
+    fn new(m: &FixedMat4, l: &Lambert, base: [u8; 3]) -> Self {
+        let mut k = Self {
+            rows: [[0; 7]; 4],
+            channels: [[0; 2]; 3],
+        };
+        for (c, ch) in k.channels.iter_mut().enumerate() {
+            let b = base[c] as u32;
+            *ch = [b * l.ambient[c] * 256 + 32_640, b * l.color[c]];
+        }
+        for (r, row) in k.rows.iter_mut().enumerate() {
+            let e = [m.m[0][r], m.m[1][r], m.m[2][r]];
+            *row = [
+                e[0] >> 8,
+                e[1] >> 8,
+                e[2] >> 8,
+                e[0] & 0xff,
+                e[1] & 0xff,
+                e[2] & 0xff,
+                m.m[3][r],
+            ];
+        }
+        k
+    }
+
+    /// [`FixedMat4::transform_point_narrow`] of `p`, for the matrix this
+    /// was made of and a point within its narrow extent: the same point.
+    #[inline(always)]
+    fn transform(&self, p: [i32; 3]) -> [i32; 4] {
+        let mut out = [0i32; 4];
+        for (o, k) in out.iter_mut().zip(&self.rows) {
+            let h = k[0] * p[0] + k[1] * p[1] + k[2] * p[2];
+            let l = k[3] * p[0] + k[4] * p[1] + k[5] * p[2];
+            *o = k[6].wrapping_add((h + ((l + (1 << 15)) >> 8)) >> 8);
+        }
+        out
+    }
+
+    /// [`Lambert::shade`] of normal `n` on the draw's colour, `l` the
+    /// light this was made with: the same colour.
+    #[inline(always)]
+    fn shade(&self, l: &Lambert, n: crate::mesh::Vec3Fx) -> [u8; 3] {
+        let ndotl = l.ndotl(n);
+        let mut out = [0u8; 3];
+        for (o, &[a, c]) in out.iter_mut().zip(&self.channels) {
+            // Lambert::shade's division on cores without a multiply-high.
+            *o = crate::light::div255((a + c * ndotl) >> 8).min(255) as u8;
+        }
+        out
+    }
 }
 
 /// `(d >> 24).clamp(0, 256)` from `d`'s upper word, which is 0 exactly
@@ -357,6 +531,28 @@ impl DrawSetup {
             _ => None,
         };
         match common {
+            Some((l, normals)) if LOOP_CONSTANTS => {
+                let k = LoopConstants::new(&self.mvp, l, self.color);
+                // Opaque: the loop loads each constant where it uses it,
+                // neighbours in one instruction (see `LoopConstants`).
+                let k = core::hint::black_box(&k);
+                for (o, (p, nv)) in out.iter_mut().zip(positions.iter().zip(normals)) {
+                    let p = [p[0].to_bits(), p[1].to_bits(), p[2].to_bits()];
+                    let pos = k.transform(p);
+                    *o = viewport.screen_vertex_lit(&pos, || k.shade(*nv));
+                }
+            }
+            Some((l, normals)) if crate::math::SPLIT => {
+                let k = NarrowRows::new(&self.mvp, l, self.color);
+                // Opaque, as `LoopConstants` (see `NarrowRows`): 10,000
+                // instructions a `demo` frame fewer than without.
+                let k = core::hint::black_box(&k);
+                for (o, (p, nv)) in out.iter_mut().zip(positions.iter().zip(normals)) {
+                    let p = [p[0].to_bits(), p[1].to_bits(), p[2].to_bits()];
+                    let pos = k.transform(p);
+                    *o = viewport.screen_vertex_lit(&pos, || k.shade(l, *nv));
+                }
+            }
             Some((l, normals)) => {
                 for (o, (p, nv)) in out.iter_mut().zip(positions.iter().zip(normals)) {
                     let p = [p[0].to_bits(), p[1].to_bits(), p[2].to_bits()];
@@ -607,7 +803,90 @@ mod tests {
                 let base = [next(256) as u8, next(256) as u8, next(256) as u8];
                 let general = setup.shade(&Material::new(), base, [0; 3], n.map(|v| v.to_bits()));
                 assert_eq!(fast.shade(n, base), general, "{n:?} {base:?}");
+                let k = LoopConstants::new(&FixedMat4 { m: [[0; 4]; 4] }, &fast, base);
+                assert_eq!(k.shade(n), general, "{n:?} {base:?}");
+                let k = NarrowRows::new(&FixedMat4 { m: [[0; 4]; 4] }, &fast, base);
+                assert_eq!(k.shade(&fast, n), general, "{n:?} {base:?}");
             }
         }
+    }
+
+    /// The common loop's rows are the bounded transform: random matrices
+    /// of every magnitude (the translation up to the `i32` extremes), and
+    /// points within an extent they are bounded for.
+    #[test]
+    fn loop_constants_transform_as_the_bounded_matrix() {
+        let mut next = crate::testing::rng();
+        let mut taken = 0;
+        let none = Lambert {
+            dir: [0; 3],
+            color: [0; 3],
+            ambient: [0; 3],
+        };
+        for _ in 0..50_000 {
+            let span = (1i64 << next(32)) - 1;
+            let mut e = || (next(2 * span as u64 + 1) as i64 - span) as i32;
+            let m = FixedMat4 {
+                m: [[0; 4]; 4].map(|c| c.map(|_| e())),
+            };
+            let extent = 1u32 << next(23);
+            if !m.bounded(extent) {
+                continue;
+            }
+            taken += 1;
+            let k = LoopConstants::new(&m, &none, [0; 3]);
+            for _ in 0..20 {
+                let ext = extent as i64;
+                let p = [0; 3].map(|_| (next(2 * ext as u64 + 1) as i64 - ext) as i32);
+                assert_eq!(k.transform(p), m.transform_point_bounded(p), "{m:?} {p:?}");
+            }
+        }
+        assert!(taken > 5_000, "{taken}");
+    }
+
+    /// ARMv6-M's split rows are the narrow transform, hence the bounded
+    /// one: random narrow matrices (elements up to `±2^16`, translations
+    /// of any size) and points up to the narrow extent `2^21`, the
+    /// extremes included.
+    #[test]
+    fn narrow_rows_transform_as_the_bounded_matrix() {
+        let mut next = crate::testing::rng();
+        let mut taken = 0;
+        let none = Lambert {
+            dir: [0; 3],
+            color: [0; 3],
+            ambient: [0; 3],
+        };
+        for i in 0..50_000 {
+            let mut e = |span: i64| (next(2 * span as u64 + 1) as i64 - span) as i32;
+            let mut m = FixedMat4 { m: [[0; 4]; 4] };
+            for c in 0..4 {
+                for r in 0..4 {
+                    m.m[c][r] = match (c, i % 7) {
+                        (3, _) => e((1 << (i % 31)) - 1),
+                        (_, 0) => [-(1 << 16), 1 << 16][(r + c) % 2],
+                        _ => e(1 << 16),
+                    };
+                }
+            }
+            let extent = 1u32 << (i % 22);
+            if !(m.bounded(extent) && m.narrow(extent)) {
+                continue;
+            }
+            taken += 1;
+            let k = NarrowRows::new(&m, &none, [0; 3]);
+            let ext = extent as i64;
+            for j in 0..20 {
+                let mut c = || match (j + i) % 5 {
+                    0 => extent as i32,
+                    1 => -(extent as i32),
+                    _ => (next(2 * ext as u64 + 1) as i64 - ext) as i32,
+                };
+                let p = [c(), c(), c()];
+                assert_eq!(k.transform(p), m.transform_point_bounded(p), "{m:?} {p:?}");
+                assert_eq!(k.transform(p), m.transform_point_narrow(p), "{m:?} {p:?}");
+            }
+        }
+        assert!(taken > 5_000, "{taken}");
     }
 }
