@@ -24,6 +24,8 @@ const RECIPROCAL: [i64; 17] = {
 /// instructions per fragment with it. `build.rs` sets the cfg for those
 /// targets, and on any target with `MICRORASTER_COLOUR_LOOP=1`, so that
 /// CI runs the host's span-shader and golden tests through this loop too.
+/// The same cfg has [`SpanInput::run_opaque`]'s exact loops count the
+/// pixels that fail rather than those written (see there).
 pub(crate) const COLOUR_LOOP: bool = cfg!(microraster_colour_loop);
 
 /// [`SpanInput::run_opaque`]'s weights: affine (`B1`, `B2` shifted), or
