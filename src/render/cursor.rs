@@ -31,6 +31,9 @@ pub(super) struct DrawCursor<'f> {
     pub(super) tris16: &'f [[u16; 3]],
     pub(super) verts: &'f [ScreenVertex],
     pub(super) shading: Shading,
+    /// `shading == Shading::Gouraud`, decided once per draw: the tile
+    /// loop indexes its shading functions by it for every triangle.
+    pub(super) gouraud: bool,
     pub(super) blend: Blend,
     /// The draw has edges or points to draw.
     pub(super) lines: bool,
@@ -55,6 +58,7 @@ impl<'f> DrawCursor<'f> {
             tris16: &[],
             verts: &[],
             shading: Shading::Flat,
+            gouraud: false,
             blend: Blend::Opaque,
             lines: false,
             plain: true,
@@ -87,6 +91,7 @@ impl<'f> DrawCursor<'f> {
         self.verts = &self.vertices[self.vbase..self.vbase + draw.mesh.vertex_count()];
         self.end = self.first + self.triangles.len();
         self.shading = draw.shading;
+        self.gouraud = draw.shading == Shading::Gouraud;
         self.blend = draw.blend;
         self.lines = margin(draw) != 0;
         self.plain = !self.lines && self.blend == Blend::Opaque && self.shading != Shading::Shader;

@@ -38,8 +38,10 @@ pub(super) type CustomFn<C, G, const TW: usize, const TH: usize> = fn(
 pub(super) struct Shaders<'s, C: From<Rgb888> + 'static, F, const TW: usize, const TH: usize> {
     pub(super) find: FindFn,
     pub(super) out: Output,
-    pub(super) gouraud: ShadeFn<C, TW, TH>,
-    pub(super) flat: ShadeFn<C, TW, TH>,
+    /// The flat and the Gouraud [`ShadeFn`], indexed by whether the
+    /// triangle is Gouraud shaded: one load a pair, where a select of
+    /// two fields took four instructions more.
+    pub(super) fill: [ShadeFn<C, TW, TH>; 2],
     pub(super) flat_t: CustomFn<C, shader::Flat, TW, TH>,
     pub(super) gouraud_t: CustomFn<C, shader::Gouraud, TW, TH>,
     pub(super) set: &'s F,
@@ -65,16 +67,18 @@ where
                 test: cfg.depth_test,
                 write: WRITE,
             },
-            gouraud: if P::GOURAUD {
-                shade::<C, D, WRITE, true, TW, TH>
-            } else {
-                shade_nothing::<C, TW, TH>
-            },
-            flat: if P::FLAT {
-                shade::<C, D, WRITE, false, TW, TH>
-            } else {
-                shade_nothing::<C, TW, TH>
-            },
+            fill: [
+                if P::FLAT {
+                    shade::<C, D, WRITE, false, TW, TH>
+                } else {
+                    shade_nothing::<C, TW, TH>
+                },
+                if P::GOURAUD {
+                    shade::<C, D, WRITE, true, TW, TH>
+                } else {
+                    shade_nothing::<C, TW, TH>
+                },
+            ],
             flat_t: if P::BLEND && P::FLAT {
                 shade_custom::<C, shader::Flat, TW, TH>
             } else {

@@ -121,11 +121,7 @@ where
     let Some(found) = drawn(&to.found, count, &mut to.rows) else {
         return 0;
     };
-    let shade = if gouraud {
-        to.shaders.gouraud
-    } else {
-        to.shaders.flat
-    };
+    let shade = to.shaders.fill[gouraud as usize];
     shade(to.tile, to.rect, &sv, found, to.shaders.out.test)
 }
 

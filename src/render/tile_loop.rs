@@ -96,7 +96,7 @@ where
         n += if any & MUST_CLIP != 0 {
             job.clipped(&cur, [i0, i1, i2], any, sv[0].color)
         } else {
-            fill(&mut job.to, sv, cur.shading == Shading::Gouraud)
+            fill(&mut job.to, sv, cur.gouraud)
         };
     }
     if P::BLEND {
@@ -287,7 +287,7 @@ where
     #[inline(never)]
     fn clipped(&mut self, cur: &DrawCursor<'_>, idx: [u32; 3], any: u8, flat: [u8; 3]) -> u32 {
         let mut n = 0;
-        let gouraud = cur.shading == Shading::Gouraud;
+        let gouraud = cur.gouraud;
         let to = &mut self.to;
         let frame = self.frame;
         frame.clipped_pieces(cur.draw, idx, any, flat, self.cache, &mut |piece, flat| {
