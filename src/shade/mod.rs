@@ -829,11 +829,7 @@ mod tests {
             if crate::raster::signed_area2(&v) == 0 {
                 continue;
             }
-            let sv = [0, 1, 2].map(|k| {
-                let z = next(65_536) as u16;
-                let color = [next(256) as u8, next(256) as u8, next(256) as u8];
-                ScreenVertex::new(v[k].x, v[k].y, z, 0, color)
-            });
+            let sv = random_vertices(&v, &mut next);
             let corners = Corners([&sv[0], &sv[1], &sv[2]]);
             let f = Basis::with_small(&v, true);
             for gouraud in [false, true] {
@@ -849,6 +845,15 @@ mod tests {
             }
         }
         assert!(applied > 50_000, "{applied} small set-ups");
+    }
+
+    /// Screen vertices at `v` with random depths and colours.
+    fn random_vertices(v: &[SubPoint; 3], next: &mut impl FnMut(u64) -> u64) -> [ScreenVertex; 3] {
+        [0, 1, 2].map(|k| {
+            let z = next(65_536) as u16;
+            let color = [next(256) as u8, next(256) as u8, next(256) as u8];
+            ScreenVertex::new(v[k].x, v[k].y, z, 0, color)
+        })
     }
 
     /// The general set-up with its colour planes out of line (32-bit
@@ -870,11 +875,7 @@ mod tests {
             if crate::raster::signed_area2(&v) == 0 {
                 continue;
             }
-            let sv = [0, 1, 2].map(|k| {
-                let z = next(65_536) as u16;
-                let color = [next(256) as u8, next(256) as u8, next(256) as u8];
-                ScreenVertex::new(v[k].x, v[k].y, z, 0, color)
-            });
+            let sv = random_vertices(&v, &mut next);
             let corners = Corners([&sv[0], &sv[1], &sv[2]]);
             let f = Basis::with_small(&v, k % 2 == 0);
             for gouraud in [false, true] {

@@ -811,6 +811,13 @@ mod tests {
         }
     }
 
+    /// A light that adds nothing, for the transform tests.
+    const NO_LIGHT: Lambert = Lambert {
+        dir: [0; 3],
+        color: [0; 3],
+        ambient: [0; 3],
+    };
+
     /// The common loop's rows are the bounded transform: random matrices
     /// of every magnitude (the translation up to the `i32` extremes), and
     /// points within an extent they are bounded for.
@@ -818,11 +825,7 @@ mod tests {
     fn loop_constants_transform_as_the_bounded_matrix() {
         let mut next = crate::testing::rng();
         let mut taken = 0;
-        let none = Lambert {
-            dir: [0; 3],
-            color: [0; 3],
-            ambient: [0; 3],
-        };
+        let none = NO_LIGHT;
         for _ in 0..50_000 {
             let span = (1i64 << next(32)) - 1;
             let mut e = || (next(2 * span as u64 + 1) as i64 - span) as i32;
@@ -852,11 +855,7 @@ mod tests {
     fn narrow_rows_transform_as_the_bounded_matrix() {
         let mut next = crate::testing::rng();
         let mut taken = 0;
-        let none = Lambert {
-            dir: [0; 3],
-            color: [0; 3],
-            ambient: [0; 3],
-        };
+        let none = NO_LIGHT;
         for i in 0..50_000 {
             let mut e = |span: i64| (next(2 * span as u64 + 1) as i64 - span) as i32;
             let mut m = FixedMat4 { m: [[0; 4]; 4] };
