@@ -218,7 +218,7 @@ where
     // clipped piece the colour of the triangle's own first vertex there):
     // read here, by the flat span loops only, rather than loaded and
     // passed for every pair.
-    let [r, g, b] = sv[0].color;
+    let [r, g, b] = sv[0].color();
     let flat = crate::shade::rgb::<C>(r, g, b);
     each_span::<C, GOURAUD, TW, TH>(tile, rect, found, |color, depth, sp, n| {
         if GOURAUD {

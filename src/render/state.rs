@@ -347,7 +347,7 @@ impl FrameState<'_> {
                     i1,
                     i2,
                     any,
-                    sv[0].color,
+                    sv[0].color(),
                     margin,
                     cache,
                     tally,

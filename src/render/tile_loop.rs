@@ -94,7 +94,7 @@ where
             }
         }
         n += if any & MUST_CLIP != 0 {
-            job.clipped(&cur, [i0, i1, i2], any, sv[0].color)
+            job.clipped(&cur, [i0, i1, i2], any, sv[0].color())
         } else {
             fill(&mut job.to, sv, cur.gouraud)
         };
@@ -233,7 +233,7 @@ where
         if let Shading::Points(size) = draw.shading {
             for v in sv {
                 if v.outcode() & MUST_CLIP == 0 {
-                    let p = LinePoint::new(v.xy(), v.z(), v.color);
+                    let p = LinePoint::new(v.xy(), v.z(), v.color());
                     n += draw_point(tile, rect, mode, &p, size as u32);
                 }
             }
@@ -246,7 +246,7 @@ where
                     use embedded_graphics::prelude::RgbColor;
                     [c.r(), c.g(), c.b()]
                 }
-                None => v.color,
+                None => v.color(),
             };
             LinePoint::new(v.xy(), v.z(), color)
         };
@@ -258,7 +258,7 @@ where
             }
             return n;
         }
-        let flat = sv[0].color;
+        let flat = sv[0].color();
         frame.clipped_pieces(cur.draw, idx, any, flat, self.cache, &mut |piece, _| {
             // Only the sides lying on the triangle's own edges: where both
             // ends have the same zero weight (clipping interpolates the
@@ -294,7 +294,7 @@ where
             // Flat shading takes the colour of the first vertex.
             let mut sv = piece.sv;
             if !gouraud {
-                sv[0].color = flat;
+                sv[0].set_color(flat);
             }
             let sv = [&sv[0], &sv[1], &sv[2]];
             n += fill(to, sv, gouraud);
@@ -334,18 +334,16 @@ where
             &cur.verts[idx[1] as usize],
             &cur.verts[idx[2] as usize],
         ];
-        let flat = sv[0].color;
+        let flat = sv[0].color();
         if any & MUST_CLIP != 0 {
             let mut n = 0;
             let to = &mut self.to;
             frame.clipped_pieces(cur.draw, idx, any, flat, self.cache, &mut |piece, _| {
                 let mut pv = piece.sv;
                 // Flat colour stays the provoking vertex's, as on other paths.
-                pv[0].color = if G::INTERPOLATE_COLOR {
-                    pv[0].color
-                } else {
-                    flat
-                };
+                if !G::INTERPOLATE_COLOR {
+                    pv[0].set_color(flat);
+                }
                 let tri = ShaderTriangle {
                     draw: cur.draw,
                     corners: Corners([&pv[0], &pv[1], &pv[2]]),

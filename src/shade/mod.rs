@@ -1006,7 +1006,7 @@ mod tests {
                     if a == 0 {
                         sv[k].z() as i64
                     } else {
-                        sv[k].color[a - 1] as i64
+                        sv[k].color()[a - 1] as i64
                     }
                 })
             });

@@ -252,7 +252,11 @@ impl Corners<'_> {
         } else {
             let c = a - 1;
             (
-                [u.color[c] as i64, v.color[c] as i64, w.color[c] as i64],
+                [
+                    u.channel(c) as i64,
+                    v.channel(c) as i64,
+                    w.channel(c) as i64,
+                ],
                 C_FRAC,
             )
         }
@@ -346,7 +350,11 @@ impl TriangleSetup {
     fn color_plane_apart(f: &Basis, t: &Corners<'_>, a: usize, range: &mut u64) -> Plane {
         let [u, v, w] = &t.0;
         let c = a - 1;
-        let values = [u.color[c] as i64, v.color[c] as i64, w.color[c] as i64];
+        let values = [
+            u.channel(c) as i64,
+            v.channel(c) as i64,
+            w.channel(c) as i64,
+        ];
         Self::plane_of(f, values, super::C_FRAC, range)
     }
 

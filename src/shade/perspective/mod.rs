@@ -181,7 +181,7 @@ impl<V: Varyings> PerspectiveSetup<V> {
             ]
         };
         let [v0, v1, v2] = t.corners.0;
-        let (c0, c1, c2) = (v0.color, v1.color, v2.color);
+        let (c0, c1, c2) = (v0.color(), v1.color(), v2.color());
         let d = |a: [u8; 3], k: usize| a[k] as i32 - c0[k] as i32;
         // The 32-bit gradients of small triangles only for shaders with
         // varyings: with them, `Gouraud`'s long-span loops compiled worse
@@ -223,7 +223,7 @@ impl<V: Varyings> PerspectiveSetup<V> {
             dvar,
             fine0,
             fits,
-            flat: t.corners.0[0].color,
+            flat: t.corners.0[0].color(),
             color: [
                 [
                     ((c0[0] as i32) << 16) + (1 << 15),
