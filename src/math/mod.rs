@@ -511,7 +511,8 @@ impl FixedMat4 {
         })
     }
 
-    /// Whether [`transform_point_narrow`](Self::transform_point_narrow) is
+    /// Whether a row's products in 32 bits (`transform_point_narrow`,
+    /// and the split rows of ARMv6-M's vertex loop) are
     /// exact for every point whose coordinates are at most `extent` in
     /// magnitude, for a matrix also [`bounded`](Self::bounded) for it: the
     /// elements that multiply coordinates at most `2^16` (1.0: those of a
@@ -537,7 +538,9 @@ impl FixedMat4 {
     /// and the translation (a multiple of `2^16` in the bounded transform's
     /// sum) is added after the shift; the result is the bounded one's,
     /// which fits `i32`.
-    #[inline(always)]
+    /// Only the tests call it: the reference that the vertex loop's split
+    /// rows (`NarrowRows` in `vertex::setup`) are checked against.
+    #[cfg(test)]
     pub(crate) fn transform_point_narrow(&self, p: [i32; 3]) -> [i32; 4] {
         let m = &self.m;
         let a = p.map(|v| v >> 8);

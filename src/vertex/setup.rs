@@ -109,6 +109,20 @@ impl Lambert {
         }
     }
 
+    /// Per channel `c`, for the draw's colour `base`: `base[c] ambient[c]
+    /// 256 + 32,640` and `base[c] color[c]`, so that [`shade`](Self::shade)'s
+    /// `base[c] (ambient[c] 256 + color[c] n·l) + 32,640` is one
+    /// multiply-add (the same value: every term is below `2^26`). Once per
+    /// draw, for the common loop's constants.
+    fn folded(&self, base: [u8; 3]) -> [[u32; 2]; 3] {
+        let mut out = [[0; 2]; 3];
+        for (c, ch) in out.iter_mut().enumerate() {
+            let b = base[c] as u32;
+            *ch = [b * self.ambient[c] * 256 + 32_640, b * self.color[c]];
+        }
+        out
+    }
+
     #[inline(always)]
     fn shade(&self, n: crate::mesh::Vec3Fx, base: [u8; 3]) -> [u8; 3] {
         let ndotl = self.ndotl(n);
@@ -194,11 +208,7 @@ struct LoopConstants {
     rows: [[i32; 5]; 4],
     /// The light's direction (as [`Lambert`]'s).
     dir: [i32; 3],
-    /// Per channel `c`, with `base` the draw's colour: `base[c]
-    /// ambient[c] 256 + 32,640` and `base[c] color[c]`, so that
-    /// [`Lambert::shade`]'s `base[c] (ambient[c] 256 + color[c] n·l) +
-    /// 32,640` is one multiply-add (the same value: every term is below
-    /// `2^26`).
+    /// The Lambert colour's factors per channel ([`Lambert::folded`]).
     channels: [[u32; 2]; 3],
 }
 
@@ -217,10 +227,7 @@ impl LoopConstants {
             let t = (m.m[3][r] as i64) << 16 | 1 << 15;
             *row = [t as i32, (t >> 32) as i32, m.m[0][r], m.m[1][r], m.m[2][r]];
         }
-        for (c, ch) in k.channels.iter_mut().enumerate() {
-            let b = base[c] as u32;
-            *ch = [b * l.ambient[c] * 256 + 32_640, b * l.color[c]];
-        }
+        k.channels = l.folded(base);
         k
     }
 
@@ -258,7 +265,7 @@ impl LoopConstants {
 
 /// The rows of a [`narrow`](FixedMat4::narrow) matrix for ARMv6-M's
 /// common vertex loop, its elements split rather than the point:
-/// [`FixedMat4::transform_point_narrow`] split each coordinate `p[i] =
+/// `FixedMat4::transform_point_narrow` (now the tests' reference) split each coordinate `p[i] =
 /// a[i] 2^8 + b[i]` per vertex (six values besides the point, more than
 /// Thumb-1's eight low registers held with the matrix: spilled, and each
 /// element copied before its `MULS`). Here each element `m = h 2^8 + l`
@@ -276,8 +283,8 @@ struct NarrowRows {
     /// Per row `r`: `h` of `m[0][r]`, `m[1][r]`, `m[2][r]`, then their
     /// `l`, then the translation `m[3][r]`.
     rows: [[i32; 7]; 4],
-    /// The Lambert colour's factors per channel, folded per draw as in
-    /// [`LoopConstants`] (one `MULS` a channel fewer).
+    /// The Lambert colour's factors per channel ([`Lambert::folded`]: one
+    /// `MULS` a channel fewer).
     channels: [[u32; 2]; 3],
 }
 
@@ -288,10 +295,7 @@ impl NarrowRows {
             rows: [[0; 7]; 4],
             channels: [[0; 2]; 3],
         };
-        for (c, ch) in k.channels.iter_mut().enumerate() {
-            let b = base[c] as u32;
-            *ch = [b * l.ambient[c] * 256 + 32_640, b * l.color[c]];
-        }
+        k.channels = l.folded(base);
         for (r, row) in k.rows.iter_mut().enumerate() {
             let e = [m.m[0][r], m.m[1][r], m.m[2][r]];
             *row = [
@@ -307,7 +311,7 @@ impl NarrowRows {
         k
     }
 
-    /// [`FixedMat4::transform_point_narrow`] of `p`, for the matrix this
+    /// `FixedMat4::transform_point_narrow` of `p`, for the matrix this
     /// was made of and a point within its narrow extent: the same point.
     #[inline(always)]
     fn transform(&self, p: [i32; 3]) -> [i32; 4] {
@@ -556,10 +560,8 @@ impl DrawSetup {
             Some((l, normals)) => {
                 for (o, (p, nv)) in out.iter_mut().zip(positions.iter().zip(normals)) {
                     let p = [p[0].to_bits(), p[1].to_bits(), p[2].to_bits()];
-                    let pos = match crate::math::SPLIT {
-                        true => self.mvp.transform_point_narrow(p),
-                        false => self.mvp.transform_point_bounded(p),
-                    };
+                    // 64-bit cores: 32-bit ones took an arm above.
+                    let pos = self.mvp.transform_point_bounded(p);
                     *o = viewport.screen_vertex_lit(&pos, || l.shade(*nv, self.color));
                 }
             }
