@@ -42,6 +42,7 @@
 //! `[-1, 1]` to `[height, 0]` (screen y grows downwards), both rounded to the
 //! nearest 1/16 pixel. NDC z in `[-1, 1]` maps to depth `0..=65535`.
 
+mod lambert;
 mod setup;
 
 pub use setup::{DrawSetup, VertexError, MAX_LIGHTS};

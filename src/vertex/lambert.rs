@@ -1,0 +1,293 @@
+//! The vertex stage's Lambert fast path (one directional light on a plain
+//! material: n·l and the lit colour in integers) and the per-draw
+//! constants of its common loop: [`LoopConstants`] on 32-bit cores with a
+//! long multiply, [`NarrowRows`] on ARMv6-M, both read through an opaque
+//! reference so that the loop loads each where it uses it.
+
+use crate::math::FixedMat4;
+
+/// One directional light in model space (see
+/// [`LightSetup::single_directional`](crate::light::LightSetup::single_directional)).
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Lambert {
+    pub(super) dir: [i32; 3],
+    pub(super) color: [u32; 3],
+    pub(super) ambient: [u32; 3],
+}
+
+impl Lambert {
+    pub(super) fn new((dir, color, ambient): ([i32; 3], [u8; 3], [u8; 3])) -> Self {
+        Lambert {
+            dir,
+            color: color.map(u32::from),
+            ambient: ambient.map(u32::from),
+        }
+    }
+
+    /// n·l in 1/256 steps, clamped to `0..=256` ([`shade`](Self::shade)'s).
+    #[inline(always)]
+    fn ndotl(&self, n: crate::mesh::Vec3Fx) -> u32 {
+        use crate::math::mul_wide;
+        let n = [n[0].to_bits(), n[1].to_bits(), n[2].to_bits()];
+        let wide = || {
+            let d = mul_wide(n[0], self.dir[0])
+                + mul_wide(n[1], self.dir[1])
+                + mul_wide(n[2], self.dir[2]);
+            // n·l in 1/256 steps, floored, clamped to [0, 1]. On 32-bit
+            // cores from d's upper word, which is 0 exactly when d >> 24 is
+            // 0 to 255 (the 64-bit clamp took twice the instructions on
+            // the Cortex-M3); 64-bit ones keep the clamp, which measured
+            // fewer there.
+            if cfg!(target_pointer_width = "64") {
+                (d >> 24).clamp(0, 256) as u32
+            } else {
+                clamp_ndotl_words(d)
+            }
+        };
+        // ARMv6-M builds each 64-bit product from four 16-bit ones: a
+        // normal within ±1 takes n·l from six 32-bit products instead.
+        match crate::math::SPLIT {
+            true => ndotl_narrow(n, self.dir).unwrap_or_else(wide),
+            false => wide(),
+        }
+    }
+
+    /// Per channel `c`, for the draw's colour `base`: `base[c] ambient[c]
+    /// 256 + 32,640` and `base[c] color[c]`, so that [`shade`](Self::shade)'s
+    /// `base[c] (ambient[c] 256 + color[c] n·l) + 32,640` is one
+    /// multiply-add (the same value: every term is below `2^26`). Once per
+    /// draw, for the common loop's constants.
+    fn folded(&self, base: [u8; 3]) -> [[u32; 2]; 3] {
+        let mut out = [[0; 2]; 3];
+        for (c, ch) in out.iter_mut().enumerate() {
+            let b = base[c] as u32;
+            *ch = [b * self.ambient[c] * 256 + 32_640, b * self.color[c]];
+        }
+        out
+    }
+
+    #[inline(always)]
+    pub(super) fn shade(&self, n: crate::mesh::Vec3Fx, base: [u8; 3]) -> [u8; 3] {
+        let ndotl = self.ndotl(n);
+        let mut out = [0u8; 3];
+        for c in 0..3 {
+            // At most 2^17.
+            let k = self.ambient[c] * 256 + self.color[c] * ndotl;
+            let x = base[c] as u32 * k + 32_640;
+            // floor(x / 65,280) = floor(floor(x / 256) / 255): ARMv6-M,
+            // without a multiply-high, divides by a constant through the
+            // library (about a hundred instructions), `div255` in eight.
+            out[c] = if cfg!(microraster_narrow_multiply) {
+                crate::light::div255(x >> 8).min(255) as u8
+            } else if cfg!(target_pointer_width = "32") {
+                div65280_sat(x)
+            } else {
+                (x / 65_280).min(255) as u8
+            };
+        }
+        out
+    }
+}
+
+/// `floor(x / 65,280)`, at most 255, for `x < 2^31` (the Lambert colour's
+/// `x` is below 2^26): the quotient by the multiply-high LLVM makes of it
+/// (`floor(x 0x8080_8081 / 2^47)`, exact for every `u32`), its upper word
+/// taken as signed (below 2^31 for such `x`, so the shift is the same) so
+/// that the clamp to `0..=255` is one `USAT` on ARMv7-M, where the
+/// unsigned minimum took a compare, an `IT` and a conditional shift a
+/// channel.
+#[inline(always)]
+pub(super) fn div65280_sat(x: u32) -> u8 {
+    debug_assert!(x < 1 << 31);
+    let high = ((x as u64 * 0x8080_8081) >> 32) as u32 as i32;
+    (high >> 15).clamp(0, 255) as u8
+}
+
+/// The Lambert fast path's n·l, `(n·l >> 24).clamp(0, 256)`, in 32-bit
+/// products, when every `|n[i]| <= 2^16` and `|l[i]| <= 2^20`; `None`
+/// otherwise. With `n[i] = h[i] 2^8 + o[i]` (`|h[i]| <= 2^8`, `0 <= o[i] <
+/// 2^8`), `n·l = 2^8 A + B` for `A = Σ h[i] l[i]` and `B = Σ o[i] l[i]`,
+/// each below `3 2^28` in magnitude; so `floor(n·l / 2^8) = A + floor(B /
+/// 2^8)` fits `i32`, and shifting it by 16 more floors `n·l / 2^24`.
+#[inline(always)]
+pub(super) fn ndotl_narrow(n: [i32; 3], l: [i32; 3]) -> Option<u32> {
+    let within = |v: i32, m: u32| v.unsigned_abs() <= m;
+    if !(n.iter().all(|&v| within(v, 1 << 16)) && l.iter().all(|&v| within(v, 1 << 20))) {
+        return None;
+    }
+    let (mut a, mut b) = (0i32, 0i32);
+    for i in 0..3 {
+        a += (n[i] >> 8) * l[i];
+        b += (n[i] & 0xff) * l[i];
+    }
+    Some(((a + (b >> 8)) >> 16).clamp(0, 256) as u32)
+}
+
+/// Whether the vertex stage's common loop reads its per-draw constants
+/// from a [`LoopConstants`]: on 32-bit cores with a 32 x 32 -> 64-bit
+/// multiply (the Cortex-M3 and M4, RISC-V `rv32im`).
+pub(super) const LOOP_CONSTANTS: bool = cfg!(all(
+    target_pointer_width = "32",
+    not(microraster_narrow_multiply)
+));
+
+/// The per-draw constants of the vertex stage's common loop (a bounded
+/// matrix, the Lambert fast path, no vertex colours), laid out in the
+/// order the loop reads them and read through a reference the compiler
+/// cannot see into (`black_box`). The loop has more constants (28) than
+/// a Cortex-M3 has registers: held as values, the allocator spilled them
+/// to slots of their own and reloaded each with one `LDR` a vertex; read
+/// from here, neighbours load together (`LDRD`), the translation's two
+/// words straight into a row's accumulator, and the Lambert colour's
+/// constants are folded per draw (two per channel where there were
+/// three and a multiply more).
+#[derive(Clone, Copy, Debug)]
+#[cfg_attr(not(any(test, target_pointer_width = "32")), allow(dead_code))]
+pub(super) struct LoopConstants {
+    /// Per row `r` of the matrix: the low and high words of `m[3][r] 2^16 +
+    /// 2^15` (translation and rounding, as in
+    /// [`FixedMat4::transform_point_bounded`]), then `m[0][r]`, `m[1][r]`
+    /// and `m[2][r]`.
+    rows: [[i32; 5]; 4],
+    /// The light's direction (as [`Lambert`]'s).
+    dir: [i32; 3],
+    /// The Lambert colour's factors per channel ([`Lambert::folded`]).
+    channels: [[u32; 2]; 3],
+}
+
+#[cfg_attr(not(any(test, target_pointer_width = "32")), allow(dead_code))]
+impl LoopConstants {
+    pub(super) fn new(m: &FixedMat4, l: &Lambert, base: [u8; 3]) -> Self {
+        // Loops rather than `map`s, here and below: the size profile
+        // (the OLED firmware's) keeps a `map` as a loop through a
+        // temporary array and a `memcpy`.
+        let mut k = Self {
+            rows: [[0; 5]; 4],
+            dir: l.dir,
+            channels: [[0; 2]; 3],
+        };
+        for (r, row) in k.rows.iter_mut().enumerate() {
+            let t = (m.m[3][r] as i64) << 16 | 1 << 15;
+            *row = [t as i32, (t >> 32) as i32, m.m[0][r], m.m[1][r], m.m[2][r]];
+        }
+        k.channels = l.folded(base);
+        k
+    }
+
+    /// [`FixedMat4::transform_point_bounded`] of `p`: the same sums.
+    #[inline(always)]
+    pub(super) fn transform(&self, p: [i32; 3]) -> [i32; 4] {
+        use crate::math::mul_wide;
+        let mut out = [0i32; 4];
+        for (o, k) in out.iter_mut().zip(&self.rows) {
+            let acc = ((k[1] as i64) << 32 | k[0] as u32 as i64)
+                .wrapping_add(mul_wide(k[2], p[0]))
+                .wrapping_add(mul_wide(k[3], p[1]))
+                .wrapping_add(mul_wide(k[4], p[2]));
+            *o = (acc >> 16) as i32;
+        }
+        out
+    }
+
+    /// [`Lambert::shade`] of normal `n` on the draw's colour: the same
+    /// colour.
+    #[inline(always)]
+    pub(super) fn shade(&self, n: crate::mesh::Vec3Fx) -> [u8; 3] {
+        use crate::math::mul_wide;
+        let d = mul_wide(n[0].to_bits(), self.dir[0])
+            + mul_wide(n[1].to_bits(), self.dir[1])
+            + mul_wide(n[2].to_bits(), self.dir[2]);
+        let ndotl = clamp_ndotl_words(d);
+        let mut out = [0u8; 3];
+        for (o, &[a, c]) in out.iter_mut().zip(&self.channels) {
+            *o = div65280_sat(a + c * ndotl);
+        }
+        out
+    }
+}
+
+/// The rows of a [`narrow`](FixedMat4::narrow) matrix for ARMv6-M's
+/// common vertex loop, its elements split rather than the point:
+/// `FixedMat4::transform_point_narrow` (now the tests' reference) split each coordinate `p[i] =
+/// a[i] 2^8 + b[i]` per vertex (six values besides the point, more than
+/// Thumb-1's eight low registers held with the matrix: spilled, and each
+/// element copied before its `MULS`). Here each element `m = h 2^8 + l`
+/// (`0 <= l < 2^8`, `|h| <= 2^8` for `|m| <= 2^16`) is split once per
+/// draw, and a row's `Σ m[i] p[i] = 2^8 H + L` for `H = Σ h[i] p[i]` and
+/// `L = Σ l[i] p[i]`: with `|p[i]| <= 2^21` each product is below `2^29`
+/// in magnitude and each sum below `3 2^29`, exact in `i32`; then the
+/// rounding is `transform_point_narrow`'s, `floor((H + floor((L + 2^15) /
+/// 2^8)) / 2^8)`, and the same result. Read through an opaque reference
+/// (as [`LoopConstants`]), each element is loaded into the register its
+/// `MULS` overwrites.
+#[derive(Clone, Copy, Debug)]
+#[cfg_attr(not(any(test, microraster_narrow_multiply)), allow(dead_code))]
+pub(super) struct NarrowRows {
+    /// Per row `r`: `h` of `m[0][r]`, `m[1][r]`, `m[2][r]`, then their
+    /// `l`, then the translation `m[3][r]`.
+    rows: [[i32; 7]; 4],
+    /// The Lambert colour's factors per channel ([`Lambert::folded`]: one
+    /// `MULS` a channel fewer).
+    channels: [[u32; 2]; 3],
+}
+
+#[cfg_attr(not(any(test, microraster_narrow_multiply)), allow(dead_code))]
+impl NarrowRows {
+    pub(super) fn new(m: &FixedMat4, l: &Lambert, base: [u8; 3]) -> Self {
+        let mut k = Self {
+            rows: [[0; 7]; 4],
+            channels: [[0; 2]; 3],
+        };
+        k.channels = l.folded(base);
+        for (r, row) in k.rows.iter_mut().enumerate() {
+            let e = [m.m[0][r], m.m[1][r], m.m[2][r]];
+            *row = [
+                e[0] >> 8,
+                e[1] >> 8,
+                e[2] >> 8,
+                e[0] & 0xff,
+                e[1] & 0xff,
+                e[2] & 0xff,
+                m.m[3][r],
+            ];
+        }
+        k
+    }
+
+    /// `FixedMat4::transform_point_narrow` of `p`, for the matrix this
+    /// was made of and a point within its narrow extent: the same point.
+    #[inline(always)]
+    pub(super) fn transform(&self, p: [i32; 3]) -> [i32; 4] {
+        let mut out = [0i32; 4];
+        for (o, k) in out.iter_mut().zip(&self.rows) {
+            let h = k[0] * p[0] + k[1] * p[1] + k[2] * p[2];
+            let l = k[3] * p[0] + k[4] * p[1] + k[5] * p[2];
+            *o = k[6].wrapping_add((h + ((l + (1 << 15)) >> 8)) >> 8);
+        }
+        out
+    }
+
+    /// [`Lambert::shade`] of normal `n` on the draw's colour, `l` the
+    /// light this was made with: the same colour.
+    #[inline(always)]
+    pub(super) fn shade(&self, l: &Lambert, n: crate::mesh::Vec3Fx) -> [u8; 3] {
+        let ndotl = l.ndotl(n);
+        let mut out = [0u8; 3];
+        for (o, &[a, c]) in out.iter_mut().zip(&self.channels) {
+            // Lambert::shade's division on cores without a multiply-high.
+            *o = crate::light::div255((a + c * ndotl) >> 8).min(255) as u8;
+        }
+        out
+    }
+}
+
+/// `(d >> 24).clamp(0, 256)` from `d`'s upper word, which is 0 exactly
+/// when `d >> 24` is 0 to 255: the Lambert fast path's n·l on 32-bit cores.
+#[inline(always)]
+pub(super) fn clamp_ndotl_words(d: i64) -> u32 {
+    match (d >> 32) as i32 {
+        0 => d as u32 >> 24,
+        1.. => 256,
+        _ => 0,
+    }
+}
