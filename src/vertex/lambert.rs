@@ -291,3 +291,233 @@ pub(super) fn clamp_ndotl_words(d: i64) -> u32 {
         _ => 0,
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::light::{LightSetup, Material};
+    use crate::math::{Mat4, Vec3};
+    use crate::vertex::MAX_LIGHTS;
+
+    /// n·l's clamp from the upper word is the 64-bit clamp.
+    #[test]
+    fn ndotl_from_words_is_the_clamp() {
+        let mut next = crate::testing::rng();
+        let check =
+            |d: i64| assert_eq!(clamp_ndotl_words(d), (d >> 24).clamp(0, 256) as u32, "{d}");
+        for b in 0..64 {
+            let p = 1i64 << b;
+            for d in [p, p.wrapping_sub(1), p.wrapping_neg(), p.wrapping_neg() + 1] {
+                check(d);
+            }
+        }
+        for d in [
+            0,
+            -1,
+            i64::MIN,
+            i64::MAX,
+            (256 << 24) - 1,
+            256 << 24,
+            255 << 24,
+        ] {
+            check(d);
+        }
+        for _ in 0..100_000 {
+            check(((next(1 << 32) << 32 | next(1 << 32)) as i64) >> next(64));
+        }
+    }
+
+    /// The saturated quotient by 65,280 of the Lambert colour is the
+    /// division's, for every `x` below 2^31 (every 127th value, the ends
+    /// of each quotient's range, and the top of the range).
+    #[test]
+    fn div65280_sat_is_the_clamped_quotient() {
+        let check = |x: u32| assert_eq!(div65280_sat(x), (x / 65_280).min(255) as u8, "{x}");
+        for x in (0..1u32 << 31).step_by(127) {
+            check(x);
+        }
+        for q in 1..32_896u32 {
+            check(q * 65_280);
+            check(q * 65_280 - 1);
+        }
+        for x in (1 << 31) - 1_000..1 << 31 {
+            check(x);
+        }
+    }
+
+    /// The narrow n·l is the 64-bit one wherever it is taken: random and
+    /// extreme normals and light directions within its bounds, and just
+    /// beyond them (where it declines).
+    #[test]
+    fn narrow_ndotl_is_the_wide_one() {
+        let mut next = crate::testing::rng();
+        let wide = |n: [i32; 3], l: [i32; 3]| {
+            let d: i64 = (0..3).map(|i| n[i] as i64 * l[i] as i64).sum();
+            (d >> 24).clamp(0, 256) as u32
+        };
+        let ends = [
+            -(1 << 16) - 1,
+            -(1 << 16),
+            -(1 << 16) + 1,
+            -256,
+            -255,
+            -1,
+            0,
+            1,
+            255,
+            256,
+            (1 << 16) - 1,
+            1 << 16,
+            (1 << 16) + 1,
+        ];
+        let lends = [
+            -(1 << 20) - 1,
+            -(1 << 20),
+            -(1 << 16),
+            -1,
+            0,
+            1,
+            1 << 16,
+            1 << 20,
+            (1 << 20) + 1,
+        ];
+        for &a in &ends {
+            for &b in &ends {
+                for &c in &ends {
+                    for &l in &lends {
+                        for l in [[l, l, l], [l, -l, l], [-l, l, 1 << 16]] {
+                            let n = [a, b, c];
+                            let inside = n.iter().all(|v: &i32| v.unsigned_abs() <= 1 << 16)
+                                && l.iter().all(|v: &i32| v.unsigned_abs() <= 1 << 20);
+                            assert_eq!(
+                                ndotl_narrow(n, l),
+                                inside.then(|| wide(n, l)),
+                                "{n:?} {l:?}"
+                            );
+                        }
+                    }
+                }
+            }
+        }
+        for _ in 0..1_000_000 {
+            let mut r = |m: u64| (next(2 * m + 1) as i64 - m as i64) as i32;
+            let n = [r(1 << 16), r(1 << 16), r(1 << 16)];
+            let l = [r(1 << 20), r(1 << 20), r(1 << 20)];
+            assert_eq!(ndotl_narrow(n, l), Some(wide(n, l)), "{n:?} {l:?}");
+        }
+    }
+
+    /// The fast path of one directional light gives the general
+    /// lighting's colours, for any normal, colour and light.
+    #[test]
+    fn lambert_fast_path_matches_the_light_setup() {
+        use crate::light::{DirectionalLight, Lighting};
+        use embedded_graphics::pixelcolor::Rgb888;
+        let mut next = crate::testing::rng();
+        for _ in 0..200 {
+            let mut f = || next(2001) as f32 / 1000.0 - 1.0;
+            let dir = Vec3::new(f(), f(), f() + 0.01);
+            let model = Mat4::rotation_y(f() * 3.0) * Mat4::rotation_x(f() * 3.0);
+            let mut c = || Rgb888::new(next(256) as u8, next(256) as u8, next(256) as u8);
+            let one = [DirectionalLight::new(dir, c())];
+            let lighting = Lighting::new(c()).directional(&one);
+            let setup: LightSetup<MAX_LIGHTS> =
+                LightSetup::new(&lighting, &model, Vec3::new(0.0, 0.0, 5.0)).unwrap();
+            let (dir, color, ambient) = setup.single_directional().unwrap();
+            let fast = Lambert {
+                dir,
+                color: color.map(u32::from),
+                ambient: ambient.map(u32::from),
+            };
+            for _ in 0..500 {
+                let n = [0; 3]
+                    .map(|_| fixed::types::I16F16::from_bits(next(1 << 18) as i32 - (1 << 17)));
+                let base = [next(256) as u8, next(256) as u8, next(256) as u8];
+                let general = setup.shade(&Material::new(), base, [0; 3], n.map(|v| v.to_bits()));
+                assert_eq!(fast.shade(n, base), general, "{n:?} {base:?}");
+                let k = LoopConstants::new(&FixedMat4 { m: [[0; 4]; 4] }, &fast, base);
+                assert_eq!(k.shade(n), general, "{n:?} {base:?}");
+                let k = NarrowRows::new(&FixedMat4 { m: [[0; 4]; 4] }, &fast, base);
+                assert_eq!(k.shade(&fast, n), general, "{n:?} {base:?}");
+            }
+        }
+    }
+
+    /// A light that adds nothing, for the transform tests.
+    const NO_LIGHT: Lambert = Lambert {
+        dir: [0; 3],
+        color: [0; 3],
+        ambient: [0; 3],
+    };
+
+    /// The common loop's rows are the bounded transform: random matrices
+    /// of every magnitude (the translation up to the `i32` extremes), and
+    /// points within an extent they are bounded for.
+    #[test]
+    fn loop_constants_transform_as_the_bounded_matrix() {
+        let mut next = crate::testing::rng();
+        let mut taken = 0;
+        let none = NO_LIGHT;
+        for _ in 0..50_000 {
+            let span = (1i64 << next(32)) - 1;
+            let mut e = || (next(2 * span as u64 + 1) as i64 - span) as i32;
+            let m = FixedMat4 {
+                m: [[0; 4]; 4].map(|c| c.map(|_| e())),
+            };
+            let extent = 1u32 << next(23);
+            if !m.bounded(extent) {
+                continue;
+            }
+            taken += 1;
+            let k = LoopConstants::new(&m, &none, [0; 3]);
+            for _ in 0..20 {
+                let ext = extent as i64;
+                let p = [0; 3].map(|_| (next(2 * ext as u64 + 1) as i64 - ext) as i32);
+                assert_eq!(k.transform(p), m.transform_point_bounded(p), "{m:?} {p:?}");
+            }
+        }
+        assert!(taken > 5_000, "{taken}");
+    }
+
+    /// ARMv6-M's split rows are the narrow transform, hence the bounded
+    /// one: random narrow matrices (elements up to `±2^16`, translations
+    /// of any size) and points up to the narrow extent `2^21`, the
+    /// extremes included.
+    #[test]
+    fn narrow_rows_transform_as_the_bounded_matrix() {
+        let mut next = crate::testing::rng();
+        let mut taken = 0;
+        let none = NO_LIGHT;
+        for i in 0..50_000 {
+            let mut e = |span: i64| (next(2 * span as u64 + 1) as i64 - span) as i32;
+            let mut m = FixedMat4 { m: [[0; 4]; 4] };
+            for c in 0..4 {
+                for r in 0..4 {
+                    m.m[c][r] = match (c, i % 7) {
+                        (3, _) => e((1 << (i % 31)) - 1),
+                        (_, 0) => [-(1 << 16), 1 << 16][(r + c) % 2],
+                        _ => e(1 << 16),
+                    };
+                }
+            }
+            let extent = 1u32 << (i % 22);
+            if !(m.bounded(extent) && m.narrow(extent)) {
+                continue;
+            }
+            taken += 1;
+            let k = NarrowRows::new(&m, &none, [0; 3]);
+            let ext = extent as i64;
+            for j in 0..20 {
+                let mut c = || match (j + i) % 5 {
+                    0 => extent as i32,
+                    1 => -(extent as i32),
+                    _ => (next(2 * ext as u64 + 1) as i64 - ext) as i32,
+                };
+                let p = [c(), c(), c()];
+                assert_eq!(k.transform(p), m.transform_point_bounded(p), "{m:?} {p:?}");
+                assert_eq!(k.transform(p), m.transform_point_narrow(p), "{m:?} {p:?}");
+            }
+        }
+        assert!(taken > 5_000, "{taken}");
+    }
+}

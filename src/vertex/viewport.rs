@@ -1,0 +1,384 @@
+//! The viewport transform: clip space to screen sub-pixels and depth.
+//!
+//! NDC x in `[-1, 1]` maps to `[0, width]` pixels left to right, NDC y in
+//! `[-1, 1]` to `[height, 0]` (screen y grows downwards), both rounded to the
+//! nearest 1/16 pixel. NDC z in `[-1, 1]` maps to depth `0..=65535`.
+
+use super::{outcode, ClipVertex, ScreenVertex, MUST_CLIP, W_MIN};
+use crate::math::WDivisor;
+use crate::raster::{SubPoint, SUBPIXEL};
+use crate::shade::Recip16;
+use core::num::{NonZeroU32, NonZeroU64};
+
+/// Largest viewport side in pixels.
+pub const MAX_VIEWPORT: u32 = 4096;
+
+/// The viewport transform of a validated viewport size.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Viewport {
+    /// Half the width, in sub-pixels.
+    half_w: i64,
+    /// Half the height, in sub-pixels.
+    half_h: i64,
+    /// [`Viewport::project_inside`] divides by a `w` below this in 32 bits
+    /// ([`Viewport::project_digits`]): below `2^23`, and such that `(4 w h
+    /// + w / 2) < 2^32` for either half side `h`.
+    short_w: u32,
+}
+
+impl Viewport {
+    /// A viewport of `width` x `height` pixels, both in `1..=MAX_VIEWPORT`
+    /// (checked by the renderer).
+    pub fn new(width: u32, height: u32) -> Self {
+        debug_assert!((1..=MAX_VIEWPORT).contains(&width) && (1..=MAX_VIEWPORT).contains(&height));
+        let (half_w, half_h) = (width * SUBPIXEL as u32 / 2, height * SUBPIXEL as u32 / 2);
+        // w (4 h + 1) <= 2^32 - 1 bounds 4 w h + w / 2.
+        let short_w = (u32::MAX / (4 * half_w.max(half_h) + 1) + 1).min(1 << DIGITS_W_BITS);
+        Self {
+            half_w: half_w as i64,
+            half_h: half_h as i64,
+            short_w,
+        }
+    }
+
+    /// Screen position and depth of a clip-space point with `w >= W_MIN - 1`
+    /// inside the guard band (up to clipping round-off).
+    ///
+    /// The three quotients by `w` share one divisor (through `w`'s
+    /// reciprocal on 32-bit targets); each is `n / w` rounded to nearest,
+    /// ties away from zero, as three divisions would give.
+    #[inline(always)]
+    pub fn project(&self, p: &[i32; 4]) -> (SubPoint, u16) {
+        let w = (p[3] as i64).max(1);
+        // `w >= 1`, so this never falls back. By long division: `w` is
+        // mostly 2^16 to 2^22, where the set-up's `new` divides in 64 bits;
+        // on ARMv6-M a 32-bit reciprocal (`WDivisor`). Here the three
+        // quotients are taken one by one: the Cortex-M3's vertex stage
+        // measured 51,000 instructions slower with them taken together
+        // (one check of the three dividends, one fallback for all).
+        let d = WDivisor::new_long(NonZeroU64::new(w as u64).unwrap_or(NonZeroU64::MIN));
+        self.project_by(p, w, |m| d.div_split(m))
+    }
+
+    /// [`project`](Self::project) with `w = max(p[3], 1)` and `div(m) =
+    /// floor(m / w)`, for `m < 2^49`: each quotient `n / w` rounded to
+    /// nearest, ties away from zero.
+    #[inline(always)]
+    fn project_by(&self, p: &[i32; 4], w: i64, div: impl Fn(u64) -> u64) -> (SubPoint, u16) {
+        let half = w as u64 / 2;
+        // div_round(n, w), for |n| < 2^48.
+        let round = |n: i64| -> i64 {
+            let q = div(n.unsigned_abs() + half) as i64;
+            if n < 0 {
+                -q
+            } else {
+                q
+            }
+        };
+        // Half a viewport side in sub-pixels is at most 2^15: the products
+        // are of two i32 (a library call each on ARMv6-M as i64 x i64).
+        let (hw, hh) = (self.half_w as i32, self.half_h as i32);
+        let x = self.half_w + round(crate::math::mul_wide(p[0], hw));
+        let y = self.half_h - round(crate::math::mul_wide(p[1], hh));
+        // div_round(n, 2w) = floor((|n| + w) / (2w)) = floor((|n| + w) / w) / 2.
+        let n = (p[2] as i64 + w) * 65_535;
+        let z = (div(n.unsigned_abs() + w as u64) >> 1) as i64;
+        let z = if n < 0 { -z } else { z }.clamp(0, 65_535);
+        (SubPoint::new(x as i32, y as i32), z as u16)
+    }
+
+    /// [`project`](Self::project) of a vertex without [`MUST_CLIP`] bits
+    /// (`W_MIN <= w`, `|x|, |y| <= K w`, `|z| <= w`): the same results.
+    /// Where a 32-bit division is an instruction ([`LONG_DIVISION`]) and
+    /// `w < 2^23`, x's and y's quotients are one of them, depth's three, rather
+    /// than a multiply-high by `w`'s 64-bit reciprocal, which itself took
+    /// two to four divisions: on the Cortex-M3 about 110 instructions a
+    /// vertex fewer.
+    #[inline(always)]
+    pub(crate) fn project_inside(&self, p: &[i32; 4]) -> (SubPoint, u16) {
+        if !LONG_DIVISION {
+            if !crate::math::SPLIT {
+                return self.project(p);
+            }
+            return match NonZeroU32::new(p[3] as u32) {
+                Some(w) if w.get() >> DIGITS_W_BITS == 0 => self.project_recip(p, w),
+                _ => self.project_wide(p[0], p[1], p[2], p[3]),
+            };
+        }
+        match NonZeroU32::new(p[3] as u32) {
+            Some(w) if w.get() < self.short_w => self.project_digits(p, w),
+            _ => self.project_wide(p[0], p[1], p[2], p[3]),
+        }
+    }
+
+    /// [`project`](Self::project), out of line: for the rare vertex of
+    /// [`project_inside`](Self::project_inside) with `w` from `short_w` up
+    /// (for 320 x 240 and a normalized matrix, more than 6.4 units), and
+    /// for the clipper's vertices (rare too: one copy of the projection's
+    /// long divisions for both). (The coordinates by value: a reference
+    /// would keep the vertex in memory.)
+    #[inline(never)]
+    #[cold]
+    pub(crate) fn project_wide(&self, x: i32, y: i32, z: i32, w: i32) -> (SubPoint, u16) {
+        match LONG_DIVISION {
+            true => self.project_plain(&[x, y, z, w]),
+            false => self.project(&[x, y, z, w]),
+        }
+    }
+
+    /// [`project`](Self::project) by three 64-bit divisions (the library's
+    /// on 32-bit cores): the same quotients, `n / w` rounded to nearest,
+    /// ties away from zero. [`project_wide`](Self::project_wide)'s, where
+    /// `w`'s reciprocal and its multiply-highs were about 400 bytes more
+    /// code for the rare vertex far away or clipped.
+    #[inline(always)]
+    #[cfg_attr(not(test), allow(dead_code))]
+    fn project_plain(&self, p: &[i32; 4]) -> (SubPoint, u16) {
+        let w = (p[3] as i64).max(1);
+        let d = NonZeroU64::new(w as u64).unwrap_or(NonZeroU64::MIN);
+        self.project_by(p, w, |m| m / d)
+    }
+
+    /// [`project`](Self::project) of a vertex without [`MUST_CLIP`] bits
+    /// and `w` below `short_w` (and `2^23`) by 32-bit division: x's and
+    /// y's dividends `|x| h + w / 2 <= 4 w h + w / 2` fit 32 bits, so
+    /// each quotient is one division (where the long division below took
+    /// two and their shifts); depth's quotient is three digits of one
+    /// division each.
+    #[inline(always)]
+    pub(crate) fn project_digits(&self, p: &[i32; 4], w: NonZeroU32) -> (SubPoint, u16) {
+        debug_assert!(w.get() < self.short_w && w.get() as i64 >= W_MIN);
+        let half = w.get() / 2;
+        // Half a viewport side in sub-pixels is at most 2^15; |x|, |y| <=
+        // 4w.
+        let (hw, hh) = (self.half_w as u32, self.half_h as u32);
+        // div_round(n hw, w) with the sign of n.
+        let round = |n: i32, h: u32| -> i32 {
+            let q = ((n.unsigned_abs() * h + half) / w) as i32;
+            if n < 0 {
+                -q
+            } else {
+                q
+            }
+        };
+        let x = self.half_w as i32 + round(p[0], hw);
+        let y = self.half_h as i32 - round(p[1], hh);
+        // div_round((z + w) 65535, 2w) = floor(((z + w) 65535 + w) / w) / 2,
+        // and -w <= z <= w: not negative, at most
+        // floor((2w 65535 + w) / w) / 2 = 65535, no clamp. The quotient by
+        // three digits, as `project_recip` takes it (see there), each one
+        // division: `c = a w + b`, `b 2^8 = d1 w + r1`, then `(r1 2^8 + w
+        // - b) / w`; with `w < 2^23` every dividend is below `2^32`. (The
+        // 64-bit dividend's two divisions took its shifts and leading-zero
+        // count besides: 8 instructions a vertex more on the Cortex-M3.)
+        let wu = w.get();
+        let c = (p[2] + wu as i32) as u32;
+        let (a, b) = (c / w, c % w);
+        let (d1, r1) = ((b << 8) / w, (b << 8) % w);
+        let d0 = ((r1 << 8) + (wu - b)) / w;
+        let z = (a * 65_535 + (d1 << 8) + d0) >> 1;
+        debug_assert!(z <= 65_535);
+        (SubPoint::new(x, y), z as u16)
+    }
+
+    /// [`project`](Self::project) of a vertex without [`MUST_CLIP`] bits
+    /// and `w < 2^23` by `w`'s 16-bit reciprocal ([`Recip16`]), for
+    /// ARMv6-M, which has neither a divide instruction nor a 32 x 32 ->
+    /// 64-bit multiply: every quotient is three digits of a long division
+    /// ([`Recip16::digit`]: two `MULS` and one correction each), with no
+    /// 64-bit product, where `w`'s 32-bit reciprocal and its 64-bit
+    /// multiply-highs took about 350 instructions a vertex more. The
+    /// quotients are the same.
+    ///
+    /// x's quotient `floor((|x| hw + e) / w)` (`e = floor(w / 2)`,
+    /// `|x| <= 4w`, `hw <= 2^15`) from `|x| = a w + b` (`b < w`) and `hw =
+    /// c1 2^7 + c0` (`c1 <= 2^8`, `c0 < 2^7`): with `b c1 = d1 w + r1`,
+    /// `|x| hw + e = (a hw + d1 2^7) w + (r1 2^7 + b c0 + e)`, the last
+    /// term below `w (2^8 + 1)`; so the quotient is `a hw + d1 2^7 +
+    /// floor((r1 2^7 + b c0 + e) / w)`. Likewise y. Depth's `floor((c
+    /// 65535 + w) / w)` (`c = z + w` in `0..=2w`) from `c = a w + b` and
+    /// `b 2^8 = d1 w + r1`: `c 65535 + w = (a 65535 + d1 2^8) w + (r1 2^8
+    /// + w - b)`, the last term below `w (2^8 + 1)`. Every digit's dividend
+    /// is below `w 2^12` (within [`Recip16::digit`]'s range) and, with
+    /// `w < 2^23`, below `2^32`.
+    #[inline(always)]
+    #[cfg_attr(not(microraster_narrow_multiply), allow(dead_code))]
+    pub(crate) fn project_recip(&self, p: &[i32; 4], w: NonZeroU32) -> (SubPoint, u16) {
+        debug_assert!(w.get() >> DIGITS_W_BITS == 0 && w.get() as i64 >= W_MIN);
+        let f = Recip16::new(w);
+        let wu = w.get();
+        let half = wu / 2;
+        // div_round(n h, w) with the sign of n: floor((|n| h + half) / w)
+        // for |n| <= 4w, h <= 2^15. A function inline, not a closure: LLVM
+        // kept the closure out of line (two calls a vertex).
+        #[inline(always)]
+        fn round(f: &Recip16, half: u32, n: i32, h: u32) -> i32 {
+            let (a, b) = f.digit(n.unsigned_abs());
+            let (d1, r1) = f.digit(b * (h >> 7));
+            let (d0, _) = f.digit((r1 << 7) + b * (h & 127) + half);
+            let q = (a * h + (d1 << 7) + d0) as i32;
+            if n < 0 {
+                -q
+            } else {
+                q
+            }
+        }
+        let x = self.half_w as i32 + round(&f, half, p[0], self.half_w as u32);
+        let y = self.half_h as i32 - round(&f, half, p[1], self.half_h as u32);
+        // -w <= z <= w: c in 0..=2w, and the quotient at most 2 * 65535 + 1.
+        let c = (p[2] + wu as i32) as u32;
+        let (a, b) = f.digit(c);
+        let (d1, r1) = f.digit(b << 8);
+        let (d0, _) = f.digit((r1 << 8) + (wu - b));
+        let z = (a * 65_535 + (d1 << 8) + d0) >> 1;
+        debug_assert!(z <= 65_535);
+        (SubPoint::new(x, y), z as u16)
+    }
+
+    /// Runs the vertex stage on one vertex.
+    #[inline(always)]
+    pub fn screen_vertex(&self, v: &ClipVertex) -> ScreenVertex {
+        let color = [v.color[0] as u8, v.color[1] as u8, v.color[2] as u8];
+        self.screen_vertex_lit(&v.pos, || color)
+    }
+
+    /// [`screen_vertex`](Self::screen_vertex) of the vertex at clip-space
+    /// position `pos` whose lit colour `color` gives, asked for after the
+    /// projection: the vertex stage's loop then keeps neither the colour
+    /// nor the lighting's constants in registers (or on the stack) across
+    /// the divisions.
+    #[inline(always)]
+    pub(crate) fn screen_vertex_lit(
+        &self,
+        pos: &[i32; 4],
+        color: impl FnOnce() -> [u8; 3],
+    ) -> ScreenVertex {
+        let outcode = outcode(pos);
+        let (p, z) = if outcode & MUST_CLIP == 0 {
+            self.project_inside(pos)
+        } else {
+            (SubPoint::default(), 0)
+        };
+        // Within the 24-bit fields: `p` is 0 for a vertex that must be
+        // clipped, otherwise inside the guard band (`|x|, |y| <= K w`), so
+        // within `(K + 1) * 2^15 < 2^18` sub-pixels.
+        ScreenVertex::new(p.x, p.y, z, outcode, color())
+    }
+}
+
+/// Whether the vertex stage divides by `w` through 32-bit divisions
+/// ([`Viewport::project_inside`]): on 32-bit cores with a 32 x 32 -> 64-bit
+/// multiply, which have a divide instruction too (ARMv7-M, ARMv8-M
+/// Mainline, RISC-V `rv32im`). ARMv6-M, whose division is a library call,
+/// keeps `w`'s 32-bit reciprocal; 64-bit targets their 64-bit division.
+const LONG_DIVISION: bool = cfg!(all(
+    not(microraster_narrow_multiply),
+    not(target_pointer_width = "64")
+));
+
+/// [`Viewport::project_digits`] takes `w` below `2^DIGITS_W_BITS`.
+const DIGITS_W_BITS: u32 = 23;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::vertex::{div_round, GUARD_K};
+
+    /// The guard band keeps every projected vertex inside the fields: the
+    /// largest viewport, a vertex on the guard band's corner.
+    #[test]
+    fn the_guard_band_fits_the_coordinate_fields() {
+        let vp = Viewport::new(MAX_VIEWPORT, MAX_VIEWPORT);
+        let w = 1 << 16;
+        let g = GUARD_K as i32 * w;
+        for (x, y) in [(g, g), (-g, -g), (g, -g), (-g, g)] {
+            let c = ClipVertex {
+                pos: [x, y, 0, w],
+                ..ClipVertex::default()
+            };
+            assert_eq!(outcode(&c.pos) & MUST_CLIP, 0);
+            let v = vp.screen_vertex(&c);
+            let (p, _) = vp.project(&c.pos);
+            assert_eq!(v.xy(), p);
+            assert!(p.x.abs() < 1 << 18 && p.y.abs() < 1 << 18, "{p:?}");
+        }
+    }
+
+    #[test]
+    fn viewport_maps_ndc_corners_to_pixel_corners() {
+        let vp = Viewport::new(320, 240);
+        let one = 1 << 16;
+        let (p, z) = vp.project(&[-one, one, -one, one]);
+        assert_eq!((p.x, p.y, z), (0, 0, 0));
+        let (p, z) = vp.project(&[one, -one, one, one]);
+        assert_eq!((p.x, p.y, z), (320 * 16, 240 * 16, 65_535));
+        let (p, _) = vp.project(&[0, 0, 0, 2 * one]);
+        assert_eq!((p.x, p.y), (160 * 16, 120 * 16));
+    }
+
+    /// `project_inside` (32-bit divisions for `w < 2^23`)
+    /// against `project`, for vertices without `MUST_CLIP` bits: `w` from
+    /// `W_MIN` to beyond 2^23, coordinates up to the guard band, the
+    /// extremes of each.
+    #[test]
+    fn projection_inside_matches_project() {
+        let mut next = crate::testing::rng();
+        for (width, height) in [(320, 240), (4096, 4096), (1, 4096), (4096, 3001)] {
+            let vp = Viewport::new(width, height);
+            for i in 0..200_000u64 {
+                let w = match i % 8 {
+                    0 => W_MIN + next(16) as i64,
+                    1 => (1 << DIGITS_W_BITS) - 1 - next(4) as i64,
+                    // The largest w of the 32-bit quotients.
+                    2 => vp.short_w as i64 - 1 - next(4) as i64,
+                    _ => W_MIN + (next(1 << 28) >> next(24)) as i64,
+                } as i32;
+                let g = GUARD_K as i32 * w;
+                let mut c = |limit: i32| match next(6) {
+                    0 => limit,
+                    1 => -limit,
+                    _ => (next(2 * limit as u64 + 1) as i64 - limit as i64) as i32,
+                };
+                let p = [c(g), c(g), c(w), w];
+                assert_eq!(outcode(&p) & MUST_CLIP, 0, "{p:?}");
+                assert_eq!(vp.project_inside(&p), vp.project(&p), "{p:?}");
+                let nz = NonZeroU32::new(w as u32).unwrap();
+                if nz.get() < vp.short_w {
+                    assert_eq!(vp.project_digits(&p, nz), vp.project(&p), "{p:?}");
+                }
+                if w >> DIGITS_W_BITS == 0 {
+                    assert_eq!(vp.project_recip(&p, nz), vp.project(&p), "{p:?}");
+                }
+            }
+        }
+    }
+
+    /// `project` (one divisor for the three quotients) against the three
+    /// `div_round`s it replaces, over `w` from 1 to 2^31 and coordinates
+    /// up to the guard band and a little beyond (clipping round-off).
+    #[test]
+    fn projection_matches_three_divisions() {
+        let vp = Viewport::new(4096, 3001);
+        let mut x = 0x2545_f491_4f6c_dd1du64;
+        let mut next = move || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            x
+        };
+        for _ in 0..200_000 {
+            let w = ((next() >> (33 + next() % 31)) as i64).max(1);
+            let mut c = || {
+                let r = (next() % (10 * w as u64 + 1)) as i64 - 5 * w;
+                r.clamp(i32::MIN as i64, i32::MAX as i64) as i32
+            };
+            let p = [c(), c(), c(), w as i32];
+            let (s, z) = vp.project(&p);
+            assert_eq!(vp.project_plain(&p), (s, z), "{p:?}");
+            let ex = vp.half_w + div_round(p[0] as i64 * vp.half_w, w);
+            let ey = vp.half_h - div_round(p[1] as i64 * vp.half_h, w);
+            let ez = div_round((p[2] as i64 + w) * 65_535, 2 * w).clamp(0, 65_535);
+            assert_eq!((s.x as i64, s.y as i64, z as i64), (ex, ey, ez), "{p:?}");
+        }
+    }
+}
