@@ -673,7 +673,8 @@ mod tests {
     /// The reciprocal's rounded quotients ([`SmallBasis::div_round32_short`],
     /// ARMv6-M's) equal the library divisions' at the bounds: twice the
     /// area ±1, ±2, ±3 and ±2 1023^2, numerators ±2^21 (less one for the
-    /// positive) and the largest first digits, `2^(40 - shift)`.
+    /// positive), the largest first digits, `2^(40 - shift)`, and either
+    /// side of the two-digit quotients' bound, `area 2^(23 - shift)`.
     #[test]
     fn short_division_matches_at_the_bounds() {
         let max_area = 2 * 1023 * 1023;
@@ -704,6 +705,11 @@ mod tests {
                     -(area as i64),
                     area as i64 / 2,
                     -(area as i64 / 2) - 1,
+                    // Where the two-digit quotient gives way to three.
+                    ((area as i64) << (23 - shift)) - 1,
+                    (area as i64) << (23 - shift),
+                    -((area as i64) << (23 - shift)) + 1,
+                    -((area as i64) << (23 - shift)),
                 ] {
                     if n.abs() > limit || n >= 1 << 21 {
                         continue;
