@@ -36,6 +36,7 @@
 use super::{
     first_centre_at_or_after, PixelRect, Span, SubPoint, HALF_PIXEL, SUBPIXEL, SUBPIXEL_BITS,
 };
+use crate::math::mul_wide;
 use core::num::NonZeroU32;
 use packed::{half_packed, Packed, PACKED_COLS, PACKED_DY};
 
@@ -126,7 +127,11 @@ impl EdgeStepper {
 fn far_start(p: SubPoint, dx: i32, dy: NonZeroU32, t: i32) -> (i32, i32) {
     // x_edge(y_c) - ½px, times den, as a sub-pixel numerator:
     // (p.x - ½) * dy + (y_c - p.y) * dx, over SUBPIXEL * dy (< 2^39).
-    let num = (p.x - HALF_PIXEL) as i64 * dy.get() as i64 + t as i64 * dx as i64;
+    // (On ARMv6-M each product from 16-bit halves, `mul_wide`, rather than
+    // a call of `__aeabi_lmul`: `dy` is below 2^19 within the guard band;
+    // ARMv6-M `demo` 7,965,098 -> 7,938,358 instructions, `rock` 6,596,192
+    // -> 6,579,357.)
+    let num = mul_wide(p.x - HALF_PIXEL, dy.get() as i32) + mul_wide(t, dx);
     let den = dy.get() * SUBPIXEL as u32;
     let den = NonZeroU32::new(den).unwrap_or(NonZeroU32::MIN);
     match i32::try_from(num) {
