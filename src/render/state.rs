@@ -356,12 +356,11 @@ impl FrameState<'_> {
             let v = [sv[0].xy(), sv[1].xy(), sv[2].xy()];
             if !keeps_banded(cull, &v) {
                 // Culled: counted by the binning pass as the rest (see
-                // `Tally`), but on ARMv6-M, whose binning loop measured
-                // 27,000 instructions slower without this count on the
-                // `demo` frame (its eight low registers allocated worse).
-                if crate::math::SPLIT {
-                    tally.fates[Fate::Culled as usize] += 1;
-                }
+                // `Tally`), on ARMv6-M too, where a count here (and for an
+                // empty `reach` below), once 27,000 instructions faster on
+                // the `demo` frame for its registers, now measured slower:
+                // binning 743,788 -> 731,122 without both, `rock` 657,363
+                // -> 644,357.
                 return None;
             }
             let reach = reach(&v, margin);
@@ -379,9 +378,6 @@ impl FrameState<'_> {
                 // No pixel centre within the bounds: nothing to draw, as
                 // for a zero-area triangle (a filled one: `reach` keeps a
                 // line's pixels).
-                if crate::math::SPLIT {
-                    tally.fates[Fate::Culled as usize] += 1;
-                }
                 return None;
             }
         }

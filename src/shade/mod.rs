@@ -673,7 +673,8 @@ mod tests {
     /// The reciprocal's rounded quotients ([`SmallBasis::div_round32_short`],
     /// ARMv6-M's) equal the library divisions' at the bounds: twice the
     /// area ±1, ±2, ±3 and ±2 1023^2, numerators ±2^21 (less one for the
-    /// positive) and the largest first digits, `2^(40 - shift)`.
+    /// positive), the largest first digits, `2^(40 - shift)`, and either
+    /// side of the two-digit quotients' bound, `area 2^(23 - shift)`.
     #[test]
     fn short_division_matches_at_the_bounds() {
         let max_area = 2 * 1023 * 1023;
@@ -704,6 +705,11 @@ mod tests {
                     -(area as i64),
                     area as i64 / 2,
                     -(area as i64 / 2) - 1,
+                    // Where the two-digit quotient gives way to three.
+                    ((area as i64) << (23 - shift)) - 1,
+                    (area as i64) << (23 - shift),
+                    -((area as i64) << (23 - shift)) + 1,
+                    -((area as i64) << (23 - shift)),
                 ] {
                     if n.abs() > limit || n >= 1 << 21 {
                         continue;
@@ -761,6 +767,103 @@ mod tests {
             let expected = (t >> SUBPIXEL_BITS) as i32;
             assert_eq!(offset_term_split(gx, gy, o), expected, "{gx} {gy} {o:?}");
         }
+    }
+
+    /// ARMv6-M's plane constant term for gradients below 2^26 in magnitude
+    /// ([`offset_term_narrow`]) is the wrapped `i64` one, at the range's
+    /// ends and on random gradients and offsets.
+    #[test]
+    fn narrow_offset_term_matches_the_64_bit_one() {
+        let mut next = crate::testing::rng();
+        let edges = [
+            0,
+            1,
+            -1,
+            15,
+            -16,
+            (1 << 26) - 1,
+            -(1 << 26) + 1,
+            1 << 23,
+            -(1 << 23),
+        ];
+        let offsets = [0, 1, -1, 8, -8, 15, -17, (1 << 19) + 8, -(1 << 19) - 8];
+        for k in 0..200_000 {
+            let (gx, gy) = if k < 81 {
+                (edges[k % 9], edges[k / 9])
+            } else {
+                let g = |v: u64| v as i32 - (1 << 26) + 1;
+                (g(next((1 << 27) - 1)), g(next((1 << 27) - 1)))
+            };
+            let o = if k % 3 == 0 {
+                [offsets[k % 9], offsets[(k / 9) % 9]]
+            } else {
+                [
+                    next(1 << 21) as i32 - (1 << 20),
+                    next(1 << 21) as i32 - (1 << 20),
+                ]
+            };
+            let t = gx as i64 * o[0] as i64 + gy as i64 * o[1] as i64;
+            let expected = (t >> SUBPIXEL_BITS) as i32;
+            assert_eq!(offset_term_narrow(gx, gy, o), expected, "{gx} {gy} {o:?}");
+        }
+    }
+
+    /// ARMv6-M's plane ([`SmallBasis::plane_short`]: one test for both
+    /// gradients, then two digits each and the narrow constant term, or
+    /// the per-gradient path) against the library divisions and the
+    /// 64-bit constant term, over numerators of the whole domain and
+    /// either side of the two-digit bound, both signs of the area.
+    #[test]
+    fn short_plane_matches_the_divisions() {
+        let mut next = crate::testing::rng();
+        let max_area = 2 * 1023 * 1023;
+        let mut two = 0;
+        for k in 0..300_000u64 {
+            let area = match k % 4 {
+                0 => 1 + next(8) as i32,
+                1 => max_area - next(8) as i32,
+                _ => 1 + next(max_area as u64) as i32,
+            };
+            let area2 = if k % 2 == 0 { area } else { -area };
+            if area2 == -1 {
+                continue;
+            }
+            let shift = [18, 20][(k / 2) as usize % 2];
+            let limit = ((area as i64) << (30 - shift)).min(1 << 21);
+            let bound = (area as i64) << (23 - shift);
+            let mut n = || {
+                let n = match next(4) {
+                    0 => bound - 2 + next(4) as i64,
+                    1 => -bound - 1 + next(4) as i64,
+                    _ => next(2 * limit as u64) as i64 - limit,
+                };
+                n.clamp(-limit, (limit - 1).min((1 << 21) - 1)) as i32
+            };
+            let (n1, n2) = (n(), n());
+            let f = SmallBasis {
+                e: [0; 4],
+                o: [
+                    next(1 << 21) as i32 - (1 << 20),
+                    next(1 << 21) as i32 - (1 << 20),
+                ],
+                area2,
+                half: area / 2,
+                recip: Recip16::new(NonZeroU32::new(area as u32).unwrap()),
+            };
+            let (gx, gy) = (
+                f.div_round32_with::<false>(n1, shift),
+                f.div_round32_with::<false>(n2, shift),
+            );
+            let t = gx as i64 * f.o[0] as i64 + gy as i64 * f.o[1] as i64;
+            let expected = (gx, gy, (t >> SUBPIXEL_BITS) as i32);
+            assert_eq!(
+                f.plane_short(n1, n2, shift),
+                expected,
+                "{n1} {n2} << {shift} / {area2}"
+            );
+            two += (((n1.unsigned_abs() | n2.unsigned_abs()) as i64) < bound) as u32;
+        }
+        assert!(two > 100_000, "{two}");
     }
 
     /// Gradients of small triangles through the 32-bit divisions against
