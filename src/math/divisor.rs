@@ -292,34 +292,48 @@ impl Short {
 
 /// A divisor used for many dividends, divided by as a 64-bit CPU does best:
 /// with its division instruction.
+///
+/// Held as `d ^ HASH`, through `black_box`, and divided by as `held ^
+/// HASH`: LLVM guards a 64-bit division on x86-64 (its `idivq-to-divl`
+/// tuning) with a test whether both operands fit 32 bits, taking the
+/// shorter `div` then (an `or`, a shift, a branch and a jump a division),
+/// but not when an operand is the result of an `xor`, which it takes for a
+/// hash, too wide for the test to pay. The `xor` back is one instruction
+/// per set-up (the divisions share it), the `black_box` a store and a load
+/// per divisor, so that LLVM cannot fold the two `xor`s away.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[cfg_attr(not(target_pointer_width = "64"), allow(dead_code))]
-pub(crate) struct Hardware(NonZeroU64);
+pub(crate) struct Hardware(u64);
+
+/// See [`Hardware`]: any constant with bits above the low 32.
+#[cfg_attr(not(target_pointer_width = "64"), allow(dead_code))]
+const HASH: u64 = 1 << 63;
 
 #[cfg_attr(not(target_pointer_width = "64"), allow(dead_code))]
 impl Hardware {
     /// The divisor `d`.
     #[inline(always)]
     pub(crate) fn new(d: NonZeroU64) -> Self {
-        Self(d)
+        Self(core::hint::black_box(d.get() ^ HASH))
     }
 
     /// The same as [`new`](Self::new) (see [`Reciprocal::new_long`]).
     #[inline(always)]
     pub(crate) fn new_long(d: NonZeroU64) -> Self {
-        Self(d)
+        Self::new(d)
     }
 
     /// `floor(m / d)`.
     #[inline(always)]
     pub(crate) fn div(&self, m: u64) -> u64 {
-        m / self.0
+        // Never zero: `d` was not. (A zero would only panic.)
+        m / (self.0 ^ HASH)
     }
 
     /// The same as [`div`](Self::div) (see [`Reciprocal::div_split`]).
     #[inline(always)]
     pub(crate) fn div_split(&self, m: u64) -> u64 {
-        m / self.0
+        self.div(m)
     }
 }
 
