@@ -4,6 +4,7 @@ use super::bin::Pass;
 use super::state::{margin, DrawOrder, FrameState, SetupCache};
 use super::Features;
 use crate::mesh::Indices;
+use crate::scene::CullMode;
 use crate::tile::TileGrid;
 use crate::vertex::ScreenVertex;
 
@@ -145,6 +146,11 @@ pub(super) struct BinDraw<'a, 'f> {
 
 /// The triangles `tris` of one draw, the first numbered `*t`, classified
 /// and appended to their tiles' bins (see [`bin_pass`]).
+///
+/// On 64-bit hosts, which have the code space, a copy of the loop for
+/// each of the usual cull modes, the mode a constant in it, rather than
+/// tested for every triangle (x86-64 `demo` binning 546,176 -> 532,255
+/// instructions, `rock` -13 K).
 #[inline(always)]
 pub(super) fn bin_triangles<const TW: usize, const TH: usize, I: Copy + Into<u32>>(
     ctx: &BinDraw<'_, '_>,
@@ -155,10 +161,33 @@ pub(super) fn bin_triangles<const TW: usize, const TH: usize, I: Copy + Into<u32
     cache: &mut SetupCache,
     tally: &mut Tally,
 ) {
+    let copies = cfg!(target_pointer_width = "64");
+    let with = |cull| (ctx, tris, hilbert, cull);
+    match ctx.frame.cull {
+        CullMode::Back if copies => {
+            bin_culled::<TW, TH, I>(with(CullMode::Back), t, bins, cache, tally)
+        }
+        CullMode::None if copies => {
+            bin_culled::<TW, TH, I>(with(CullMode::None), t, bins, cache, tally)
+        }
+        cull => bin_culled::<TW, TH, I>(with(cull), t, bins, cache, tally),
+    }
+}
+
+/// [`bin_triangles`] with the cull mode `cull`: the draw `ctx`, its
+/// triangles `tris` and the tile order (`hilbert`) with it in `draw`.
+#[inline(always)]
+fn bin_culled<const TW: usize, const TH: usize, I: Copy + Into<u32>>(
+    draw: (&BinDraw<'_, '_>, &[[I; 3]], bool, CullMode),
+    t: &mut usize,
+    bins: &mut Pass<'_>,
+    cache: &mut SetupCache,
+    tally: &mut Tally,
+) {
+    let (ctx, tris, hilbert, cull) = draw;
     let cols = ctx.grid.cols as usize;
     // Counted here and added once: `t` and `tally` live in the caller.
     let (mut tt, mut pairs_sum) = (*t, tally.pairs);
-    let cull = ctx.frame.cull;
     for &idx in tris {
         let idx = idx.map(Into::into);
         if let Some(r) = ctx

@@ -285,6 +285,16 @@ pub(crate) fn span_gouraud<C: Copy + From<Rgb888> + 'static, D: DepthFn, const W
             n,
         );
     }
+    // Never taken: the walk keeps only spans of a pixel or more. (The test
+    // does not spare the loop its own test of an empty span, which the
+    // remainder after the vector loop needs; but with it the set-up
+    // inlined above spills less: x86-64 `demo` 4,356,901 -> 4,345,743
+    // instructions, `rock` 3,619,381 -> 3,610,624, `tri100` 13,438,526 ->
+    // 13,419,816; a copy of the plain loop for the short spans, which
+    // would drop that test, measured +38 K on `demo`.)
+    if a0 >= a1 {
+        return n;
+    }
     let (color, depth) = (&mut color[a0..a1], &mut depth[a0..a1]);
     // Only targets with SIMD reach here. The vector loop's set-up costs
     // about 145 instructions on x86-64, and its remainder, branch-free,
