@@ -11,6 +11,7 @@ use super::{
     VertexInput,
 };
 use crate::scene::Draw;
+use crate::shade::perspective::{AFFINE, SHIFTED};
 use crate::texture::{rgb565_to_rgb888, FromTexel, Pow2Rgb565, Quad, Sampler, Texture};
 use embedded_graphics::pixelcolor::Rgb888;
 use fixed::types::I16F16;
@@ -432,9 +433,17 @@ where
         return 0;
     };
     match texture.sampler() {
-        Sampler::NearestRgb565(t) => {
-            spans.each(|s| s.shade_with(LIT, TexelPixel::<_, LIT>(Nearest565(t))))
-        }
+        Sampler::NearestRgb565(t) => spans.each(|s| {
+            if let (false, Some((texels, fine))) = (LIT, t.fine_parts()) {
+                if s.affine_opaque() {
+                    return s.run_nearest::<AFFINE>(texels, fine, 0);
+                }
+                if let Some(sh) = s.shifted_opaque() {
+                    return s.run_nearest::<SHIFTED>(texels, fine, sh);
+                }
+            }
+            s.shade_with(LIT, TexelPixel::<_, LIT>(Nearest565(t)))
+        }),
         Sampler::BilinearRgb565(t) => {
             spans.each(|s| s.shade_with(LIT, TexelPixel::<_, LIT>(Bilinear565(t, Quad::NONE))))
         }

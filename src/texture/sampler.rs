@@ -256,6 +256,17 @@ impl Pow2Rgb565<'_> {
         }
     }
 
+    /// What [`nearest_fine`](Self::nearest_fine) reads: the texels and
+    /// its two shifts and mask, for a span loop that addresses the
+    /// texture itself (`SpanInput::run_nearest`); `None` if the slice were
+    /// shorter than the texture's texel count, which `Texture::new` rules
+    /// out.
+    #[inline(always)]
+    pub(crate) fn fine_parts(&self) -> Option<(&[u16], [u32; 3])> {
+        let count = 1usize << (self.log2[0] + self.log2[1]);
+        (self.texels.len() >= count).then_some((self.texels, self.fine))
+    }
+
     /// [`bilinear_reusing`](Self::bilinear_reusing) from the coordinates'
     /// fractions to 32 bits: its taps and weights read only the raw
     /// coordinates' low 16 bits, which are the fractions' top 16.
