@@ -136,9 +136,8 @@ impl<C: FromTexel> SpanInput<'_, C, [I16F16; 2]> {
                 self.steps[0] as u32,
                 self.steps[1] as u32,
                 self.steps[2] as u32,
-                // The width and the texel count (below 2^31).
-                1 << (32 - fine[0]),
-                1 << (32 - fine[1]),
+                fine[0],
+                fine[1],
                 fine[2],
                 sh,
             ],
@@ -151,8 +150,8 @@ impl<C: FromTexel> SpanInput<'_, C, [I16F16; 2]> {
 
 /// What [`nearest_span`] reads: the texels; the fractions' bases and
 /// differences (`f0u, d1u, d2u, f0v, d1v, d2v`), the steps of depth, `Q`,
-/// `B1`, `B2`, the texture's width and texel count, the row mask of
-/// `Pow2Rgb565::nearest_fine` and the span's shift; depth and the planes
+/// `B1`, `B2`, the texture's width, height and texel count less one
+/// (`Pow2Rgb565::fine_parts`) and the span's shift; depth and the planes
 /// at the first pixel.
 struct NearestSpan<'a> {
     texels: &'a [u16],
@@ -179,7 +178,7 @@ fn nearest_span<C: FromTexel, const WEIGHTS: u8>(
     depth: &mut [u16],
     s: &NearestSpan,
 ) -> u32 {
-    let [f0u, d1u, d2u, f0v, d1v, d2v, gz, gq, g1, g2, w, wh, rows, sh] = s.k;
+    let [f0u, d1u, d2u, f0v, d1v, d2v, gz, gq, g1, g2, w, h, last, sh] = s.k;
     let [mut q, mut b1, mut b2] = s.planes;
     let mut z = s.z;
     // At most 15 (`span_shift`): masked, the shifts by it need no mask.
@@ -187,7 +186,7 @@ fn nearest_span<C: FromTexel, const WEIGHTS: u8>(
     // The texels cut to the count, a power of two (`Pow2Rgb565::fine_parts`
     // checks that the slice holds them; never short, by `Texture::new`), so that an index masked by `m` needs no
     // bounds check: `at & m <= m < m + 1`.
-    let m = wh.wrapping_sub(1) as usize;
+    let m = last as usize;
     let Some(texels) = s.texels.get(..=m) else {
         return 0;
     };
@@ -212,9 +211,12 @@ fn nearest_span<C: FromTexel, const WEIGHTS: u8>(
             let fv = f0v
                 .wrapping_add(d1v.wrapping_mul(w1))
                 .wrapping_add(d2v.wrapping_mul(w2));
-            // Below the count already (`x < w`, `y <= rows`): the mask
-            // changes nothing.
-            let at = (top_bits(fv, wh) & rows) | top_bits(fu, w);
+            // `Pow2Rgb565::nearest_fine`'s index: the row `y < h` (the
+            // top `log2(h)` bits of `fv`) times the width, plus `x < w`
+            // (those of `fu`); one multiply-add where the row had taken a
+            // mask and an `or`, without the row mask's constant. Below the
+            // count already: the mask by `m` changes nothing.
+            let at = top_bits(fv, h) * w + top_bits(fu, w);
             *c = C::from_rgb565(texels[at as usize & m]);
             *d = zz;
         } else {
