@@ -338,6 +338,26 @@ impl<'a, C, V: Varyings> SpanInput<'a, C, V> {
         }
     }
 
+    /// Whether [`shade_with`](Self::shade_with) would take the opaque
+    /// loop with affine weights for a shader with varyings.
+    #[inline(always)]
+    pub(crate) fn affine_opaque(&self) -> bool {
+        self.opaque && self.mode == Perspective::Affine
+    }
+
+    /// The span's shift where [`shade_with`](Self::shade_with) would take
+    /// the opaque exact loop with the span's shift (an opaque draw's
+    /// exact span of [`OPAQUE_EXACT_MIN`] pixels or more that passes
+    /// `opaque_shift`), for the built-in shaders' loops of their own.
+    #[inline(always)]
+    pub(crate) fn shifted_opaque(&self) -> Option<u32> {
+        if self.opaque && self.mode == Perspective::Exact && self.len() >= OPAQUE_EXACT_MIN {
+            self.opaque_shift()
+        } else {
+            None
+        }
+    }
+
     /// [`shade_with`](Self::shade_with) without the opaque draw's loops
     /// of its own. For the general texture path of
     /// [`Textured`](crate::shader::Textured) and

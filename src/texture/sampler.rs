@@ -256,6 +256,21 @@ impl Pow2Rgb565<'_> {
         }
     }
 
+    /// What a span loop that addresses the texture itself
+    /// (`SpanInput::run_nearest`) needs for
+    /// [`nearest_fine`](Self::nearest_fine)'s texel: the texels, the
+    /// width, the height and the texel count less one (sides of at most
+    /// 2^15); `None` if the slice were shorter than the count, which
+    /// `Texture::new` rules out.
+    #[inline(always)]
+    pub(crate) fn fine_parts(&self) -> Option<(&[u16], [u32; 3])> {
+        let count = 1u32 << (self.log2[0] + self.log2[1]);
+        (self.texels.len() >= count as usize).then_some((
+            self.texels,
+            [1 << self.log2[0], 1 << self.log2[1], count - 1],
+        ))
+    }
+
     /// [`bilinear_reusing`](Self::bilinear_reusing) from the coordinates'
     /// fractions to 32 bits: its taps and weights read only the raw
     /// coordinates' low 16 bits, which are the fractions' top 16.
