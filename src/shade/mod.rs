@@ -192,7 +192,8 @@ const VECTOR_LOOPS: bool = cfg!(any(
 ));
 
 /// Shades one span: `color` and `depth` are the tile row. Returns the
-/// number of fragments written.
+/// number of fragments written. `s` is from [`TriangleSetup::for_spans`]
+/// (its depth step shifted).
 #[inline(always)]
 pub(crate) fn span_flat<C: Copy, D: DepthFn, const WRITE: bool>(
     dt: D,
@@ -207,7 +208,8 @@ pub(crate) fn span_flat<C: Copy, D: DepthFn, const WRITE: bool>(
     // Depth with its 16 integer bits in the upper half of a u32 (see
     // `depth16`).
     let mut z = (s.z_start(t, x0, j) as u32) << (16 - Z_FRAC);
-    let gz = (s.steps()[0] as u32) << (16 - Z_FRAC);
+    // Shifted already ([`TriangleSetup::for_spans`]).
+    let gz = s.steps()[0] as u32;
     let (a, b) = ((x0 - ox) as usize, (x1 - ox) as usize);
     let (color, depth) = (&mut color[a..b], &mut depth[a..b]);
     if VECTOR_LOOPS && color.len() >= SHORT_SPAN {
@@ -257,7 +259,8 @@ fn flat_run<C: Copy, D: DepthFn, const WRITE: bool>(
 }
 
 /// Like [`span_flat`], with colour interpolated per pixel; returns `n`, the
-/// fragments written before, plus its own.
+/// fragments written before, plus its own. `s` is from
+/// [`TriangleSetup::for_spans`] (its depth step shifted).
 #[inline(always)]
 pub(crate) fn span_gouraud<C: Copy + From<Rgb888> + 'static, D: DepthFn, const WRITE: bool>(
     dt: D,
@@ -272,7 +275,8 @@ pub(crate) fn span_gouraud<C: Copy + From<Rgb888> + 'static, D: DepthFn, const W
     let [z, r, g, b] = s.start(t, x0, j);
     let z = (z as u32) << (16 - Z_FRAC);
     let [gz, gr, gg, gb] = s.steps();
-    let gz = (gz as u32) << (16 - Z_FRAC);
+    // Shifted already ([`TriangleSetup::for_spans`]).
+    let gz = gz as u32;
     let (a0, a1) = ((x0 - ox) as usize, (x1 - ox) as usize);
     if !VECTOR_LOOPS {
         return gouraud_loop::<C, D, WRITE>(

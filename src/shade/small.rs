@@ -396,22 +396,42 @@ impl TriangleSetup {
         // below 1023 only if every one is within -1023..=1022, inside
         // `Basis`'s small triangles (|c| < SMALL_EDGE).
         let e = fold_sign(x1) | fold_sign(y1) | fold_sign(x2) | fold_sign(y2);
-        if e >= SMALL_EDGE as u32 - 1 {
-            return None;
-        }
+        // Every test below decides one `None`, or-ed: with a return of
+        // its own each (the depth test's in `plane_small`), the
+        // Cortex-M3 reloaded the span loop's stack argument before each
+        // branch (`demo` 3,934,041 -> 3,925,390 instructions, `rock`
+        // 3,232,869 -> 3,225,860, ARMv6-M `demo` 8,303,170 ->
+        // 8,216,578). The values are wrapped where a test that fails
+        // made them meaningless (edge vectors of 2^10 or more), and exact
+        // where every test passes. (The same tests as the signs of
+        // differences, or-ed into one word, compiled to one branch but
+        // moved the span loop's registers: M3 `demo` +185,000.)
+        //
         // At most 2 * 1023^2 in magnitude (`Basis`'s twice the signed
         // area). -1 goes to the general set-up too: the divisions by it
         // then need no check for `i32::MIN / -1`.
-        let area2 = x1 * y2 - x2 * y1;
-        if area2 == 0 || area2 == -1 {
-            return None;
-        }
+        let area2 = x1.wrapping_mul(y2).wrapping_sub(x2.wrapping_mul(y1));
         let area = area2.unsigned_abs();
+        // Depth's numerators reach 2^27: within -2^21..2^21 (`m`, the
+        // magnitudes less one when negative, below 2^21) and below
+        // `area 2^12` (first digits at most 2^22), or the general set-up.
+        let (z, zfrac) = t.values(0);
+        let z = [z[0] as i32, z[1] as i32, z[2] as i32];
+        let (d1, d2) = (z[1] - z[0], z[2] - z[0]);
+        let n1 = d1.wrapping_mul(y2).wrapping_sub(d2.wrapping_mul(y1));
+        let n2 = d2.wrapping_mul(x1).wrapping_sub(d1.wrapping_mul(x2));
+        let m = fold_sign(n1) | fold_sign(n2);
         // A colour channel's numerators `d1 y2 - d2 y1` and `d2 x1 - d1 x2`
         // are at most `2 * 255 (e + 1)` in magnitude, below `1024 area`
         // for `e < 2 area`, so their first digits are below 2^20. Only
         // slivers fail this (a triangle's height is below its sides).
-        if gouraud && e >= 2 * area {
+        // (`2 area` wraps only for edge vectors that fail the first test.)
+        let bad = (e >= SMALL_EDGE as u32 - 1)
+            | ((area2.wrapping_add(1) as u32) <= 1)
+            | (m >> 21 != 0)
+            | (m >> 12 >= area)
+            | (gouraud & (e >= area.wrapping_mul(2)));
+        if bad {
             return None;
         }
         let f = &SmallBasis {
@@ -425,13 +445,13 @@ impl TriangleSetup {
                 _ => Recip16::default(),
             },
         };
-        let z = Self::plane_small(f, t, 0)?;
+        let z = Self::plane_small_of(f, z[0], zfrac, n1, n2);
         let planes = if gouraud {
             [
                 z,
-                Self::plane_small(f, t, 1)?,
-                Self::plane_small(f, t, 2)?,
-                Self::plane_small(f, t, 3)?,
+                Self::plane_small(f, t, 1),
+                Self::plane_small(f, t, 2),
+                Self::plane_small(f, t, 3),
             ]
         } else {
             [z, Plane::default(), Plane::default(), Plane::default()]
@@ -441,46 +461,43 @@ impl TriangleSetup {
         Some(Self::finish(planes, false))
     }
 
-    /// [`TriangleSetup::plane`] of a [`Small`] triangle in `i32`: its
-    /// values' differences are below 2^16 and its edge vectors below
-    /// 2^10, so the numerators are below 2^27 (as in
-    /// [`Basis::gradients`]); with gradients within 2^31 and the offsets
-    /// of the first pixel centre below 2^19 + 8, the constant's products
-    /// need no wrapping (`i32` by `i32`), and its wrapped `i32` is
-    /// `constant_wrapping`'s. `None` for depth numerators beyond
-    /// [`SmallBasis::div_round32`]'s bounds.
+    /// [`TriangleSetup::plane`] of a colour channel `a` (1 to 3) of a
+    /// [`Small`] triangle in `i32`: its values' differences are below 2^8
+    /// and its edge vectors below 2^10, so the numerators are below 2^19
+    /// (as in [`Basis::gradients`]), whose first digits
+    /// [`TriangleSetup::small`] checked.
     #[inline(always)]
-    fn plane_small(f: &SmallBasis, t: &Corners<'_>, a: usize) -> Option<Plane> {
+    fn plane_small(f: &SmallBasis, t: &Corners<'_>, a: usize) -> Plane {
         let (values, frac) = t.values(a);
-        // Depths and colour channels: 16 and 8 bits.
         let v = [values[0] as i32, values[1] as i32, values[2] as i32];
         let (d1, d2) = (v[1] - v[0], v[2] - v[0]);
         let [x1, y1, x2, y2] = f.e;
-        let shift = frac + SUBPIXEL_BITS;
         let (n1, n2) = (d1 * y2 - d2 * y1, d2 * x1 - d1 * x2);
-        if a == 0 {
-            // Depth's numerators reach 2^27: within -2^21..2^21 (`m`, the
-            // magnitudes less one when negative, below 2^21) and below
-            // `area 2^12` (first digits at most 2^22), or the general
-            // set-up. (A colour channel's are below 2 * 255 * 1023 < 2^19,
-            // and `small` checked their first digits.)
-            let m = fold_sign(n1) | fold_sign(n2);
-            if m >> 21 != 0 || m >> 12 >= f.area2.unsigned_abs() {
-                return None;
-            }
-        }
+        Self::plane_small_of(f, v[0], frac, n1, n2)
+    }
+
+    /// The plane of an attribute of a [`Small`] triangle whose value at
+    /// vertex 0 is `v0` (`frac` fraction bits) and whose gradients'
+    /// numerators are `n1, n2`, within [`SmallBasis::div_round32`]'s
+    /// bounds. With gradients within 2^31 and the offsets of the first
+    /// pixel centre below 2^19 + 8, the constant's products need no
+    /// wrapping (`i32` by `i32`), and its wrapped `i32` is
+    /// `constant_wrapping`'s.
+    #[inline(always)]
+    fn plane_small_of(f: &SmallBasis, v0: i32, frac: u32, n1: i32, n2: i32) -> Plane {
+        let shift = frac + SUBPIXEL_BITS;
         let (gx, gy, term) = if cfg!(microraster_narrow_multiply) {
             f.plane_short(n1, n2, shift)
         } else {
             let (gx, gy) = (f.div_round32(n1, shift), f.div_round32(n2, shift));
             (gx, gy, offset_term(gx, gy, f.o))
         };
-        let base = (v[0] << frac) + (1 << (frac - 1));
-        Some(Plane {
+        let base = (v0 << frac) + (1 << (frac - 1));
+        Plane {
             gx,
             gy,
             k: base.wrapping_add(term),
-        })
+        }
     }
 }
 
