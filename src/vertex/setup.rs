@@ -11,6 +11,7 @@ use crate::light::{LightSetup, Lighting, Material};
 use crate::math::{FixedMat4, Mat4, Vec3};
 use crate::mesh::Mesh;
 use crate::scene::Draw;
+use fixed::types::I16F16;
 
 /// Why the vertex stage refused a draw.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -255,31 +256,38 @@ impl DrawSetup {
                 // Opaque: the loop loads each constant where it uses it,
                 // neighbours in one instruction (see `LoopConstants`).
                 let k = core::hint::black_box(&k);
-                for (o, (p, nv)) in out.iter_mut().zip(positions.iter().zip(normals)) {
-                    let p = [p[0].to_bits(), p[1].to_bits(), p[2].to_bits()];
-                    let pos = k.transform(p);
-                    *o = viewport.screen_vertex_lit(&pos, || k.shade(*nv));
-                }
+                lit_loop(
+                    out,
+                    positions,
+                    normals,
+                    viewport,
+                    |p| k.transform(p),
+                    |n| k.shade(n),
+                );
             }
             Some((l, normals)) if crate::math::SPLIT => {
                 let k = NarrowRows::new(&self.mvp, l, self.color);
                 // Opaque, as `LoopConstants` (see `NarrowRows`): 10,000
                 // instructions a `demo` frame fewer than without.
                 let k = core::hint::black_box(&k);
-                for (o, (p, nv)) in out.iter_mut().zip(positions.iter().zip(normals)) {
-                    let p = [p[0].to_bits(), p[1].to_bits(), p[2].to_bits()];
-                    let pos = k.transform(p);
-                    *o = viewport.screen_vertex_lit(&pos, || k.shade(l, *nv));
-                }
+                lit_loop(
+                    out,
+                    positions,
+                    normals,
+                    viewport,
+                    |p| k.transform(p),
+                    |n| k.shade(l, n),
+                );
             }
-            Some((l, normals)) => {
-                for (o, (p, nv)) in out.iter_mut().zip(positions.iter().zip(normals)) {
-                    let p = [p[0].to_bits(), p[1].to_bits(), p[2].to_bits()];
-                    // 64-bit cores: 32-bit ones took an arm above.
-                    let pos = self.mvp.transform_point_bounded(p);
-                    *o = viewport.screen_vertex_lit(&pos, || l.shade(*nv, self.color));
-                }
-            }
+            // 64-bit cores: 32-bit ones took an arm above.
+            Some((l, normals)) => lit_loop(
+                out,
+                positions,
+                normals,
+                viewport,
+                |p| self.mvp.transform_point_bounded(p),
+                |n| l.shade(n, self.color),
+            ),
             None => {
                 for (k, o) in out.iter_mut().enumerate() {
                     let pos = self.clip_position_apart(mesh, first + k)?;
@@ -377,5 +385,26 @@ impl DrawSetup {
         let p = mesh.positions()[i];
         self.mvp
             .transform_w_unchecked([p[0].to_bits(), p[1].to_bits(), p[2].to_bits()])
+    }
+}
+
+/// The common case's loop of [`DrawSetup::screen_vertices`]: each
+/// vertex's position by `transform` and its Lambert colour from its
+/// normal by `shade`, one loop for the three ways of computing them
+/// (`LoopConstants` on 32-bit cores with a long multiply, `NarrowRows` on
+/// ARMv6-M, the bounded matrix on 64-bit hosts). Inlined into each arm,
+/// so each arm's constants stay where its `black_box` put them.
+#[inline(always)]
+fn lit_loop<N: Copy>(
+    out: &mut [ScreenVertex],
+    positions: &[[I16F16; 3]],
+    normals: &[N],
+    viewport: &Viewport,
+    transform: impl Fn([i32; 3]) -> [i32; 4],
+    shade: impl Fn(N) -> [u8; 3],
+) {
+    for (o, (p, nv)) in out.iter_mut().zip(positions.iter().zip(normals)) {
+        let pos = transform([p[0].to_bits(), p[1].to_bits(), p[2].to_bits()]);
+        *o = viewport.screen_vertex_lit(&pos, || shade(*nv));
     }
 }
