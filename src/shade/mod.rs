@@ -744,13 +744,43 @@ mod tests {
         }
     }
 
+    /// `term` against the wrapped `i64` plane constant term: the 81
+    /// pairs of `edges`, then random gradients from `gradient` (given a
+    /// random `u64`), with offsets from the ends of their range and random
+    /// ones.
+    fn check_offset_term(
+        term: fn(i32, i32, [i32; 2]) -> i32,
+        edges: [i32; 9],
+        gradient: impl Fn(u64) -> i32,
+        span: u64,
+    ) {
+        let mut next = crate::testing::rng();
+        let offsets = [0, 1, -1, 8, -8, 15, -17, (1 << 19) + 8, -(1 << 19) - 8];
+        for k in 0..200_000 {
+            let (gx, gy) = if k < 81 {
+                (edges[k % 9], edges[k / 9])
+            } else {
+                (gradient(next(span)), gradient(next(span)))
+            };
+            let o = if k % 3 == 0 {
+                [offsets[k % 9], offsets[(k / 9) % 9]]
+            } else {
+                [
+                    next(1 << 21) as i32 - (1 << 20),
+                    next(1 << 21) as i32 - (1 << 20),
+                ]
+            };
+            let t = gx as i64 * o[0] as i64 + gy as i64 * o[1] as i64;
+            let expected = (t >> SUBPIXEL_BITS) as i32;
+            assert_eq!(term(gx, gy, o), expected, "{gx} {gy} {o:?}");
+        }
+    }
+
     /// ARMv6-M's plane constant term from `i32` products
     /// ([`offset_term_split`]) is the wrapped `i64` one, for random and
     /// extreme gradients and offsets.
     #[test]
     fn split_offset_term_matches_the_64_bit_one() {
-        let mut next = crate::testing::rng();
-        let g = |v: u64| v as i64 as i32;
         let edges = [
             0,
             1,
@@ -762,25 +792,7 @@ mod tests {
             (1 << 30) + 1024,
             -(1 << 30) - 1025,
         ];
-        let offsets = [0, 1, -1, 8, -8, 15, -17, (1 << 19) + 8, -(1 << 19) - 8];
-        for k in 0..200_000 {
-            let (gx, gy) = if k < 81 {
-                (edges[k % 9], edges[k / 9])
-            } else {
-                (g(next(1 << 32)), g(next(1 << 32)))
-            };
-            let o = if k % 3 == 0 {
-                [offsets[k % 9], offsets[(k / 9) % 9]]
-            } else {
-                [
-                    next(1 << 21) as i32 - (1 << 20),
-                    next(1 << 21) as i32 - (1 << 20),
-                ]
-            };
-            let t = gx as i64 * o[0] as i64 + gy as i64 * o[1] as i64;
-            let expected = (t >> SUBPIXEL_BITS) as i32;
-            assert_eq!(offset_term_split(gx, gy, o), expected, "{gx} {gy} {o:?}");
-        }
+        check_offset_term(offset_term_split, edges, |v| v as i64 as i32, 1 << 32);
     }
 
     /// ARMv6-M's plane constant term for gradients below 2^26 in magnitude
@@ -788,7 +800,6 @@ mod tests {
     /// ends and on random gradients and offsets.
     #[test]
     fn narrow_offset_term_matches_the_64_bit_one() {
-        let mut next = crate::testing::rng();
         let edges = [
             0,
             1,
@@ -800,26 +811,8 @@ mod tests {
             1 << 23,
             -(1 << 23),
         ];
-        let offsets = [0, 1, -1, 8, -8, 15, -17, (1 << 19) + 8, -(1 << 19) - 8];
-        for k in 0..200_000 {
-            let (gx, gy) = if k < 81 {
-                (edges[k % 9], edges[k / 9])
-            } else {
-                let g = |v: u64| v as i32 - (1 << 26) + 1;
-                (g(next((1 << 27) - 1)), g(next((1 << 27) - 1)))
-            };
-            let o = if k % 3 == 0 {
-                [offsets[k % 9], offsets[(k / 9) % 9]]
-            } else {
-                [
-                    next(1 << 21) as i32 - (1 << 20),
-                    next(1 << 21) as i32 - (1 << 20),
-                ]
-            };
-            let t = gx as i64 * o[0] as i64 + gy as i64 * o[1] as i64;
-            let expected = (t >> SUBPIXEL_BITS) as i32;
-            assert_eq!(offset_term_narrow(gx, gy, o), expected, "{gx} {gy} {o:?}");
-        }
+        let gradient = |v: u64| v as i32 - (1 << 26) + 1;
+        check_offset_term(offset_term_narrow, edges, gradient, (1 << 27) - 1);
     }
 
     /// ARMv6-M's plane ([`SmallBasis::plane_short`]: one test for both
