@@ -59,8 +59,30 @@ fn to5(v: u8) -> u16 {
 #[cfg(any(test, not(target_pointer_width = "64")))]
 #[inline(always)]
 fn to6(v: u8) -> u16 {
-    TO565[256 + v as usize] as u16
+    #[cfg(microraster_narrow_multiply)]
+    {
+        TO6[v as usize] as u16
+    }
+    #[cfg(not(microraster_narrow_multiply))]
+    {
+        TO565[256 + v as usize] as u16
+    }
 }
+
+/// The 6-bit half of [`TO565`] as a table of its own on ARMv6-M, whose
+/// span loops load its address from the literal pool in one instruction
+/// where `TO565 + 256` took an add of 256 built from a hoisted constant.
+#[cfg(microraster_narrow_multiply)]
+static TO6: [u8; 256] = {
+    let t = table();
+    let mut h = [0; 256];
+    let mut v = 0;
+    while v < 256 {
+        h[v] = t[256 + v];
+        v += 1;
+    }
+    h
+};
 
 /// The 5- and 6-bit channels of [`table`] already in their places in the
 /// 16 bits: red at `v`, green at `256 + v`, blue at `512 + v`. On 64-bit hosts, where
