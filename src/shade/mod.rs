@@ -192,8 +192,7 @@ const VECTOR_LOOPS: bool = cfg!(any(
 ));
 
 /// Shades one span: `color` and `depth` are the tile row. Returns the
-/// number of fragments written. `s` is from [`TriangleSetup::for_spans`]
-/// (its depth step shifted).
+/// number of fragments written.
 #[inline(always)]
 pub(crate) fn span_flat<C: Copy, D: DepthFn, const WRITE: bool>(
     dt: D,
@@ -208,8 +207,7 @@ pub(crate) fn span_flat<C: Copy, D: DepthFn, const WRITE: bool>(
     // Depth with its 16 integer bits in the upper half of a u32 (see
     // `depth16`).
     let mut z = (s.z_start(t, x0, j) as u32) << (16 - Z_FRAC);
-    // Shifted already ([`TriangleSetup::for_spans`]).
-    let gz = s.steps()[0] as u32;
+    let gz = (s.steps()[0] as u32) << (16 - Z_FRAC);
     let (a, b) = ((x0 - ox) as usize, (x1 - ox) as usize);
     let (color, depth) = (&mut color[a..b], &mut depth[a..b]);
     if VECTOR_LOOPS && color.len() >= SHORT_SPAN {

@@ -416,27 +416,30 @@ impl TriangleSetup {
     /// type (over a kilobyte of flash each), and the span loops keep their
     /// registers.
     ///
-    /// Its [`zstep`](TriangleSetup::zstep) is shifted for the span loops
-    /// ([`TriangleSetup::span_zstep`]).
+    /// A Gouraud set-up's [`zstep`](TriangleSetup::zstep) is shifted for
+    /// its span loop ([`TriangleSetup::span_zstep`]); a flat one's is not.
     #[inline(always)]
     pub(crate) fn for_spans<const GOURAUD: bool>(t: &Corners<'_>) -> Self {
         if GOURAUD {
             Self::gouraud(t).span_zstep()
         } else {
-            Self::flat(t).span_zstep()
+            Self::flat(t)
         }
     }
 
     /// This set-up with its depth step shifted left by `16 - Z_FRAC`
-    /// (wrapping), as the Gouraud and flat span loops step depth (see
-    /// `depth16`): once per triangle, where each span shifted it (the
-    /// set-up's rare path lets it escape, so the optimiser made the shift
-    /// again for every span). Cortex-M3 `demo` 3,925,390 -> 3,918,578
-    /// instructions, `rock` 3,225,860 -> 3,220,055. Only for those loops
-    /// ([`TriangleSetup::for_spans`]): the shifted step in every set-up
+    /// (wrapping), as the Gouraud span loop steps depth (see `depth16`):
+    /// once per triangle, where each span shifted it (the set-up's rare
+    /// path lets it escape, so the optimiser made the shift again for
+    /// every span). Cortex-M3 `demo` 3,925,390 -> 3,918,578 instructions,
+    /// `rock` 3,225,860 -> 3,220,055. Only for the Gouraud span loop
+    /// ([`TriangleSetup::for_spans`]): the flat loop given the shifted
+    /// step moved its registers on the Cortex-M4F (`fill` 15.19 -> 16.03
+    /// a pixel, the M3's unchanged), and the shifted step in every set-up
     /// moved the fragment-shader loops' registers (M3
     /// `fill-nearest-affine` 49.79 -> 54.97 per pixel, `fill-gouraud-exact`
-    /// 67.86 -> 73.02), though it took `fill` from 15.06 to 14.32.
+    /// 67.86 -> 73.02), though it took the M3's `fill` from 15.06 to
+    /// 14.32.
     #[inline(always)]
     fn span_zstep(mut self) -> Self {
         self.zstep = ((self.zstep as u32) << (16 - super::Z_FRAC)) as i32;
@@ -464,7 +467,7 @@ impl TriangleSetup {
     pub(crate) fn for_spans_inline<const GOURAUD: bool>(t: &Corners<'_>) -> Self {
         if SMALL_SETUP && !cfg!(microraster_narrow_multiply) {
             if let Some(s) = Self::small(&t.points(), t, GOURAUD) {
-                return s.span_zstep();
+                return if GOURAUD { s.span_zstep() } else { s };
             }
         }
         Self::for_spans::<GOURAUD>(t)
