@@ -3,7 +3,7 @@
 //! triangle that lies within its tile's columns, and on a 32-bit core
 //! one whose columns lie within `0..PACKED_COLS` (with clamps).
 
-use super::{ceil_div_rem32, far_start, EdgeStepper};
+use super::edge::{ceil_div_rem32, far_start, EdgeStepper};
 use crate::raster::{Span, SubPoint, HALF_PIXEL, SUBPIXEL, SUBPIXEL_BITS};
 use core::num::NonZeroU32;
 
