@@ -38,13 +38,14 @@
 
 mod convert;
 pub(crate) mod perspective;
+mod plane;
 mod setup;
 mod sliver;
 mod small;
 
 pub(crate) use convert::{rgb, rgb16, rgb565_bits, rgb_scalar};
 use embedded_graphics::pixelcolor::Rgb888;
-use setup::Basis;
+use plane::Basis;
 pub(crate) use setup::{Corners, TriangleSetup};
 #[cfg_attr(not(microraster_narrow_multiply), allow(unused_imports))]
 pub(crate) use small::{leading_zeros, Recip16};

@@ -1,223 +1,16 @@
-//! The attribute planes of a triangle: gradients by Cramer's rule over
-//! twice its signed area, computed once per triangle-tile pair, and each
-//! plane's value at the start of a span (see the [parent module](super)
-//! for the method, the fixed-point formats and why the `i32` evaluation is
-//! exact).
+//! A triangle's set-up for shading: its depth and colour planes (see
+//! [`Plane`] for one plane and why its `i32` evaluation is exact), computed
+//! once per triangle-tile pair by the general path or the small
+//! triangles' 32-bit one, and their clamped values at the start of each
+//! span (see the [parent module](super) for the method and the
+//! fixed-point formats).
 
+use super::plane::{Basis, Plane};
 use super::sliver::wide_start;
-use super::small::{Small, SMALL_EDGE, SMALL_SETUP};
+use super::small::SMALL_SETUP;
 use super::{C_FRAC, GRADIENT_LIMIT, Z_FRAC};
-use crate::math::Divisor;
-use crate::raster::{SubPoint, HALF_PIXEL, SUBPIXEL_BITS};
+use crate::raster::SubPoint;
 use crate::vertex::ScreenVertex;
-use core::num::{NonZeroU32, NonZeroU64};
-
-/// One interpolated attribute, with `frac` fraction bits: its value at the
-/// centre of pixel `(i, j)` is `gx i + gy j + k`.
-///
-/// That is the plane `base + floor((gx dx + gy dy) / SUBPIXEL)` through
-/// vertex `o`, with `dx = SUBPIXEL i + HALF_PIXEL - o.x` (likewise `dy`)
-/// and `base` the biased value at `o`, regrouped exactly: `gx SUBPIXEL i`
-/// is a multiple of `SUBPIXEL`, so it passes through the floor unchanged,
-/// and the terms that do not depend on the pixel are summed once into `k`.
-///
-/// # Why `i32` arithmetic is exact
-///
-/// The gradients are rounded to the nearest integer, so at a pixel centre
-/// `(dx, dy)` sub-pixels from `o` the value is within
-/// `(|dx| + |dy|) / 32 + 1` of the exact plane. Span starts are covered
-/// centres, which lie in the triangle, where the exact plane is between
-/// the smallest and largest vertex value; vertices lie within 2^18
-/// sub-pixels of the origin and pixels within 2^16, so the value is within
-/// 20,481 of `lo..=hi`, far inside `i32` (`hi < 2^30`). The sum
-/// `gx i + gy j + k` may wrap on the way there, but wrapping arithmetic is
-/// exact modulo 2^32, so its result is that value exactly, as the `i64`
-/// sum would give. This holds unless a gradient had to be clamped to
-/// ±2^40 (only for a sliver narrower than about 1/1,000 pixel, see the
-/// module docs); then [`TriangleSetup::wide`] is set and the span starts
-/// come from [`wide_start`], in `i64`, which never wraps.
-///
-/// The value is then clamped to `lo..=hi`, as a span starts there and
-/// steps from there.
-///
-/// Along a span the value steps by `gx`. A span of two or more pixels has
-/// two covered centres one pixel apart, where the exact values differ by
-/// at most the attribute's range, so `|gx| < 2^30` there and the step is
-/// exact too.
-#[derive(Clone, Copy, Debug, Default)]
-pub(crate) struct Plane {
-    pub(super) gx: i32,
-    pub(super) gy: i32,
-    pub(super) k: i32,
-}
-
-/// The geometry every plane of a triangle shares: the edge vectors from
-/// vertex 0, with signs chosen so that the Cramer denominator (twice the
-/// absolute area) is positive, that denominator, and the offset of the
-/// first pixel centre from vertex 0.
-#[derive(Clone, Copy, Debug)]
-pub(super) struct Basis {
-    pub(super) x1: i64,
-    pub(super) y1: i64,
-    pub(super) x2: i64,
-    pub(super) y2: i64,
-    /// Twice the absolute area, by which all eight gradients are divided
-    /// (through its reciprocal on 32-bit targets, see [`Divisor`]; not
-    /// made for a [`Small`] triangle, whose gradients take 32-bit
-    /// divisions instead).
-    pub(super) area: Divisor,
-    /// Twice the absolute area, for the divisions of a [`Small`] triangle's
-    /// gradients that do not fit its 32-bit ones.
-    pub(super) area64: NonZeroU64,
-    /// Half of twice the absolute area, for rounding.
-    pub(super) half: u64,
-    /// `HALF_PIXEL - o.x` and `HALF_PIXEL - o.y` of vertex 0.
-    pub(super) ox: i64,
-    pub(super) oy: i64,
-    /// On 32-bit targets, a triangle whose edge vectors are below
-    /// [`SMALL_EDGE`] in magnitude.
-    pub(super) small: Option<Small>,
-}
-
-impl Basis {
-    #[inline(always)]
-    pub(super) fn new(v: &[SubPoint; 3]) -> Self {
-        Self::with_small(v, SMALL_SETUP)
-    }
-
-    /// [`Basis::new`], with small triangles set up in 32-bit divisions
-    /// when `small_setup` (the tests compare both on the host).
-    #[inline(always)]
-    pub(super) fn with_small(v: &[SubPoint; 3], small_setup: bool) -> Self {
-        let (x1, y1) = (v[1].x as i64 - v[0].x as i64, v[1].y as i64 - v[0].y as i64);
-        let (x2, y2) = (v[2].x as i64 - v[0].x as i64, v[2].y as i64 - v[0].y as i64);
-        // Twice the signed area, as `crate::raster::signed_area2` (the
-        // vertices lie within the guard band).
-        let area2 = crate::raster::signed_area2_banded(v);
-        // Callers never set up a zero-area triangle (it has no spans); the
-        // fallback only keeps this total.
-        let area = NonZeroU64::new(area2.unsigned_abs()).unwrap_or(NonZeroU64::MIN);
-        // n / d with d < 0 is (-n) / (-d); negating the edge vectors negates
-        // every numerator exactly, so every division has a positive
-        // denominator and the same rounded result.
-        let s = if area2 < 0 { -1 } else { 1 };
-        let small = match small_setup && [x1, y1, x2, y2].iter().all(|c| c.abs() < SMALL_EDGE) {
-            // Twice the area of a small triangle is below 2^21.
-            true => NonZeroU32::new(area.get() as u32).map(|area| Small {
-                area,
-                half: area.get() / 2,
-            }),
-            false => None,
-        };
-        Self {
-            x1: s * x1,
-            y1: s * y1,
-            x2: s * x2,
-            y2: s * y2,
-            area: match small {
-                Some(_) => Divisor::new(NonZeroU64::MIN),
-                None => Divisor::new(area),
-            },
-            area64: area,
-            half: area.get() / 2,
-            ox: HALF_PIXEL as i64 - v[0].x as i64,
-            oy: HALF_PIXEL as i64 - v[0].y as i64,
-            small,
-        }
-    }
-
-    /// `n / area` rounded to nearest, ties away from zero, as
-    /// the vertex stage rounds too.
-    #[inline(always)]
-    pub(super) fn div_round(&self, n: i64) -> i64 {
-        if self.small.is_some() {
-            // A small triangle's attribute beyond its 32-bit divisions
-            // (the perspective weights): a plain division.
-            let q = ((n.unsigned_abs() + self.half) / self.area64) as i64;
-            return if n >= 0 { q } else { -q };
-        }
-        // |n| < 2^57 and half < 2^39: within `Reciprocal::div`'s range.
-        if n >= 0 {
-            self.area.div(n as u64 + self.half) as i64
-        } else {
-            -(self.area.div(n.unsigned_abs() + self.half) as i64)
-        }
-    }
-}
-
-impl Basis {
-    /// The gradients `(gx, gy)` of an attribute with `values` at the three
-    /// vertices and `frac` fraction bits, per pixel, rounded to nearest
-    /// (Cramer's rule), not yet clamped.
-    #[inline(always)]
-    pub(super) fn gradients(&self, values: [i64; 3], frac: u32) -> (i64, i64) {
-        let d1 = values[1] - values[0];
-        let d2 = values[2] - values[0];
-        let shift = frac + SUBPIXEL_BITS;
-        if let Some(small) = &self.small {
-            if d1.abs() < 1 << 16 && d2.abs() < 1 << 16 {
-                // |d| < 2^16 and edge vectors below 2^10: the numerators
-                // are below 2^27, and the shift at most 20.
-                let [x1, y1, x2, y2] = [
-                    self.x1 as i32,
-                    self.y1 as i32,
-                    self.x2 as i32,
-                    self.y2 as i32,
-                ];
-                let (d1, d2) = (d1 as i32, d2 as i32);
-                return (
-                    small.div_round(d1 * y2 - d2 * y1, shift),
-                    small.div_round(d2 * x1 - d1 * x2, shift),
-                );
-            }
-            if frac == 0 && d1.abs() <= 1 << 28 && d2.abs() <= 1 << 28 {
-                // The perspective planes (values up to 2^28, no fraction
-                // bits): numerators below 2^39 before the shift of 4, so
-                // within `div_round_wide`'s 2^43.
-                return (
-                    small.div_round_wide((d1 * self.y2 - d2 * self.y1) << shift),
-                    small.div_round_wide((d2 * self.x1 - d1 * self.x2) << shift),
-                );
-            }
-        }
-        (
-            self.div_round((d1 * self.y2 - d2 * self.y1) << shift),
-            self.div_round((d2 * self.x1 - d1 * self.x2) << shift),
-        )
-    }
-
-    /// The plane constant `k` of an attribute whose value at vertex 0 is
-    /// `value`, in wrapping arithmetic: exact for gradients within
-    /// ±[`GRADIENT_LIMIT`], no overflow check beyond.
-    #[inline(always)]
-    pub(super) fn constant_wrapping(&self, value: i64, frac: u32, (gx, gy): (i64, i64)) -> i64 {
-        let base = (value << frac) + (1i64 << (frac - 1));
-        let t = gx
-            .wrapping_mul(self.ox)
-            .wrapping_add(gy.wrapping_mul(self.oy));
-        base.wrapping_add(t >> SUBPIXEL_BITS)
-    }
-}
-
-impl Plane {
-    /// The value at the centre of pixel `(i, j)`, exact (see the type's
-    /// docs), not clamped to the attribute's range.
-    #[inline(always)]
-    pub(super) fn at(&self, i: i32, j: i32) -> i32 {
-        // `k + gy j` first: two multiply-accumulates (wrapping, so any
-        // order gives the same value).
-        self.k
-            .wrapping_add(self.gy.wrapping_mul(j))
-            .wrapping_add(self.gx.wrapping_mul(i))
-    }
-
-    /// The step along a span (exact for every span of two pixels or more,
-    /// see the type's docs).
-    #[inline(always)]
-    pub(super) fn step(&self) -> i32 {
-        self.gx
-    }
-}
 
 /// Depth interpolated with [`Z_FRAC`] bits and its half-unit bias: the
 /// range of values that round to `0..=65535`.
@@ -447,7 +240,7 @@ impl TriangleSetup {
     }
 
     /// [`TriangleSetup::for_spans`] for the span loops that nearly every
-    /// frame takes (the caller's choice), with the [`Small`] set-up
+    /// frame takes (the caller's choice), with the [`Small`](super::small::Small) set-up
     /// inlined on 32-bit cores with a long multiply: its planes are then
     /// written where the span loop reads them, without a call, the
     /// returned set-up's stores through a pointer and the spills around

@@ -3,7 +3,7 @@
 //! planes would not be exact. Rare, so small rather than fast.
 
 #[cfg(doc)]
-use super::setup::Basis;
+use super::plane::Basis;
 use super::setup::{Corners, C_HI, C_LO, Z_HI, Z_LO};
 use super::GRADIENT_LIMIT;
 use crate::raster::{HALF_PIXEL, SUBPIXEL_BITS};

@@ -9,8 +9,9 @@
 //! which the tests check on random triangles.
 
 #[cfg(doc)]
-use super::setup::Basis;
-use super::setup::{Corners, Plane, TriangleSetup};
+use super::plane::Basis;
+use super::plane::Plane;
+use super::setup::{Corners, TriangleSetup};
 use crate::raster::{SubPoint, HALF_PIXEL, SUBPIXEL_BITS};
 use core::num::NonZeroU32;
 

@@ -99,7 +99,7 @@ impl WidePlane {
     /// gradients are then the exact ones rounded, so at a covered pixel
     /// centre the plane is within 2^15 of the exact one, which lies
     /// between the vertex values (`0..=2^28`); that value fits `i32`, and
-    /// the wrapping sum is exact modulo 2^32 (as [`Plane`](crate::shade::setup::Plane)'s). Two
+    /// the wrapping sum is exact modulo 2^32 (as [`Plane`](crate::shade::plane::Plane)'s). Two
     /// 32-bit products and a 32-bit clamp instead of 64-bit ones: a few
     /// instructions per span on a Cortex-M.
     #[cfg_attr(target_pointer_width = "64", allow(dead_code))]
