@@ -5,6 +5,7 @@
 //! reference so that the loop loads each where it uses it.
 
 use crate::math::FixedMat4;
+use crate::mesh::Vec3Fx;
 
 /// One directional light in model space (see
 /// [`LightSetup::single_directional`](crate::light::LightSetup::single_directional)).
@@ -131,6 +132,43 @@ pub(super) const LOOP_CONSTANTS: bool = cfg!(all(
     not(microraster_narrow_multiply)
 ));
 
+/// The per-vertex work of the vertex stage's common lit loop: a
+/// position's clip coordinates and a normal's Lambert colour, from
+/// constants made once per draw. One implementation per way of computing
+/// them: [`LoopConstants`] on 32-bit cores with a long multiply,
+/// [`NarrowRows`] with its light on ARMv6-M, the bounded matrix with its
+/// light and colour on 64-bit hosts.
+pub(super) trait LitWork {
+    /// The clip coordinates of the position `p` (16.16 bits).
+    fn transform(&self, p: [i32; 3]) -> [i32; 4];
+    /// The Lambert colour of the vertex with normal `n`.
+    fn shade(&self, n: Vec3Fx) -> [u8; 3];
+}
+
+impl LitWork for (&NarrowRows, &Lambert) {
+    #[inline(always)]
+    fn transform(&self, p: [i32; 3]) -> [i32; 4] {
+        self.0.transform(p)
+    }
+
+    #[inline(always)]
+    fn shade(&self, n: Vec3Fx) -> [u8; 3] {
+        self.0.shade(self.1, n)
+    }
+}
+
+impl LitWork for (&FixedMat4, &Lambert, [u8; 3]) {
+    #[inline(always)]
+    fn transform(&self, p: [i32; 3]) -> [i32; 4] {
+        self.0.transform_point_bounded(p)
+    }
+
+    #[inline(always)]
+    fn shade(&self, n: Vec3Fx) -> [u8; 3] {
+        self.1.shade(n, self.2)
+    }
+}
+
 /// The per-draw constants of the vertex stage's common loop (a bounded
 /// matrix, the Lambert fast path, no vertex colours), laid out in the
 /// order the loop reads them and read through a reference the compiler
@@ -173,10 +211,13 @@ impl LoopConstants {
         k.channels = l.folded(base);
         k
     }
+}
 
+#[cfg_attr(not(any(test, target_pointer_width = "32")), allow(dead_code))]
+impl LitWork for LoopConstants {
     /// [`FixedMat4::transform_point_bounded`] of `p`: the same sums.
     #[inline(always)]
-    pub(super) fn transform(&self, p: [i32; 3]) -> [i32; 4] {
+    fn transform(&self, p: [i32; 3]) -> [i32; 4] {
         use crate::math::mul_wide;
         let mut out = [0i32; 4];
         for (o, k) in out.iter_mut().zip(&self.rows) {
@@ -192,7 +233,7 @@ impl LoopConstants {
     /// [`Lambert::shade`] of normal `n` on the draw's colour: the same
     /// colour.
     #[inline(always)]
-    pub(super) fn shade(&self, n: crate::mesh::Vec3Fx) -> [u8; 3] {
+    fn shade(&self, n: Vec3Fx) -> [u8; 3] {
         use crate::math::mul_wide;
         let d = mul_wide(n[0].to_bits(), self.dir[0])
             + mul_wide(n[1].to_bits(), self.dir[1])
@@ -270,7 +311,7 @@ impl NarrowRows {
     /// [`Lambert::shade`] of normal `n` on the draw's colour, `l` the
     /// light this was made with: the same colour.
     #[inline(always)]
-    pub(super) fn shade(&self, l: &Lambert, n: crate::mesh::Vec3Fx) -> [u8; 3] {
+    pub(super) fn shade(&self, l: &Lambert, n: Vec3Fx) -> [u8; 3] {
         let ndotl = l.ndotl(n);
         let mut out = [0u8; 3];
         for (o, &[a, c]) in out.iter_mut().zip(&self.channels) {

@@ -5,11 +5,11 @@
 //! [`LightSetup`]), and per vertex the clip-space position and lit colour
 //! ([`DrawSetup::clip_vertex`]).
 
-use super::lambert::{Lambert, LoopConstants, NarrowRows, LOOP_CONSTANTS};
+use super::lambert::{Lambert, LitWork, LoopConstants, NarrowRows, LOOP_CONSTANTS};
 use super::{ClipVertex, ScreenVertex, Viewport};
 use crate::light::{LightSetup, Lighting, Material};
 use crate::math::{FixedMat4, Mat4, Vec3};
-use crate::mesh::Mesh;
+use crate::mesh::{Mesh, Vec3Fx};
 use crate::scene::Draw;
 use fixed::types::I16F16;
 
@@ -255,29 +255,14 @@ impl DrawSetup {
                 let k = LoopConstants::new(&self.mvp, l, self.color);
                 // Opaque: the loop loads each constant where it uses it,
                 // neighbours in one instruction (see `LoopConstants`).
-                let k = core::hint::black_box(&k);
-                lit_loop(
-                    out,
-                    positions,
-                    normals,
-                    viewport,
-                    |p| k.transform(p),
-                    |n| k.shade(n),
-                );
+                lit_loop(out, positions, normals, viewport, core::hint::black_box(&k));
             }
             Some((l, normals)) if crate::math::SPLIT => {
                 let k = NarrowRows::new(&self.mvp, l, self.color);
                 // Opaque, as `LoopConstants` (see `NarrowRows`): 10,000
                 // instructions a `demo` frame fewer than without.
                 let k = core::hint::black_box(&k);
-                lit_loop(
-                    out,
-                    positions,
-                    normals,
-                    viewport,
-                    |p| k.transform(p),
-                    |n| k.shade(l, n),
-                );
+                lit_loop(out, positions, normals, viewport, &(k, l));
             }
             // 64-bit cores: 32-bit ones took an arm above.
             Some((l, normals)) => lit_loop(
@@ -285,8 +270,7 @@ impl DrawSetup {
                 positions,
                 normals,
                 viewport,
-                |p| self.mvp.transform_point_bounded(p),
-                |n| l.shade(n, self.color),
+                &(&self.mvp, l, self.color),
             ),
             None => {
                 for (k, o) in out.iter_mut().enumerate() {
@@ -389,22 +373,22 @@ impl DrawSetup {
 }
 
 /// The common case's loop of [`DrawSetup::screen_vertices`]: each
-/// vertex's position by `transform` and its Lambert colour from its
-/// normal by `shade`, one loop for the three ways of computing them
-/// (`LoopConstants` on 32-bit cores with a long multiply, `NarrowRows` on
-/// ARMv6-M, the bounded matrix on 64-bit hosts). Inlined into each arm,
-/// so each arm's constants stay where its `black_box` put them.
+/// vertex's position and its Lambert colour from its normal by `k`, one
+/// loop for the three ways of computing them ([`LitWork`]'s
+/// implementations: `LoopConstants` on 32-bit cores with a long multiply,
+/// `NarrowRows` on ARMv6-M, the bounded matrix on 64-bit hosts). Inlined
+/// into each arm, so each arm's constants stay where its `black_box` put
+/// them.
 #[inline(always)]
-fn lit_loop<N: Copy>(
+fn lit_loop(
     out: &mut [ScreenVertex],
     positions: &[[I16F16; 3]],
-    normals: &[N],
+    normals: &[Vec3Fx],
     viewport: &Viewport,
-    transform: impl Fn([i32; 3]) -> [i32; 4],
-    shade: impl Fn(N) -> [u8; 3],
+    k: &impl LitWork,
 ) {
     for (o, (p, nv)) in out.iter_mut().zip(positions.iter().zip(normals)) {
-        let pos = transform([p[0].to_bits(), p[1].to_bits(), p[2].to_bits()]);
-        *o = viewport.screen_vertex_lit(&pos, || shade(*nv));
+        let pos = k.transform([p[0].to_bits(), p[1].to_bits(), p[2].to_bits()]);
+        *o = viewport.screen_vertex_lit(&pos, || k.shade(*nv));
     }
 }
