@@ -1,5 +1,7 @@
 //! Attribute set-up and span shading: depth test, flat or Gouraud colour.
-//! The planes' set-up is in `setup`, the span loops here.
+//! One plane's arithmetic is in `plane`, a triangle's set-up of its planes
+//! in `setup` (`small` for small triangles on 32-bit cores), the span
+//! loops here.
 //!
 //! Following Hecker, each attribute `a` (depth and the three colour
 //! channels) is a plane over the screen, `a(x, y) = a0 + A (x - x0) +
