@@ -433,20 +433,30 @@ where
         return 0;
     };
     match texture.sampler() {
-        Sampler::NearestRgb565(t) => spans.each(|s| {
-            if let (false, Some((texels, parts))) = (LIT, t.fine_parts()) {
-                // Affine spans keep the shared loop on 64-bit hosts:
-                // x86-64 `fill-nearest-affine` 44.4 per fragment with it,
-                // 49.7 through this one (the Cortex-M3's 49.8 -> 47.1).
-                if cfg!(not(target_pointer_width = "64")) && s.affine_opaque() {
-                    return s.run_nearest::<AFFINE>(texels, parts, 0);
-                }
-                if let Some(sh) = s.shifted_opaque() {
-                    return s.run_nearest::<SHIFTED>(texels, parts, sh);
-                }
+        Sampler::NearestRgb565(t) => {
+            // `Textured`'s opaque spans take a loop of their own
+            // (`run_nearest`), whose constants are gathered once here.
+            let near = match t.fine_parts() {
+                Some((texels, parts)) if !LIT => spans.nearest_constants(texels, parts),
+                _ => None,
+            };
+            match near {
+                Some(c) => spans.each(|s| {
+                    // Affine spans keep the shared loop on 64-bit hosts:
+                    // x86-64 `fill-nearest-affine` 44.4 per fragment with
+                    // it, 49.7 through this one (the Cortex-M3's 49.8 ->
+                    // 47.1).
+                    if cfg!(not(target_pointer_width = "64")) && s.affine_opaque() {
+                        return s.run_nearest::<AFFINE>(&c, 0);
+                    }
+                    if let Some(sh) = s.shifted_opaque() {
+                        return s.run_nearest::<SHIFTED>(&c, sh);
+                    }
+                    s.shade_with(LIT, TexelPixel::<_, LIT>(Nearest565(t)))
+                }),
+                None => spans.each(|s| s.shade_with(LIT, TexelPixel::<_, LIT>(Nearest565(t)))),
             }
-            s.shade_with(LIT, TexelPixel::<_, LIT>(Nearest565(t)))
-        }),
+        }
         Sampler::BilinearRgb565(t) => {
             spans.each(|s| s.shade_with(LIT, TexelPixel::<_, LIT>(Bilinear565(t, Quad::NONE))))
         }
