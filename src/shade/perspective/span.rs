@@ -285,8 +285,9 @@ impl<C, V: Varyings> SpanInput<'_, C, V> {
     /// `1..2^31` with the same number of bits and `0 <= B1, B2 <= Q`: the
     /// planes are linear along the span (their wrapping steps are exact
     /// while the values stay in `i32`), so what holds at its ends holds
-    /// between, and `B >> sh <= Q >> sh` follows from `B <= Q`. Checked in
-    /// `i64`, once per span.
+    /// between, and `B >> sh <= Q >> sh` follows from `B <= Q`. Checked
+    /// once per span in `i32` with overflow checks ([`span_shift`]): a span
+    /// whose ends overflow takes the clamped loop.
     #[inline(always)]
     pub(crate) fn opaque_shift(&self) -> Option<u32> {
         span_shift(self.planes, self.steps, self.color.len())
