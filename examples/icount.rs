@@ -15,7 +15,9 @@
 //! (The cargo runners pass what follows `--` to QEMU; without
 //! `-icount shift=0` the calibration fails and says so.) The scenes are
 //! those of `examples/icount_scenes/mod.rs`, rendered at 320x240 into a
-//! `NullSink`. Built with `MICRORASTER_ICOUNT_SCENES="fill grid4"` (names
+//! sink that discards each tile (and, once more after the counts, hashes
+//! it: the host build prints the same scenes' hashes, which
+//! `scripts/icount.sh` compares). Built with `MICRORASTER_ICOUNT_SCENES="fill grid4"` (names
 //! separated by spaces or commas) in the environment, only those scenes
 //! are built in and run: without the variable, every scene, which is more
 //! than the LM3S6965's flash holds (`scripts/icount.sh` builds it in
@@ -61,11 +63,25 @@
 #![cfg_attr(target_os = "none", no_std)]
 #![cfg_attr(target_os = "none", no_main)]
 
+/// On the host: the image hash of every scene built in, as the firmware
+/// prints it after its counts (`image: <scene> <hash>`), for
+/// `scripts/icount.sh` to compare with each board's.
 #[cfg(not(target_os = "none"))]
 fn main() {
+    use icount_scenes::{frame, renderer, BenchWorkspace, FrameSink, Meshes, SceneId};
     eprintln!(
-        "icount is firmware for QEMU: scripts/icount.sh, or cargo run --release --example icount --target thumbv7m-none-eabi (or thumbv7em-none-eabihf)"
+        "icount is firmware for QEMU: scripts/icount.sh, or cargo run --release --example icount --target thumbv7m-none-eabi (or thumbv7em-none-eabihf); on the host it prints the scenes' image hashes"
     );
+    let texels: &'static mut [u16; 32 * 32] = Box::leak(Box::new([0; 32 * 32]));
+    icount_scenes::checker_texels(texels);
+    let meshes = Meshes::new(Some(texels)).expect("the benchmark meshes are valid");
+    let mut ws: Box<BenchWorkspace> = Box::default();
+    for scene in SceneId::ALL.into_iter().filter(|s| s.built()) {
+        let mut sink = FrameSink::hashing();
+        frame(scene, &meshes, &mut renderer(), &mut ws, &mut (), &mut sink)
+            .unwrap_or_else(|e| panic!("{}: {e}", scene.name()));
+        println!("image: {} {:08x}", scene.name(), sink.hash.unwrap_or(0));
+    }
 }
 
 // A thumbv6m build is for the MPS2-AN386 only, which must be asked for: by
@@ -85,7 +101,6 @@ compile_error!(
 
 #[cfg(target_os = "none")]
 mod icount_firmware;
-#[cfg(target_os = "none")]
 mod icount_scenes;
 #[cfg(target_os = "none")]
 mod stack_gauge;

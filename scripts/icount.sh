@@ -28,7 +28,9 @@
 #
 # For each board, builds examples/icount.rs in release (or the cargo
 # profile PROFILE names, e.g. size: Cargo.toml) for its target, runs
-# it twice in QEMU and checks that both runs print the same thing, then
+# it twice in QEMU and checks that both runs print the same thing and that
+# every scene's image hash equals the host's (the host build of the example
+# prints them: the Cortex-M code paths render the host's pixels), then
 # prints its tables and the firmware's flash, static RAM (llvm-size -A of
 # the linked ELF) and peak stack (which the firmware measures). SCENES (names separated by spaces) is passed to the
 # build as MICRORASTER_ICOUNT_SCENES; the scenes are demo, demo-flat, fill,
@@ -58,6 +60,16 @@ size="$(rustc --print sysroot)/lib/rustlib/$host/bin/llvm-size"
 [ -x "$size" ] || { echo "llvm-size not found: rustup component add llvm-tools" >&2; exit 1; }
 
 echo "$(rustc --version); $(qemu-system-arm --version | head -n 1)"
+
+# The host's image of every scene (the host build of the example prints
+# their hashes); each board's must be the same.
+if [ -z "${TRACE:-}" ]; then
+    env -u MICRORASTER_ICOUNT_SCENES CARGO_TARGET_DIR="$TARGET_DIR" \
+        cargo run -q --profile "$PROFILE" --example icount >"$OUT/host-images.txt" 2>/dev/null || {
+        echo "icount: the host build of the example failed" >&2
+        exit 1
+    }
+fi
 
 footprint=()
 for board in $BOARDS; do
@@ -129,6 +141,16 @@ for board in $BOARDS; do
         if ! cmp -s "$OUT/$board.1.txt" "$OUT/$board.2.txt"; then
             diff "$OUT/$board.1.txt" "$OUT/$board.2.txt" >&2 || true
             echo "icount: two runs on $board differ" >&2
+            exit 1
+        fi
+        # The board's images against the host's: every scene it ran.
+        images=$(grep -c '^image: ' "$OUT/$board.1.txt" || true)
+        [ "$images" -gt 0 ] || { echo "icount: no image hashes from $board" >&2; exit 1; }
+        if ! grep '^image: ' "$OUT/$board.1.txt" | grep -vxF -f "$OUT/host-images.txt" >"$OUT/$board.mismatch"; then
+            echo "icount: $board rendered the host's image in all $images scenes"
+        else
+            echo "icount: $board's image differs from the host's (host: $OUT/host-images.txt):" >&2
+            cat "$OUT/$board.mismatch" >&2
             exit 1
         fi
         echo

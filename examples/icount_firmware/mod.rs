@@ -5,7 +5,7 @@ mod timer;
 
 use self::timer::{Stamps, END, PERIOD, START};
 use crate::icount_scenes::{
-    frame, renderer, BenchWorkspace, FrameError, Meshes, SceneId, HEIGHT, WIDTH,
+    frame, renderer, BenchWorkspace, FrameError, FrameSink, Meshes, SceneId, HEIGHT, WIDTH,
 };
 use crate::stack_gauge;
 use cortex_m::peripheral::SYST;
@@ -235,7 +235,14 @@ fn measure(
     }
     s.reset();
     timer::stamp(s, START);
-    let plain = frame(scene, meshes, &mut r, ws, &mut ());
+    let plain = frame(
+        scene,
+        meshes,
+        &mut r,
+        ws,
+        &mut (),
+        &mut FrameSink { hash: None },
+    );
     timer::stamp(s, END);
     let stats = plain.map_err(fail)?;
     if timer::wrapped(syst) {
@@ -252,7 +259,14 @@ fn measure(
     }
     s.reset();
     timer::stamp(s, START);
-    let profiled = frame(scene, meshes, &mut r, ws, &mut Hooks(s));
+    let profiled = frame(
+        scene,
+        meshes,
+        &mut r,
+        ws,
+        &mut Hooks(s),
+        &mut FrameSink { hash: None },
+    );
     timer::stamp(s, END);
     let stats2 = profiled.map_err(fail)?;
     if timer::wrapped(syst) {
@@ -282,6 +296,17 @@ fn measure(
     })
 }
 
+/// The hash of `scene`'s image ([`FrameSink`]). Out of line, so that its
+/// renderer (with its tile buffer) is on the stack only during the call,
+/// not in `run`'s frame under every measured scene's.
+#[inline(never)]
+fn image_hash(scene: SceneId, meshes: &Meshes, ws: &mut BenchWorkspace) -> Result<u32, Error> {
+    let mut sink = FrameSink::hashing();
+    frame(scene, meshes, &mut renderer(), ws, &mut (), &mut sink)
+        .map_err(|e| Error::Frame(scene.name(), e))?;
+    Ok(sink.hash.unwrap_or(0))
+}
+
 fn run() -> Result<(), Error> {
     let mut cp =
         cortex_m::Peripherals::take().ok_or(Error::Setup("the core peripherals are taken"))?;
@@ -293,7 +318,7 @@ fn run() -> Result<(), Error> {
         ));
     }
     hprintln!(
-        "icount: {} ({} r{}p{}), {}x{} Rgb565, 32x32 tiles, NullSink",
+        "icount: {} ({} r{}p{}), {}x{} Rgb565, 32x32 tiles, a sink that discards each tile",
         board,
         core,
         (cpuid >> 20) & 0xF,
@@ -364,6 +389,14 @@ fn run() -> Result<(), Error> {
         *slot = Some((scene, a, stack_gauge::peak()));
     }
     let results = results.iter().flatten();
+
+    // Each scene once more, unmeasured, its image hashed: the host build
+    // of `icount` prints the host's hashes, `scripts/icount.sh` compares.
+    hprintln!();
+    for (scene, _, _) in results.clone() {
+        let hash = image_hash(*scene, &meshes, ws)?;
+        hprintln!("image: {} {:08x}", scene.name(), hash);
+    }
 
     hprintln!();
     hprintln!(

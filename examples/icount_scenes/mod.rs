@@ -33,7 +33,9 @@
 //! their code.
 #![allow(dead_code)]
 
+use embedded_graphics::pixelcolor::raw::{RawData, RawU16};
 use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
+use embedded_graphics::primitives::Rectangle;
 use fixed::types::I16F16;
 use microraster::mesh::{Mesh, MeshError, UvFx, Vec3Fx};
 use microraster::prelude::*;
@@ -41,7 +43,9 @@ use microraster::shader::{Gouraud, Textured, TexturedLit};
 use microraster::shapes::{
     torus_knot_data, torus_knot_size, MeshData, CUBE_NORMALS, CUBE_POSITIONS, CUBE_TRIANGLES,
 };
+use microraster::sink::TileSink;
 use microraster::texture::{Filter, Texels, Texture};
+use microraster::tile::TileView;
 use microraster::Profiler;
 
 #[path = "../demo_scene/mod.rs"]
@@ -298,7 +302,7 @@ impl SceneId {
 
     /// Whether the scene is [built in](built_in): a constant per scene,
     /// so that [`frame`] holds the code of the built-in scenes only.
-    const fn built(self) -> bool {
+    pub const fn built(self) -> bool {
         const ON: [bool; SceneId::ALL.len()] = {
             let mut on = [false; SceneId::ALL.len()];
             let mut i = 0;
@@ -488,7 +492,73 @@ pub fn renderer() -> BenchRenderer {
     BenchRenderer::new(Config::new(Size::new(WIDTH, HEIGHT), CLEAR))
 }
 
-/// One whole frame of `scene` into a [`NullSink`]: the scene's set-up
+/// The benchmark's sink. While frames are measured (`hash: None`) it
+/// discards every tile as `NullSink` does, touching its first row so that
+/// the rendering cannot be optimised away; with `hash` set it folds each
+/// tile's rectangle and pixels (raw `Rgb565` bits, row by row) into an
+/// FNV-1a hash of the frame. The firmware prints that hash after its
+/// measured runs, the host build of `icount` prints it for the same
+/// scenes, and `scripts/icount.sh` requires the two to be equal: the
+/// Cortex-M builds' own code paths (Thumb-2 and ARMv6-M span loops and
+/// set-ups) render the host's image, bit for bit.
+pub struct FrameSink {
+    /// The hash so far, or `None` while measuring.
+    pub hash: Option<u32>,
+}
+
+/// FNV-1a's offset basis, the hash of nothing.
+pub const FNV_OFFSET: u32 = 0x811c_9dc5;
+
+impl FrameSink {
+    /// A sink that hashes what it is given.
+    pub fn hashing() -> Self {
+        Self {
+            hash: Some(FNV_OFFSET),
+        }
+    }
+}
+
+impl TileSink<Rgb565> for FrameSink {
+    type Error = core::convert::Infallible;
+
+    #[inline]
+    fn write_tile(
+        &mut self,
+        area: &Rectangle,
+        tile: &TileView<'_, Rgb565>,
+    ) -> Result<(), Self::Error> {
+        match &mut self.hash {
+            None => {
+                core::hint::black_box(tile.rows().next());
+            }
+            Some(h) => *h = hash_tile(*h, area, tile),
+        }
+        Ok(())
+    }
+}
+
+/// `h` with the tile's rectangle and pixels folded in (FNV-1a, bytes
+/// little-endian). Out of line: the measured runs never call it.
+#[inline(never)]
+fn hash_tile(mut h: u32, area: &Rectangle, tile: &TileView<'_, Rgb565>) -> u32 {
+    let mut eat = |w: u32| {
+        for b in w.to_le_bytes() {
+            h = (h ^ b as u32).wrapping_mul(0x0100_0193);
+        }
+    };
+    eat(area.top_left.x as u32);
+    eat(area.top_left.y as u32);
+    eat(area.size.width);
+    eat(area.size.height);
+    for row in tile.rows() {
+        for &c in row {
+            eat(RawU16::from(c).into_inner() as u32);
+        }
+    }
+    h
+}
+
+/// One whole frame of `scene` into `sink`: the scene's set-up
 /// (camera, transforms) and the render, reporting stages to `profiler`.
 ///
 /// The animation time (0, demo frame 0) and the frame size reach the
@@ -504,8 +574,8 @@ pub fn frame<P: Profiler>(
     renderer: &mut BenchRenderer,
     ws: &mut BenchWorkspace,
     profiler: &mut P,
+    sink: &mut FrameSink,
 ) -> Result<FrameStats, FrameError> {
-    let sink = &mut NullSink;
     let (scene, t, width, height) = core::hint::black_box((scene, 0.0f32, WIDTH, HEIGHT));
     // One constant per scene: the arms of scenes not built in are gone at
     // compile time, with the renderer monomorphizations only they use.
@@ -524,7 +594,15 @@ pub fn frame<P: Profiler>(
     // A shader fill: the frame's result, returned from its arm.
     macro_rules! fill {
         ($shader:expr, $filter:expr, $mode:expr) => {
-            return fill_shader(meshes, renderer, ws, profiler, $shader, $filter, $mode)
+            return fill_shader(
+                meshes,
+                renderer,
+                ws,
+                profiler,
+                sink,
+                $shader,
+                ($filter, $mode),
+            )
         };
     }
     let r = match scene {
@@ -583,9 +661,9 @@ fn fill_shader<P: Profiler, F: FragmentShader<Rgb565>>(
     renderer: &mut BenchRenderer,
     ws: &mut BenchWorkspace,
     profiler: &mut P,
+    sink: &mut FrameSink,
     shader: &F,
-    filter: Filter,
-    mode: Perspective,
+    (filter, mode): (Filter, Perspective),
 ) -> Result<FrameStats, FrameError> {
     let texture = meshes.texture.ok_or(FrameError::NotBuilt)?.filter(filter);
     renderer.config_mut().perspective = mode;
@@ -594,6 +672,6 @@ fn fill_shader<P: Profiler, F: FragmentShader<Rgb565>>(
         .texture(&texture)];
     let s = Scene::new(ndc_camera(), &draws).shader(shader);
     renderer
-        .render_profiled(ws, &s, &mut NullSink, profiler)
+        .render_profiled(ws, &s, sink, profiler)
         .map_err(FrameError::Render)
 }
