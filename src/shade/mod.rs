@@ -1168,7 +1168,7 @@ mod tests {
             // The span loops' set-up, which takes an interior triangle's
             // starts without their clamps.
             let for_spans = TriangleSetup::for_spans::<true>(&corners);
-            let all = interior || sv.iter().all(|v| v.interior());
+            let all = sv.iter().all(|v| v.interior());
             assert_eq!(for_spans.interior, all && !setup.wide, "{v:?}");
             interiors += for_spans.interior as u32;
             let steps = setup.steps();

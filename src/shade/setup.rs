@@ -345,7 +345,7 @@ impl TriangleSetup {
     /// [`TriangleSetup::start`] with the clamps as selects.
     #[inline(always)]
     pub(super) fn start_selects(&self, t: &Corners<'_>, i: i32, j: i32) -> [i32; 4] {
-        if self.interior {
+        if ScreenVertex::INTERIOR_STARTS && self.interior {
             return self.values_at(i, j);
         }
         if self.wide {
@@ -364,7 +364,9 @@ impl TriangleSetup {
             return wide_start(t, i, j);
         }
         let v = self.values_at(i, j);
-        if self.interior || z_inside(v[0]) && c_inside(v[1]) && c_inside(v[2]) && c_inside(v[3]) {
+        if ScreenVertex::INTERIOR_STARTS && self.interior
+            || z_inside(v[0]) && c_inside(v[1]) && c_inside(v[2]) && c_inside(v[3])
+        {
             v
         } else {
             // Marked rare, so that the register allocator favours the

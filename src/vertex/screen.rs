@@ -70,10 +70,25 @@ pub const COORD_MAX: i32 = (1 << (COORD_BITS - 1)) - 1;
 /// Where [`ScreenVertex::interior`] is kept in the word of y and red.
 const INTERIOR: u32 = 1 << 8;
 
+/// Whether the vertex stage makes [`ScreenVertex::interior`] and the
+/// Gouraud span starts use it: everywhere but the `thumbv7em-none-eabihf`
+/// builds (the Cortex-M4F), where the bit cost the vertex stage more than
+/// it spared the span starts (`demo` 3,899,069 -> 3,909,985 instructions:
+/// the vertex stage +42,000, 21 a vertex, the span starts -31,000). On
+/// the others: x86-64 `demo` 4,317,453 -> 4,258,981, `rock` 3,584,878 ->
+/// 3,520,426; Cortex-M3 `demo` 3,904,200 -> 3,856,708, `rock` 3,207,716
+/// -> 3,158,427; ARMv6-M `demo` 7,759,390 -> 7,716,260, `rock` 6,421,527
+/// -> 6,367,693.
+const INTERIOR_STARTS: bool = !cfg!(all(target_arch = "arm", target_abi = "eabihf"));
+
 /// [`ScreenVertex::interior`] of a vertex with depth `z` and colour `c`:
-/// depth in `2..=65533` and every channel in `1..=254`.
+/// depth in `2..=65533` and every channel in `1..=254` (never, without
+/// [`INTERIOR_STARTS`]).
 #[inline(always)]
 const fn interior(z: u16, c: [u8; 3]) -> bool {
+    if !INTERIOR_STARTS {
+        return false;
+    }
     // Each as one subtraction and one unsigned compare. (The channels as
     // the bytes of one word, tested together by carries, took the x86-64
     // vertex stage 8,000 instructions more on `demo`.)
@@ -152,7 +167,8 @@ impl ScreenVertex {
     }
 
     /// Whether depth is in `2..=65533` and every colour channel in
-    /// `1..=254`: a triangle whose three vertices have this bit set has
+    /// `1..=254` (always false on the targets that do not use it, the
+    /// Cortex-M4F's): a triangle whose three vertices have this bit set has
     /// every covered pixel centre's plane values inside their ranges, so
     /// its span starts need no clamp (the Gouraud set-up's start).
     ///
@@ -182,8 +198,13 @@ impl ScreenVertex {
     /// ([`ScreenVertex::all_interior`]).
     #[inline(always)]
     pub(crate) fn all_interior(v: [&Self; 3]) -> bool {
-        v[0].yr & v[1].yr & v[2].yr & INTERIOR != 0
+        Self::INTERIOR_STARTS && v[0].yr & v[1].yr & v[2].yr & INTERIOR != 0
     }
+
+    /// Whether this target makes the [`interior`](Self::interior) bit and
+    /// its span starts test [`all_interior`](Self::all_interior)'s flag at
+    /// all (not on the Cortex-M4F, where it measured slower).
+    pub(crate) const INTERIOR_STARTS: bool = INTERIOR_STARTS;
 
     /// Lit colour, 8 bits per channel.
     #[inline(always)]
@@ -262,7 +283,9 @@ mod tests {
                 "{x} {y} {z} {o} {c:?}"
             );
             assert_eq!(ScreenVertex::try_new(x, y, z, o, c), Some(v));
-            let inside = (2..=65_533).contains(&z) && c.iter().all(|c| (1..=254).contains(c));
+            let inside = INTERIOR_STARTS
+                && (2..=65_533).contains(&z)
+                && c.iter().all(|c| (1..=254).contains(c));
             assert_eq!(v.interior(), inside, "{z} {c:?}");
             assert_eq!(ScreenVertex::all_interior([&v; 3]), inside);
             // Replacing the colour clears the bit; so does the clipper.
