@@ -84,12 +84,11 @@ impl FrameState<'_> {
             let (p, z) = self.viewport.project_wide(x, y, z, w);
             let c = poly[k].color;
             // Inside the guard band up to clipping round-off: within
-            // `(K + 1.07) * 2^15 < 2^18` sub-pixels, in the 24-bit fields.
-            ScreenVertex::new(
+            // `(K + 1.07) * 2^15 < 2^18` sub-pixels, in the coordinate fields.
+            ScreenVertex::new_clipped(
                 p.x,
                 p.y,
                 z,
-                0,
                 [
                     c[0].clamp(0, 255) as u8,
                     c[1].clamp(0, 255) as u8,

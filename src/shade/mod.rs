@@ -1093,7 +1093,7 @@ mod tests {
     fn planes_match_the_i64_evaluation() {
         use crate::raster::{scanline::spans, PixelRect};
         let mut next = crate::testing::rng();
-        let (mut pixels, mut wide) = (0u64, 0u32);
+        let (mut pixels, mut wide, mut interiors) = (0u64, 0u32, 0u32);
         for n in 0..6_000 {
             let (range, offset) = match n % 4 {
                 0 => (4_000, 0),
@@ -1121,16 +1121,35 @@ mod tests {
                     v.swap(0, 2);
                 }
             }
+            // Every other triangle's values are all within the ranges of
+            // `ScreenVertex::interior`, half of them at its ends, where
+            // only its margin keeps the unclamped start inside.
+            let interior = n % 2 == 0;
             let sv = [0, 1, 2].map(|k| {
-                let z = next(65_536) as u16;
-                // Half the channels at 0 or 255, where a start's rounding
-                // can take it outside the range and the clamp matters.
-                let mut c = || match next(4) {
-                    0 => 0,
-                    1 => 255,
-                    _ => next(256) as u8,
+                let (z, color) = if interior {
+                    let z = match next(4) {
+                        0 => 2,
+                        1 => 65_533,
+                        _ => 2 + next(65_532) as u16,
+                    };
+                    let mut c = || match next(4) {
+                        0 => 1,
+                        1 => 254,
+                        _ => 1 + next(254) as u8,
+                    };
+                    (z, [c(), c(), c()])
+                } else {
+                    // Half the channels at 0 or 255, where a start's
+                    // rounding can take it outside the range and the clamp
+                    // matters.
+                    let z = next(65_536) as u16;
+                    let mut c = || match next(4) {
+                        0 => 0,
+                        1 => 255,
+                        _ => next(256) as u8,
+                    };
+                    (z, [c(), c(), c()])
                 };
-                let color = [c(), c(), c()];
                 ScreenVertex::new(v[k].x, v[k].y, z, 0, color)
             });
             let vals = [0, 1, 2, 3].map(|a| {
@@ -1148,15 +1167,23 @@ mod tests {
             }
             let setup = TriangleSetup::new(&corners, true);
             wide += setup.wide as u32;
+            // The span loops' set-up, which takes an interior triangle's
+            // starts without their clamps.
+            let for_spans = TriangleSetup::for_spans::<true>(&corners);
+            let all = sv.iter().all(|v| v.interior());
+            assert_eq!(for_spans.interior, all && !setup.wide, "{v:?}");
+            interiors += for_spans.interior as u32;
             let steps = setup.steps();
             let clip = PixelRect::new(0, 0, 4096, 4096);
             spans(&v, clip, |j, x0, x1| {
                 let start = setup.start(&corners, x0, j);
                 let reference = reference_start(&v, vals, x0, j);
                 assert_eq!(start, reference, "{v:?} at ({x0}, {j})");
-                // Both forms, whichever this target takes.
-                assert_eq!(setup.start_selects(&corners, x0, j), reference);
-                assert_eq!(setup.start_tested(&corners, x0, j), reference);
+                // Both forms, whichever this target takes, of both set-ups.
+                for s in [&setup, &for_spans] {
+                    assert_eq!(s.start_selects(&corners, x0, j), reference);
+                    assert_eq!(s.start_tested(&corners, x0, j), reference);
+                }
                 // Along a span of two pixels or more the step is the exact
                 // x gradient (the old one, saturated to i32, was the same).
                 if x1 - x0 >= 2 {
@@ -1176,5 +1203,6 @@ mod tests {
         }
         assert!(pixels > 100_000, "{pixels} pixels");
         assert!(wide > 100, "{wide} wide triangles");
+        assert!(interiors > 2_000, "{interiors} interior triangles");
     }
 }

@@ -70,6 +70,13 @@ pub(crate) struct TriangleSetup {
     /// finds it there with the range tests it makes anyway, and tests no
     /// flag per span.
     pub(super) zstep: i32,
+    /// Every vertex is [`interior`](ScreenVertex::interior) and the
+    /// triangle is not [`wide`](TriangleSetup::wide): every span start's
+    /// plane values are inside their ranges (the proof is at
+    /// [`ScreenVertex::interior`]), so [`TriangleSetup::start`] takes them
+    /// without its clamps. Set only for the Gouraud span loops
+    /// ([`TriangleSetup::for_spans`]), the only ones that call `start`.
+    pub(super) interior: bool,
 }
 
 impl TriangleSetup {
@@ -78,7 +85,11 @@ impl TriangleSetup {
     #[inline(always)]
     pub(super) fn finish(mut planes: [Plane; 4], wide: bool) -> Self {
         let zstep = planes[0].gx;
-        if wide {
+        // Only `start_tested` needs the replaced plane: `start_selects`
+        // tests `wide` itself, and with the plane replaced the optimiser
+        // kept both depth planes live into its span loop, the replaced one
+        // for the clamped starts and the other for the interior ones.
+        if wide && !super::VECTOR_LOOPS {
             planes[0] = Plane {
                 gx: 0,
                 gy: 0,
@@ -89,6 +100,7 @@ impl TriangleSetup {
             planes,
             wide,
             zstep,
+            interior: false,
         }
     }
 
@@ -210,17 +222,19 @@ impl TriangleSetup {
     /// registers.
     ///
     /// A Gouraud set-up's [`zstep`](TriangleSetup::zstep) is shifted for
-    /// its span loop ([`TriangleSetup::span_zstep`]); a flat one's is not.
+    /// its span loop, and its [`interior`](TriangleSetup::interior) set
+    /// ([`TriangleSetup::for_gouraud_spans`]); a flat one's is not.
     #[inline(always)]
     pub(crate) fn for_spans<const GOURAUD: bool>(t: &Corners<'_>) -> Self {
         if GOURAUD {
-            Self::gouraud(t).span_zstep()
+            Self::gouraud(t).for_gouraud_spans(t)
         } else {
             Self::flat(t)
         }
     }
 
-    /// This set-up with its depth step shifted left by `16 - Z_FRAC`
+    /// This set-up for the Gouraud span loop: [`interior`](Self::interior)
+    /// from its vertices, and its depth step shifted left by `16 - Z_FRAC`
     /// (wrapping), as the Gouraud span loop steps depth (see `depth16`):
     /// once per triangle, where each span shifted it (the set-up's rare
     /// path lets it escape, so the optimiser made the shift again for
@@ -234,7 +248,8 @@ impl TriangleSetup {
     /// 67.86 -> 73.02), though it took the M3's `fill` from 15.06 to
     /// 14.32.
     #[inline(always)]
-    fn span_zstep(mut self) -> Self {
+    fn for_gouraud_spans(mut self, t: &Corners<'_>) -> Self {
+        self.interior = ScreenVertex::all_interior(t.0) && !self.wide;
         self.zstep = ((self.zstep as u32) << (16 - super::Z_FRAC)) as i32;
         self
     }
@@ -260,7 +275,7 @@ impl TriangleSetup {
     pub(crate) fn for_spans_inline<const GOURAUD: bool>(t: &Corners<'_>) -> Self {
         if SMALL_SETUP && !cfg!(microraster_narrow_multiply) {
             if let Some(s) = Self::small(&t.points(), t, GOURAUD) {
-                return if GOURAUD { s.span_zstep() } else { s };
+                return if GOURAUD { s.for_gouraud_spans(t) } else { s };
             }
         }
         Self::for_spans::<GOURAUD>(t)
@@ -306,7 +321,9 @@ impl TriangleSetup {
     /// Depth, red, green and blue at the centre of pixel `(i, j)`, for
     /// [`TriangleSetup::wide`] triangles from [`wide_start`].
     ///
-    /// Each value is clamped to its range, but first tested: a covered
+    /// An [`interior`](TriangleSetup::interior) triangle's values are
+    /// inside their ranges, and taken as they are. Any other triangle's
+    /// values are each clamped to their range, but first tested: a covered
     /// pixel's values are almost always inside (see [`Plane`]), and an
     /// unsigned comparison with a constant per attribute and a branch that
     /// is not taken cost less than two comparisons and selects per
@@ -328,6 +345,9 @@ impl TriangleSetup {
     /// [`TriangleSetup::start`] with the clamps as selects.
     #[inline(always)]
     pub(super) fn start_selects(&self, t: &Corners<'_>, i: i32, j: i32) -> [i32; 4] {
+        if ScreenVertex::INTERIOR_STARTS && self.interior {
+            return self.values_at(i, j);
+        }
         if self.wide {
             return wide_start(t, i, j);
         }
@@ -337,8 +357,16 @@ impl TriangleSetup {
     /// [`TriangleSetup::start`] with the values tested first.
     #[inline(always)]
     pub(super) fn start_tested(&self, t: &Corners<'_>, i: i32, j: i32) -> [i32; 4] {
+        if super::VECTOR_LOOPS && self.wide {
+            // Where `start` takes `start_selects` (only the tests call this
+            // there), `finish` leaves a wide triangle's depth plane as it
+            // is.
+            return wide_start(t, i, j);
+        }
         let v = self.values_at(i, j);
-        if z_inside(v[0]) && c_inside(v[1]) && c_inside(v[2]) && c_inside(v[3]) {
+        if ScreenVertex::INTERIOR_STARTS && self.interior
+            || z_inside(v[0]) && c_inside(v[1]) && c_inside(v[2]) && c_inside(v[3])
+        {
             v
         } else {
             // Marked rare, so that the register allocator favours the

@@ -5,9 +5,9 @@ use crate::raster::SubPoint;
 /// A vertex after the vertex stage, as stored in the frame's vertex buffer:
 /// 12 bytes, three words.
 ///
-/// | bytes | 0 | 1..=3 | 4 | 5..=7 | 8 | 9 | 10..=11 |
-/// |---|---|---|---|---|---|---|---|
-/// | | outcode | x (24-bit signed) | red | y (24-bit signed) | green | blue | depth |
+/// | bits | 0..8 | 8..32 | 32..40 | 40 | 41..64 | 64..72 | 72..80 | 80..96 |
+/// |---|---|---|---|---|---|---|---|---|
+/// | | outcode | x (24-bit signed) | red | [`interior`](Self::interior) | y (23-bit signed) | green | blue | depth |
 ///
 /// Every field is read through an accessor: [`x`](Self::x), [`y`](Self::y),
 /// [`z`](Self::z), [`outcode`](Self::outcode) and [`color`](Self::color)
@@ -25,8 +25,8 @@ use crate::raster::SubPoint;
 /// high byte beside the colour, cost the demo frame 0.45 % more than the
 /// byte array.)
 ///
-/// x and y are 24-bit signed fields, [`COORD_MIN`]`..=`[`COORD_MAX`]
-/// sub-pixels. The guard band bounds every vertex that is drawn without
+/// x and y are signed fields of 24 and 23 bits, both limited to
+/// [`COORD_MIN`]`..=`[`COORD_MAX`] sub-pixels ([`COORD_BITS`], 23). The guard band bounds every vertex that is drawn without
 /// clipping well inside them: its screen coordinates are within
 /// `(GUARD_K + 1) * MAX_VIEWPORT / 2 * 16 < 2^18` sub-pixels (the
 /// clipper's vertices are within `(GUARD_K + 1.07) * 4096 * 16 < 2^18`).
@@ -34,12 +34,22 @@ use crate::raster::SubPoint;
 /// there, and nothing reads them. [`try_new`](Self::try_new) refuses
 /// coordinates outside the fields; the vertex stage's own constructor,
 /// which relies on the guard band, checks them in debug builds.
+///
+/// The bit below y, [`interior`](Self::interior), is made from the
+/// colour and depth by every constructor, once per vertex: it says that
+/// the vertex's values are far enough from the ends of their ranges that a
+/// triangle of three such vertices needs no clamp at its span starts (see
+/// [`interior`](Self::interior)). A per-triangle test of the same values
+/// cost the Gouraud set-up as much as the clamps it spared; this bit is
+/// made once per vertex, where the values are in registers, and the set-up
+/// ands three words it loads anyway.
 #[derive(Clone, Copy, Default, PartialEq, Eq)]
 #[repr(C)]
 pub struct ScreenVertex {
     /// x (high 24 bits) and the outcode (low 8 bits).
     xo: u32,
-    /// y (high 24 bits) and the lit colour's red (low 8 bits).
+    /// y (high 23 bits), the [`interior`](Self::interior) bit (bit 8)
+    /// and the lit colour's red (low 8 bits).
     yr: u32,
     /// Green (bits 0..8) and blue (bits 8..16) and depth (high 16 bits).
     gbz: u32,
@@ -48,14 +58,45 @@ pub struct ScreenVertex {
 /// The size of [`ScreenVertex`]: 12 bytes per slot of the vertex buffer.
 const _: () = assert!(core::mem::size_of::<ScreenVertex>() == 12);
 
-/// Bits of [`ScreenVertex`]'s x and y fields.
-pub const COORD_BITS: u32 = 24;
+/// Bits of [`ScreenVertex`]'s y field, which bound x too (x has 24).
+pub const COORD_BITS: u32 = 23;
 /// Smallest screen coordinate a [`ScreenVertex`] holds, in sub-pixels
-/// (`-2^23`).
+/// (`-2^22`).
 pub const COORD_MIN: i32 = -(1 << (COORD_BITS - 1));
 /// Largest screen coordinate a [`ScreenVertex`] holds, in sub-pixels
-/// (`2^23 - 1`).
+/// (`2^22 - 1`).
 pub const COORD_MAX: i32 = (1 << (COORD_BITS - 1)) - 1;
+
+/// Where [`ScreenVertex::interior`] is kept in the word of y and red.
+const INTERIOR: u32 = 1 << 8;
+
+/// Whether the vertex stage makes [`ScreenVertex::interior`] and the
+/// Gouraud span starts use it: everywhere but the `thumbv7em-none-eabihf`
+/// builds (the Cortex-M4F), where the bit cost the vertex stage more than
+/// it spared the span starts (`demo` 3,899,069 -> 3,909,985 instructions:
+/// the vertex stage +42,000, 21 a vertex, the span starts -31,000). On
+/// the others: x86-64 `demo` 4,317,453 -> 4,258,981, `rock` 3,584,878 ->
+/// 3,520,426; Cortex-M3 `demo` 3,904,200 -> 3,856,708, `rock` 3,207,716
+/// -> 3,158,427; ARMv6-M `demo` 7,759,390 -> 7,716,260, `rock` 6,421,527
+/// -> 6,367,693.
+const INTERIOR_STARTS: bool = !cfg!(all(target_arch = "arm", target_abi = "eabihf"));
+
+/// [`ScreenVertex::interior`] of a vertex with depth `z` and colour `c`:
+/// depth in `2..=65533` and every channel in `1..=254` (never, without
+/// [`INTERIOR_STARTS`]).
+#[inline(always)]
+const fn interior(z: u16, c: [u8; 3]) -> bool {
+    if !INTERIOR_STARTS {
+        return false;
+    }
+    // Each as one subtraction and one unsigned compare. (The channels as
+    // the bytes of one word, tested together by carries, took the x86-64
+    // vertex stage 8,000 instructions more on `demo`.)
+    (z.wrapping_sub(2) <= 65_531)
+        & (c[0].wrapping_sub(1) <= 253)
+        & (c[1].wrapping_sub(1) <= 253)
+        & (c[2].wrapping_sub(1) <= 253)
+}
 
 impl ScreenVertex {
     /// A vertex at `(x, y)` sub-pixels, depth `z`, with outcode `outcode`
@@ -66,20 +107,45 @@ impl ScreenVertex {
     /// test runs); outside the range the high bits would be lost.
     #[inline(always)]
     pub(crate) const fn new(x: i32, y: i32, z: u16, outcode: u8, color: [u8; 3]) -> Self {
+        Self::with_interior(x, y, z, outcode, color, interior(z, color))
+    }
+
+    /// [`ScreenVertex::new`] of a clipped polygon's vertex: outcode 0, and
+    /// its [`interior`](Self::interior) bit clear, so that the pieces of a
+    /// clipped triangle keep their clamps. Clipping is rare (the `demo`
+    /// frame clips nothing), and the bit's test there took 52 bytes of the
+    /// OLED firmware's flash.
+    #[inline(always)]
+    pub(crate) const fn new_clipped(x: i32, y: i32, z: u16, color: [u8; 3]) -> Self {
+        Self::with_interior(x, y, z, 0, color, false)
+    }
+
+    /// [`ScreenVertex::new`] with the [`interior`](Self::interior) bit
+    /// `inside` (which only `interior` may set).
+    #[inline(always)]
+    const fn with_interior(
+        x: i32,
+        y: i32,
+        z: u16,
+        outcode: u8,
+        color: [u8; 3],
+        inside: bool,
+    ) -> Self {
         debug_assert!(
             COORD_MIN <= x && x <= COORD_MAX && COORD_MIN <= y && y <= COORD_MAX,
-            "screen vertex outside the 24-bit fields"
+            "screen vertex outside the coordinate fields"
         );
+        let inside = if inside { INTERIOR } else { 0 };
         Self {
             xo: (x as u32) << 8 | outcode as u32,
-            yr: (y as u32) << 8 | color[0] as u32,
+            yr: (y as u32) << 9 | inside | color[0] as u32,
             gbz: (z as u32) << 16 | (color[2] as u32) << 8 | color[1] as u32,
         }
     }
 
     /// A vertex at `(x, y)` sub-pixels, depth `z`, with outcode `outcode`
     /// and lit colour `color`, or `None` if `x` or `y` is outside
-    /// [`COORD_MIN`]`..=`[`COORD_MAX`] (the fields' 24 bits).
+    /// [`COORD_MIN`]`..=`[`COORD_MAX`] (y's field has 23 bits).
     pub const fn try_new(x: i32, y: i32, z: u16, outcode: u8, color: [u8; 3]) -> Option<Self> {
         if COORD_MIN <= x && x <= COORD_MAX && COORD_MIN <= y && y <= COORD_MAX {
             Some(Self::new(x, y, z, outcode, color))
@@ -97,8 +163,48 @@ impl ScreenVertex {
     /// Screen y in sub-pixels (meaningful when `outcode() & MUST_CLIP == 0`).
     #[inline(always)]
     pub const fn y(&self) -> i32 {
-        self.yr as i32 >> 8
+        self.yr as i32 >> 9
     }
+
+    /// Whether depth is in `2..=65533` and every colour channel in
+    /// `1..=254` (always false on the targets that do not use it, the
+    /// Cortex-M4F's): a triangle whose three vertices have this bit set has
+    /// every covered pixel centre's plane values inside their ranges, so
+    /// its span starts need no clamp (the Gouraud set-up's start).
+    ///
+    /// Why: a span starts at a covered centre, inside the (closed)
+    /// triangle, where the exact interpolant of each attribute lies between
+    /// its smallest and largest vertex value. The plane's value there
+    /// (exact in `i32` unless the set-up is wide, which keeps its clamps)
+    /// is within `(|dx| + |dy|) / 32 + 1` units of the exact one, `dx`
+    /// and `dy` the centre's offset from vertex 0 in sub-pixels (the
+    /// gradients' rounding and the floor, see `shade::plane::Plane`): with
+    /// vertices within 2^18 sub-pixels of the origin (the guard band) and
+    /// centres within 2^16 (`MAX_VIEWPORT`), at most `2 (2^18 + 2^16) /
+    /// 32 + 1 = 20,481` units. Depth has 14 fraction bits, so 2 depth
+    /// units are 32,768 units, more than the bound: a depth of `2..=65533`
+    /// at every vertex keeps the start inside `Z_LO..=Z_HI`, the values
+    /// that round to `0..=65535`. Colour has 16 fraction bits, so 1 unit
+    /// (65,536) covers it: channels of `1..=254` keep it inside
+    /// `C_LO..=C_HI`. Inside, the clamp leaves the value as it is, so the
+    /// start without it is the same, bit for bit.
+    #[inline(always)]
+    pub const fn interior(&self) -> bool {
+        self.yr & INTERIOR != 0
+    }
+
+    /// The word that holds [`interior`](Self::interior)'s bit: the
+    /// set-up ands those of a triangle's three vertices
+    /// ([`ScreenVertex::all_interior`]).
+    #[inline(always)]
+    pub(crate) fn all_interior(v: [&Self; 3]) -> bool {
+        Self::INTERIOR_STARTS && v[0].yr & v[1].yr & v[2].yr & INTERIOR != 0
+    }
+
+    /// Whether this target makes the [`interior`](Self::interior) bit and
+    /// its span starts test [`all_interior`](Self::all_interior)'s flag at
+    /// all (not on the Cortex-M4F, where it measured slower).
+    pub(crate) const INTERIOR_STARTS: bool = INTERIOR_STARTS;
 
     /// Lit colour, 8 bits per channel.
     #[inline(always)]
@@ -107,10 +213,11 @@ impl ScreenVertex {
     }
 
     /// Replaces the lit colour (flat shading's provoking colour on a
-    /// clipped piece).
+    /// clipped piece) and clears the [`interior`](Self::interior) bit,
+    /// which only flat pieces, which never read it, come here with.
     #[inline(always)]
     pub(crate) fn set_color(&mut self, color: [u8; 3]) {
-        self.yr = self.yr & !0xff | color[0] as u32;
+        self.yr = self.yr & !(0xff | INTERIOR) | color[0] as u32;
         self.gbz = self.gbz & !0xffff | (color[2] as u32) << 8 | color[1] as u32;
     }
 
@@ -152,6 +259,7 @@ impl core::fmt::Debug for ScreenVertex {
             .field("z", &self.z())
             .field("outcode", &self.outcode())
             .field("color", &self.color())
+            .field("interior", &self.interior())
             .finish()
     }
 }
@@ -161,7 +269,7 @@ mod tests {
     use super::*;
 
     /// Every field comes back out of a [`ScreenVertex`] unchanged: x and
-    /// y over their whole 24-bit range (every 97th value, the extremes and
+    /// y over their whole range (every 97th value, the extremes and
     /// the values around 0 and the byte boundaries), depth, outcode and
     /// each colour channel over all of theirs, and the extremes of each
     /// field beside the extremes of the others.
@@ -175,6 +283,21 @@ mod tests {
                 "{x} {y} {z} {o} {c:?}"
             );
             assert_eq!(ScreenVertex::try_new(x, y, z, o, c), Some(v));
+            let inside = INTERIOR_STARTS
+                && (2..=65_533).contains(&z)
+                && c.iter().all(|c| (1..=254).contains(c));
+            assert_eq!(v.interior(), inside, "{z} {c:?}");
+            assert_eq!(ScreenVertex::all_interior([&v; 3]), inside);
+            // Replacing the colour clears the bit; so does the clipper.
+            let mut w = ScreenVertex::new(x, y, z, o, [128; 3]);
+            w.set_color(c);
+            let clipped = ScreenVertex::new_clipped(x, y, z, c);
+            for w in [w, clipped] {
+                assert_eq!((w.x(), w.y(), w.z(), w.color()), (x, y, z, c));
+                assert!(!w.interior());
+            }
+            assert_eq!(w.outcode(), o);
+            assert_eq!(clipped.outcode(), 0);
         };
         for i in (0..1u32 << COORD_BITS).step_by(97) {
             let x = COORD_MIN + i as i32;
@@ -202,9 +325,19 @@ mod tests {
         }
         for x in coords {
             for y in coords {
-                for z in [0, 1, 255, 256, 32_768, u16::MAX] {
+                for z in [0, 1, 2, 255, 256, 32_768, 65_533, 65_534, u16::MAX] {
                     for o in [0, 1, 0x7f, 0x80, u8::MAX] {
-                        for c in [[0; 3], [255; 3], [255, 0, 255], [0, 255, 0]] {
+                        for c in [
+                            [0; 3],
+                            [255; 3],
+                            [255, 0, 255],
+                            [0, 255, 0],
+                            [1, 254, 1],
+                            [254, 1, 254],
+                            [1, 1, 0],
+                            [254, 255, 254],
+                            [128, 1, 255],
+                        ] {
                             check(x, y, z, o, c);
                         }
                     }
@@ -218,7 +351,7 @@ mod tests {
         assert_eq!(core::mem::size_of::<ScreenVertex>(), 12);
     }
 
-    /// Coordinates outside the 24-bit fields are refused by `try_new`.
+    /// Coordinates outside the fields are refused by `try_new`.
     #[test]
     fn screen_vertex_refuses_coordinates_outside_its_fields() {
         for bad in [
@@ -237,7 +370,7 @@ mod tests {
     /// And the vertex stage's constructor stops on them in debug builds.
     #[test]
     #[cfg(debug_assertions)]
-    #[should_panic(expected = "outside the 24-bit fields")]
+    #[should_panic(expected = "outside the coordinate fields")]
     fn screen_vertex_checks_its_fields_in_debug_builds() {
         let _ = ScreenVertex::new(COORD_MAX + 1, 0, 0, 0, [0; 3]);
     }

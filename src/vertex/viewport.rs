@@ -259,7 +259,7 @@ impl Viewport {
         } else {
             (SubPoint::default(), 0)
         };
-        // Within the 24-bit fields: `p` is 0 for a vertex that must be
+        // Within the coordinate fields: `p` is 0 for a vertex that must be
         // clipped, otherwise inside the guard band (`|x|, |y| <= K w`), so
         // within `(K + 1) * 2^15 < 2^18` sub-pixels.
         ScreenVertex::new(p.x, p.y, z, outcode, color())
