@@ -243,8 +243,10 @@ pub(super) fn div_rem_compare(m: u32, d: NonZeroU32) -> (u32, u32) {
 }
 
 /// [`div_rem_compare`]'s larger quotients: those below 2^12 (where
-/// `m < d 2^12` and `d < 2^31`, [`Recip16::digit`]'s range) by one
-/// [`Recip16`] digit, about 50 instructions with the reciprocal's set-up
+/// `m < d 2^12`, [`Recip16::digit`]'s range) of divisors below 2^21 (an
+/// edge or a far start's `16 dy` on any screen below 8,192 pixels a side,
+/// [`Recip16::new_small`]) by one [`Recip16`] digit, about 50
+/// instructions with the reciprocal's set-up
 /// where ARMv6-M's library division takes about a hundred; others by the
 /// division. Out of line: its callers are inlined into the scanline walk,
 /// whose registers it would crowd. The edges' steps of more than 3
@@ -253,8 +255,8 @@ pub(super) fn div_rem_compare(m: u32, d: NonZeroU32) -> (u32, u32) {
 /// 6,386,042 -> 6,330,524.
 #[inline(never)]
 fn div_rem_long(m: u32, d: NonZeroU32) -> (u32, u32) {
-    if m >> 12 < d.get() && d.get() >> 31 == 0 {
-        Recip16::new(d).digit(m)
+    if m >> 12 < d.get() && d.get() >> 21 == 0 {
+        Recip16::new_small(d).digit(m)
     } else {
         (m / d, m % d)
     }
