@@ -75,7 +75,22 @@ impl Recip16 {
     /// `d`'s reciprocal, for `d < 2^31`.
     #[inline(always)]
     pub(crate) fn new(d: NonZeroU32) -> Self {
-        let t = 31 - leading_zeros(d);
+        Self::with_log2(d, 31 - leading_zeros(d))
+    }
+
+    /// [`Recip16::new`] for `d < 2^21` (twice a small triangle's area),
+    /// its logarithm by [`log2_small`]'s table rather than a search of
+    /// five steps: ARMv6-M `demo` 7,632,901 -> 7,614,948 instructions,
+    /// `rock` 6,330,524 -> 6,317,065 (the set-up), and 7,610,103,
+    /// 6,313,649 with the scanline walk's divisions.
+    #[inline(always)]
+    pub(crate) fn new_small(d: NonZeroU32) -> Self {
+        Self::with_log2(d, log2_small(d))
+    }
+
+    /// [`Recip16::new`] given `t = floor(log2(d))`.
+    #[inline(always)]
+    fn with_log2(d: NonZeroU32, t: u32) -> Self {
         let r = if t <= 15 {
             recip31(d.get() << (15 - t)) << 3u32.saturating_sub(t)
         } else {
@@ -141,6 +156,35 @@ pub(super) fn leading_zeros_search(d: NonZeroU32) -> u32 {
         }
     }
     n
+}
+
+/// `floor(log2(i))` for `i` in `1..256` (0 for 0).
+const LOG2: [u8; 256] = {
+    let mut t = [0; 256];
+    let mut i = 2;
+    while i < 256 {
+        t[i] = t[i / 2] + 1;
+        i += 1;
+    }
+    t
+};
+
+/// `floor(log2(d))` for `d < 2^21`, from [`LOG2`] by the byte that holds
+/// `d`'s top bit (`d`'s bits 13 to 20, 5 to 12 or 0 to 7): two compares
+/// and one load, where ARMv6-M's search ([`leading_zeros_search`]) takes
+/// five steps.
+#[inline(always)]
+fn log2_small(d: NonZeroU32) -> u32 {
+    let d = d.get();
+    debug_assert!(d < 1 << 21);
+    let (v, base) = if d >> 13 != 0 {
+        (d >> 13, 13)
+    } else if d >> 5 != 0 {
+        (d >> 5, 5)
+    } else {
+        (d, 0)
+    };
+    base + LOG2[v as usize & 0xff] as u32
 }
 
 /// `floor(2^31 / (2^15 + (i + 1) 2^7))` for `i` in `0..256`: [`recip31`]'s
@@ -442,7 +486,7 @@ impl TriangleSetup {
             half: (area / 2) as i32,
             // Only ARMv6-M divides by it (`area` is not 0).
             recip: match NonZeroU32::new(area) {
-                Some(a) if cfg!(microraster_narrow_multiply) => Recip16::new(a),
+                Some(a) if cfg!(microraster_narrow_multiply) => Recip16::new_small(a),
                 _ => Recip16::default(),
             },
         };
@@ -586,4 +630,19 @@ pub(super) fn offset_term_narrow(gx: i32, gy: i32, o: [i32; 2]) -> i32 {
 #[inline(always)]
 fn fold_sign(c: i32) -> u32 {
     (c ^ (c >> 31)) as u32
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// [`log2_small`] is `31 - leading_zeros` for every `d < 2^21`, so
+    /// [`Recip16::new_small`] is [`Recip16::new`].
+    #[test]
+    fn small_logarithm_is_the_leading_zeros() {
+        for d in 1u32..1 << 21 {
+            let nz = NonZeroU32::new(d).unwrap();
+            assert_eq!(log2_small(nz), 31 - d.leading_zeros(), "{d}");
+        }
+    }
 }

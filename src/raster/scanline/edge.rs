@@ -10,6 +10,7 @@
 
 use crate::math::mul_wide;
 use crate::raster::{SubPoint, HALF_PIXEL, SUBPIXEL, SUBPIXEL_BITS};
+use crate::shade::Recip16;
 use core::num::NonZeroU32;
 
 /// One edge being walked down the rows: the first covered column at the
@@ -74,7 +75,7 @@ impl EdgeStepper {
                 (den & -up) - n,
             )
         } else {
-            far_start(p, dx, dy, t)
+            far_start_of(p, dx, dy, t, (step_col, r))
         };
         // Within the guard band every quantity here fits i32; see the
         // module docs of `crate::vertex` for the bound.
@@ -86,6 +87,57 @@ impl EdgeStepper {
             den,
         }
     }
+}
+
+/// [`far_start`], or on ARMv6-M [`far_start_stepped`], which takes the
+/// edge's step `(step_col, r)` (`ceil(dx / dy)` and its remainder) in
+/// place of `dx`.
+#[inline(always)]
+pub(super) fn far_start_of(
+    p: SubPoint,
+    dx: i32,
+    dy: NonZeroU32,
+    t: i32,
+    (step_col, r): (i32, i32),
+) -> (i32, i32) {
+    if crate::math::SPLIT {
+        far_start_stepped(p.x, dy, t, step_col, r)
+    } else {
+        far_start(p, dx, dy, t)
+    }
+}
+
+/// [`far_start`] from the edge's step `s = ceil(dx / dy)` and its
+/// remainder `r = s dy - dx` (ARMv6-M, whose division is a library call
+/// of about a hundred instructions): the near start's formula of
+/// [`EdgeStepper::new`] for any `t`. With `P = p.x - ½ + t s = 16 Q + R`
+/// (`R` in `0..16`), the numerator `(p.x - ½) dy + t dx` is
+/// `dy P - t r = 16 dy Q + M`, `M = dy R - t r`, so the ceiling over
+/// `16 dy` is `Q + ceil(M / (16 dy))` and its remainder `M`'s. `M` lies
+/// within `-t dy..16 dy`: its quotient is at most `t / 16` (the rows the
+/// tile's top clips) in magnitude, four times in five below 4 in `demo`,
+/// which [`div_rem_compare`] takes by compares, where `far_start` divided
+/// every time: ARMv6-M `demo` 7,759,325 -> 7,704,424 instructions, `rock`
+/// 6,421,499 -> 6,386,042. Where `p.x - ½`, `t`, `s` and
+/// `dy` lie within `-2^14..2^14` (an edge on a screen below 1,024 pixels
+/// a side), `t s`, `t r` (`r < dy`) and `P` are below 2^29 in magnitude:
+/// every value is exact in `i32`. Otherwise [`far_start`], with `dx`
+/// recomputed (`s dy - r`, below 2^20 within the guard band; `far_start`
+/// reads only `p.x`).
+#[inline(never)]
+pub(super) fn far_start_stepped(px: i32, dy: NonZeroU32, t: i32, s: i32, r: i32) -> (i32, i32) {
+    let a = px - HALF_PIXEL;
+    let lift = |v: i32| v.wrapping_add(1 << 14) as u32;
+    if (lift(a) | lift(t) | lift(s) | lift(dy.get() as i32)) >> 15 == 0 {
+        let den = dy.get() * SUBPIXEL as u32;
+        let den = NonZeroU32::new(den).unwrap_or(NonZeroU32::MIN);
+        let big_p = a + t * s;
+        let m = dy.get() as i32 * (big_p & (SUBPIXEL - 1)) - t * r;
+        let (k, rem) = ceil_div_rem32(m, den);
+        return ((big_p >> SUBPIXEL_BITS) + k, rem);
+    }
+    let dx = s.wrapping_mul(dy.get() as i32).wrapping_sub(r);
+    far_start(SubPoint::new(px, 0), dx, dy, t)
 }
 
 /// The start column of the edge from `p`, `dx` across and `dy` down, at
@@ -165,7 +217,8 @@ pub(super) fn div_rem_u32(m: u32, d: NonZeroU32) -> (u32, u32) {
 }
 
 /// `(m / d, m % d)`, quotients below 4 (most edges' slopes in a mesh of
-/// small triangles) by compares and subtractions, others by the division.
+/// small triangles) by compares and subtractions, others by
+/// [`div_rem_long`].
 /// Each subtracted multiple of `d` is at most `m`, so nothing wraps.
 /// (Four restoring steps, for quotients below 16, measured 60,000
 /// instructions slower on ARMv6-M's `demo` frame than no fast path.)
@@ -184,6 +237,43 @@ pub(super) fn div_rem_compare(m: u32, d: NonZeroU32) -> (u32, u32) {
         } else {
             (2, m)
         }
+    } else {
+        div_rem_long(m, d)
+    }
+}
+
+/// [`div_rem_compare`]'s larger quotients (`m >= 4 d`): those below 8
+/// by two restoring steps (ARMv6-M `demo` 7,610,103 -> 7,590,628
+/// instructions, `rock` 6,313,649 -> 6,299,985; three steps, for those
+/// below 16, gained nothing more), those below 2^12 (where
+/// `m < d 2^12`, [`Recip16::digit`]'s range) of divisors below 2^21 (an
+/// edge or a far start's `16 dy` on any screen below 8,192 pixels a side,
+/// [`Recip16::new_small`]) by one [`Recip16`] digit, about 50
+/// instructions with the reciprocal's set-up
+/// where ARMv6-M's library division takes about a hundred; others by the
+/// division. Out of line: its callers are inlined into the scanline walk,
+/// whose registers it would crowd. The edges' steps of more than 3
+/// columns a row and the far starts that a tile's top clips by more than
+/// 3 rows: ARMv6-M `demo` 7,704,424 -> 7,632,901 instructions, `rock`
+/// 6,386,042 -> 6,330,524.
+#[inline(never)]
+fn div_rem_long(m: u32, d: NonZeroU32) -> (u32, u32) {
+    let dv = d.get();
+    debug_assert!(m >> 2 >= dv);
+    if m >> 3 < dv {
+        // 4 <= m / d < 8: two restoring steps (no multiple of `d` here
+        // exceeds `m`, so none wraps).
+        let (mut q, mut m) = (4, m - 4 * dv);
+        if m >= 2 * dv {
+            (q, m) = (q + 2, m - 2 * dv);
+        }
+        if m >= dv {
+            (q, m) = (q + 1, m - dv);
+        }
+        return (q, m);
+    }
+    if m >> 12 < d.get() && d.get() >> 21 == 0 {
+        Recip16::new_small(d).digit(m)
     } else {
         (m / d, m % d)
     }
@@ -205,8 +295,9 @@ mod tests {
         }
     }
 
-    /// The compares' quotient and remainder are the division's: around
-    /// every small multiple of every kind of divisor, up to the `u32`
+    /// The compares' quotient and remainder, and [`div_rem_long`]'s, are
+    /// the division's: around every small multiple of every kind of
+    /// divisor and around the reciprocal digit's bound, up to the `u32`
     /// range's end.
     #[test]
     fn div_rem_compare_is_the_division() {
@@ -225,13 +316,47 @@ mod tests {
             for m in [0, 1, u32::MAX, u32::MAX - 1, next(1 << 32) as u32] {
                 check(m, d);
             }
-            for q in 0..6u64 {
+            // The compares' quotients, then the reciprocal digit's
+            // (below 2^12) and the division's beyond.
+            let qs = [0, 1, 2, 3, 4, 5, 6, 15, 16, 4_094, 4_095, 4_096, 4_097];
+            for q in qs.into_iter().chain([next(1 << 13), next(1 << 20)]) {
                 for e in [-1i64, 0, 1] {
                     if let Ok(m) = u32::try_from(q as i64 * d as i64 + e) {
                         check(m, d);
                     }
                 }
             }
+        }
+    }
+
+    /// Both far starts are the `i64` ceiling of the numerator
+    /// `(p.x - ½) dy + t dx` over `16 dy`: edges of every slope and
+    /// height, from the compares' range to the guard band's (2^18).
+    #[test]
+    fn far_starts_are_the_division() {
+        let mut next = crate::testing::rng();
+        let mut signed = |bits: u64| next(2 << bits) as i32 - (1 << bits);
+        for k in 0..200_000u32 {
+            let bits = [4, 8, 13, 14, 15, 18][k as usize % 6];
+            let (px, dx) = (signed(bits), signed(bits));
+            let dy = (signed(bits).unsigned_abs() >> (k % 7)).max(1);
+            // Any row of the edge, and a little past its ends.
+            let t = (k as i32 % 40) - 4 + (signed(bits).unsigned_abs() % (dy * 2 + 1)) as i32;
+            let nz = NonZeroU32::new(dy).unwrap();
+            let num = (px - HALF_PIXEL) as i64 * dy as i64 + t as i64 * dx as i64;
+            let (q, r) = ceil_div_rem(num, dy as i64 * SUBPIXEL as i64);
+            let want = (q as i32, r as i32);
+            assert_eq!(
+                far_start(SubPoint::new(px, 0), dx, nz, t),
+                want,
+                "{px} {dx} {dy} {t}"
+            );
+            let (s, rs) = ceil_div_rem32(dx, nz);
+            assert_eq!(
+                far_start_stepped(px, nz, t, s, rs),
+                want,
+                "{px} {dx} {dy} {t}"
+            );
         }
     }
 

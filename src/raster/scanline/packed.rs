@@ -3,7 +3,7 @@
 //! triangle that lies within its tile's columns, and on a 32-bit core
 //! one whose columns lie within `0..PACKED_COLS` (with clamps).
 
-use super::edge::{ceil_div_rem32, far_start, EdgeStepper};
+use super::edge::{ceil_div_rem32, far_start_of, EdgeStepper};
 use crate::raster::{Span, SubPoint, HALF_PIXEL, SUBPIXEL, SUBPIXEL_BITS};
 use core::num::NonZeroU32;
 
@@ -109,7 +109,7 @@ impl Packed {
                 w
             }
         } else {
-            let (col, rem) = far_start(p, dx, dy, t);
+            let (col, rem) = far_start_of(p, dx, dy, t, (step_col, r));
             // The error term `rem - den`, and the column.
             ((rem - (d >> PACKED_BITS)) << PACKED_BITS) | (col << COL_SHIFT)
         };
