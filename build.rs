@@ -108,6 +108,18 @@ fn main() {
     if thumb2 || env::var("MICRORASTER_COLOUR_LOOP").is_ok_and(|v| v == "1") {
         println!("cargo:rustc-cfg=microraster_colour_loop");
     }
+    // `vertex::screen`'s interior bit and the clamp-free Gouraud span
+    // starts it allows (`INTERIOR_STARTS`): not on the Arm cores with an
+    // FPU (the Cortex-M4F measured it slower), nor in builds optimised for
+    // size (opt-level "s" or "z": the `size` profile of the OLED firmware,
+    // where its code is worth more than its speed).
+    println!("cargo::rustc-check-cfg=cfg(microraster_interior)");
+    println!("cargo:rerun-if-env-changed=OPT_LEVEL");
+    let fpu = target.starts_with("thumb") && target.ends_with("eabihf");
+    let size = matches!(env::var("OPT_LEVEL").as_deref(), Ok("s" | "z"));
+    if !fpu && !size {
+        println!("cargo:rustc-cfg=microraster_interior");
+    }
     println!("cargo::rustc-check-cfg=cfg(microraster_lm3s6965)");
     if let Some(map) = board_map(&target, board.as_deref()) {
         let out = PathBuf::from(env::var_os("OUT_DIR").expect("cargo sets OUT_DIR"));

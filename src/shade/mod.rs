@@ -1171,8 +1171,8 @@ mod tests {
             // starts without their clamps.
             let for_spans = TriangleSetup::for_spans::<true>(&corners);
             let all = sv.iter().all(|v| v.interior());
-            assert_eq!(for_spans.interior, all && !setup.wide, "{v:?}");
-            interiors += for_spans.interior as u32;
+            assert_eq!(for_spans.interior(), all && !setup.wide, "{v:?}");
+            interiors += for_spans.interior() as u32;
             let steps = setup.steps();
             let clip = PixelRect::new(0, 0, 4096, 4096);
             spans(&v, clip, |j, x0, x1| {

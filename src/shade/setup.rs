@@ -76,7 +76,10 @@ pub(crate) struct TriangleSetup {
     /// [`ScreenVertex::interior`]), so [`TriangleSetup::start`] takes them
     /// without its clamps. Set only for the Gouraud span loops
     /// ([`TriangleSetup::for_spans`]), the only ones that call `start`.
-    pub(super) interior: bool,
+    /// Only where the vertex stage makes the bit (`INTERIOR_STARTS`): the
+    /// field's stores took flash where it is never set.
+    #[cfg(microraster_interior)]
+    interior: bool,
 }
 
 impl TriangleSetup {
@@ -100,8 +103,19 @@ impl TriangleSetup {
             planes,
             wide,
             zstep,
+            #[cfg(microraster_interior)]
             interior: false,
         }
+    }
+
+    /// Whether the span starts may skip their clamps (see the field
+    /// `interior`; never where the vertex stage does not make the bit).
+    #[inline(always)]
+    pub(super) fn interior(&self) -> bool {
+        #[cfg(microraster_interior)]
+        return self.interior;
+        #[cfg(not(microraster_interior))]
+        false
     }
 
     /// Sets up the planes of a non-degenerate triangle. Colour planes are
@@ -249,7 +263,12 @@ impl TriangleSetup {
     /// 14.32.
     #[inline(always)]
     fn for_gouraud_spans(mut self, t: &Corners<'_>) -> Self {
-        self.interior = ScreenVertex::all_interior(t.0) && !self.wide;
+        #[cfg(microraster_interior)]
+        {
+            self.interior = ScreenVertex::all_interior(t.0) && !self.wide;
+        }
+        #[cfg(not(microraster_interior))]
+        let _ = t;
         self.zstep = ((self.zstep as u32) << (16 - super::Z_FRAC)) as i32;
         self
     }
@@ -345,7 +364,7 @@ impl TriangleSetup {
     /// [`TriangleSetup::start`] with the clamps as selects.
     #[inline(always)]
     pub(super) fn start_selects(&self, t: &Corners<'_>, i: i32, j: i32) -> [i32; 4] {
-        if ScreenVertex::INTERIOR_STARTS && self.interior {
+        if self.interior() {
             return self.values_at(i, j);
         }
         if self.wide {
@@ -364,9 +383,7 @@ impl TriangleSetup {
             return wide_start(t, i, j);
         }
         let v = self.values_at(i, j);
-        if ScreenVertex::INTERIOR_STARTS && self.interior
-            || z_inside(v[0]) && c_inside(v[1]) && c_inside(v[2]) && c_inside(v[3])
-        {
+        if self.interior() || z_inside(v[0]) && c_inside(v[1]) && c_inside(v[2]) && c_inside(v[3]) {
             v
         } else {
             // Marked rare, so that the register allocator favours the

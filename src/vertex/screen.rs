@@ -71,15 +71,18 @@ pub const COORD_MAX: i32 = (1 << (COORD_BITS - 1)) - 1;
 const INTERIOR: u32 = 1 << 8;
 
 /// Whether the vertex stage makes [`ScreenVertex::interior`] and the
-/// Gouraud span starts use it: everywhere but the `thumbv7em-none-eabihf`
-/// builds (the Cortex-M4F), where the bit cost the vertex stage more than
-/// it spared the span starts (`demo` 3,899,069 -> 3,909,985 instructions:
-/// the vertex stage +42,000, 21 a vertex, the span starts -31,000). On
-/// the others: x86-64 `demo` 4,317,453 -> 4,258,981, `rock` 3,584,878 ->
-/// 3,520,426; Cortex-M3 `demo` 3,904,200 -> 3,856,708, `rock` 3,207,716
-/// -> 3,158,427; ARMv6-M `demo` 7,759,390 -> 7,716,260, `rock` 6,421,527
-/// -> 6,367,693.
-const INTERIOR_STARTS: bool = !cfg!(all(target_arch = "arm", target_abi = "eabihf"));
+/// Gouraud span starts use it (the build script's `microraster_interior`):
+/// everywhere but on the Arm cores with an FPU (`thumbv7em-none-eabihf`,
+/// the Cortex-M4F, where the bit cost the vertex stage more than it spared
+/// the span starts: `demo` 3,899,069 -> 3,909,985 instructions, the vertex
+/// stage +42,000, 21 a vertex, the span starts -31,000) and in builds
+/// optimised for size (the OLED firmware's, where it took 172 bytes: the
+/// test in both vertex loops, the flag in the set-up). On the others:
+/// x86-64 `demo` 4,317,453 -> 4,258,981, `rock` 3,584,878 -> 3,520,426;
+/// Cortex-M3 `demo` 3,904,200 -> 3,856,708, `rock` 3,207,716 ->
+/// 3,158,427; ARMv6-M `demo` 7,759,390 -> 7,716,260, `rock` 6,421,527 ->
+/// 6,367,693.
+const INTERIOR_STARTS: bool = cfg!(microraster_interior);
 
 /// [`ScreenVertex::interior`] of a vertex with depth `z` and colour `c`:
 /// depth in `2..=65533` and every channel in `1..=254` (never, without
@@ -167,8 +170,8 @@ impl ScreenVertex {
     }
 
     /// Whether depth is in `2..=65533` and every colour channel in
-    /// `1..=254` (always false on the targets that do not use it, the
-    /// Cortex-M4F's): a triangle whose three vertices have this bit set has
+    /// `1..=254` (always false in the builds that do not use it, the
+    /// Cortex-M4F's and those optimised for size): a triangle whose three vertices have this bit set has
     /// every covered pixel centre's plane values inside their ranges, so
     /// its span starts need no clamp (the Gouraud set-up's start).
     ///
@@ -193,18 +196,14 @@ impl ScreenVertex {
         self.yr & INTERIOR != 0
     }
 
-    /// The word that holds [`interior`](Self::interior)'s bit: the
-    /// set-up ands those of a triangle's three vertices
-    /// ([`ScreenVertex::all_interior`]).
+    /// Whether all three vertices are [`interior`](Self::interior): the
+    /// set-up ands the words that hold the bit. Only where the vertex
+    /// stage makes the bit (`INTERIOR_STARTS`).
+    #[cfg(microraster_interior)]
     #[inline(always)]
     pub(crate) fn all_interior(v: [&Self; 3]) -> bool {
-        Self::INTERIOR_STARTS && v[0].yr & v[1].yr & v[2].yr & INTERIOR != 0
+        v[0].yr & v[1].yr & v[2].yr & INTERIOR != 0
     }
-
-    /// Whether this target makes the [`interior`](Self::interior) bit and
-    /// its span starts test [`all_interior`](Self::all_interior)'s flag at
-    /// all (not on the Cortex-M4F, where it measured slower).
-    pub(crate) const INTERIOR_STARTS: bool = INTERIOR_STARTS;
 
     /// Lit colour, 8 bits per channel.
     #[inline(always)]
@@ -214,10 +213,16 @@ impl ScreenVertex {
 
     /// Replaces the lit colour (flat shading's provoking colour on a
     /// clipped piece) and clears the [`interior`](Self::interior) bit,
-    /// which only flat pieces, which never read it, come here with.
+    /// which only flat pieces, which never read it, come here with. (Where
+    /// the bit is never made, only the colour: a wider mask cost the
+    /// size-optimised OLED firmware 12 bytes.)
     #[inline(always)]
     pub(crate) fn set_color(&mut self, color: [u8; 3]) {
-        self.yr = self.yr & !(0xff | INTERIOR) | color[0] as u32;
+        let keep = match INTERIOR_STARTS {
+            true => !(0xff | INTERIOR),
+            false => !0xff,
+        };
+        self.yr = self.yr & keep | color[0] as u32;
         self.gbz = self.gbz & !0xffff | (color[2] as u32) << 8 | color[1] as u32;
     }
 
