@@ -188,12 +188,18 @@ fn bin_culled<const TW: usize, const TH: usize, I: Copy + Into<u32>>(
     let cols = ctx.grid.cols as usize;
     // Counted here and added once: `t` and `tally` live in the caller.
     let (mut tt, mut pairs_sum) = (*t, tally.pairs);
+    let small = ctx.frame.small();
     for &idx in tris {
         let idx = idx.map(Into::into);
-        if let Some(r) = ctx
-            .frame
-            .classify(ctx.d, ctx.verts, idx, ctx.margin, cull, cache, tally)
-        {
+        if let Some(r) = ctx.frame.classify(
+            ctx.d,
+            ctx.verts,
+            idx,
+            ctx.margin,
+            (cull, small),
+            cache,
+            tally,
+        ) {
             // A visible rectangle lies inside the frame, so its
             // coordinates are not negative.
             let (c0, c1) = (r.x0 as usize / TW, (r.x1 as usize - 1) / TW + 1);

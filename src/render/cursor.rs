@@ -265,6 +265,14 @@ fn scan_touches(
 ) -> bool {
     let mut tally = Tally::default();
     let m = margin(&frame.draws[d]);
-    let vis = frame.classify(d, verts, idx, m, frame.cull, cache, &mut tally);
+    let vis = frame.classify(
+        d,
+        verts,
+        idx,
+        m,
+        (frame.cull, frame.small()),
+        cache,
+        &mut tally,
+    );
     vis.is_some_and(|r| !meet(&r, rect).is_empty())
 }

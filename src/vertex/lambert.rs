@@ -99,8 +99,19 @@ impl Lambert {
 /// channel.
 #[inline(always)]
 pub(super) fn div65280_sat(x: u32) -> u8 {
-    debug_assert!(x < 1 << 31);
-    let high = ((x as u64 * 0x8080_8081) >> 32) as u32 as i32;
+    div65280_sat_by(x, DIV65280)
+}
+
+/// [`div65280_sat`]'s multiplier: `floor(x / 65,280) = floor(x
+/// 0x8080_8081 / 2^47)`.
+const DIV65280: u32 = 0x8080_8081;
+
+/// [`div65280_sat`] with its multiplier `magic` ([`DIV65280`]) passed in,
+/// for the common loop, which reads it from its constants.
+#[inline(always)]
+pub(super) fn div65280_sat_by(x: u32, magic: u32) -> u8 {
+    debug_assert!(x < 1 << 31 && magic == DIV65280);
+    let high = ((x as u64 * magic as u64) >> 32) as u32 as i32;
     (high >> 15).clamp(0, 255) as u8
 }
 
@@ -191,6 +202,9 @@ pub(super) struct LoopConstants {
     dir: [i32; 3],
     /// The Lambert colour's factors per channel ([`Lambert::folded`]).
     channels: [[u32; 2]; 3],
+    /// [`div65280_sat`]'s multiplier, loaded with the channels' factors
+    /// (as a literal the Cortex-M3 rebuilt it, two instructions a vertex).
+    magic: u32,
 }
 
 #[cfg_attr(not(any(test, target_pointer_width = "32")), allow(dead_code))]
@@ -203,6 +217,7 @@ impl LoopConstants {
             rows: [[0; 5]; 4],
             dir: l.dir,
             channels: [[0; 2]; 3],
+            magic: DIV65280,
         };
         for (r, row) in k.rows.iter_mut().enumerate() {
             let t = (m.m[3][r] as i64) << 16 | 1 << 15;
@@ -241,7 +256,7 @@ impl LitWork for LoopConstants {
         let ndotl = clamp_ndotl_words(d);
         let mut out = [0u8; 3];
         for (o, &[a, c]) in out.iter_mut().zip(&self.channels) {
-            *o = div65280_sat(a + c * ndotl);
+            *o = div65280_sat_by(a + c * ndotl, self.magic);
         }
         out
     }

@@ -275,7 +275,8 @@ impl DrawSetup {
             None => {
                 for (k, o) in out.iter_mut().enumerate() {
                     let pos = self.clip_position_apart(mesh, first + k)?;
-                    *o = viewport.screen_vertex_lit(&pos, || self.lit_color_apart(mesh, first + k));
+                    *o = viewport
+                        .screen_vertex_lit(&pos, false, || self.lit_color_apart(mesh, first + k));
                 }
             }
         }
@@ -389,6 +390,6 @@ fn lit_loop(
 ) {
     for (o, (p, nv)) in out.iter_mut().zip(positions.iter().zip(normals)) {
         let pos = k.transform([p[0].to_bits(), p[1].to_bits(), p[2].to_bits()]);
-        *o = viewport.screen_vertex_lit(&pos, || k.shade(*nv));
+        *o = viewport.screen_vertex_lit(&pos, true, || k.shade(*nv));
     }
 }

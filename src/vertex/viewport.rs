@@ -143,8 +143,8 @@ impl Viewport {
     /// and `w` below `short_w` (and `2^23`) by 32-bit division: x's and
     /// y's dividends `|x| h + w / 2 <= 4 w h + w / 2` fit 32 bits, so
     /// each quotient is one division (where the long division below took
-    /// two and their shifts); depth's quotient is three digits of one
-    /// division each.
+    /// two and their shifts); depth's quotient is two divisions
+    /// ([`depth_digits`]).
     #[inline(always)]
     pub(crate) fn project_digits(&self, p: &[i32; 4], w: NonZeroU32) -> (SubPoint, u16) {
         debug_assert!(w.get() < self.short_w && w.get() as i64 >= W_MIN);
@@ -165,19 +165,10 @@ impl Viewport {
         let y = self.half_h as i32 - round(p[1], hh);
         // div_round((z + w) 65535, 2w) = floor(((z + w) 65535 + w) / w) / 2,
         // and -w <= z <= w: not negative, at most
-        // floor((2w 65535 + w) / w) / 2 = 65535, no clamp. The quotient by
-        // three digits, as `project_recip` takes it (see there), each one
-        // division: `c = a w + b`, `b 2^8 = d1 w + r1`, then `(r1 2^8 + w
-        // - b) / w`; with `w < 2^23` every dividend is below `2^32`. (The
-        // 64-bit dividend's two divisions took its shifts and leading-zero
-        // count besides: 8 instructions a vertex more on the Cortex-M3.)
-        let wu = w.get();
-        let c = (p[2] + wu as i32) as u32;
-        let (a, b) = (c / w, c % w);
-        let (d1, r1) = ((b << 8) / w, (b << 8) % w);
-        let d0 = ((r1 << 8) + (wu - b)) / w;
-        let z = (a * 65_535 + (d1 << 8) + d0) >> 1;
-        debug_assert!(z <= 65_535);
+        // floor((2w 65535 + w) / w) / 2 = 65535, no clamp. (The 64-bit
+        // dividend's two divisions took its shifts and leading-zero count
+        // besides: 8 instructions a vertex more on the Cortex-M3.)
+        let z = depth_digits((p[2] + w.get() as i32) as u32, w);
         (SubPoint::new(x, y), z as u16)
     }
 
@@ -239,30 +230,113 @@ impl Viewport {
     #[inline(always)]
     pub fn screen_vertex(&self, v: &ClipVertex) -> ScreenVertex {
         let color = [v.color[0] as u8, v.color[1] as u8, v.color[2] as u8];
-        self.screen_vertex_lit(&v.pos, || color)
+        self.screen_vertex_lit(&v.pos, true, || color)
     }
 
     /// [`screen_vertex`](Self::screen_vertex) of the vertex at clip-space
     /// position `pos` whose lit colour `color` gives, asked for after the
     /// projection: the vertex stage's loop then keeps neither the colour
     /// nor the lighting's constants in registers (or on the stack) across
-    /// the divisions.
+    /// the divisions. With `fast`, where a 32-bit division is an
+    /// instruction, a vertex inside the view volume (nearly all) is tested
+    /// and projected inline ([`project_fast`](Self::project_fast)), any
+    /// other out of line; without it, every vertex out of line (the vertex
+    /// stage's general loop, which calls out of line for its position and
+    /// colour anyway: one inline copy of the projection fewer in flash).
     #[inline(always)]
     pub(crate) fn screen_vertex_lit(
         &self,
         pos: &[i32; 4],
+        fast: bool,
         color: impl FnOnce() -> [u8; 3],
     ) -> ScreenVertex {
+        let (outcode, p, z) = match LONG_DIVISION {
+            true => match fast.then(|| self.project_fast(pos)).flatten() {
+                Some((p, z)) => (0, p, z),
+                None => self.project_rest(pos[0], pos[1], pos[2], pos[3]),
+            },
+            false => self.outcode_and_project(pos),
+        };
+        // Within the coordinate fields: `p` is 0 for a vertex that must be
+        // clipped, otherwise inside the guard band (`|x|, |y| <= K w`), so
+        // within `(K + 1) * 2^15 < 2^18` sub-pixels.
+        ScreenVertex::new(p.x, p.y, z, outcode, color())
+    }
+
+    /// The outcode of `pos` and, for a vertex without [`MUST_CLIP`] bits,
+    /// its projection ([`project_inside`](Self::project_inside)).
+    #[inline(always)]
+    fn outcode_and_project(&self, pos: &[i32; 4]) -> (u8, SubPoint, u16) {
         let outcode = outcode(pos);
         let (p, z) = if outcode & MUST_CLIP == 0 {
             self.project_inside(pos)
         } else {
             (SubPoint::default(), 0)
         };
-        // Within the coordinate fields: `p` is 0 for a vertex that must be
-        // clipped, otherwise inside the guard band (`|x|, |y| <= K w`), so
-        // within `(K + 1) * 2^15 < 2^18` sub-pixels.
-        ScreenVertex::new(p.x, p.y, z, outcode, color())
+        (outcode, p, z)
+    }
+
+    /// [`outcode_and_project`](Self::outcode_and_project) out of line, for
+    /// the vertices [`project_fast`](Self::project_fast) declines. (The
+    /// coordinates by value: a reference would keep the vertex in memory.)
+    #[inline(never)]
+    #[cold]
+    #[cfg_attr(
+        any(microraster_narrow_multiply, target_pointer_width = "64"),
+        allow(dead_code)
+    )]
+    fn project_rest(&self, x: i32, y: i32, z: i32, w: i32) -> (u8, SubPoint, u16) {
+        self.outcode_and_project(&[x, y, z, w])
+    }
+
+    /// [`project`](Self::project) of a vertex inside the view volume
+    /// (outcode 0: `W_MIN <= w`, `|x|, |y|, |z| <= w`) with `w` below
+    /// `short_w`, by 32-bit divisions; `None` for any other vertex. With
+    /// `c = v + w` for each coordinate `v` (`0..=2w` inside, and outside
+    /// it as an unsigned word, for `w < 2^23`: so the inside test is three
+    /// unsigned compares with `2w`):
+    ///
+    /// * x's `div_round(x hw, w)` (ties away from zero) is `floor((x hw +
+    ///   o) / w)` with `o = floor(w / 2)` for `x >= 0` and `floor((w - 1) /
+    ///   2)` for `x < 0`; adding `hw w` (`hw` half the width), the screen
+    ///   `x = hw + div_round(x hw, w)` is `floor((c hw + o) / w)`, which is
+    ///   `floor((2 c hw + w - s) / (2w))` (`s = 1` for `x < 0`, else 0: an
+    ///   odd numerator is never a multiple of `2w`), no sign test; the
+    ///   numerator is at most `4 w hw + w < 2^32` (`short_w`);
+    /// * y likewise, as `2 hh - floor((2 c hh + w - s) / (2w))`;
+    /// * depth by two divisions ([`depth_digits`]).
+    ///
+    /// The same results; about 30 instructions a vertex fewer on the
+    /// Cortex-M3 than the outcode and [`project_digits`](Self::project_digits).
+    #[inline(always)]
+    #[cfg_attr(
+        any(microraster_narrow_multiply, target_pointer_width = "64"),
+        allow(dead_code)
+    )]
+    pub(crate) fn project_fast(&self, p: &[i32; 4]) -> Option<(SubPoint, u16)> {
+        let w = p[3] as u32;
+        // W_MIN <= w < short_w, as one unsigned compare (short_w > W_MIN).
+        if w.wrapping_sub(W_MIN as u32) >= self.short_w - W_MIN as u32 {
+            return None;
+        }
+        // Neither is 0 (the compiler does not see it through the compare,
+        // and would test each before its divisions).
+        let (Some(wn), Some(w2n)) = (NonZeroU32::new(w), NonZeroU32::new(w << 1)) else {
+            return None;
+        };
+        let w2 = w2n.get();
+        let c = [p[0], p[1], p[2]].map(|v| (v as u32).wrapping_add(w));
+        if c[0] > w2 || c[1] > w2 || c[2] > w2 {
+            return None;
+        }
+        // The width and height in sub-pixels, 2 hw and 2 hh.
+        let (tw, th) = ((self.half_w as u32) << 1, (self.half_h as u32) << 1);
+        // w - s, for s = 1 where the coordinate is negative.
+        let odd = |v: i32| w.wrapping_add((v >> 31) as u32);
+        let x = (c[0] * tw + odd(p[0])) / w2n;
+        let y = th - (c[1] * th + odd(p[1])) / w2n;
+        let z = depth_digits(c[2], wn);
+        Some((SubPoint::new(x as i32, y as i32), z as u16))
     }
 }
 
@@ -275,6 +349,29 @@ const LONG_DIVISION: bool = cfg!(all(
     not(microraster_narrow_multiply),
     not(target_pointer_width = "64")
 ));
+
+/// Depth `floor((c 65535 + w) / w) / 2` (at most 65,535) of `c = z + w`
+/// in `0..=2w`, for `w < 2^23`, by two 32-bit divisions: with `c 2^8 = d1
+/// w + r1`, `c 65535 + w = c 2^16 - c + w = d1 2^8 w + (r1 2^8 + w - c)`,
+/// and `w - c >= -w`, so the quotient is `d1 2^8 + floor((r1 2^8 + 2w - c)
+/// / w) - 1`; every dividend is below `2^32` (`c 2^8 <= w 2^9`, `r1 2^8 +
+/// 2w < w 2^8 + 2w`). (Three digits of one division each, the first `c /
+/// w`, took a multiply and three instructions more.)
+#[inline(always)]
+#[cfg_attr(
+    any(microraster_narrow_multiply, target_pointer_width = "64"),
+    allow(dead_code)
+)]
+fn depth_digits(c: u32, w: NonZeroU32) -> u32 {
+    debug_assert!(w.get() >> DIGITS_W_BITS == 0 && c <= 2 * w.get());
+    let c8 = c << 8;
+    let (d1, r1) = (c8 / w, c8 % w);
+    let d0 = ((r1 << 8) + (2 * w.get() - c)) / w;
+    // Not negative: the quotient is at least 1.
+    let z = ((d1 << 8) + d0 - 1) >> 1;
+    debug_assert!(z <= 65_535);
+    z
+}
 
 /// [`Viewport::project_digits`] takes `w` below `2^DIGITS_W_BITS`.
 const DIGITS_W_BITS: u32 = 23;
@@ -351,6 +448,45 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// `project_fast` against `project` where it projects, and against
+    /// the outcode where it declines: `w` from below `W_MIN` to beyond
+    /// `short_w`, coordinates inside the view volume (its faces and
+    /// corners included), just outside it and anywhere in `i32`.
+    #[test]
+    fn fast_projection_matches_project_inside_the_view_volume() {
+        let mut next = crate::testing::rng();
+        let mut taken = 0;
+        for (width, height) in [(320, 240), (4096, 4096), (1, 4096), (4096, 3001), (2, 1)] {
+            let vp = Viewport::new(width, height);
+            for i in 0..300_000u64 {
+                let w = match i % 8 {
+                    0 => W_MIN - 2 + next(8) as i64,
+                    1 => vp.short_w as i64 - 3 + next(6) as i64,
+                    2 => (next(1 << 32) as u32 as i32) as i64,
+                    3 => 1 << DIGITS_W_BITS,
+                    _ => W_MIN + (next(1 << 28) >> next(24)) as i64,
+                } as i32;
+                let mut c = || match next(8) {
+                    0 => w,
+                    1 => w.wrapping_neg(),
+                    2 => w.wrapping_add(1),
+                    3 => w.wrapping_neg().wrapping_sub(1),
+                    4 => next(1 << 32) as u32 as i32,
+                    _ => {
+                        (next(2 * w.unsigned_abs() as u64 + 1) as i64 - w.unsigned_abs() as i64)
+                            as i32
+                    }
+                };
+                let p = [c(), c(), c(), w];
+                let inside = outcode(&p) == 0 && (w as u32) < vp.short_w;
+                let fast = vp.project_fast(&p);
+                assert_eq!(fast, inside.then(|| vp.project(&p)), "{p:?}");
+                taken += inside as u32;
+            }
+        }
+        assert!(taken > 100_000, "{taken}");
     }
 
     /// `project` (one divisor for the three quotients) against the three
