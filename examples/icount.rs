@@ -80,7 +80,7 @@ fn main() {
         let mut sink = FrameSink::hashing();
         frame(scene, &meshes, &mut renderer(), &mut ws, &mut (), &mut sink)
             .unwrap_or_else(|e| panic!("{}: {e}", scene.name()));
-        println!("image: {} {:08x}", scene.name(), sink.hash.unwrap_or(0));
+        println!("image: {} {}", scene.name(), sink.hash.unwrap_or(0));
     }
 }
 
