@@ -1,7 +1,7 @@
 //! Exact division of many dividends by one divisor: the attribute set-up's
 //! and the vertex stage's divisions, as each kind of core does them best.
 
-use crate::shade::Recip16;
+use crate::math::Recip16;
 use core::num::{NonZeroU32, NonZeroU64};
 
 /// Exact integer division of many dividends by one divisor, through the
@@ -251,7 +251,7 @@ impl Short {
             .filter(|d| (8..1 << 31).contains(d))?;
         let nz = core::num::NonZeroU32::new(d)?;
         // k in 1..=28, t in 3..=30.
-        let k = crate::shade::leading_zeros(nz);
+        let k = crate::math::leading_zeros(nz);
         let t = 31 - k;
         let f = Recip16::new(nz);
         let a = 31.min(t + 12);

@@ -28,11 +28,16 @@
 
 mod cast;
 mod divisor;
+mod recip16;
 mod trig;
 mod wide;
 
 pub use cast::{f32_to_i32, f32_to_i64, f32_to_u64, f32_to_u8};
 pub(crate) use divisor::{shift_in_zeros, Divisor, WDivisor};
+#[cfg(test)]
+pub(crate) use recip16::leading_zeros_search;
+#[cfg_attr(not(microraster_narrow_multiply), allow(unused_imports))]
+pub(crate) use recip16::{leading_zeros, Recip16};
 pub use trig::{sin_cos, sqrt, tan};
 pub(crate) use wide::{mul_wide, SPLIT};
 

@@ -49,8 +49,6 @@ pub(crate) use convert::{rgb, rgb16, rgb565_bits, rgb_scalar};
 use embedded_graphics::pixelcolor::Rgb888;
 use plane::Basis;
 pub(crate) use setup::{Corners, TriangleSetup};
-#[cfg_attr(not(microraster_narrow_multiply), allow(unused_imports))]
-pub(crate) use small::{leading_zeros, Recip16};
 
 /// Fraction bits of interpolated depth.
 pub const Z_FRAC: u32 = 14;
@@ -479,6 +477,7 @@ mod tests {
     use super::setup::*;
     use super::small::*;
     use super::*;
+    use crate::math::{leading_zeros_search, Recip16};
     use crate::raster::{SubPoint, HALF_PIXEL, SUBPIXEL_BITS};
     use crate::vertex::ScreenVertex;
     use core::num::NonZeroU32;

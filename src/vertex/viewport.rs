@@ -5,9 +5,9 @@
 //! nearest 1/16 pixel. NDC z in `[-1, 1]` maps to depth `0..=65535`.
 
 use super::{outcode, ClipVertex, ScreenVertex, MUST_CLIP, W_MIN};
+use crate::math::Recip16;
 use crate::math::WDivisor;
 use crate::raster::{SubPoint, SUBPIXEL};
-use crate::shade::Recip16;
 use core::num::{NonZeroU32, NonZeroU64};
 
 /// Largest viewport side in pixels.

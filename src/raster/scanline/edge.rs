@@ -9,8 +9,8 @@
 //! call, small quotients come from compares ([`div_rem_compare`]).
 
 use crate::math::mul_wide;
+use crate::math::Recip16;
 use crate::raster::{SubPoint, HALF_PIXEL, SUBPIXEL, SUBPIXEL_BITS};
-use crate::shade::Recip16;
 use core::num::NonZeroU32;
 
 /// One edge being walked down the rows: the first covered column at the
