@@ -111,14 +111,23 @@ impl SmallBasis {
         }
     }
 
-    /// [`SmallBasis::div_round32_short`] for `|n| < d 2^(23 - shift)`: its
-    /// two digits (see there).
+    /// [`SmallBasis::div_round32_short`] for `|n| < d 2^(23 - shift)` and
+    /// `d < 2^20` ([`SmallBasis::two_digit_bound`]): its two digits (see
+    /// there), the first left uncorrected.
+    ///
+    /// [`Recip16::estimate`]'s first digit `q0'` is `q0` or one less, its
+    /// remainder `r0'` in `0..2d`; the second digit's dividend
+    /// `r0' 2^11 + half` is then below `d (2^12 + 1)`, within the
+    /// estimate's range (and below 2^32, as `d < 2^20`), so
+    /// `|n| 2^shift + half = (q0' 2^11 + q1') d + r1'` with `r1'` in
+    /// `0..2d`, and `Q = q0' 2^11 + q1' + [r1' >= d]`: one correction a
+    /// gradient where there were two.
     #[inline(always)]
     pub(super) fn div_round_two_digits(&self, n: i32, shift: u32) -> i32 {
         let f = &self.recip;
-        let (q0, r0) = f.digit(n.unsigned_abs() << (shift - 11));
-        let (q1, _) = f.digit((r0 << 11) + self.half as u32);
-        let q = (q0 << 11) + q1;
+        let (q0, r0) = f.estimate(n.unsigned_abs() << (shift - 11));
+        let (q1, r1) = f.estimate((r0 << 11) + self.half as u32);
+        let q = (q0 << 11) + q1 + (r1 >= f.d) as u32;
         // The quotient's sign: the numerator's times the divisor's.
         if (n ^ self.area2) < 0 {
             (q as i32).wrapping_neg()
@@ -161,7 +170,7 @@ impl SmallBasis {
         let k = shift - 10;
         let f = &self.recip;
         let a = n.unsigned_abs();
-        if a >> (23 - shift) < f.d {
+        if a >> (23 - shift) < self.two_digit_bound() {
             return self.div_round_two_digits(n, shift);
         }
         let (q0, r0) = f.digit(a);
@@ -369,6 +378,21 @@ impl TriangleSetup {
 }
 
 impl SmallBasis {
+    /// The bound of the numerators' magnitudes over `2^(23 - shift)` below
+    /// which a gradient takes [`SmallBasis::div_round_two_digits`]: `d`,
+    /// or 0 where `d >= 2^20` (twice an area of 2,048 pixels and more,
+    /// where the uncorrected first remainder shifted left by 11 could
+    /// overflow; those take three digits).
+    #[inline(always)]
+    fn two_digit_bound(&self) -> u32 {
+        let d = self.recip.d;
+        if d >> 20 == 0 {
+            d
+        } else {
+            0
+        }
+    }
+
     /// ARMv6-M's gradients of numerators `n1`, `n2` (as
     /// [`SmallBasis::div_round32_short`]) and the plane constant's term
     /// (as [`offset_term`]), tested once for the plane rather than once a
@@ -383,7 +407,7 @@ impl SmallBasis {
     #[inline(always)]
     pub(super) fn plane_short(&self, n1: i32, n2: i32, shift: u32) -> (i32, i32, i32) {
         let (a1, a2) = (n1.unsigned_abs(), n2.unsigned_abs());
-        if (a1 | a2) >> (23 - shift) < self.recip.d {
+        if (a1 | a2) >> (23 - shift) < self.two_digit_bound() {
             let gx = self.div_round_two_digits(n1, shift);
             let gy = self.div_round_two_digits(n2, shift);
             (gx, gy, offset_term_narrow(gx, gy, self.o))
