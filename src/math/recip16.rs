@@ -88,13 +88,29 @@ impl Recip16 {
     /// `q' d <= x`) is below `2 d`, and one compare corrects both.
     #[inline(always)]
     pub(crate) fn digit(&self, x: u32) -> (u32, u32) {
-        let q = ((x >> self.s) * self.r) >> 19;
-        let rem = x - q * self.d;
+        let (q, rem) = self.estimate(x);
         if rem >= self.d {
             (q + 1, rem - self.d)
         } else {
             (q, rem)
         }
+    }
+
+    /// [`Recip16::digit`] without its correction: `(q', x - q' d)` with
+    /// `q'` either `floor(x / d)` or one less, so the remainder is in
+    /// `0..2d`, for any `x < d (2^12 + 1)` (a little beyond `digit`'s
+    /// range: a dividend made from an uncorrected remainder, `r 2^11 +
+    /// d / 2` with `r < 2d`).
+    ///
+    /// The bounds of `digit`'s proof, for `x < d (2^12 + 1) < 2^(t + 13)
+    /// + 2^(t + 1)`: for `t >= 3`, `xh < 2^16 + 2^4`, so the estimate is
+    /// below `x / d` by less than `(2^16 + 2^4) 5.1 / 2^19 + 1/8 < 0.77`;
+    /// for `t < 3`, by less than `(2^16 + 2^4) 3.1 / 2^19 < 0.39`. The
+    /// product stays below 2^32: `xh r <= x 2^19 / d < (2^12 + 1) 2^19`.
+    #[inline(always)]
+    pub(crate) fn estimate(&self, x: u32) -> (u32, u32) {
+        let q = ((x >> self.s) * self.r) >> 19;
+        (q, x - q * self.d)
     }
 }
 
@@ -189,6 +205,49 @@ fn recip31(d: u32) -> u32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// [`Recip16::estimate`] is `floor(x / d)` or one less for every
+    /// divisor below 2^21 (all below 2^12, powers of two and their
+    /// neighbours, random ones) and dividends up to its bound,
+    /// `d (2^12 + 1) - 1`: small, at the multiples of `d`, random.
+    #[test]
+    fn estimates_are_the_quotient_or_one_less() {
+        let mut next = crate::testing::rng();
+        let mut divisors: heapless::Vec<u32, 4200> = (1..4096).collect();
+        for k in 12..21 {
+            for d in [(1u32 << k) - 1, 1 << k, (1 << k) + 1] {
+                divisors.push(d).unwrap();
+            }
+        }
+        for _ in 0..60 {
+            divisors.push(1 + next((1 << 21) - 1) as u32).unwrap();
+        }
+        divisors.push((1 << 21) - 1).unwrap();
+        for &d in &divisors {
+            let f = Recip16::new(NonZeroU32::new(d).unwrap());
+            let top = d as u64 * 4097 - 1;
+            let check = |x: u64| {
+                let x = x.min(top) as u32;
+                let (q, rem) = f.estimate(x);
+                let exact = x / d;
+                assert!(q == exact || q + 1 == exact, "{x} / {d}: {q}");
+                assert_eq!(q as u64 * d as u64 + rem as u64, x as u64);
+                assert!(rem < 2 * d);
+            };
+            for x in [0, 1, 2, d as u64 - 1, d as u64, top - 1, top] {
+                check(x);
+            }
+            for q in [1u64, 2, 2047, 2048, 4095, 4096, 4097] {
+                for e in [0, 1, 2] {
+                    check((q * d as u64).saturating_sub(e));
+                    check(q * d as u64 + e);
+                }
+            }
+            for _ in 0..200 {
+                check(next(top + 1));
+            }
+        }
+    }
 
     /// [`log2_small`] is `31 - leading_zeros` for every `d < 2^21`, so
     /// [`Recip16::new_small`] is [`Recip16::new`].
