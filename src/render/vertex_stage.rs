@@ -322,7 +322,10 @@ fn run_vertices(
     // Only a Gouraud draw's vertices carry the interior bit
     // ([`ScreenVertex::interior`]), which only the Gouraud span starts
     // read: a flat, fragment-shader or line draw's are left clear, at no
-    // cost per vertex (see `DrawSetup::screen_vertices`).
-    let gouraud = matches!(draw.shading, Shading::Gouraud);
+    // cost per vertex (see `DrawSetup::screen_vertices`). Where no vertex
+    // carries it (the Cortex-M4F's builds and those optimised for size),
+    // false: the flag passed on and unused took the M4F's vertex loop a
+    // register (`demo` +10 K).
+    let gouraud = crate::vertex::INTERIOR_STARTS && matches!(draw.shading, Shading::Gouraud);
     setup.screen_vertices(draw.mesh, first, viewport, out, gouraud)
 }
