@@ -482,22 +482,33 @@ impl FixedMat4 {
     /// 16.16. Returns `None` if a result leaves the `I16F16` range.
     #[inline]
     pub fn transform_point(&self, p: [i32; 3]) -> Option<[i32; 4]> {
-        let m = &self.m;
         let mut out = [0i32; 4];
         for (r, o) in out.iter_mut().enumerate() {
-            // Each product is below 2^62 in magnitude, but three of them
-            // can leave i64 (all elements and coordinates near +-32768),
-            // which panicked in debug builds and wrapped to a wrong vertex
-            // in release. A partial sum that overflows is more than 2^61
-            // away from zero whatever the remaining terms (each below 2^62,
-            // the translation below 2^47), far outside 16.16: `None`.
-            let acc = mul_wide(m[0][r], p[0])
-                .checked_add(mul_wide(m[1][r], p[1]))?
-                .checked_add(mul_wide(m[2][r], p[2]))?
-                .checked_add((m[3][r] as i64) << 16)?;
-            *o = i32::try_from(acc.checked_add(1 << 15)? >> 16).ok()?;
+            *o = self.row_checked(r, p)?;
         }
         Some(out)
+    }
+
+    /// Row `r` (`0..4`) of [`transform_point`](Self::transform_point).
+    /// Out of line on 32-bit cores: the vertex stage takes it only for a
+    /// draw whose matrix is not [`bounded`](Self::bounded) for its mesh,
+    /// and its four rows inlined took the Cortex-M3's firmware about 400
+    /// bytes.
+    #[cfg_attr(not(target_pointer_width = "64"), inline(never))]
+    fn row_checked(&self, r: usize, p: [i32; 3]) -> Option<i32> {
+        let m = &self.m;
+        let r = r & 3;
+        // Each product is below 2^62 in magnitude, but three of them
+        // can leave i64 (all elements and coordinates near +-32768),
+        // which panicked in debug builds and wrapped to a wrong vertex
+        // in release. A partial sum that overflows is more than 2^61
+        // away from zero whatever the remaining terms (each below 2^62,
+        // the translation below 2^47), far outside 16.16: `None`.
+        let acc = mul_wide(m[0][r], p[0])
+            .checked_add(mul_wide(m[1][r], p[1]))?
+            .checked_add(mul_wide(m[2][r], p[2]))?
+            .checked_add((m[3][r] as i64) << 16)?;
+        i32::try_from(acc.checked_add(1 << 15)? >> 16).ok()
     }
 
     /// Whether [`transform_point_bounded`](Self::transform_point_bounded)

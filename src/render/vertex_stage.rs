@@ -5,7 +5,7 @@ use super::{Config, Features, Path, Profiler, RenderError, Stage, MAX_LIGHTS, MA
 use crate::cull::Frustum;
 use crate::light::{DirectionalLight, LightError, LightSetup, Lighting};
 use crate::math::{Mat4, Vec3};
-use crate::mesh::{Indices, Mesh};
+use crate::mesh::Indices;
 use crate::scene::Draw;
 use crate::scene::{Blend, Light, Scene, Shading};
 use crate::shade::DepthTest;
@@ -300,7 +300,7 @@ fn transform<F>(
             // The range lies within the mesh (checked when the
             // mesh was built).
             // The colour after the projection (see `screen_vertex_lit`).
-            run_vertices(setup, draw.mesh, first, viewport, &mut out[range])
+            run_vertices(setup, draw, first, viewport, &mut out[range])
                 .map_err(|error| RenderError::Draw { draw: di, error })?;
         }
     }
@@ -314,10 +314,18 @@ fn transform<F>(
 #[inline(never)]
 fn run_vertices(
     setup: &DrawSetup,
-    mesh: &Mesh<'_>,
+    draw: &Draw<'_>,
     first: usize,
     viewport: &Viewport,
     out: &mut [ScreenVertex],
 ) -> Result<(), VertexError> {
-    setup.screen_vertices(mesh, first, viewport, out)
+    // Only a Gouraud draw's vertices carry the interior bit
+    // ([`ScreenVertex::interior`]), which only the Gouraud span starts
+    // read: a flat, fragment-shader or line draw's are left clear, at no
+    // cost per vertex (see `DrawSetup::screen_vertices`). Where no vertex
+    // carries it (the Cortex-M4F's builds and those optimised for size),
+    // false: the flag passed on and unused took the M4F's vertex loop a
+    // register (`demo` +10 K).
+    let gouraud = crate::vertex::INTERIOR_STARTS && matches!(draw.shading, Shading::Gouraud);
+    setup.screen_vertices(draw.mesh, first, viewport, out, gouraud)
 }

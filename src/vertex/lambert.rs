@@ -67,9 +67,33 @@ impl Lambert {
         out
     }
 
+    /// The n·l (`0..=256`) whose colour on `base` has every channel in
+    /// `1..=254`, as `[lo, span]`: n·l is such exactly when `n·l - lo <=
+    /// span` (wrapping; [`within`]); none unless `gouraud`. Each channel's
+    /// `floor((a + k n·l) / 65,280)` (`[a, k]` of [`folded`](Self::folded))
+    /// grows with n·l, so the n·l where it is at least 1 are those from
+    /// `ceil((65,280 - a) / k)` up, where it is at most 254 those up to
+    /// `floor((255 · 65,280 - 1 - a) / k)`: the three channels' meet is
+    /// one interval. Per vertex, then, the colour's half of the interior
+    /// bit (see [`ScreenVertex::interior`](super::ScreenVertex::interior))
+    /// is a subtraction and a compare, not three of each, and a draw that
+    /// is not Gouraud shaded (whose vertices' bit nothing reads) gets an
+    /// empty interval and the bit clear at the same cost.
+    pub(super) fn interior_ndotl(&self, base: [u8; 3], gouraud: bool) -> [u32; 2] {
+        interior_ndotl(&self.folded(base), gouraud)
+    }
+
+    /// The lit colour of normal `n` on the colour `base`.
     #[inline(always)]
     pub(super) fn shade(&self, n: crate::mesh::Vec3Fx, base: [u8; 3]) -> [u8; 3] {
-        let ndotl = self.ndotl(n);
+        self.shade_ndotl(self.ndotl(n), base)
+    }
+
+    /// The lit colour for n·l `ndotl` (`0..=256`, [`ndotl`](Self::ndotl))
+    /// on `base`: each channel `floor((base (256 ambient + color n·l) +
+    /// 32,640) / 65,280)`, at most 255.
+    #[inline(always)]
+    fn shade_ndotl(&self, ndotl: u32, base: [u8; 3]) -> [u8; 3] {
         let mut out = [0u8; 3];
         for c in 0..3 {
             // At most 2^17.
@@ -88,6 +112,54 @@ impl Lambert {
         }
         out
     }
+}
+
+/// [`Lambert::interior_ndotl`] from the channels' `[a, k]`
+/// ([`Lambert::folded`]): the first n·l with every channel at least 1
+/// and the last with every channel at most 254, each by a binary search
+/// over `0..=256` (each channel grows with n·l, so each test holds on one
+/// end of the range only). Out of line, and called once the loop's
+/// constants are made (inlined, the Cortex-M3 kept the matrix's elements
+/// on the stack across it); searches rather than a division per channel
+/// and end, which took the Cortex-M3's firmware 120 bytes more.
+#[inline(never)]
+fn interior_ndotl(channels: &[[u32; 2]; 3], gouraud: bool) -> [u32; 2] {
+    // Where no vertex carries the bit (a size build's flash).
+    if !super::screen::INTERIOR_STARTS {
+        return [257, 0];
+    }
+    const ONE: u32 = 65_280;
+    const TOP: u32 = 255 * ONE - 1;
+    // Where `a + k n·l` is at least `ONE`: from `lo` on (`257`: nowhere).
+    let (mut lo, mut end) = (0u32, 257u32);
+    while lo < end {
+        let mid = (lo + end) / 2;
+        match channels.iter().all(|&[a, k]| a + k * mid >= ONE) {
+            true => end = mid,
+            false => lo = mid + 1,
+        }
+    }
+    // Where it is at most `TOP`: below `hi` (`0`: nowhere).
+    let (mut start, mut hi) = (0u32, 257u32);
+    while start < hi {
+        let mid = (start + hi) / 2;
+        match channels.iter().all(|&[a, k]| a + k * mid <= TOP) {
+            true => start = mid + 1,
+            false => hi = mid,
+        }
+    }
+    match gouraud && lo < hi {
+        true => [lo, hi - 1 - lo],
+        // n·l is at most 256: `n·l - 257` wraps above 0.
+        false => [257, 0],
+    }
+}
+
+/// Whether n·l `ndotl` is in the interval `[lo, span]` of
+/// [`Lambert::interior_ndotl`].
+#[inline(always)]
+pub(super) fn within(ndotl: u32, [lo, span]: [u32; 2]) -> bool {
+    ndotl.wrapping_sub(lo) <= span
 }
 
 /// `floor(x / 65,280)`, at most 255, for `x < 2^31` (the Lambert colour's
@@ -152,8 +224,10 @@ pub(super) const LOOP_CONSTANTS: bool = cfg!(all(
 pub(super) trait LitWork {
     /// The clip coordinates of the position `p` (16.16 bits).
     fn transform(&self, p: [i32; 3]) -> [i32; 4];
-    /// The Lambert colour of the vertex with normal `n`.
-    fn shade(&self, n: Vec3Fx) -> [u8; 3];
+    /// The Lambert colour of the vertex with normal `n`, and whether it
+    /// may carry the interior bit: n·l within the draw's
+    /// [`interior_ndotl`](Lambert::interior_ndotl).
+    fn shade(&self, n: Vec3Fx) -> ([u8; 3], bool);
 }
 
 impl LitWork for (&NarrowRows, &Lambert) {
@@ -163,20 +237,21 @@ impl LitWork for (&NarrowRows, &Lambert) {
     }
 
     #[inline(always)]
-    fn shade(&self, n: Vec3Fx) -> [u8; 3] {
+    fn shade(&self, n: Vec3Fx) -> ([u8; 3], bool) {
         self.0.shade(self.1, n)
     }
 }
 
-impl LitWork for (&FixedMat4, &Lambert, [u8; 3]) {
+impl LitWork for (&FixedMat4, &Lambert, [u8; 3], [u32; 2]) {
     #[inline(always)]
     fn transform(&self, p: [i32; 3]) -> [i32; 4] {
         self.0.transform_point_bounded(p)
     }
 
     #[inline(always)]
-    fn shade(&self, n: Vec3Fx) -> [u8; 3] {
-        self.1.shade(n, self.2)
+    fn shade(&self, n: Vec3Fx) -> ([u8; 3], bool) {
+        let ndotl = self.1.ndotl(n);
+        (self.1.shade_ndotl(ndotl, self.2), within(ndotl, self.3))
     }
 }
 
@@ -205,11 +280,17 @@ pub(super) struct LoopConstants {
     /// [`div65280_sat`]'s multiplier, loaded with the channels' factors
     /// (as a literal the Cortex-M3 rebuilt it, two instructions a vertex).
     magic: u32,
+    /// The n·l that may carry the interior bit
+    /// ([`Lambert::interior_ndotl`]).
+    inside: [u32; 2],
 }
 
 #[cfg_attr(not(any(test, target_pointer_width = "32")), allow(dead_code))]
 impl LoopConstants {
-    pub(super) fn new(m: &FixedMat4, l: &Lambert, base: [u8; 3]) -> Self {
+    /// The constants of a draw with matrix `m`, light `l` and colour
+    /// `base`, Gouraud shaded or not (`gouraud`: whether its vertices
+    /// carry the interior bit).
+    pub(super) fn new(m: &FixedMat4, l: &Lambert, base: [u8; 3], gouraud: bool) -> Self {
         // Loops rather than `map`s, here and below: the size profile
         // (the OLED firmware's) keeps a `map` as a loop through a
         // temporary array and a `memcpy`.
@@ -218,12 +299,17 @@ impl LoopConstants {
             dir: l.dir,
             channels: [[0; 2]; 3],
             magic: DIV65280,
+            inside: [0; 2],
         };
         for (r, row) in k.rows.iter_mut().enumerate() {
             let t = (m.m[3][r] as i64) << 16 | 1 << 15;
             *row = [t as i32, (t >> 32) as i32, m.m[0][r], m.m[1][r], m.m[2][r]];
         }
         k.channels = l.folded(base);
+        k.inside = match super::screen::INTERIOR_STARTS {
+            true => interior_ndotl(&k.channels, gouraud),
+            false => [257, 0],
+        };
         k
     }
 }
@@ -248,7 +334,7 @@ impl LitWork for LoopConstants {
     /// [`Lambert::shade`] of normal `n` on the draw's colour: the same
     /// colour.
     #[inline(always)]
-    fn shade(&self, n: Vec3Fx) -> [u8; 3] {
+    fn shade(&self, n: Vec3Fx) -> ([u8; 3], bool) {
         use crate::math::mul_wide;
         let d = mul_wide(n[0].to_bits(), self.dir[0])
             + mul_wide(n[1].to_bits(), self.dir[1])
@@ -258,7 +344,7 @@ impl LitWork for LoopConstants {
         for (o, &[a, c]) in out.iter_mut().zip(&self.channels) {
             *o = div65280_sat_by(a + c * ndotl, self.magic);
         }
-        out
+        (out, within(ndotl, self.inside))
     }
 }
 
@@ -285,16 +371,27 @@ pub(super) struct NarrowRows {
     /// The Lambert colour's factors per channel ([`Lambert::folded`]: one
     /// `MULS` a channel fewer).
     channels: [[u32; 2]; 3],
+    /// The n·l that may carry the interior bit
+    /// ([`Lambert::interior_ndotl`]).
+    inside: [u32; 2],
 }
 
 #[cfg_attr(not(any(test, microraster_narrow_multiply)), allow(dead_code))]
 impl NarrowRows {
-    pub(super) fn new(m: &FixedMat4, l: &Lambert, base: [u8; 3]) -> Self {
+    /// The rows of `m` and the colour constants of light `l` on `base`,
+    /// for a draw Gouraud shaded or not (`gouraud`, as
+    /// [`LoopConstants::new`]).
+    pub(super) fn new(m: &FixedMat4, l: &Lambert, base: [u8; 3], gouraud: bool) -> Self {
         let mut k = Self {
             rows: [[0; 7]; 4],
             channels: [[0; 2]; 3],
+            inside: [0; 2],
         };
         k.channels = l.folded(base);
+        k.inside = match super::screen::INTERIOR_STARTS {
+            true => interior_ndotl(&k.channels, gouraud),
+            false => [257, 0],
+        };
         for (r, row) in k.rows.iter_mut().enumerate() {
             let e = [m.m[0][r], m.m[1][r], m.m[2][r]];
             *row = [
@@ -326,14 +423,14 @@ impl NarrowRows {
     /// [`Lambert::shade`] of normal `n` on the draw's colour, `l` the
     /// light this was made with: the same colour.
     #[inline(always)]
-    pub(super) fn shade(&self, l: &Lambert, n: Vec3Fx) -> [u8; 3] {
+    pub(super) fn shade(&self, l: &Lambert, n: Vec3Fx) -> ([u8; 3], bool) {
         let ndotl = l.ndotl(n);
         let mut out = [0u8; 3];
         for (o, &[a, c]) in out.iter_mut().zip(&self.channels) {
             // Lambert::shade's division on cores without a multiply-high.
             *o = crate::light::div255((a + c * ndotl) >> 8).min(255) as u8;
         }
-        out
+        (out, within(ndotl, self.inside))
     }
 }
 
@@ -491,10 +588,46 @@ mod tests {
                 let base = [next(256) as u8, next(256) as u8, next(256) as u8];
                 let general = setup.shade(&Material::new(), base, [0; 3], n.map(|v| v.to_bits()));
                 assert_eq!(fast.shade(n, base), general, "{n:?} {base:?}");
-                let k = LoopConstants::new(&FixedMat4 { m: [[0; 4]; 4] }, &fast, base);
-                assert_eq!(k.shade(n), general, "{n:?} {base:?}");
-                let k = NarrowRows::new(&FixedMat4 { m: [[0; 4]; 4] }, &fast, base);
-                assert_eq!(k.shade(&fast, n), general, "{n:?} {base:?}");
+                let inside = crate::vertex::screen::channels_interior(general);
+                let zero = FixedMat4 { m: [[0; 4]; 4] };
+                for gouraud in [false, true] {
+                    let want = (general, gouraud && inside);
+                    let k = LoopConstants::new(&zero, &fast, base, gouraud);
+                    assert_eq!(k.shade(n), want, "{n:?} {base:?}");
+                    let k = NarrowRows::new(&zero, &fast, base, gouraud);
+                    assert_eq!(k.shade(&fast, n), want, "{n:?} {base:?}");
+                    let b = fast.interior_ndotl(base, gouraud);
+                    let k = (&zero, &fast, base, b);
+                    assert_eq!(k.shade(n), want, "{n:?} {base:?}");
+                }
+            }
+        }
+    }
+
+    /// The n·l interval of the interior bit holds exactly the n·l whose
+    /// colour has every channel in `1..=254`: every n·l, for random
+    /// lights and colours and their extremes.
+    #[test]
+    fn interior_ndotl_is_exact() {
+        let mut next = crate::testing::rng();
+        let ends = [0u8, 1, 2, 127, 128, 253, 254, 255];
+        for i in 0..20_000 {
+            let mut c = |j: u64| match (i + j) % 3 {
+                0 => ends[next(ends.len() as u64) as usize],
+                _ => next(256) as u8,
+            };
+            let l = Lambert {
+                dir: [0; 3],
+                color: [c(0), c(1), c(2)].map(u32::from),
+                ambient: [c(3), c(4), c(5)].map(u32::from),
+            };
+            let base = [c(6), c(7), c(8)];
+            for gouraud in [false, true] {
+                let b = l.interior_ndotl(base, gouraud);
+                for n in 0..=256 {
+                    let inside = crate::vertex::screen::channels_interior(l.shade_ndotl(n, base));
+                    assert_eq!(within(n, b), gouraud && inside, "{l:?} {base:?} {n}");
+                }
             }
         }
     }
@@ -525,7 +658,7 @@ mod tests {
                 continue;
             }
             taken += 1;
-            let k = LoopConstants::new(&m, &none, [0; 3]);
+            let k = LoopConstants::new(&m, &none, [0; 3], true);
             for _ in 0..20 {
                 let ext = extent as i64;
                 let p = [0; 3].map(|_| (next(2 * ext as u64 + 1) as i64 - ext) as i32);
@@ -561,7 +694,7 @@ mod tests {
                 continue;
             }
             taken += 1;
-            let k = NarrowRows::new(&m, &none, [0; 3]);
+            let k = NarrowRows::new(&m, &none, [0; 3], true);
             let ext = extent as i64;
             for j in 0..20 {
                 let mut c = || match (j + i) % 5 {

@@ -35,6 +35,7 @@ pub use clip_space::{
     outcode, ClipVertex, BARY_ONE, GUARD_K, MUST_CLIP, OUT_BOTTOM, OUT_FAR, OUT_GUARD, OUT_LEFT,
     OUT_NEAR, OUT_RIGHT, OUT_TOP, OUT_W, REJECT_MASK, W_MIN,
 };
+pub(crate) use screen::INTERIOR_STARTS;
 pub use screen::{ScreenVertex, COORD_BITS, COORD_MAX, COORD_MIN};
 pub use setup::{DrawSetup, VertexError, MAX_LIGHTS};
 pub use viewport::{Viewport, MAX_VIEWPORT};

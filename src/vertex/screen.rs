@@ -82,23 +82,31 @@ const INTERIOR: u32 = 1 << 8;
 /// Cortex-M3 `demo` 3,904,200 -> 3,856,708, `rock` 3,207,716 ->
 /// 3,158,427; ARMv6-M `demo` 7,759,390 -> 7,716,260, `rock` 6,421,527 ->
 /// 6,367,693.
-const INTERIOR_STARTS: bool = cfg!(microraster_interior);
+pub(crate) const INTERIOR_STARTS: bool = cfg!(microraster_interior);
 
 /// [`ScreenVertex::interior`] of a vertex with depth `z` and colour `c`:
 /// depth in `2..=65533` and every channel in `1..=254` (never, without
 /// [`INTERIOR_STARTS`]).
 #[inline(always)]
 const fn interior(z: u16, c: [u8; 3]) -> bool {
-    if !INTERIOR_STARTS {
-        return false;
-    }
-    // Each as one subtraction and one unsigned compare. (The channels as
-    // the bytes of one word, tested together by carries, took the x86-64
-    // vertex stage 8,000 instructions more on `demo`.)
-    (z.wrapping_sub(2) <= 65_531)
-        & (c[0].wrapping_sub(1) <= 253)
-        & (c[1].wrapping_sub(1) <= 253)
-        & (c[2].wrapping_sub(1) <= 253)
+    depth_interior(z) & channels_interior(c)
+}
+
+/// The depth half of [`interior`]: `z` in `2..=65533`, as one subtraction
+/// and one unsigned compare (never, without [`INTERIOR_STARTS`]).
+#[inline(always)]
+const fn depth_interior(z: u16) -> bool {
+    INTERIOR_STARTS && (z as u32).wrapping_sub(2) <= 65_531
+}
+
+/// The colour half of [`interior`]: every channel of `c` in `1..=254`,
+/// each as one subtraction and one unsigned compare. (The channels as the
+/// bytes of one word, tested together by carries, took the x86-64 vertex
+/// stage 8,000 instructions more on `demo`.) The vertex stage's Lambert
+/// loops test n·l against an interval instead (`Lambert::interior_ndotl`).
+#[inline(always)]
+pub(crate) const fn channels_interior(c: [u8; 3]) -> bool {
+    (c[0].wrapping_sub(1) <= 253) & (c[1].wrapping_sub(1) <= 253) & (c[2].wrapping_sub(1) <= 253)
 }
 
 impl ScreenVertex {
@@ -111,6 +119,26 @@ impl ScreenVertex {
     #[inline(always)]
     pub(crate) const fn new(x: i32, y: i32, z: u16, outcode: u8, color: [u8; 3]) -> Self {
         Self::with_interior(x, y, z, outcode, color, interior(z, color))
+    }
+
+    /// [`ScreenVertex::new`] of a vertex whose colour the caller has
+    /// tested already: `color_inside` says that every channel of `color`
+    /// is in `1..=254` (the vertex stage's Lambert loops know it from n·l,
+    /// in two instructions), or is false for a vertex that should not
+    /// carry the [`interior`](Self::interior) bit (of a draw that is not
+    /// Gouraud shaded: only the Gouraud span starts read it). The depth is
+    /// tested here.
+    #[inline(always)]
+    pub(crate) const fn new_tested(
+        x: i32,
+        y: i32,
+        z: u16,
+        outcode: u8,
+        color: [u8; 3],
+        color_inside: bool,
+    ) -> Self {
+        let inside = color_inside & depth_interior(z);
+        Self::with_interior(x, y, z, outcode, color, inside)
     }
 
     /// [`ScreenVertex::new`] of a clipped polygon's vertex: outcode 0, and

@@ -212,7 +212,9 @@ impl DrawSetup {
     /// Vertices `first` on of `mesh` (the mesh of the draw this was set up
     /// for), each as [`clip_position`](Self::clip_position) and
     /// [`lit_color`](Self::lit_color) give it, projected by `viewport` into
-    /// `out`: the vertex stage's loop.
+    /// `out`: the vertex stage's loop. Each vertex's
+    /// [`interior`](ScreenVertex::interior) bit is made only if `gouraud`
+    /// (the draw is Gouraud shaded).
     ///
     /// What holds for the whole draw is asked once, not per vertex: in the
     /// common case (a matrix [`bounded`](FixedMat4::bounded) for the mesh,
@@ -233,6 +235,7 @@ impl DrawSetup {
         first: usize,
         viewport: &Viewport,
         out: &mut [ScreenVertex],
+        gouraud: bool,
     ) -> Result<(), VertexError> {
         let n = out.len();
         let run = first..first + n;
@@ -252,31 +255,43 @@ impl DrawSetup {
         };
         match common {
             Some((l, normals)) if LOOP_CONSTANTS => {
-                let k = LoopConstants::new(&self.mvp, l, self.color);
+                let k = LoopConstants::new(&self.mvp, l, self.color, gouraud);
                 // Opaque: the loop loads each constant where it uses it,
                 // neighbours in one instruction (see `LoopConstants`).
-                lit_loop(out, positions, normals, viewport, core::hint::black_box(&k));
+                lit_loop(
+                    out,
+                    positions,
+                    normals,
+                    viewport,
+                    core::hint::black_box(&k),
+                    gouraud,
+                );
             }
             Some((l, normals)) if crate::math::SPLIT => {
-                let k = NarrowRows::new(&self.mvp, l, self.color);
+                let k = NarrowRows::new(&self.mvp, l, self.color, gouraud);
                 // Opaque, as `LoopConstants` (see `NarrowRows`): 10,000
                 // instructions a `demo` frame fewer than without.
                 let k = core::hint::black_box(&k);
-                lit_loop(out, positions, normals, viewport, &(k, l));
+                lit_loop(out, positions, normals, viewport, &(k, l), gouraud);
             }
             // 64-bit cores: 32-bit ones took an arm above.
-            Some((l, normals)) => lit_loop(
-                out,
-                positions,
-                normals,
-                viewport,
-                &(&self.mvp, l, self.color),
-            ),
+            Some((l, normals)) => {
+                let inside = l.interior_ndotl(self.color, gouraud);
+                lit_loop(
+                    out,
+                    positions,
+                    normals,
+                    viewport,
+                    &(&self.mvp, l, self.color, inside),
+                    gouraud,
+                )
+            }
             None => {
                 for (k, o) in out.iter_mut().enumerate() {
                     let pos = self.clip_position_apart(mesh, first + k)?;
-                    *o = viewport
-                        .screen_vertex_lit(&pos, false, || self.lit_color_apart(mesh, first + k));
+                    *o = viewport.screen_vertex_lit::<DUPLICATE>(&pos, false, || {
+                        self.lit_color_apart(mesh, first + k, gouraud)
+                    });
                 }
             }
         }
@@ -292,11 +307,27 @@ impl DrawSetup {
     }
 
     /// [`lit_color`](Self::lit_color) out of line, for the draws outside
-    /// [`screen_vertices`](Self::screen_vertices)' common case.
+    /// [`screen_vertices`](Self::screen_vertices)' common case, with
+    /// whether the vertex may carry the interior bit as far as its colour
+    /// goes: never unless `gouraud` (tested here, out of line, so that the
+    /// loop is not made twice for the flag).
     #[cfg_attr(not(target_pointer_width = "64"), inline(never))]
     #[cfg_attr(target_pointer_width = "64", inline(always))]
-    fn lit_color_apart(&self, mesh: &Mesh<'_>, i: usize) -> [u8; 3] {
-        self.lit_color(mesh, i)
+    fn lit_color_apart(&self, mesh: &Mesh<'_>, i: usize, gouraud: bool) -> ([u8; 3], bool) {
+        let color = self.lit_color(mesh, i);
+        // On 64-bit hosts the channels are tested with the depth instead
+        // (`screen_vertex_lit`'s `CHANNELS`), and every draw's vertices
+        // tested: a flag tested per vertex, or the channels tested here,
+        // took x86-64's `tri4` 5 instructions a vertex more.
+        match DUPLICATE {
+            true => (color, true),
+            false => (
+                color,
+                super::screen::INTERIOR_STARTS
+                    && gouraud
+                    && super::screen::channels_interior(color),
+            ),
+        }
     }
 
     /// The clip-space position and lit colour of vertex `i` of `mesh`, the
@@ -379,9 +410,34 @@ impl DrawSetup {
 /// implementations: `LoopConstants` on 32-bit cores with a long multiply,
 /// `NarrowRows` on ARMv6-M, the bounded matrix on 64-bit hosts). Inlined
 /// into each arm, so each arm's constants stay where its `black_box` put
-/// them.
+/// them. Whether a vertex gets the interior bit comes with its colour
+/// (the draw's n·l interval, empty unless it is Gouraud shaded); on
+/// 64-bit hosts the loop is made twice (`DUPLICATE`), and the copy for
+/// the other draws (`gouraud` false) makes no test at all.
 #[inline(always)]
 fn lit_loop(
+    out: &mut [ScreenVertex],
+    positions: &[[I16F16; 3]],
+    normals: &[Vec3Fx],
+    viewport: &Viewport,
+    k: &impl LitWork,
+    gouraud: bool,
+) {
+    match (DUPLICATE, gouraud) {
+        (true, false) => lit_loop_one::<false>(out, positions, normals, viewport, k),
+        _ => lit_loop_one::<true>(out, positions, normals, viewport, k),
+    }
+}
+
+/// Whether [`lit_loop`] is made twice, with and without the interior
+/// bit: on 64-bit hosts, where flash does not matter. (On the Cortex-M3
+/// the second copy took 724 bytes of flash.)
+const DUPLICATE: bool = cfg!(target_pointer_width = "64");
+
+/// One copy of [`lit_loop`]; without `BIT`, no vertex gets the interior
+/// bit.
+#[inline(always)]
+fn lit_loop_one<const BIT: bool>(
     out: &mut [ScreenVertex],
     positions: &[[I16F16; 3]],
     normals: &[Vec3Fx],
@@ -390,6 +446,9 @@ fn lit_loop(
 ) {
     for (o, (p, nv)) in out.iter_mut().zip(positions.iter().zip(normals)) {
         let pos = k.transform([p[0].to_bits(), p[1].to_bits(), p[2].to_bits()]);
-        *o = viewport.screen_vertex_lit(&pos, true, || k.shade(*nv));
+        *o = viewport.screen_vertex_lit::<false>(&pos, true, || {
+            let (color, inside) = k.shade(*nv);
+            (color, BIT && inside)
+        });
     }
 }

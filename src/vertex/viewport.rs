@@ -230,7 +230,8 @@ impl Viewport {
     #[inline(always)]
     pub fn screen_vertex(&self, v: &ClipVertex) -> ScreenVertex {
         let color = [v.color[0] as u8, v.color[1] as u8, v.color[2] as u8];
-        self.screen_vertex_lit(&v.pos, true, || color)
+        let inside = super::screen::channels_interior(color);
+        self.screen_vertex_lit::<false>(&v.pos, true, || (color, inside))
     }
 
     /// [`screen_vertex`](Self::screen_vertex) of the vertex at clip-space
@@ -243,12 +244,16 @@ impl Viewport {
     /// other out of line; without it, every vertex out of line (the vertex
     /// stage's general loop, which calls out of line for its position and
     /// colour anyway: one inline copy of the projection fewer in flash).
+    /// `color` also says whether the vertex may carry the
+    /// [`interior`](ScreenVertex::interior) bit as far as its colour goes
+    /// (see [`ScreenVertex::new_tested`]); with `CHANNELS` the colour's
+    /// channels are tested here too.
     #[inline(always)]
-    pub(crate) fn screen_vertex_lit(
+    pub(crate) fn screen_vertex_lit<const CHANNELS: bool>(
         &self,
         pos: &[i32; 4],
         fast: bool,
-        color: impl FnOnce() -> [u8; 3],
+        color: impl FnOnce() -> ([u8; 3], bool),
     ) -> ScreenVertex {
         let (outcode, p, z) = match LONG_DIVISION {
             true => match fast.then(|| self.project_fast(pos)).flatten() {
@@ -260,7 +265,11 @@ impl Viewport {
         // Within the coordinate fields: `p` is 0 for a vertex that must be
         // clipped, otherwise inside the guard band (`|x|, |y| <= K w`), so
         // within `(K + 1) * 2^15 < 2^18` sub-pixels.
-        ScreenVertex::new(p.x, p.y, z, outcode, color())
+        let (color, inside) = color();
+        match CHANNELS {
+            true => ScreenVertex::new(p.x, p.y, z, outcode, color),
+            false => ScreenVertex::new_tested(p.x, p.y, z, outcode, color, inside),
+        }
     }
 
     /// The outcode of `pos` and, for a vertex without [`MUST_CLIP`] bits,
