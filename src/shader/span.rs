@@ -437,12 +437,21 @@ impl<'a, C, V: Varyings> SpanInput<'a, C, V> {
 
 /// The shortest span that takes the opaque exact loop with the span's
 /// shift: the test per span (`opaque_shift`: three products and a dozen
-/// comparisons) is not paid by spans of one to three pixels, most of the
+/// comparisons) is not paid by spans of one or two pixels, most of the
 /// textured frame's, which take the opaque loop with [`weights`] per pixel
-/// instead (a threshold set, not tuned).
+/// instead. Tuned on `demo-textured-lit` (Cortex-M3): 8 pixels 8,256,167
+/// instructions, 4 8,207,289, 3 8,198,446, 2 8,198,437; x86-64 at 3
+/// 7,709,280 -> 7,696,985 against 4; the shader fills' 32-pixel spans
+/// unchanged. ARMv6-M (no 32x32 to 64-bit multiply) keeps 4: at 3 its
+/// `demo-textured-lit` took 25,713,431 -> 25,906,607 (the Cortex-M4F
+/// 7,900,918 -> 7,904,071).
 ///
 /// [`weights`]: crate::shade::perspective::weights
-const OPAQUE_EXACT_MIN: usize = 4;
+const OPAQUE_EXACT_MIN: usize = if cfg!(microraster_narrow_multiply) {
+    4
+} else {
+    3
+};
 
 /// A span shader's colour at one pixel, for [`SpanInput::shade_with`]:
 /// any closure `FnMut(&Interpolated<V>) -> Option<C>` is one.

@@ -87,6 +87,13 @@ impl WidePlane {
         Self { gx, gy, k }
     }
 
+    /// [`new`](Self::new) out of line (see [`wide_planes_apart`]).
+    #[cfg_attr(target_pointer_width = "64", allow(dead_code))]
+    #[inline(never)]
+    fn apart(f: &Basis, values: [i64; 3]) -> Self {
+        Self::new(f, values, false)
+    }
+
     /// The value at pixel `(i, j)`, clamped to `lo..=hi`. `|i|, |j| < 2^13`,
     /// so the sum stays below 2^60.
     #[inline(always)]
@@ -172,6 +179,99 @@ pub(crate) struct PerspectiveSetup<V> {
 impl<V: Varyings> PerspectiveSetup<V> {
     #[inline(always)]
     pub(crate) fn new(t: &ShaderTriangle<'_, V>, affine: bool) -> Self {
+        // Shaders with varyings on 32-bit targets take the small
+        // triangles' narrow planes ([`small_planes`]); the others keep the
+        // set-up of before, statement for statement: with the small path
+        // beside it in one function, `fill-gouraud-exact` took 67.86 ->
+        // 73.75 instructions per fragment on the Cortex-M3 (its loop's
+        // registers).
+        if V::LEN > 0 && cfg!(not(target_pointer_width = "64")) {
+            Self::new_small(t, affine)
+        } else {
+            Self::new_wide(t, affine)
+        }
+    }
+
+    /// [`new`](Self::new) for shaders with varyings on 32-bit targets.
+    #[inline(always)]
+    fn new_small(t: &ShaderTriangle<'_, V>, affine: bool) -> Self {
+        // The arrays are written out rather than mapped: each `map` was
+        // an out-of-line call per triangle and tile.
+        let f = Basis::new(&t.corners.points());
+        let q = if affine {
+            [Q_ONE; 3]
+        } else {
+            // Vertices reaching the shader have w >= W_MIN - 1 > 0 (the
+            // clipper's round-off); `max(1)` only keeps this total.
+            let w = [
+                (t.w[0] as i64).max(1),
+                (t.w[1] as i64).max(1),
+                (t.w[2] as i64).max(1),
+            ];
+            let wmin = w[0].min(w[1]).min(w[2]);
+            [
+                scale_q(wmin, w[0]),
+                scale_q(wmin, w[1]),
+                scale_q(wmin, w[2]),
+            ]
+        };
+        let [v0, v1, v2] = t.corners.0;
+        let (c0, c1, c2) = (v0.color(), v1.color(), v2.color());
+        let d = |a: [u8; 3], k: usize| a[k] as i32 - c0[k] as i32;
+        // The differences once per triangle, in `i32` when they fit (every
+        // mesh's but texture coordinates repeated tens of thousands of
+        // times across one triangle).
+        let mut dvar = [V::zeroed(); 2];
+        let mut fits = true;
+        let mut fine0 = V::zeroed();
+        for (o, a0) in fine0.as_mut_slice().iter_mut().zip(t.var[0].as_slice()) {
+            *o = I16F16::from_bits((a0.to_bits() << 16).wrapping_add(1 << 15));
+        }
+        for (d, a) in dvar.iter_mut().zip(&t.var[1..]) {
+            for ((o, a), a0) in d
+                .as_mut_slice()
+                .iter_mut()
+                .zip(a.as_slice())
+                .zip(t.var[0].as_slice())
+            {
+                let (v, wrapped) = a.to_bits().overflowing_sub(a0.to_bits());
+                fits &= !wrapped;
+                *o = I16F16::from_bits(v);
+            }
+        }
+        // A small triangle's planes when every gradient is below 2^31:
+        // none clamped, so the planes are narrow; the others' tested.
+        #[cfg_attr(target_pointer_width = "64", allow(unused_variables))]
+        let (planes, narrow) = match small_planes(&f, q) {
+            Some(planes) => (planes, true),
+            None => wide_planes_apart(&f, q),
+        };
+        Self {
+            draw: t.draw,
+            depth: TriangleSetup::with_basis(&f, &t.corners, false),
+            planes,
+            #[cfg(not(target_pointer_width = "64"))]
+            narrow,
+            var: t.var,
+            dvar,
+            fine0,
+            fits,
+            flat: t.corners.0[0].color(),
+            color: [
+                [
+                    ((c0[0] as i32) << 16) + (1 << 15),
+                    ((c0[1] as i32) << 16) + (1 << 15),
+                    ((c0[2] as i32) << 16) + (1 << 15),
+                ],
+                [d(c1, 0), d(c1, 1), d(c1, 2)],
+                [d(c2, 0), d(c2, 1), d(c2, 2)],
+            ],
+        }
+    }
+
+    /// [`new`](Self::new) for the others: the set-up of before.
+    #[inline(always)]
+    fn new_wide(t: &ShaderTriangle<'_, V>, affine: bool) -> Self {
         // The arrays are written out rather than mapped: each `map` was
         // an out-of-line call per triangle and tile.
         let f = Basis::new(&t.corners.points());
@@ -401,6 +501,72 @@ impl<V: Varyings> PerspectiveSetup<V> {
         }
         c
     }
+}
+
+/// The three perspective planes through `q` by [`WidePlane::new`], and
+/// whether none of their gradients was clamped, for what [`small_planes`]
+/// declines on a 32-bit target
+/// (large triangles, whose set-up is paid over many pixels, and slivers),
+/// each plane out of line ([`WidePlane::apart`]): inlined beside the
+/// small path, the three planes had the LM3S6965's `demo-textured-lit`
+/// firmware over its flash.
+#[cfg_attr(target_pointer_width = "64", allow(dead_code))]
+#[inline(always)]
+fn wide_planes_apart(f: &Basis, q: [i64; 3]) -> ([WidePlane; 3], bool) {
+    let planes = [
+        WidePlane::apart(f, q),
+        WidePlane::apart(f, [0, q[1], 0]),
+        WidePlane::apart(f, [0, 0, q[2]]),
+    ];
+    (planes, planes.iter().all(WidePlane::exact))
+}
+
+/// The three perspective planes of a [`Small`] triangle on a 32-bit
+/// target when all six gradients are below 2^31 in magnitude
+/// ([`small_gradient`]): the planes of [`WidePlane::new`], without its
+/// clamps (at most 2^40, they change nothing) and with no `exact` test
+/// to follow (every plane is). The numerators are written out for the
+/// planes' values `(q0, q1, q2)`, `(0, q1, 0)` and `(0, 0, q2)`: those of
+/// `B1` and `B2` one product each.
+///
+/// The planes through `q`, or `None` (a 64-bit host, no [`Small`], or
+/// a gradient of 2^31 or more): then [`WidePlane::new`].
+#[inline(always)]
+#[cfg_attr(target_pointer_width = "64", allow(unused_variables))]
+fn small_planes(f: &Basis, q: [i64; 3]) -> Option<[WidePlane; 3]> {
+    #[cfg(not(target_pointer_width = "64"))]
+    if let Some(s) = &f.small {
+        return small_planes_of(f, s, q);
+    }
+    None
+}
+
+/// [`small_planes`] for a [`Small`] triangle `f` (whose `small` is `s`),
+/// on any target (the tests run it on the host).
+#[cfg_attr(target_pointer_width = "64", allow(dead_code))]
+#[inline(always)]
+fn small_planes_of(f: &Basis, s: &Small, q: [i64; 3]) -> Option<[WidePlane; 3]> {
+    debug_assert!(q.iter().all(|v| (0..=Q_ONE).contains(v)));
+    let [x1, y1, x2, y2] = [f.x1 as i32, f.y1 as i32, f.x2 as i32, f.y2 as i32];
+    let [q0, q1, q2] = [q[0] as i32, q[1] as i32, q[2] as i32];
+    let (d1, d2) = (q1 - q0, q2 - q0);
+    let g = |n: i64| small_gradient(s, n);
+    let qx = g(mul(d1, y2) - mul(d2, y1))?;
+    let qy = g(mul(d2, x1) - mul(d1, x2))?;
+    let b1x = g(mul(q1, y2))?;
+    let b1y = g(-mul(q1, x2))?;
+    let b2x = g(-mul(q2, y1))?;
+    let b2y = g(mul(q2, x1))?;
+    // |g| < 2^31 and |o| < 2^19: no overflow.
+    let plane = |gx: i32, gy: i32, v0: i64| {
+        let (gx, gy) = (gx as i64, gy as i64);
+        WidePlane {
+            gx,
+            gy,
+            k: v0 + ((gx * f.ox + gy * f.oy) >> SUBPIXEL_BITS),
+        }
+    };
+    Some([plane(qx, qy, q[0]), plane(b1x, b1y, 0), plane(b2x, b2y, 0)])
 }
 
 /// `f.gradients(values, 0)` for a perspective plane (`Q`, `B1` or `B2`:
@@ -760,6 +926,63 @@ mod tests {
             }
         }
         assert!(checked > 500_000, "{checked} gradients");
+    }
+
+    /// `small_planes_of` gives the planes of `WidePlane::new` (gradients and
+    /// constants) for small triangles, slivers and far vertices included,
+    /// whenever it gives any, and then none of them was clamped.
+    #[test]
+    fn small_planes_match_the_wide_ones() {
+        use crate::raster::SubPoint;
+        let mut next = crate::testing::rng();
+        let mut checked = 0u32;
+        for n in 0..100_000 {
+            let edge = match n % 3 {
+                0 => 1 << 10,
+                1 => 64,
+                _ => 8,
+            };
+            let o = SubPoint::new(
+                next(1 << 19) as i32 - (1 << 18),
+                next(1 << 19) as i32 - (1 << 18),
+            );
+            let mut p = || {
+                SubPoint::new(
+                    o.x + next(2 * edge) as i32 - edge as i32,
+                    o.y + next(2 * edge) as i32 - edge as i32,
+                )
+            };
+            let v = [o, p(), p()];
+            if crate::raster::signed_area2(&v) == 0 {
+                continue;
+            }
+            let f = Basis::with_small(&v, true);
+            let Some(small) = &f.small else {
+                continue;
+            };
+            let q = match next(4) {
+                0 => [Q_ONE; 3],
+                1 => [Q_ONE, next(Q_ONE as u64 + 1) as i64, Q_ONE],
+                _ => {
+                    let mut q = || next(Q_ONE as u64 + 1) as i64;
+                    [q(), q(), q()]
+                }
+            };
+            let Some(planes) = small_planes_of(&f, small, q) else {
+                continue;
+            };
+            let wide = [
+                WidePlane::new(&f, q, false),
+                WidePlane::new(&f, [0, q[1], 0], false),
+                WidePlane::new(&f, [0, 0, q[2]], false),
+            ];
+            for (s, w) in planes.iter().zip(&wide) {
+                assert!(w.exact(), "{v:?} {q:?}");
+                assert_eq!((s.gx, s.gy, s.k), (w.gx, w.gy, w.k), "{v:?} {q:?}");
+            }
+            checked += 1;
+        }
+        assert!(checked > 50_000, "{checked} triangles");
     }
 
     /// The 32-bit long division of `scale_q` gives the 64-bit quotient.
