@@ -120,6 +120,12 @@ fn main() {
     if !fpu && !size {
         println!("cargo:rustc-cfg=microraster_interior");
     }
+    // Builds optimised for size: code that buys speed with flash (the
+    // binning loop's single-tile push) is left out of them.
+    println!("cargo::rustc-check-cfg=cfg(microraster_size)");
+    if size {
+        println!("cargo:rustc-cfg=microraster_size");
+    }
     println!("cargo::rustc-check-cfg=cfg(microraster_lm3s6965)");
     if let Some(map) = board_map(&target, board.as_deref()) {
         let out = PathBuf::from(env::var_os("OUT_DIR").expect("cargo sets OUT_DIR"));

@@ -19,10 +19,12 @@ pub(super) enum Fate {
 /// How many triangles of a pass met each fate.
 #[derive(Clone, Copy, Debug, Default)]
 pub(super) struct Tally {
-    /// Per [`Fate`]. Classification counts the rejected and visible
-    /// triangles; [`bin_pass`] sets the culled ones (the most common fate,
-    /// whose count would be a memory increment on the binning loop's
-    /// shortest path) to the rest of the pass's triangles.
+    /// Per [`Fate`]. Classification counts the rejected triangles, the
+    /// binning loop the visible ones (with its pairs, in one sum:
+    /// [`LOOP_COUNTS_VISIBLE`]; on ARMv6-M classification counts them);
+    /// [`bin_pass`] sets the culled ones (the most common fate, whose
+    /// count would be a memory increment on the binning loop's shortest
+    /// path) to the rest of the pass's triangles.
     pub(super) fates: [u32; 3],
     pub(super) clipped: u32,
     pub(super) draws_culled: u32,
@@ -95,21 +97,25 @@ pub(super) fn bin_pass<const TW: usize, const TH: usize, const HILBERT: bool, P:
             };
             let run = first..first + len;
             first += len;
-            // The u16 loop is inlined here, per tile order; the u32 one
-            // (meshes beyond 65,536 vertices, rare) is one out-of-line copy
-            // for both.
+            // The common loop (`u16` indices, row-major tiles) is inlined
+            // here; the others (the Hilbert order, meshes beyond 65,536
+            // vertices) share one out-of-line copy, which tests the order
+            // and the indices' width as it goes: a copy of its own for the
+            // Hilbert order had cost about 2 KB of flash.
             match draw.mesh.triangles() {
-                Indices::U16(tris) => bin_triangles::<TW, TH, u16>(
-                    &ctx, &tris[run], HILBERT, &mut t, bins, cache, tally,
-                ),
-                Indices::U32(tris) if P::U32_INDICES => {
+                Indices::U16(tris) if !HILBERT || !SHARED_OTHER => {
+                    let tris = tris[run].iter().copied();
+                    bin_triangles::<TW, TH, u16>(&ctx, tris, HILBERT, &mut t, bins, cache, tally)
+                }
+                Indices::U32(tris) if !SHARED_OTHER && P::U32_INDICES => {
                     bin_wide::<TW, TH>(&ctx, &tris[run], HILBERT, &mut t, bins, cache, tally)
                 }
                 // Refused by the vertex stage (Path::U32Indices).
-                Indices::U32(_) => {
+                Indices::U32(_) if !P::U32_INDICES => {
                     t += len;
                     tally.fates[Fate::Rejected as usize] += len as u32;
                 }
+                tris => bin_other::<TW, TH>(&ctx, tris, run, HILBERT, &mut t, bins, cache, tally),
             }
         }
     }
@@ -120,7 +126,33 @@ pub(super) fn bin_pass<const TW: usize, const TH: usize, const HILBERT: bool, P:
         (t as u32).saturating_sub(f[Fate::Rejected as usize] + f[Fate::Visible as usize]);
 }
 
-/// [`bin_triangles`] for `u32` indices, out of line.
+/// Whether the row-major binning loop pushes a triangle that lies in a
+/// single tile (about two in three of `demo`'s visible triangles) by one
+/// [`Pass::push`] rather than through the row loop of
+/// [`Pass::push_run`]: not in builds optimised for size (the build
+/// script's `microraster_size`), where its code weighs more.
+const SINGLE_PUSH: bool = !cfg!(microraster_size);
+
+/// Whether the binning loop counts the visible triangles (with their
+/// pairs, in one 64-bit sum), rather than [`FrameState::classify`] (a
+/// memory increment for each): not on ARMv6-M, where the sum measured
+/// slower (binning +12.5 K instructions on the `demo` frame).
+///
+/// [`FrameState::classify`]: super::state::FrameState::classify
+pub(super) const LOOP_COUNTS_VISIBLE: bool = !crate::math::SPLIT;
+
+/// Whether the binning loops other than the common one (`u16` indices,
+/// row-major tiles) share one out-of-line copy, [`bin_other`]: on the
+/// Cortex-M3 its copy for the Hilbert order had taken about 2 KB of
+/// flash. Not on ARMv6-M, whose row-major loop's registers moved without
+/// the copies (binning 705,367 -> 747,137 instructions on the `demo`
+/// frame), nor in builds optimised for size (the OLED firmware +120 B):
+/// there the Hilbert order has its inlined copy and `u32` indices
+/// [`bin_wide`].
+const SHARED_OTHER: bool = !crate::math::SPLIT && !cfg!(microraster_size);
+
+/// [`bin_triangles`] for `u32` indices, out of line (see
+/// [`SHARED_OTHER`]).
 #[inline(never)]
 pub(super) fn bin_wide<const TW: usize, const TH: usize>(
     ctx: &BinDraw<'_, '_>,
@@ -131,6 +163,24 @@ pub(super) fn bin_wide<const TW: usize, const TH: usize>(
     cache: &mut SetupCache,
     tally: &mut Tally,
 ) {
+    bin_triangles::<TW, TH, u32>(ctx, tris.iter().copied(), hilbert, t, bins, cache, tally)
+}
+
+/// [`bin_triangles`] for the triangles `run` of `tris`, in either tile
+/// order, out of line: the Hilbert order and `u32` indices.
+#[inline(never)]
+#[allow(clippy::too_many_arguments)]
+pub(super) fn bin_other<const TW: usize, const TH: usize>(
+    ctx: &BinDraw<'_, '_>,
+    tris: Indices<'_>,
+    run: core::ops::Range<usize>,
+    hilbert: bool,
+    t: &mut usize,
+    bins: &mut Pass<'_>,
+    cache: &mut SetupCache,
+    tally: &mut Tally,
+) {
+    let tris = run.map(|k| tris.get(k));
     bin_triangles::<TW, TH, u32>(ctx, tris, hilbert, t, bins, cache, tally)
 }
 
@@ -154,7 +204,7 @@ pub(super) struct BinDraw<'a, 'f> {
 #[inline(always)]
 pub(super) fn bin_triangles<const TW: usize, const TH: usize, I: Copy + Into<u32>>(
     ctx: &BinDraw<'_, '_>,
-    tris: &[[I; 3]],
+    tris: impl Iterator<Item = [I; 3]>,
     hilbert: bool,
     t: &mut usize,
     bins: &mut Pass<'_>,
@@ -178,7 +228,12 @@ pub(super) fn bin_triangles<const TW: usize, const TH: usize, I: Copy + Into<u32
 /// triangles `tris` and the tile order (`hilbert`) with it in `draw`.
 #[inline(always)]
 fn bin_culled<const TW: usize, const TH: usize, I: Copy + Into<u32>>(
-    draw: (&BinDraw<'_, '_>, &[[I; 3]], bool, CullMode),
+    draw: (
+        &BinDraw<'_, '_>,
+        impl Iterator<Item = [I; 3]>,
+        bool,
+        CullMode,
+    ),
     t: &mut usize,
     bins: &mut Pass<'_>,
     cache: &mut SetupCache,
@@ -187,9 +242,19 @@ fn bin_culled<const TW: usize, const TH: usize, I: Copy + Into<u32>>(
     let (ctx, tris, hilbert, cull) = draw;
     let cols = ctx.grid.cols as usize;
     // Counted here and added once: `t` and `tally` live in the caller.
-    let (mut tt, mut pairs_sum) = (*t, tally.pairs);
+    // The visible triangles and their pairs in one sum, `VISIBLE` a
+    // triangle above the pairs: one 64-bit add a triangle (two
+    // instructions on a 32-bit core) rather than a saturating add and a
+    // memory increment. At most 2^16 triangles of at most 2^24 tiles
+    // each: the pairs stay below 2^40, and the count below 2^16.
+    // On ARMv6-M (`SPLIT`), whose 64-bit add costs it registers, the
+    // visible triangles are counted by `classify` and the pairs alone here
+    // ([`LOOP_COUNTS_VISIBLE`]).
+    const VISIBLE: u64 = 1 << 42;
+    let mut tt = *t;
+    let (mut sum, mut pairs_sum) = (0u64, tally.pairs);
     let small = ctx.frame.small();
-    for &idx in tris {
+    for idx in tris {
         let idx = idx.map(Into::into);
         if let Some(r) = ctx.frame.classify(
             ctx.d,
@@ -204,9 +269,12 @@ fn bin_culled<const TW: usize, const TH: usize, I: Copy + Into<u32>>(
             // coordinates are not negative.
             let (c0, c1) = (r.x0 as usize / TW, (r.x1 as usize - 1) / TW + 1);
             let (r0, r1) = (r.y0 as usize / TH, (r.y1 as usize - 1) / TH + 1);
-            // At most 2^16 triangles of 2^24 tiles: saturate, never wrap.
-            let pairs = ((c1 - c0) * (r1 - r0)) as u32;
-            pairs_sum = pairs_sum.saturating_add(pairs);
+            let pairs = (c1 - c0) * (r1 - r0);
+            if LOOP_COUNTS_VISIBLE {
+                sum += VISIBLE + pairs as u64;
+            } else {
+                pairs_sum = pairs_sum.saturating_add(pairs as u32);
+            }
             if hilbert || crate::math::SPLIT {
                 for row in r0..r1 {
                     for col in c0..c1 {
@@ -219,6 +287,11 @@ fn bin_culled<const TW: usize, const TH: usize, I: Copy + Into<u32>>(
                         bins.push(p.wrapping_sub(ctx.t0), tt as u16);
                     }
                 }
+            } else if SINGLE_PUSH && pairs == 1 {
+                // Most visible triangles lie in one tile: one push, without
+                // the row loop's set-up. At most 2^24 tiles: no overflow;
+                // a tile before the pass wraps to an index it does not hold.
+                bins.push((r0 * cols + c0).wrapping_sub(ctx.t0), tt as u16);
             } else {
                 // Each row's tiles in the pass's numbering, from `t0`:
                 // those before the pass are negative, and the pass holds
@@ -235,5 +308,9 @@ fn bin_culled<const TW: usize, const TH: usize, I: Copy + Into<u32>>(
         }
         tt += 1;
     }
-    (*t, tally.pairs) = (tt, pairs_sum);
+    *t = tt;
+    tally.fates[Fate::Visible as usize] += (sum / VISIBLE) as u32;
+    // Over every tile of the frame: saturate, never wrap.
+    let pairs = u32::try_from(sum % VISIBLE).unwrap_or(u32::MAX);
+    tally.pairs = pairs_sum.saturating_add(pairs);
 }

@@ -1,6 +1,6 @@
 //! Triangles that must be clipped: classified and drawn through their clipped pieces.
 
-use super::binning::{Fate, Tally};
+use super::binning::{Fate, Tally, LOOP_COUNTS_VISIBLE};
 use super::state::{covering, grow, margin, meet, FrameState, SetupCache};
 use crate::clip::{clip_triangle, MAX_CLIPPED_VERTICES};
 use crate::raster::{signed_area2, PixelRect};
@@ -40,8 +40,9 @@ impl FrameState<'_> {
             );
         });
         tally.clipped += 1;
-        // Culled triangles are counted by the binning pass (see `Tally`).
-        if fate != Fate::Culled {
+        // Culled triangles are counted by the binning pass, visible ones
+        // by the binning loop on most cores (see `Tally`).
+        if fate == Fate::Rejected || (fate == Fate::Visible && !LOOP_COUNTS_VISIBLE) {
             tally.fates[fate as usize] += 1;
         }
         (fate == Fate::Visible).then(|| meet(&grow(&r, margin), &self.frame))
