@@ -192,13 +192,12 @@ impl<V: Varyings> PerspectiveSetup<V> {
         }
     }
 
-    /// [`new`](Self::new) for shaders with varyings on 32-bit targets.
+    /// The vertices' perspective weights `q` (all [`Q_ONE`] when affine).
     #[inline(always)]
-    fn new_small(t: &ShaderTriangle<'_, V>, affine: bool) -> Self {
+    fn perspective_q(t: &ShaderTriangle<'_, V>, affine: bool) -> [i64; 3] {
         // The arrays are written out rather than mapped: each `map` was
         // an out-of-line call per triangle and tile.
-        let f = Basis::new(&t.corners.points());
-        let q = if affine {
+        if affine {
             [Q_ONE; 3]
         } else {
             // Vertices reaching the shader have w >= W_MIN - 1 > 0 (the
@@ -214,13 +213,17 @@ impl<V: Varyings> PerspectiveSetup<V> {
                 scale_q(wmin, w[1]),
                 scale_q(wmin, w[2]),
             ]
-        };
-        let [v0, v1, v2] = t.corners.0;
-        let (c0, c1, c2) = (v0.color(), v1.color(), v2.color());
-        let d = |a: [u8; 3], k: usize| a[k] as i32 - c0[k] as i32;
-        // The differences once per triangle, in `i32` when they fit (every
-        // mesh's but texture coordinates repeated tens of thousands of
-        // times across one triangle).
+        }
+    }
+
+    /// The varyings' differences from vertex 0, vertex 0's values with
+    /// 16 more fraction bits and a half added, and whether the differences
+    /// fit `i32`.
+    #[inline(always)]
+    fn differences(t: &ShaderTriangle<'_, V>) -> ([V; 2], V, bool) {
+        // Once per triangle, in `i32` when they fit (every mesh's but
+        // texture coordinates repeated tens of thousands of times across
+        // one triangle).
         let mut dvar = [V::zeroed(); 2];
         let mut fits = true;
         let mut fine0 = V::zeroed();
@@ -239,6 +242,33 @@ impl<V: Varyings> PerspectiveSetup<V> {
                 *o = I16F16::from_bits(v);
             }
         }
+        (dvar, fine0, fits)
+    }
+
+    /// Vertex 0's colour channels in 16.16 with a half added, and the
+    /// other two vertices' differences from it.
+    #[inline(always)]
+    fn colour_differences(t: &ShaderTriangle<'_, V>) -> [[i32; 3]; 3] {
+        let [v0, v1, v2] = t.corners.0;
+        let (c0, c1, c2) = (v0.color(), v1.color(), v2.color());
+        let d = |a: [u8; 3], k: usize| a[k] as i32 - c0[k] as i32;
+        [
+            [
+                ((c0[0] as i32) << 16) + (1 << 15),
+                ((c0[1] as i32) << 16) + (1 << 15),
+                ((c0[2] as i32) << 16) + (1 << 15),
+            ],
+            [d(c1, 0), d(c1, 1), d(c1, 2)],
+            [d(c2, 0), d(c2, 1), d(c2, 2)],
+        ]
+    }
+
+    /// [`new`](Self::new) for shaders with varyings on 32-bit targets.
+    #[inline(always)]
+    fn new_small(t: &ShaderTriangle<'_, V>, affine: bool) -> Self {
+        let f = Basis::new(&t.corners.points());
+        let q = Self::perspective_q(t, affine);
+        let (dvar, fine0, fits) = Self::differences(t);
         // A small triangle's planes when every gradient is below 2^31:
         // none clamped, so the planes are narrow; the others' tested.
         #[cfg_attr(target_pointer_width = "64", allow(unused_variables))]
@@ -257,41 +287,18 @@ impl<V: Varyings> PerspectiveSetup<V> {
             fine0,
             fits,
             flat: t.corners.0[0].color(),
-            color: [
-                [
-                    ((c0[0] as i32) << 16) + (1 << 15),
-                    ((c0[1] as i32) << 16) + (1 << 15),
-                    ((c0[2] as i32) << 16) + (1 << 15),
-                ],
-                [d(c1, 0), d(c1, 1), d(c1, 2)],
-                [d(c2, 0), d(c2, 1), d(c2, 2)],
-            ],
+            color: Self::colour_differences(t),
         }
     }
 
     /// [`new`](Self::new) for the others: the set-up of before.
     #[inline(always)]
     fn new_wide(t: &ShaderTriangle<'_, V>, affine: bool) -> Self {
-        // The arrays are written out rather than mapped: each `map` was
-        // an out-of-line call per triangle and tile.
         let f = Basis::new(&t.corners.points());
-        let q = if affine {
-            [Q_ONE; 3]
-        } else {
-            // Vertices reaching the shader have w >= W_MIN - 1 > 0 (the
-            // clipper's round-off); `max(1)` only keeps this total.
-            let w = [
-                (t.w[0] as i64).max(1),
-                (t.w[1] as i64).max(1),
-                (t.w[2] as i64).max(1),
-            ];
-            let wmin = w[0].min(w[1]).min(w[2]);
-            [
-                scale_q(wmin, w[0]),
-                scale_q(wmin, w[1]),
-                scale_q(wmin, w[2]),
-            ]
-        };
+        let q = Self::perspective_q(t, affine);
+        // The colours written out here, not by `colour_differences`: with
+        // it, x86-64's `demo-textured-lit` took 7,634,978 -> 7,672,415
+        // instructions and `fill-lit-exact` 128.21 -> 130.31 a fragment.
         let [v0, v1, v2] = t.corners.0;
         let (c0, c1, c2) = (v0.color(), v1.color(), v2.color());
         let d = |a: [u8; 3], k: usize| a[k] as i32 - c0[k] as i32;
@@ -299,27 +306,7 @@ impl<V: Varyings> PerspectiveSetup<V> {
         // varyings: with them, `Gouraud`'s long-span loops compiled worse
         // on the Cortex-M3 (BENCHMARKS.md).
         let small = V::LEN > 0;
-        // The differences once per triangle, in `i32` when they fit (every
-        // mesh's but texture coordinates repeated tens of thousands of
-        // times across one triangle).
-        let mut dvar = [V::zeroed(); 2];
-        let mut fits = true;
-        let mut fine0 = V::zeroed();
-        for (o, a0) in fine0.as_mut_slice().iter_mut().zip(t.var[0].as_slice()) {
-            *o = I16F16::from_bits((a0.to_bits() << 16).wrapping_add(1 << 15));
-        }
-        for (d, a) in dvar.iter_mut().zip(&t.var[1..]) {
-            for ((o, a), a0) in d
-                .as_mut_slice()
-                .iter_mut()
-                .zip(a.as_slice())
-                .zip(t.var[0].as_slice())
-            {
-                let (v, wrapped) = a.to_bits().overflowing_sub(a0.to_bits());
-                fits &= !wrapped;
-                *o = I16F16::from_bits(v);
-            }
-        }
+        let (dvar, fine0, fits) = Self::differences(t);
         #[allow(unused_mut)]
         let mut s = Self {
             draw: t.draw,
@@ -864,17 +851,17 @@ mod tests {
         assert!(checked > 100_000, "{checked} span starts");
     }
 
-    /// `small_gradient` gives `Basis::gradients`' quotients (those of
-    /// `Small::div_round_wide`) for every small triangle's perspective
-    /// planes whose gradients are below 2^31, slivers and far vertices
-    /// included, and declines the others.
-
-    #[test]
-    fn small_gradients_match_the_wide_ones() {
+    /// Calls `each` for `count` random triangles with edges below 2^10, 64
+    /// or 8 sub-pixels anywhere in the guard band, those with a small
+    /// basis: their vertices, basis, its small part and perspective values
+    /// `q` (all one, one differing, or all random).
+    fn each_small_case(
+        count: u32,
+        mut each: impl FnMut(&[crate::raster::SubPoint; 3], &Basis, &Small, [i64; 3]),
+    ) {
         use crate::raster::SubPoint;
         let mut next = crate::testing::rng();
-        let mut checked = 0u32;
-        for n in 0..200_000 {
+        for n in 0..count {
             let edge = match n % 3 {
                 0 => 1 << 10,
                 1 => 64,
@@ -906,6 +893,18 @@ mod tests {
                     [q(), q(), q()]
                 }
             };
+            each(&v, &f, small, q);
+        }
+    }
+
+    /// `small_gradient` gives `Basis::gradients`' quotients (those of
+    /// `Small::div_round_wide`) for every small triangle's perspective
+    /// planes whose gradients are below 2^31, slivers and far vertices
+    /// included, and declines the others.
+    #[test]
+    fn small_gradients_match_the_wide_ones() {
+        let mut checked = 0u32;
+        each_small_case(200_000, |v, f, small, q| {
             let [x1, y1, x2, y2] = [f.x1 as i32, f.y1 as i32, f.x2 as i32, f.y2 as i32];
             for values in [q, [0, q[1], 0], [0, 0, q[2]]] {
                 let (gx, gy) = f.gradients(values, 0);
@@ -924,7 +923,7 @@ mod tests {
                     }
                 }
             }
-        }
+        });
         assert!(checked > 500_000, "{checked} gradients");
     }
 
@@ -933,60 +932,26 @@ mod tests {
     /// whenever it gives any, and then none of them was clamped.
     #[test]
     fn small_planes_match_the_wide_ones() {
-        use crate::raster::SubPoint;
-        let mut next = crate::testing::rng();
         let mut checked = 0u32;
-        for n in 0..100_000 {
-            let edge = match n % 3 {
-                0 => 1 << 10,
-                1 => 64,
-                _ => 8,
-            };
-            let o = SubPoint::new(
-                next(1 << 19) as i32 - (1 << 18),
-                next(1 << 19) as i32 - (1 << 18),
-            );
-            let mut p = || {
-                SubPoint::new(
-                    o.x + next(2 * edge) as i32 - edge as i32,
-                    o.y + next(2 * edge) as i32 - edge as i32,
-                )
-            };
-            let v = [o, p(), p()];
-            if crate::raster::signed_area2(&v) == 0 {
-                continue;
-            }
-            let f = Basis::with_small(&v, true);
-            let Some(small) = &f.small else {
-                continue;
-            };
-            let q = match next(4) {
-                0 => [Q_ONE; 3],
-                1 => [Q_ONE, next(Q_ONE as u64 + 1) as i64, Q_ONE],
-                _ => {
-                    let mut q = || next(Q_ONE as u64 + 1) as i64;
-                    [q(), q(), q()]
-                }
-            };
-            let Some(planes) = small_planes_of(&f, small, q) else {
-                continue;
+        each_small_case(100_000, |v, f, small, q| {
+            let Some(planes) = small_planes_of(f, small, q) else {
+                return;
             };
             let wide = [
-                WidePlane::new(&f, q, false),
-                WidePlane::new(&f, [0, q[1], 0], false),
-                WidePlane::new(&f, [0, 0, q[2]], false),
+                WidePlane::new(f, q, false),
+                WidePlane::new(f, [0, q[1], 0], false),
+                WidePlane::new(f, [0, 0, q[2]], false),
             ];
             for (s, w) in planes.iter().zip(&wide) {
                 assert!(w.exact(), "{v:?} {q:?}");
                 assert_eq!((s.gx, s.gy, s.k), (w.gx, w.gy, w.k), "{v:?} {q:?}");
             }
             checked += 1;
-        }
+        });
         assert!(checked > 50_000, "{checked} triangles");
     }
 
     /// The 32-bit long division of `scale_q` gives the 64-bit quotient.
-
     #[test]
     fn scale_q_matches_the_division() {
         let mut next = crate::testing::rng();
