@@ -21,14 +21,13 @@
 //! sample starts again from exact values, so nothing drifts past a
 //! segment.
 //!
-//! Three files: this one sets the triangle up ([`PerspectiveSetup`]);
+//! This file sets the triangle up ([`PerspectiveSetup`]), `plane` its
+//! three planes and `lerp` the 32-bit forms of a varying's value;
 //! `barycentric` turns the planes into the weights of a pixel; `span` is the
 //! loop that walks a span's pixels with them ([`SpanInput`]'s methods and
 //! the [`Output`] that says how fragments are tested and written).
 
-use super::small::Small;
-use super::{depth16, Basis, Corners, DepthTest, SpanPos, TriangleSetup, GRADIENT_LIMIT, Z_FRAC};
-use crate::raster::SUBPIXEL_BITS;
+use super::{depth16, Basis, Corners, DepthTest, SpanPos, TriangleSetup, Z_FRAC};
 use crate::scene::Blend;
 use crate::shader::span::{Interpolated, PixelFn, PutPixel, SpanInput};
 use crate::shader::{Perspective, Varyings};
@@ -36,10 +35,15 @@ use crate::texture::Texture;
 use fixed::types::I16F16;
 
 mod barycentric;
+mod lerp;
+mod plane;
 mod span;
 
 pub(crate) use barycentric::{signed_weights, weights};
 pub(crate) use span::{span_input, Output, AFFINE, CLAMPED, COLOUR_LOOP, SHIFTED};
+
+use lerp::{fine_fit, lerp32, lerp_fit, FIT_PRODUCTS, NARROW_MULTIPLY};
+use plane::{scale_q, small_planes, wide_planes_apart, WidePlane};
 
 /// `1 / w` of the nearest vertex, scaled.
 const Q_ONE: i64 = 1 << 28;
@@ -56,94 +60,6 @@ pub(crate) struct ShaderTriangle<'a, V> {
     pub corners: Corners<'a>,
     pub w: [i32; 3],
     pub var: [V; 3],
-}
-
-/// One plane in `i64`, gradients clamped to ±2^40: the value at the
-/// centre of pixel `(i, j)` is `gx i + gy j + k`.
-#[derive(Clone, Copy, Debug, Default)]
-struct WidePlane {
-    gx: i64,
-    gy: i64,
-    k: i64,
-}
-
-impl WidePlane {
-    /// The plane through `values` at the vertices of `f` (in `0..=2^28`).
-    /// With `small`, on a 32-bit target, a small triangle's gradients in
-    /// 32-bit divisions ([`perspective_gradients`]; the same values).
-    #[inline(always)]
-    fn new(f: &Basis, values: [i64; 3], small: bool) -> Self {
-        let (gx, gy) = if small {
-            perspective_gradients(f, values)
-        } else {
-            f.gradients(values, 0)
-        };
-        let (gx, gy) = (
-            gx.clamp(-GRADIENT_LIMIT, GRADIENT_LIMIT),
-            gy.clamp(-GRADIENT_LIMIT, GRADIENT_LIMIT),
-        );
-        // |g| <= 2^40 and |o| < 2^19: no overflow.
-        let k = values[0] + ((gx * f.ox + gy * f.oy) >> SUBPIXEL_BITS);
-        Self { gx, gy, k }
-    }
-
-    /// [`new`](Self::new) out of line (see [`wide_planes_apart`]).
-    #[cfg_attr(target_pointer_width = "64", allow(dead_code))]
-    #[inline(never)]
-    fn apart(f: &Basis, values: [i64; 3]) -> Self {
-        Self::new(f, values, false)
-    }
-
-    /// The value at pixel `(i, j)`, clamped to `lo..=hi`. `|i|, |j| < 2^13`,
-    /// so the sum stays below 2^60.
-    #[inline(always)]
-    fn at(&self, i: i32, j: i32, lo: i64, hi: i64) -> i32 {
-        (self.gx * i as i64 + self.gy * j as i64 + self.k).clamp(lo, hi) as i32
-    }
-
-    /// [`at`](Self::at) in wrapping `i32` arithmetic, the same value for a
-    /// span start of a triangle none of whose gradients was clamped: the
-    /// gradients are then the exact ones rounded, so at a covered pixel
-    /// centre the plane is within 2^15 of the exact one, which lies
-    /// between the vertex values (`0..=2^28`); that value fits `i32`, and
-    /// the wrapping sum is exact modulo 2^32 (as [`Plane`](crate::shade::plane::Plane)'s). Two
-    /// 32-bit products and a 32-bit clamp instead of 64-bit ones: a few
-    /// instructions per span on a Cortex-M.
-    #[cfg_attr(target_pointer_width = "64", allow(dead_code))]
-    #[inline(always)]
-    fn at32(&self, i: i32, j: i32, lo: i32, hi: i32) -> i32 {
-        self.at32_unclamped(i, j).clamp(lo, hi)
-    }
-
-    /// [`at32`](Self::at32) without its clamp, where the clamp cannot
-    /// change the value: at a covered pixel centre the plane lies within
-    /// `-2^15..=2^28 + 2^15` (see there), inside `-Q_MAX..=Q_MAX`. So
-    /// `B1`'s and `B2`'s span starts take no clamp, and `Q`'s only its
-    /// lower bound (`Q` at a pixel may be below 1 where the vertices' `q`
-    /// are). Four compares and selects fewer per plane and span on a
-    /// Cortex-M.
-    #[cfg_attr(target_pointer_width = "64", allow(dead_code))]
-    #[inline(always)]
-    fn at32_unclamped(&self, i: i32, j: i32) -> i32 {
-        (self.gx as i32)
-            .wrapping_mul(i)
-            .wrapping_add((self.gy as i32).wrapping_mul(j))
-            .wrapping_add(self.k as i32)
-    }
-
-    /// Whether neither gradient was clamped.
-    #[cfg_attr(target_pointer_width = "64", allow(dead_code))]
-    #[inline(always)]
-    fn exact(&self) -> bool {
-        self.gx.abs() < GRADIENT_LIMIT && self.gy.abs() < GRADIENT_LIMIT
-    }
-
-    /// The step along a span, saturated to `i32` (a triangle whose step
-    /// saturates is a sliver of one pixel per span, whose step is unused).
-    #[inline(always)]
-    fn step(&self) -> i32 {
-        self.gx.clamp(-Q_MAX, Q_MAX) as i32
-    }
 }
 
 /// A triangle's perspective set-up.
@@ -490,232 +406,11 @@ impl<V: Varyings> PerspectiveSetup<V> {
     }
 }
 
-/// The three perspective planes through `q` by [`WidePlane::new`], and
-/// whether none of their gradients was clamped, for what [`small_planes`]
-/// declines on a 32-bit target
-/// (large triangles, whose set-up is paid over many pixels, and slivers),
-/// each plane out of line ([`WidePlane::apart`]): inlined beside the
-/// small path, the three planes had the LM3S6965's `demo-textured-lit`
-/// firmware over its flash.
-#[cfg_attr(target_pointer_width = "64", allow(dead_code))]
-#[inline(always)]
-fn wide_planes_apart(f: &Basis, q: [i64; 3]) -> ([WidePlane; 3], bool) {
-    let planes = [
-        WidePlane::apart(f, q),
-        WidePlane::apart(f, [0, q[1], 0]),
-        WidePlane::apart(f, [0, 0, q[2]]),
-    ];
-    (planes, planes.iter().all(WidePlane::exact))
-}
-
-/// The three perspective planes of a [`Small`] triangle on a 32-bit
-/// target when all six gradients are below 2^31 in magnitude
-/// ([`small_gradient`]): the planes of [`WidePlane::new`], without its
-/// clamps (at most 2^40, they change nothing) and with no `exact` test
-/// to follow (every plane is). The numerators are written out for the
-/// planes' values `(q0, q1, q2)`, `(0, q1, 0)` and `(0, 0, q2)`: those of
-/// `B1` and `B2` one product each.
-///
-/// The planes through `q`, or `None` (a 64-bit host, no [`Small`], or
-/// a gradient of 2^31 or more): then [`WidePlane::new`].
-#[inline(always)]
-#[cfg_attr(target_pointer_width = "64", allow(unused_variables))]
-fn small_planes(f: &Basis, q: [i64; 3]) -> Option<[WidePlane; 3]> {
-    #[cfg(not(target_pointer_width = "64"))]
-    if let Some(s) = &f.small {
-        return small_planes_of(f, s, q);
-    }
-    None
-}
-
-/// [`small_planes`] for a [`Small`] triangle `f` (whose `small` is `s`),
-/// on any target (the tests run it on the host).
-#[cfg_attr(target_pointer_width = "64", allow(dead_code))]
-#[inline(always)]
-fn small_planes_of(f: &Basis, s: &Small, q: [i64; 3]) -> Option<[WidePlane; 3]> {
-    debug_assert!(q.iter().all(|v| (0..=Q_ONE).contains(v)));
-    let [x1, y1, x2, y2] = [f.x1 as i32, f.y1 as i32, f.x2 as i32, f.y2 as i32];
-    let [q0, q1, q2] = [q[0] as i32, q[1] as i32, q[2] as i32];
-    let (d1, d2) = (q1 - q0, q2 - q0);
-    let g = |n: i64| small_gradient(s, n);
-    let qx = g(mul(d1, y2) - mul(d2, y1))?;
-    let qy = g(mul(d2, x1) - mul(d1, x2))?;
-    let b1x = g(mul(q1, y2))?;
-    let b1y = g(-mul(q1, x2))?;
-    let b2x = g(-mul(q2, y1))?;
-    let b2y = g(mul(q2, x1))?;
-    // |g| < 2^31 and |o| < 2^19: no overflow.
-    let plane = |gx: i32, gy: i32, v0: i64| {
-        let (gx, gy) = (gx as i64, gy as i64);
-        WidePlane {
-            gx,
-            gy,
-            k: v0 + ((gx * f.ox + gy * f.oy) >> SUBPIXEL_BITS),
-        }
-    };
-    Some([plane(qx, qy, q[0]), plane(b1x, b1y, 0), plane(b2x, b2y, 0)])
-}
-
-/// `f.gradients(values, 0)` for a perspective plane (`Q`, `B1` or `B2`:
-/// values in `0..=2^28`). On a 32-bit target a [`Small`] triangle's
-/// gradients take two 32-bit divisions each ([`small_gradient`]) where
-/// `Basis::gradients` takes four (`Small::div_round_wide`), when they are
-/// below 2^31 in magnitude; the same quotients. The edge vectors are then
-/// below 2^10 and the differences of the values at most 2^28, so each
-/// numerator is a difference of two 32x32 to 64-bit products.
-#[inline(always)]
-fn perspective_gradients(f: &Basis, values: [i64; 3]) -> (i64, i64) {
-    #[cfg(not(target_pointer_width = "64"))]
-    if let Some(small) = &f.small {
-        debug_assert!(values.iter().all(|v| (0..=Q_ONE).contains(v)));
-        let [x1, y1, x2, y2] = [f.x1 as i32, f.y1 as i32, f.x2 as i32, f.y2 as i32];
-        let (d1, d2) = (
-            (values[1] - values[0]) as i32,
-            (values[2] - values[0]) as i32,
-        );
-        if let (Some(gx), Some(gy)) = (
-            small_gradient(small, mul(d1, y2) - mul(d2, y1)),
-            small_gradient(small, mul(d2, x1) - mul(d1, x2)),
-        ) {
-            return (gx as i64, gy as i64);
-        }
-    }
-    f.gradients(values, 0)
-}
-
-/// `a b` in `i64`: one 32x32 to 64-bit product.
-#[cfg_attr(target_pointer_width = "64", allow(dead_code))]
-#[inline(always)]
-fn mul(a: i32, b: i32) -> i64 {
-    a as i64 * b as i64
-}
-
-/// `n 2^4 / area` rounded to nearest, ties away from zero (the quotient of
-/// `Small::div_round_wide` and of `Basis::gradients`), for
-/// `|n| <= 2 (2^28) (2^10 - 1) = 2^39 - 2^29`, if its magnitude is below
-/// 2^31; `None` otherwise. Then `a = |n| 2^4 + half < 2^43`, so `a >> 11`
-/// fits `u32`: one 32-bit division for it, and one for its remainder
-/// (below `area < 2^21`) shifted by 11 with `a`'s low 11 bits.
-#[cfg_attr(target_pointer_width = "64", allow(dead_code))]
-#[inline(always)]
-fn small_gradient(small: &Small, n: i64) -> Option<i32> {
-    let d = small.area.get();
-    let a = (n.unsigned_abs() << SUBPIXEL_BITS) + small.half as u64;
-    let hi = (a >> 11) as u32;
-    let q1 = hi / d;
-    if q1 >= 1 << 20 {
-        return None;
-    }
-    let lo = ((hi - q1 * d) << 11) | (a as u32 & 0x7FF);
-    let q = ((q1 << 11) | (lo / d)) as i32;
-    Some(if n < 0 { -q } else { q })
-}
-
-/// `(wmin << 28) / w` for `1 <= wmin <= w < 2^31`: a vertex's `1 / w`
-/// scaled so that the nearest is [`Q_ONE`]. A 64-bit host divides; a
-/// 32-bit core, where a 64-bit division is a library call, takes the same
-/// quotient by long division in 32-bit steps of `k` bits, `k` the leading
-/// zeros of `w` (so every partial dividend `r 2^k < w 2^k` fits `u32`):
-/// two or three divisions for the usual `w` of 2^16 to 2^21.
-#[inline(always)]
-fn scale_q(wmin: i64, w: i64) -> i64 {
-    if cfg!(target_pointer_width = "64") || !(1..=w).contains(&wmin) || w >= 1 << 31 {
-        return (wmin << 28) / w;
-    }
-    scale_q32(wmin as u32, w as u32)
-}
-
-/// [`scale_q`] on a 32-bit core, for `1 <= wmin <= w < 2^31`.
-#[cfg_attr(target_pointer_width = "64", allow(dead_code))]
-#[inline(always)]
-fn scale_q32(wmin: u32, w: u32) -> i64 {
-    if wmin == w {
-        return Q_ONE;
-    }
-    // 1 <= wmin < w < 2^31: the quotient is below 2^28.
-    let w = core::num::NonZeroU32::new(w).unwrap_or(core::num::NonZeroU32::MAX);
-    crate::math::shift_in_zeros(0, wmin, w, 28).0 as i64
-}
-
-/// Whether the target lacks a 32x32 to 64-bit multiply (ARMv6-M and
-/// ARMv8-M Baseline, whose Thumb-1 has none; every Thumb-2 core has
-/// `SMULL`). Set by the build script from the target's name: stable Rust
-/// sets no `target_feature` cfg for ARM, so the test that was here,
-/// `not(target_feature = "thumb2")`, held on the Cortex-M3 and M4F too,
-/// which took the 32-bit form (demo-textured-lit +2.8 % on the M3, +4.0 %
-/// on the M4F).
-const NARROW_MULTIPLY: bool = cfg!(microraster_narrow_multiply);
-
-/// Whether the opaque span loops take the varyings' differences per
-/// triangle in `i32` ([`PerspectiveSetup::values_fit`]): on 32-bit cores
-/// with a 32x32 to 64-bit multiply (Cortex-M3 `fill-nearest-affine` 88.7
-/// to 70.7 instructions per fragment). Not on ARMv6-M (no such multiply,
-/// [`lerp32`] instead), nor on 64-bit hosts, where a 64-bit product is
-/// one instruction anyway (with the differences set up for this alone,
-/// `demo-textured-lit` took +0.8 % on x86-64).
-const FIT_PRODUCTS: bool = !NARROW_MULTIPLY && cfg!(not(target_pointer_width = "64"));
-
-/// The low word of `a0 · 2^16 + 2^15 + d1 b1 + d2 b2` for `f0 = a0 · 2^16
-/// + 2^15` and differences `d1`, `d2` wrapped (exact modulo 2^32): its
-/// bits 16 to 31 are the low 16 bits of [`PerspectiveSetup::values`]'
-/// value, whatever the differences (see
-/// [`values_fit`](PerspectiveSetup::values_fit)).
-#[inline(always)]
-fn fine_fit(f0: i32, d1: i32, d2: i32, (b1, b2): (i32, i32)) -> i32 {
-    f0.wrapping_add(d1.wrapping_mul(b1))
-        .wrapping_add(d2.wrapping_mul(b2))
-}
-
-/// `a0 + ((d1 b1 + d2 b2 + 2^15) >> 16)` wrapped to `i32`, for exact
-/// differences `d1`, `d2` that fit `i32`: the bits of
-/// [`PerspectiveSetup::values`]' `i64` formula (whose sum is the same, and
-/// whose result is the same modulo 2^32), with 32x32 to 64-bit products.
-/// `|b| < 2^20`, so the sum stays below 2^52.
-#[inline(always)]
-fn lerp_fit(a0: i32, d1: i32, d2: i32, (b1, b2): (i32, i32)) -> i32 {
-    let s = d1 as i64 * b1 as i64 + d2 as i64 * b2 as i64 + (1 << 15);
-    a0.wrapping_add((s >> 16) as i32)
-}
-
-/// `a0 + ((d1 b1 + d2 b2 + 2^15) >> 16)` wrapped to `i32`, with
-/// `d_i = a_i - a0` exact (up to 33 bits) and weights `b` in `0..=2^16`,
-/// in 32-bit arithmetic: the same bits as the `i64` formula of
-/// [`PerspectiveSetup::values`]. Each difference is split as
-/// `d = h 2^16 + l` with `0 <= l < 2^16`; the `h` products are whole units
-/// and only matter modulo 2^32, so they wrap; the `l` products are below
-/// 2^32 each, and their sum's carry into bit 32 is counted by hand.
-#[inline(always)]
-fn lerp32(a0: i32, a1: i32, a2: i32, (b1, b2): (i32, i32)) -> i32 {
-    // The 33-bit differences as (high, low) halves: a wrapping subtract
-    // gives the low 32 bits, the borrow the sign-extension.
-    let split = |a: i32| -> (i32, u32) {
-        let (d, borrow) = a.overflowing_sub(a0);
-        // When it overflowed, the true difference is `d - 2^32` (a < a0)
-        // or `d + 2^32`: its high half is `d >> 16` minus or plus 2^16.
-        let h = (d >> 16).wrapping_add(if borrow {
-            if a < a0 {
-                -(1 << 16)
-            } else {
-                1 << 16
-            }
-        } else {
-            0
-        });
-        (h, d as u32 & 0xFFFF)
-    };
-    let ((h1, l1), (h2, l2)) = (split(a1), split(a2));
-    let (b1, b2) = (b1 as u32, b2 as u32);
-    let (s, c1) = l1.wrapping_mul(b1).overflowing_add(l2.wrapping_mul(b2));
-    let (s, c2) = s.overflowing_add(1 << 15);
-    let low = (s >> 16).wrapping_add((c1 as u32 + c2 as u32) << 16);
-    a0.wrapping_add(h1.wrapping_mul(b1 as i32))
-        .wrapping_add(h2.wrapping_mul(b2 as i32))
-        .wrapping_add(low as i32)
-}
-
 #[cfg(test)]
 mod tests {
+    use super::plane::*;
     use super::*;
+    use crate::shade::small::Small;
 
     /// The `i64` formula of `values`: `a0 + (d1 b1 + d2 b2 + 2^15) >> 16`
     /// with `d1 = a1 - a0`, `d2 = a2 - a0`.

@@ -1,0 +1,245 @@
+//! The three perspective planes of a triangle for a fragment shader,
+//! `Q`, `B1` and `B2` ([`WidePlane`], see the [parent module](super) for
+//! the method): the general set-up in `i64` with clamped gradients, the
+//! 32-bit one of small triangles on 32-bit targets, and the vertices'
+//! scaled `1 / w` ([`scale_q`]).
+
+use super::{Q_MAX, Q_ONE};
+use crate::raster::SUBPIXEL_BITS;
+use crate::shade::small::Small;
+use crate::shade::{Basis, GRADIENT_LIMIT};
+
+/// One plane in `i64`, gradients clamped to ±2^40: the value at the
+/// centre of pixel `(i, j)` is `gx i + gy j + k`.
+#[derive(Clone, Copy, Debug, Default)]
+pub(super) struct WidePlane {
+    pub(super) gx: i64,
+    pub(super) gy: i64,
+    pub(super) k: i64,
+}
+
+impl WidePlane {
+    /// The plane through `values` at the vertices of `f` (in `0..=2^28`).
+    /// With `small`, on a 32-bit target, a small triangle's gradients in
+    /// 32-bit divisions ([`perspective_gradients`]; the same values).
+    #[inline(always)]
+    pub(super) fn new(f: &Basis, values: [i64; 3], small: bool) -> Self {
+        let (gx, gy) = if small {
+            perspective_gradients(f, values)
+        } else {
+            f.gradients(values, 0)
+        };
+        let (gx, gy) = (
+            gx.clamp(-GRADIENT_LIMIT, GRADIENT_LIMIT),
+            gy.clamp(-GRADIENT_LIMIT, GRADIENT_LIMIT),
+        );
+        // |g| <= 2^40 and |o| < 2^19: no overflow.
+        let k = values[0] + ((gx * f.ox + gy * f.oy) >> SUBPIXEL_BITS);
+        Self { gx, gy, k }
+    }
+
+    /// [`new`](Self::new) out of line (see [`wide_planes_apart`]).
+    #[cfg_attr(target_pointer_width = "64", allow(dead_code))]
+    #[inline(never)]
+    pub(super) fn apart(f: &Basis, values: [i64; 3]) -> Self {
+        Self::new(f, values, false)
+    }
+
+    /// The value at pixel `(i, j)`, clamped to `lo..=hi`. `|i|, |j| < 2^13`,
+    /// so the sum stays below 2^60.
+    #[inline(always)]
+    pub(super) fn at(&self, i: i32, j: i32, lo: i64, hi: i64) -> i32 {
+        (self.gx * i as i64 + self.gy * j as i64 + self.k).clamp(lo, hi) as i32
+    }
+
+    /// [`at`](Self::at) in wrapping `i32` arithmetic, the same value for a
+    /// span start of a triangle none of whose gradients was clamped: the
+    /// gradients are then the exact ones rounded, so at a covered pixel
+    /// centre the plane is within 2^15 of the exact one, which lies
+    /// between the vertex values (`0..=2^28`); that value fits `i32`, and
+    /// the wrapping sum is exact modulo 2^32 (as [`Plane`](crate::shade::plane::Plane)'s). Two
+    /// 32-bit products and a 32-bit clamp instead of 64-bit ones: a few
+    /// instructions per span on a Cortex-M.
+    #[cfg_attr(target_pointer_width = "64", allow(dead_code))]
+    #[inline(always)]
+    pub(super) fn at32(&self, i: i32, j: i32, lo: i32, hi: i32) -> i32 {
+        self.at32_unclamped(i, j).clamp(lo, hi)
+    }
+
+    /// [`at32`](Self::at32) without its clamp, where the clamp cannot
+    /// change the value: at a covered pixel centre the plane lies within
+    /// `-2^15..=2^28 + 2^15` (see there), inside `-Q_MAX..=Q_MAX`. So
+    /// `B1`'s and `B2`'s span starts take no clamp, and `Q`'s only its
+    /// lower bound (`Q` at a pixel may be below 1 where the vertices' `q`
+    /// are). Four compares and selects fewer per plane and span on a
+    /// Cortex-M.
+    #[cfg_attr(target_pointer_width = "64", allow(dead_code))]
+    #[inline(always)]
+    pub(super) fn at32_unclamped(&self, i: i32, j: i32) -> i32 {
+        (self.gx as i32)
+            .wrapping_mul(i)
+            .wrapping_add((self.gy as i32).wrapping_mul(j))
+            .wrapping_add(self.k as i32)
+    }
+
+    /// Whether neither gradient was clamped.
+    #[cfg_attr(target_pointer_width = "64", allow(dead_code))]
+    #[inline(always)]
+    pub(super) fn exact(&self) -> bool {
+        self.gx.abs() < GRADIENT_LIMIT && self.gy.abs() < GRADIENT_LIMIT
+    }
+
+    /// The step along a span, saturated to `i32` (a triangle whose step
+    /// saturates is a sliver of one pixel per span, whose step is unused).
+    #[inline(always)]
+    pub(super) fn step(&self) -> i32 {
+        self.gx.clamp(-Q_MAX, Q_MAX) as i32
+    }
+}
+
+/// The three perspective planes through `q` by [`WidePlane::new`], and
+/// whether none of their gradients was clamped, for what [`small_planes`]
+/// declines on a 32-bit target
+/// (large triangles, whose set-up is paid over many pixels, and slivers),
+/// each plane out of line ([`WidePlane::apart`]): inlined beside the
+/// small path, the three planes had the LM3S6965's `demo-textured-lit`
+/// firmware over its flash.
+#[cfg_attr(target_pointer_width = "64", allow(dead_code))]
+#[inline(always)]
+pub(super) fn wide_planes_apart(f: &Basis, q: [i64; 3]) -> ([WidePlane; 3], bool) {
+    let planes = [
+        WidePlane::apart(f, q),
+        WidePlane::apart(f, [0, q[1], 0]),
+        WidePlane::apart(f, [0, 0, q[2]]),
+    ];
+    (planes, planes.iter().all(WidePlane::exact))
+}
+
+/// The three perspective planes of a [`Small`] triangle on a 32-bit
+/// target when all six gradients are below 2^31 in magnitude
+/// ([`small_gradient`]): the planes of [`WidePlane::new`], without its
+/// clamps (at most 2^40, they change nothing) and with no `exact` test
+/// to follow (every plane is). The numerators are written out for the
+/// planes' values `(q0, q1, q2)`, `(0, q1, 0)` and `(0, 0, q2)`: those of
+/// `B1` and `B2` one product each.
+///
+/// The planes through `q`, or `None` (a 64-bit host, no [`Small`], or
+/// a gradient of 2^31 or more): then [`WidePlane::new`].
+#[inline(always)]
+#[cfg_attr(target_pointer_width = "64", allow(unused_variables))]
+pub(super) fn small_planes(f: &Basis, q: [i64; 3]) -> Option<[WidePlane; 3]> {
+    #[cfg(not(target_pointer_width = "64"))]
+    if let Some(s) = &f.small {
+        return small_planes_of(f, s, q);
+    }
+    None
+}
+
+/// [`small_planes`] for a [`Small`] triangle `f` (whose `small` is `s`),
+/// on any target (the tests run it on the host).
+#[cfg_attr(target_pointer_width = "64", allow(dead_code))]
+#[inline(always)]
+pub(super) fn small_planes_of(f: &Basis, s: &Small, q: [i64; 3]) -> Option<[WidePlane; 3]> {
+    debug_assert!(q.iter().all(|v| (0..=Q_ONE).contains(v)));
+    let [x1, y1, x2, y2] = [f.x1 as i32, f.y1 as i32, f.x2 as i32, f.y2 as i32];
+    let [q0, q1, q2] = [q[0] as i32, q[1] as i32, q[2] as i32];
+    let (d1, d2) = (q1 - q0, q2 - q0);
+    let g = |n: i64| small_gradient(s, n);
+    let qx = g(mul(d1, y2) - mul(d2, y1))?;
+    let qy = g(mul(d2, x1) - mul(d1, x2))?;
+    let b1x = g(mul(q1, y2))?;
+    let b1y = g(-mul(q1, x2))?;
+    let b2x = g(-mul(q2, y1))?;
+    let b2y = g(mul(q2, x1))?;
+    // |g| < 2^31 and |o| < 2^19: no overflow.
+    let plane = |gx: i32, gy: i32, v0: i64| {
+        let (gx, gy) = (gx as i64, gy as i64);
+        WidePlane {
+            gx,
+            gy,
+            k: v0 + ((gx * f.ox + gy * f.oy) >> SUBPIXEL_BITS),
+        }
+    };
+    Some([plane(qx, qy, q[0]), plane(b1x, b1y, 0), plane(b2x, b2y, 0)])
+}
+
+/// `f.gradients(values, 0)` for a perspective plane (`Q`, `B1` or `B2`:
+/// values in `0..=2^28`). On a 32-bit target a [`Small`] triangle's
+/// gradients take two 32-bit divisions each ([`small_gradient`]) where
+/// `Basis::gradients` takes four (`Small::div_round_wide`), when they are
+/// below 2^31 in magnitude; the same quotients. The edge vectors are then
+/// below 2^10 and the differences of the values at most 2^28, so each
+/// numerator is a difference of two 32x32 to 64-bit products.
+#[inline(always)]
+pub(super) fn perspective_gradients(f: &Basis, values: [i64; 3]) -> (i64, i64) {
+    #[cfg(not(target_pointer_width = "64"))]
+    if let Some(small) = &f.small {
+        debug_assert!(values.iter().all(|v| (0..=Q_ONE).contains(v)));
+        let [x1, y1, x2, y2] = [f.x1 as i32, f.y1 as i32, f.x2 as i32, f.y2 as i32];
+        let (d1, d2) = (
+            (values[1] - values[0]) as i32,
+            (values[2] - values[0]) as i32,
+        );
+        if let (Some(gx), Some(gy)) = (
+            small_gradient(small, mul(d1, y2) - mul(d2, y1)),
+            small_gradient(small, mul(d2, x1) - mul(d1, x2)),
+        ) {
+            return (gx as i64, gy as i64);
+        }
+    }
+    f.gradients(values, 0)
+}
+
+/// `a b` in `i64`: one 32x32 to 64-bit product.
+#[cfg_attr(target_pointer_width = "64", allow(dead_code))]
+#[inline(always)]
+pub(super) fn mul(a: i32, b: i32) -> i64 {
+    a as i64 * b as i64
+}
+
+/// `n 2^4 / area` rounded to nearest, ties away from zero (the quotient of
+/// `Small::div_round_wide` and of `Basis::gradients`), for
+/// `|n| <= 2 (2^28) (2^10 - 1) = 2^39 - 2^29`, if its magnitude is below
+/// 2^31; `None` otherwise. Then `a = |n| 2^4 + half < 2^43`, so `a >> 11`
+/// fits `u32`: one 32-bit division for it, and one for its remainder
+/// (below `area < 2^21`) shifted by 11 with `a`'s low 11 bits.
+#[cfg_attr(target_pointer_width = "64", allow(dead_code))]
+#[inline(always)]
+pub(super) fn small_gradient(small: &Small, n: i64) -> Option<i32> {
+    let d = small.area.get();
+    let a = (n.unsigned_abs() << SUBPIXEL_BITS) + small.half as u64;
+    let hi = (a >> 11) as u32;
+    let q1 = hi / d;
+    if q1 >= 1 << 20 {
+        return None;
+    }
+    let lo = ((hi - q1 * d) << 11) | (a as u32 & 0x7FF);
+    let q = ((q1 << 11) | (lo / d)) as i32;
+    Some(if n < 0 { -q } else { q })
+}
+
+/// `(wmin << 28) / w` for `1 <= wmin <= w < 2^31`: a vertex's `1 / w`
+/// scaled so that the nearest is [`Q_ONE`]. A 64-bit host divides; a
+/// 32-bit core, where a 64-bit division is a library call, takes the same
+/// quotient by long division in 32-bit steps of `k` bits, `k` the leading
+/// zeros of `w` (so every partial dividend `r 2^k < w 2^k` fits `u32`):
+/// two or three divisions for the usual `w` of 2^16 to 2^21.
+#[inline(always)]
+pub(super) fn scale_q(wmin: i64, w: i64) -> i64 {
+    if cfg!(target_pointer_width = "64") || !(1..=w).contains(&wmin) || w >= 1 << 31 {
+        return (wmin << 28) / w;
+    }
+    scale_q32(wmin as u32, w as u32)
+}
+
+/// [`scale_q`] on a 32-bit core, for `1 <= wmin <= w < 2^31`.
+#[cfg_attr(target_pointer_width = "64", allow(dead_code))]
+#[inline(always)]
+pub(super) fn scale_q32(wmin: u32, w: u32) -> i64 {
+    if wmin == w {
+        return Q_ONE;
+    }
+    // 1 <= wmin < w < 2^31: the quotient is below 2^28.
+    let w = core::num::NonZeroU32::new(w).unwrap_or(core::num::NonZeroU32::MAX);
+    crate::math::shift_in_zeros(0, wmin, w, 28).0 as i64
+}
