@@ -290,6 +290,69 @@ fn nearest_span<C: FromTexel, const WEIGHTS: u8>(
     len - fails[0]
 }
 
+/// What [`colour_span_flat`] reads: the colour constants and steps of
+/// [`SpanInput::run_colour_shifted`], the span's shift and reciprocal,
+/// depth and `B1`, `B2` at its first pixel.
+struct ColourSpan<'a> {
+    k: &'a [i32; 13],
+    sh: u32,
+    r: u32,
+    z: u32,
+    b: [i32; 2],
+    x0: i32,
+}
+
+/// [`SpanInput::run_colour_shifted`]'s loop for a span whose `Q` does not
+/// change ([`FLAT_Q`] weights), out of line: inlined into the tile's
+/// shading function, its values were kept in stack slots and moved
+/// between registers at every pixel.
+#[inline(never)]
+fn colour_span_flat<C, V: Varyings, F: PixelFn<V, C>>(
+    color: &mut [C],
+    depth: &mut [u16],
+    s: &ColourSpan,
+    fragment: &mut F,
+) -> u32 {
+    let k = s.k;
+    let (sh, r) = (s.sh & 15, s.r);
+    let [mut b1, mut b2] = s.b;
+    let mut z = s.z;
+    let len = color.len() as u32;
+    let mut fails = [0u32];
+    let fails = core::hint::black_box(&mut fails);
+    for (i, (c, d)) in color.iter_mut().zip(depth.iter_mut()).enumerate() {
+        let zz = depth16(z);
+        if zz <= *d {
+            let (w1, w2) = flat_weights(b1, b2, sh, r);
+            let color = [
+                k[0] + k[1] * w1 + k[2] * w2,
+                k[3] + k[4] * w1 + k[5] * w2,
+                k[6] + k[7] * w1 + k[8] * w2,
+            ];
+            let it = Interpolated {
+                x: s.x0 + i as i32,
+                depth: zz,
+                varyings: V::zeroed(),
+                color,
+                fine: None,
+            };
+            match fragment.pixel(&it) {
+                Some(out) => {
+                    *c = out;
+                    *d = zz;
+                }
+                None => fails[0] += 1,
+            }
+        } else {
+            fails[0] += 1;
+        }
+        z = z.wrapping_add(k[9] as u32);
+        b1 = b1.wrapping_add(k[11]);
+        b2 = b2.wrapping_add(k[12]);
+    }
+    len - fails[0]
+}
+
 impl<C, V: Varyings> SpanInput<'_, C, V> {
     /// For an exact-mode span: the shift that normalises `Q` to 16
     /// significant bits in [`weights`], if it is the same at every pixel
@@ -439,6 +502,17 @@ impl<C, V: Varyings> SpanInput<'_, C, V> {
             self.steps[1],
             self.steps[2],
         ];
+        if FLAT {
+            let s = ColourSpan {
+                k: &k,
+                sh,
+                r,
+                z,
+                b: [b1, b2],
+                x0: self.x0,
+            };
+            return colour_span_flat::<C, V, _>(self.color, self.depth, &s, &mut fragment);
+        }
         let k = core::hint::black_box(&k);
         let len = self.color.len() as u32;
         let mut fails = 0;
