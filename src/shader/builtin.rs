@@ -455,7 +455,7 @@ where
                         }
                         return s.run_nearest::<SHIFTED>(&c, sh);
                     }
-                    s.shade_with(LIT, TexelPixel::<_, LIT>(Nearest565(t)))
+                    s.shade_unshifted(LIT, TexelPixel::<_, LIT>(Nearest565(t)))
                 }),
                 None => spans.each(|s| s.shade_with(LIT, TexelPixel::<_, LIT>(Nearest565(t)))),
             }

@@ -308,6 +308,38 @@ impl<'a, C, V: Varyings> SpanInput<'a, C, V> {
     where
         C: Copy + From<Rgb888> + Into<Rgb888>,
     {
+        self.shade_with_loops::<true>(interpolate_color, fragment)
+    }
+
+    /// [`shade_with`](Self::shade_with) for a span that
+    /// [`shifted_opaque`](Self::shifted_opaque) declined (`Textured`'s
+    /// nearest spans, whose shifted ones take a loop of their own): without
+    /// the loops with the span's shift, which it would never take, and
+    /// whose copies beside the others moved their registers (x86-64
+    /// `fill-nearest-affine`).
+    #[inline(always)]
+    pub(crate) fn shade_unshifted(
+        self,
+        interpolate_color: bool,
+        fragment: impl PixelFn<V, C>,
+    ) -> u32
+    where
+        C: Copy + From<Rgb888> + Into<Rgb888>,
+    {
+        self.shade_with_loops::<false>(interpolate_color, fragment)
+    }
+
+    /// [`shade_with`](Self::shade_with), with the loops with the span's
+    /// shift only if `SHIFT`.
+    #[inline(always)]
+    fn shade_with_loops<const SHIFT: bool>(
+        self,
+        interpolate_color: bool,
+        fragment: impl PixelFn<V, C>,
+    ) -> u32
+    where
+        C: Copy + From<Rgb888> + Into<Rgb888>,
+    {
         // The common case, an opaque draw with the default depth test and
         // writes, has loops of its own with none of the three decided per
         // pixel (exact mode: spans of `OPAQUE_EXACT_MIN` pixels or more
@@ -322,6 +354,9 @@ impl<'a, C, V: Varyings> SpanInput<'a, C, V> {
                 self.run_opaque::<AFFINE>(interpolate_color, fragment, 0)
             }
             _ if opaque && !weighted => self.run_opaque::<AFFINE>(interpolate_color, fragment, 0),
+            Perspective::Exact if opaque && self.len() >= OPAQUE_EXACT_MIN && !SHIFT => {
+                self.run_put(interpolate_color, fragment)
+            }
             Perspective::Exact if opaque && self.len() >= OPAQUE_EXACT_MIN => {
                 // A span whose `Q` does not change (its step zero: faces
                 // whose `1 / w` is the same along the screen's rows) takes
