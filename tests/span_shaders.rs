@@ -278,6 +278,21 @@ prop_compose! {
     }
 }
 
+prop_compose! {
+    /// [`facing_case`] with no tilt: every vertex at one depth, so `1 / w`
+    /// is the same across each triangle and its spans' `Q` does not
+    /// change (the exact loops' `FLAT_Q` weights, one reciprocal a span).
+    fn flat_case()(c in case(), zc in -4.0f32..-1.5, scale in 1.0f32..2.5) -> Case {
+        let mut c = c;
+        for p in &mut c.positions {
+            *p = [p[0] * scale, p[1] * scale, zc];
+        }
+        c.mode &= 4;
+        c.blend = 0;
+        c
+    }
+}
+
 proptest! {
     #![proptest_config(ProptestConfig { cases: 96, ..ProptestConfig::default() })]
 
@@ -290,6 +305,13 @@ proptest! {
 
     #[test]
     fn long_opaque_spans_match_the_per_fragment_path(c in facing_case()) {
+        every_builtin::<Rgb565>(&c)?;
+        every_builtin::<Rgb888>(&c)?;
+        every_builtin::<Gray8>(&c)?;
+    }
+
+    #[test]
+    fn flat_spans_match_the_per_fragment_path(c in flat_case()) {
         every_builtin::<Rgb565>(&c)?;
         every_builtin::<Rgb888>(&c)?;
         every_builtin::<Gray8>(&c)?;

@@ -11,7 +11,7 @@ use super::{
     VertexInput,
 };
 use crate::scene::Draw;
-use crate::shade::perspective::{AFFINE, SHIFTED};
+use crate::shade::perspective::{AFFINE, FLAT_Q, SHIFTED};
 use crate::texture::{rgb565_to_rgb888, FromTexel, Pow2Rgb565, Quad, Sampler, Texture};
 use embedded_graphics::pixelcolor::Rgb888;
 use fixed::types::I16F16;
@@ -450,9 +450,12 @@ where
                         return s.run_nearest::<AFFINE>(&c, 0);
                     }
                     if let Some(sh) = s.shifted_opaque() {
+                        if cfg!(not(target_pointer_width = "64")) && s.flat_q() {
+                            return s.run_nearest::<FLAT_Q>(&c, sh);
+                        }
                         return s.run_nearest::<SHIFTED>(&c, sh);
                     }
-                    s.shade_with(LIT, TexelPixel::<_, LIT>(Nearest565(t)))
+                    s.shade_unshifted(LIT, TexelPixel::<_, LIT>(Nearest565(t)))
                 }),
                 None => spans.each(|s| s.shade_with(LIT, TexelPixel::<_, LIT>(Nearest565(t)))),
             }

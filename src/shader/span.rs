@@ -44,7 +44,7 @@
 use crate::raster::Span;
 use crate::scene::Blend;
 use crate::shade::perspective::{
-    span_input, Output, PerspectiveSetup, AFFINE, CLAMPED, COLOUR_LOOP, SHIFTED,
+    span_input, Output, PerspectiveSetup, AFFINE, CLAMPED, COLOUR_LOOP, FLAT_Q, SHIFTED,
 };
 use crate::shade::{Corners, DepthTest, SpanPos};
 use crate::shader::{Fragment, FragmentShader, Perspective, Varyings};
@@ -308,6 +308,38 @@ impl<'a, C, V: Varyings> SpanInput<'a, C, V> {
     where
         C: Copy + From<Rgb888> + Into<Rgb888>,
     {
+        self.shade_with_loops::<true>(interpolate_color, fragment)
+    }
+
+    /// [`shade_with`](Self::shade_with) for a span that
+    /// [`shifted_opaque`](Self::shifted_opaque) declined (`Textured`'s
+    /// nearest spans, whose shifted ones take a loop of their own): without
+    /// the loops with the span's shift, which it would never take, and
+    /// whose copies beside the others moved their registers (x86-64
+    /// `fill-nearest-affine`).
+    #[inline(always)]
+    pub(crate) fn shade_unshifted(
+        self,
+        interpolate_color: bool,
+        fragment: impl PixelFn<V, C>,
+    ) -> u32
+    where
+        C: Copy + From<Rgb888> + Into<Rgb888>,
+    {
+        self.shade_with_loops::<false>(interpolate_color, fragment)
+    }
+
+    /// [`shade_with`](Self::shade_with), with the loops with the span's
+    /// shift only if `SHIFT`.
+    #[inline(always)]
+    fn shade_with_loops<const SHIFT: bool>(
+        self,
+        interpolate_color: bool,
+        fragment: impl PixelFn<V, C>,
+    ) -> u32
+    where
+        C: Copy + From<Rgb888> + Into<Rgb888>,
+    {
         // The common case, an opaque draw with the default depth test and
         // writes, has loops of its own with none of the three decided per
         // pixel (exact mode: spans of `OPAQUE_EXACT_MIN` pixels or more
@@ -322,10 +354,24 @@ impl<'a, C, V: Varyings> SpanInput<'a, C, V> {
                 self.run_opaque::<AFFINE>(interpolate_color, fragment, 0)
             }
             _ if opaque && !weighted => self.run_opaque::<AFFINE>(interpolate_color, fragment, 0),
+            Perspective::Exact if opaque && self.len() >= OPAQUE_EXACT_MIN && !SHIFT => {
+                self.run_put(interpolate_color, fragment)
+            }
             Perspective::Exact if opaque && self.len() >= OPAQUE_EXACT_MIN => {
+                // A span whose `Q` does not change (its step zero: faces
+                // whose `1 / w` is the same along the screen's rows) takes
+                // the weights' reciprocal once ([`FLAT_Q`]).
+                let flat = self.steps[0] == 0;
                 match self.opaque_shift() {
                     Some(sh) if COLOUR_LOOP && V::LEN == 0 && interpolate_color => {
-                        self.run_colour_shifted(fragment, sh)
+                        if flat {
+                            self.run_colour_shifted::<true>(fragment, sh)
+                        } else {
+                            self.run_colour_shifted::<false>(fragment, sh)
+                        }
+                    }
+                    Some(sh) if flat && flat_q_loop(V::LEN, interpolate_color) => {
+                        self.run_opaque::<FLAT_Q>(interpolate_color, fragment, sh)
                     }
                     Some(sh) => self.run_opaque::<SHIFTED>(interpolate_color, fragment, sh),
                     None => self.run_put(interpolate_color, fragment),
@@ -356,6 +402,14 @@ impl<'a, C, V: Varyings> SpanInput<'a, C, V> {
         } else {
             None
         }
+    }
+
+    /// Whether `Q` is the same at every pixel of the span (its step is
+    /// zero): the weights' reciprocal is then taken once
+    /// ([`FLAT_Q`]).
+    #[inline(always)]
+    pub(crate) fn flat_q(&self) -> bool {
+        self.steps[0] == 0
     }
 
     /// [`shade_with`](Self::shade_with) without the opaque draw's loops
@@ -452,6 +506,19 @@ const OPAQUE_EXACT_MIN: usize = if cfg!(microraster_narrow_multiply) {
 } else {
     3
 };
+
+/// Whether an opaque exact span whose `Q` does not change takes
+/// [`SpanInput::run_opaque`]'s copy with [`FLAT_Q`] weights, for a shader
+/// with `len` varyings that interpolates the colour or not: everywhere but
+/// for a shader with both on 32-bit targets (`TexturedLit`), whose
+/// loops' registers moved with the copy beside them (Cortex-M3
+/// `demo-textured-lit`, whose spans rarely take it, 8,130,275 ->
+/// 8,222,806 instructions, 1,468 B more flash; out of line, its firmware
+/// no longer fit the LM3S6965's flash). On x86-64 `fill-lit-exact` 128.21
+/// -> 117.48 per fragment and `demo-textured-lit` -1.1 % with it.
+const fn flat_q_loop(len: usize, interpolate_color: bool) -> bool {
+    cfg!(target_pointer_width = "64") || len == 0 || !interpolate_color
+}
 
 /// A span shader's colour at one pixel, for [`SpanInput::shade_with`]:
 /// any closure `FnMut(&Interpolated<V>) -> Option<C>` is one.

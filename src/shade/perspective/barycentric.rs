@@ -52,6 +52,25 @@ pub(super) fn shifted_weights(q: i32, b1: i32, b2: i32, sh: u32) -> (i32, i32) {
     (w1 as i32, w2 as i32)
 }
 
+/// `shifted_weights`' reciprocal `2^31 / (Q >> sh)` for a span whose `Q`
+/// does not change along it (its step is zero: a face whose `1 / w` does
+/// not vary along the screen's rows, as any face parallel to the screen),
+/// taken once per span rather than at every pixel. `Q >> sh >= 1` where
+/// [`span_shift`] allowed the span; the `max` only keeps this total.
+#[inline(always)]
+pub(super) fn span_reciprocal(q: i32, sh: u32) -> u32 {
+    (1u32 << 31) / ((q as u32) >> sh).max(1)
+}
+
+/// [`shifted_weights`] with its reciprocal `r` from [`span_reciprocal`]
+/// (`Q` the same at every pixel of the span): the same bits, no division.
+#[inline(always)]
+pub(super) fn flat_weights(b1: i32, b2: i32, sh: u32, r: u32) -> (i32, i32) {
+    let w1 = (((b1 as u32) >> sh) * r) >> 15;
+    let w2 = (((b2 as u32) >> sh) * r) >> 15;
+    (w1 as i32, w2 as i32)
+}
+
 /// [`weights`] with the sign of `B1` and `B2` kept (the same for
 /// non-negative ones): the quasi-perspective sample one pixel beyond a
 /// span's end may lie a little outside the triangle.
@@ -119,6 +138,40 @@ mod tests {
                     "{q} {b1} {b2}"
                 );
                 q = q.wrapping_add(steps[0]);
+                b1 = b1.wrapping_add(steps[1]);
+                b2 = b2.wrapping_add(steps[2]);
+            }
+        }
+        assert!(allowed > 5_000, "{allowed} spans allowed");
+    }
+
+    /// Where `span_shift` allows a span whose `Q` does not change,
+    /// `flat_weights` with the span's reciprocal gives `weights`' bits.
+    #[test]
+    fn flat_weights_match_where_q_is_constant() {
+        let mut next = crate::testing::rng();
+        let mut allowed = 0;
+        for _ in 0..40_000 {
+            let len = 1 + next(64) as usize;
+            let bits = 1 + next(30);
+            let q = next(1 << bits) as i32 + 1;
+            let b1 = next(q as u64 + 1) as i32;
+            let b2 = next((q - b1) as u64 + 1) as i32;
+            let g =
+                |next: &mut dyn FnMut(u64) -> u64| (next(1 << 16) as i32 - (1 << 15)) >> next(12);
+            let steps = [0, g(&mut next), g(&mut next)];
+            let Some(sh) = span_shift([q, b1, b2], steps, len) else {
+                continue;
+            };
+            allowed += 1;
+            let r = span_reciprocal(q, sh);
+            let [mut b1, mut b2] = [b1, b2];
+            for _ in 0..len {
+                assert_eq!(
+                    flat_weights(b1, b2, sh, r),
+                    weights(q, b1, b2),
+                    "{q} {b1} {b2}"
+                );
                 b1 = b1.wrapping_add(steps[1]);
                 b2 = b2.wrapping_add(steps[2]);
             }

@@ -3,7 +3,7 @@
 //! (exact samples at screen-aligned columns, linear steps between), in
 //! the general loop or in the opaque ones.
 
-use super::barycentric::{shifted_weights, span_shift};
+use super::barycentric::{flat_weights, shifted_weights, span_reciprocal, span_shift};
 use super::*;
 use crate::shader::span::TriangleSpans;
 use crate::texture::FromTexel;
@@ -38,6 +38,10 @@ pub(crate) const AFFINE: u8 = 0;
 pub(crate) const SHIFTED: u8 = 1;
 /// See [`AFFINE`].
 pub(crate) const CLAMPED: u8 = 2;
+/// [`SHIFTED`] for a span whose `Q` does not change along it (its step is
+/// zero): the reciprocal taken once per span ([`span_reciprocal`]), the
+/// same bits with no division per pixel.
+pub(crate) const FLAT_Q: u8 = 3;
 
 /// How the fragments of a span are tested and written.
 #[derive(Clone, Copy, Debug)]
@@ -229,6 +233,11 @@ fn nearest_span<C: FromTexel, const WEIGHTS: u8>(
     let mut z = s.z;
     // At most 15 (`span_shift`): masked, the shifts by it need no mask.
     let sh = s.sh & 15;
+    let r = if WEIGHTS == FLAT_Q {
+        span_reciprocal(q, sh)
+    } else {
+        0
+    };
     // The texels cut to the count, a power of two (`nearest_constants`
     // checked that the slice holds them), here rather than once per
     // triangle, so that the compiler knows the length: an index masked by
@@ -248,6 +257,8 @@ fn nearest_span<C: FromTexel, const WEIGHTS: u8>(
         if zz <= *d {
             let (w1, w2) = if WEIGHTS == AFFINE {
                 (b1 >> 12, b2 >> 12)
+            } else if WEIGHTS == FLAT_Q {
+                flat_weights(b1, b2, sh, r)
             } else {
                 shifted_weights(q, b1, b2, sh)
             };
@@ -270,9 +281,74 @@ fn nearest_span<C: FromTexel, const WEIGHTS: u8>(
             fails[0] += 1;
         }
         z = z.wrapping_add(gz);
-        q = q.wrapping_add(gq as i32);
+        if WEIGHTS != FLAT_Q {
+            q = q.wrapping_add(gq as i32);
+        }
         b1 = b1.wrapping_add(g1 as i32);
         b2 = b2.wrapping_add(g2 as i32);
+    }
+    len - fails[0]
+}
+
+/// What [`colour_span_flat`] reads: the colour constants and steps of
+/// [`SpanInput::run_colour_shifted`], the span's shift and reciprocal,
+/// depth and `B1`, `B2` at its first pixel.
+struct ColourSpan<'a> {
+    k: &'a [i32; 13],
+    sh: u32,
+    r: u32,
+    z: u32,
+    b: [i32; 2],
+    x0: i32,
+}
+
+/// [`SpanInput::run_colour_shifted`]'s loop for a span whose `Q` does not
+/// change ([`FLAT_Q`] weights), out of line: inlined into the tile's
+/// shading function, its values were kept in stack slots and moved
+/// between registers at every pixel.
+#[inline(never)]
+fn colour_span_flat<C, V: Varyings, F: PixelFn<V, C>>(
+    color: &mut [C],
+    depth: &mut [u16],
+    s: &ColourSpan,
+    fragment: &mut F,
+) -> u32 {
+    let k = s.k;
+    let (sh, r) = (s.sh & 15, s.r);
+    let [mut b1, mut b2] = s.b;
+    let mut z = s.z;
+    let len = color.len() as u32;
+    let mut fails = [0u32];
+    let fails = core::hint::black_box(&mut fails);
+    for (i, (c, d)) in color.iter_mut().zip(depth.iter_mut()).enumerate() {
+        let zz = depth16(z);
+        if zz <= *d {
+            let (w1, w2) = flat_weights(b1, b2, sh, r);
+            let color = [
+                k[0] + k[1] * w1 + k[2] * w2,
+                k[3] + k[4] * w1 + k[5] * w2,
+                k[6] + k[7] * w1 + k[8] * w2,
+            ];
+            let it = Interpolated {
+                x: s.x0 + i as i32,
+                depth: zz,
+                varyings: V::zeroed(),
+                color,
+                fine: None,
+            };
+            match fragment.pixel(&it) {
+                Some(out) => {
+                    *c = out;
+                    *d = zz;
+                }
+                None => fails[0] += 1,
+            }
+        } else {
+            fails[0] += 1;
+        }
+        z = z.wrapping_add(k[9] as u32);
+        b1 = b1.wrapping_add(k[11]);
+        b2 = b2.wrapping_add(k[12]);
     }
     len - fails[0]
 }
@@ -326,6 +402,11 @@ impl<C, V: Varyings> SpanInput<'_, C, V> {
         // with it), nor on x86-64 (`fill-lit-exact` 128.4 -> 129.4,
         // `demo-textured-lit` +0.6 %).
         let len = self.color.len() as u32;
+        let r = if WEIGHTS == FLAT_Q {
+            span_reciprocal(q, sh)
+        } else {
+            0
+        };
         let mut fails = 0;
         let mut n = 0;
         for (k, (c, d)) in self.color.iter_mut().zip(self.depth.iter_mut()).enumerate() {
@@ -337,6 +418,8 @@ impl<C, V: Varyings> SpanInput<'_, C, V> {
                     p.values_fit((b1 >> 12, b2 >> 12), ic, true)
                 } else if WEIGHTS == SHIFTED {
                     p.values_fit(shifted_weights(q, b1, b2, sh), ic, false)
+                } else if WEIGHTS == FLAT_Q {
+                    p.values_fit(flat_weights(b1, b2, sh, r), ic, false)
                 } else {
                     p.values_fit(weights(q, b1, b2), ic, false)
                 };
@@ -359,7 +442,9 @@ impl<C, V: Varyings> SpanInput<'_, C, V> {
                 fails += fails_counted as u32;
             }
             z = z.wrapping_add(gz);
-            q = q.wrapping_add(gq);
+            if WEIGHTS != FLAT_Q {
+                q = q.wrapping_add(gq);
+            }
             b1 = b1.wrapping_add(g1);
             b2 = b2.wrapping_add(g2);
         }
@@ -371,7 +456,8 @@ impl<C, V: Varyings> SpanInput<'_, C, V> {
     }
 
     /// [`run_opaque`](Self::run_opaque) with [`SHIFTED`] weights for a
-    /// shader that reads the colour and no varyings ([`Gouraud`]), on
+    /// shader that reads the colour and no varyings ([`Gouraud`]) (with
+    /// `FLAT`, those of [`FLAT_Q`] for a span whose `Q` does not change), on
     /// Thumb-2 ([`COLOUR_LOOP`]): the same bits, with fewer registers
     /// held across the pixels. Inlined into the tile's shading function,
     /// the shared loop kept the plane steps, the count and the nine
@@ -390,9 +476,14 @@ impl<C, V: Varyings> SpanInput<'_, C, V> {
     ///
     /// [`Gouraud`]: crate::shader::Gouraud
     #[inline(always)]
-    pub(crate) fn run_colour_shifted(self, mut fragment: impl PixelFn<V, C>, sh: u32) -> u32 {
+    pub(crate) fn run_colour_shifted<const FLAT: bool>(
+        self,
+        mut fragment: impl PixelFn<V, C>,
+        sh: u32,
+    ) -> u32 {
         let p = self.setup;
         let [mut q, mut b1, mut b2] = self.planes;
+        let r = if FLAT { span_reciprocal(q, sh) } else { 0 };
         let mut z = self.z;
         let [base, e1, e2] = p.color;
         // Per channel: base, d1, d2; then the steps of depth, Q, B1, B2.
@@ -411,6 +502,17 @@ impl<C, V: Varyings> SpanInput<'_, C, V> {
             self.steps[1],
             self.steps[2],
         ];
+        if FLAT {
+            let s = ColourSpan {
+                k: &k,
+                sh,
+                r,
+                z,
+                b: [b1, b2],
+                x0: self.x0,
+            };
+            return colour_span_flat::<C, V, _>(self.color, self.depth, &s, &mut fragment);
+        }
         let k = core::hint::black_box(&k);
         let len = self.color.len() as u32;
         let mut fails = 0;
@@ -419,7 +521,11 @@ impl<C, V: Varyings> SpanInput<'_, C, V> {
             core::hint::black_box(());
             let zz = depth16(z);
             if zz <= *d {
-                let (w1, w2) = shifted_weights(q, b1, b2, sh);
+                let (w1, w2) = if FLAT {
+                    flat_weights(b1, b2, sh, r)
+                } else {
+                    shifted_weights(q, b1, b2, sh)
+                };
                 let color = [
                     k[0] + k[1] * w1 + k[2] * w2,
                     k[3] + k[4] * w1 + k[5] * w2,
@@ -443,7 +549,9 @@ impl<C, V: Varyings> SpanInput<'_, C, V> {
                 fails += 1;
             }
             z = z.wrapping_add(k[9] as u32);
-            q = q.wrapping_add(k[10]);
+            if !FLAT {
+                q = q.wrapping_add(k[10]);
+            }
             b1 = b1.wrapping_add(k[11]);
             b2 = b2.wrapping_add(k[12]);
         }
