@@ -4,7 +4,7 @@
 
 use super::arith::*;
 use super::{Fog, LightError, Lighting, Material};
-use crate::math::{sqrt, Mat4, Vec3};
+use crate::math::{sqrt, Inverse3, Mat4, Vec3};
 use embedded_graphics::pixelcolor::Rgb888;
 use embedded_graphics::prelude::RgbColor;
 
@@ -211,16 +211,16 @@ impl Core {
                 max: lights.len(),
             });
         }
-        let (model_scale, eye) = model_space(model, eye)?;
+        let (model_scale, eye, inverse) = model_space(model, eye)?;
         let eye = to_raw(eye).ok_or(LightError::BadMatrix)?;
         let m = &model.m;
         let t = Vec3::new(m[3][0], m[3][1], m[3][2]);
-        let to_model = |p: Vec3| model.inverse_transform_vector(p - t);
+        let to_model = |p: Vec3| inverse.apply(p - t);
 
         let coarse = lighting.directional.len() == 1 && lighting.point.is_empty();
         let mut slots = lights.iter_mut();
         for (i, l) in lighting.directional.iter().enumerate() {
-            let dir = directional(i, l.direction, model, coarse)?;
+            let dir = directional_by(i, l.direction, Some(&inverse), coarse)?;
             if let Some(slot) = slots.next() {
                 *slot = FixedLight {
                     source: Source::Directional { dir },
@@ -295,9 +295,10 @@ impl Core {
 }
 
 /// The checks every set-up makes of a draw's model matrix and the eye, in
-/// [`Core::new`]'s order: the model scale (world units per model unit) and
-/// the eye in model space, not yet known to fit raw 16.16.
-fn model_space(model: &Mat4, eye: Vec3) -> Result<(f32, Vec3), LightError> {
+/// [`Core::new`]'s order: the model scale (world units per model unit), the
+/// eye in model space, not yet known to fit raw 16.16, and the inverse of
+/// the model matrix's 3x3 part, which moved the eye and moves the lights.
+fn model_space(model: &Mat4, eye: Vec3) -> Result<(f32, Vec3, Inverse3), LightError> {
     if !model.is_finite() {
         return Err(LightError::BadMatrix);
     }
@@ -314,10 +315,9 @@ fn model_space(model: &Mat4, eye: Vec3) -> Result<(f32, Vec3), LightError> {
         return Err(LightError::BadMatrix);
     }
     // None for a singular matrix, too.
-    let eye = model
-        .inverse_transform_vector(eye - t)
-        .ok_or(LightError::BadMatrix)?;
-    Ok((model_scale, eye))
+    let inverse = model.inverse3().ok_or(LightError::BadMatrix)?;
+    let eye = inverse.apply(eye - t).ok_or(LightError::BadMatrix)?;
+    Ok((model_scale, eye, inverse))
 }
 
 /// Directional light `i` (direction `direction`, world space) in the model
@@ -329,11 +329,27 @@ pub(crate) fn directional(
     model: &Mat4,
     coarse: bool,
 ) -> Result<[i32; 3], LightError> {
-    if direction.normalize().is_none() {
+    directional_by(i, direction, model.inverse3().as_ref(), coarse)
+}
+
+/// [`directional`] by the model matrix's [`Inverse3`] (`None`: singular),
+/// made once for the eye and every light.
+fn directional_by(
+    i: usize,
+    direction: Vec3,
+    inverse: Option<&Inverse3>,
+    coarse: bool,
+) -> Result<[i32; 3], LightError> {
+    // Where `direction.normalize()` is `None`: not finite, or zero (a
+    // finite non-zero vector always normalizes, scaled first if its
+    // squared length leaves f32). Tested so rather than normalized, a
+    // square root and three divisions the Cortex-M3 spent per draw.
+    let zero = direction.x == 0.0 && direction.y == 0.0 && direction.z == 0.0;
+    if !direction.is_finite() || zero {
         return Err(LightError::BadDirection { light: i });
     }
-    let local = model
-        .inverse_transform_vector(direction)
+    let local = inverse
+        .and_then(|inverse| inverse.apply(direction))
         .and_then(|v| v.normalize())
         .ok_or(LightError::BadMatrix)?;
     let fx = |v: f32| {
@@ -362,14 +378,17 @@ fn fits_raw(v: Vec3) -> bool {
 /// truncated, as [`LightSetup::single_directional`] gives it, with the
 /// errors [`LightSetup::new`] gives for a [`Lighting`] of that one light.
 pub(crate) fn one_light(direction: Vec3, model: &Mat4, eye: Vec3) -> Result<[i32; 3], LightError> {
-    model_checks(model, eye)?;
-    directional(0, direction, model, true)
+    let (_, eye, inverse) = model_space(model, eye)?;
+    if !fits_raw(eye) {
+        return Err(LightError::BadMatrix);
+    }
+    directional_by(0, direction, Some(&inverse), true)
 }
 
 /// The checks of a draw's matrix and the eye that [`LightSetup::new`]
 /// makes whatever the lights.
 pub(crate) fn model_checks(model: &Mat4, eye: Vec3) -> Result<(), LightError> {
-    let (_, eye) = model_space(model, eye)?;
+    let (_, eye, _) = model_space(model, eye)?;
     match fits_raw(eye) {
         true => Ok(()),
         false => Err(LightError::BadMatrix),
@@ -393,12 +412,12 @@ pub(crate) fn check_lighting(
         return Err(LightError::TooManyLights { count, max });
     }
     let identity = Mat4::IDENTITY;
-    let (scale, eye) = model_space(&identity, eye)?;
+    let (scale, eye, inverse) = model_space(&identity, eye)?;
     if !fits_raw(eye) {
         return Err(LightError::BadMatrix);
     }
     for (i, l) in lighting.directional.iter().enumerate() {
-        directional(i, l.direction, &identity, true)?;
+        directional_by(i, l.direction, Some(&inverse), true)?;
     }
     for (i, l) in lighting.point.iter().enumerate() {
         // In the identity's model space a finite position stays finite.
