@@ -211,16 +211,18 @@ impl Core {
                 max: lights.len(),
             });
         }
-        let (model_scale, eye, inverse) = model_space(model, eye)?;
+        // Made once, for the eye and every light.
+        let inverse = model.inverse3();
+        let (model_scale, eye) = model_space(model, eye, inverse.as_ref())?;
         let eye = to_raw(eye).ok_or(LightError::BadMatrix)?;
         let m = &model.m;
         let t = Vec3::new(m[3][0], m[3][1], m[3][2]);
-        let to_model = |p: Vec3| inverse.apply(p - t);
+        let to_model = |p: Vec3| inverse.as_ref().and_then(|i| i.apply(p - t));
 
         let coarse = lighting.directional.len() == 1 && lighting.point.is_empty();
         let mut slots = lights.iter_mut();
         for (i, l) in lighting.directional.iter().enumerate() {
-            let dir = directional_by(i, l.direction, Some(&inverse), coarse)?;
+            let dir = directional_by(i, l.direction, inverse.as_ref(), coarse)?;
             if let Some(slot) = slots.next() {
                 *slot = FixedLight {
                     source: Source::Directional { dir },
@@ -296,9 +298,15 @@ impl Core {
 
 /// The checks every set-up makes of a draw's model matrix and the eye, in
 /// [`Core::new`]'s order: the model scale (world units per model unit), the
-/// eye in model space, not yet known to fit raw 16.16, and the inverse of
-/// the model matrix's 3x3 part, which moved the eye and moves the lights.
-fn model_space(model: &Mat4, eye: Vec3) -> Result<(f32, Vec3, Inverse3), LightError> {
+/// eye in model space, not yet known to fit raw 16.16, moved by `inverse`,
+/// the model's [`Mat4::inverse3`] (made by the caller, which moves the
+/// lights by it too: passed rather than returned, the Cortex-M3's
+/// firmware optimised for size copied it about, some 200 bytes).
+fn model_space(
+    model: &Mat4,
+    eye: Vec3,
+    inverse: Option<&Inverse3>,
+) -> Result<(f32, Vec3), LightError> {
     if !model.is_finite() {
         return Err(LightError::BadMatrix);
     }
@@ -315,24 +323,16 @@ fn model_space(model: &Mat4, eye: Vec3) -> Result<(f32, Vec3, Inverse3), LightEr
         return Err(LightError::BadMatrix);
     }
     // None for a singular matrix, too.
-    let inverse = model.inverse3().ok_or(LightError::BadMatrix)?;
-    let eye = inverse.apply(eye - t).ok_or(LightError::BadMatrix)?;
-    Ok((model_scale, eye, inverse))
+    let eye = inverse
+        .and_then(|inverse| inverse.apply(eye - t))
+        .ok_or(LightError::BadMatrix)?;
+    Ok((model_scale, eye))
 }
 
 /// Directional light `i` (direction `direction`, world space) in the model
-/// space of `model`: its unit direction in Q16, truncated when `coarse`
-/// (one directional light and nothing else), rounded otherwise.
-pub(crate) fn directional(
-    i: usize,
-    direction: Vec3,
-    model: &Mat4,
-    coarse: bool,
-) -> Result<[i32; 3], LightError> {
-    directional_by(i, direction, model.inverse3().as_ref(), coarse)
-}
-
-/// [`directional`] by the model matrix's [`Inverse3`] (`None`: singular),
+/// space of a model matrix whose [`Mat4::inverse3`] is `inverse` (`None`:
+/// singular): its unit direction in Q16, truncated when `coarse` (one
+/// directional light and nothing else), rounded otherwise. The inverse is
 /// made once for the eye and every light.
 fn directional_by(
     i: usize,
@@ -343,9 +343,15 @@ fn directional_by(
     // Where `direction.normalize()` is `None`: not finite, or zero (a
     // finite non-zero vector always normalizes, scaled first if its
     // squared length leaves f32). Tested so rather than normalized, a
-    // square root and three divisions the Cortex-M3 spent per draw.
-    let zero = direction.x == 0.0 && direction.y == 0.0 && direction.z == 0.0;
-    if !direction.is_finite() || zero {
+    // square root and three divisions the Cortex-M3 spent per draw, and
+    // by the bits (the sign shifted out), without soft-float compares.
+    let (x, y, z) = (
+        direction.x.to_bits() << 1,
+        direction.y.to_bits() << 1,
+        direction.z.to_bits() << 1,
+    );
+    const INF: u32 = 0xff00_0000;
+    if x >= INF || y >= INF || z >= INF || (x | y | z) == 0 {
         return Err(LightError::BadDirection { light: i });
     }
     let local = inverse
@@ -372,25 +378,50 @@ fn fits_raw(v: Vec3) -> bool {
         .all(|&c| !(c * 65536.0).is_nan() && (c * 65536.0).abs() <= LIMIT)
 }
 
-/// The set-up of a draw lit by one directional light (direction
-/// `direction`, world space) and nothing else, without the general
-/// lighting's code: its unit direction in the model space of `model`, Q16,
-/// truncated, as [`LightSetup::single_directional`] gives it, with the
-/// errors [`LightSetup::new`] gives for a [`Lighting`] of that one light.
-pub(crate) fn one_light(direction: Vec3, model: &Mat4, eye: Vec3) -> Result<[i32; 3], LightError> {
-    let (_, eye, inverse) = model_space(model, eye)?;
-    if !fits_raw(eye) {
-        return Err(LightError::BadMatrix);
+/// The set-up of a draw lit by the directional lights `lights` and
+/// nothing else, without the general lighting's code: the model-space
+/// model scale (see [`model_space`]) and the unit direction (Q16) of the
+/// last of the lights (`[0; 3]` for none) under
+/// `model`, truncated when `coarse` (one light, as
+/// [`LightSetup::single_directional`] gives it), rounded otherwise, with
+/// the errors [`LightSetup::new`] gives for a [`Lighting`] of those
+/// lights: the model and eye checks ([`model_checks`]) first. One
+/// [`Mat4::inverse3`] for the eye and the lights.
+pub(crate) fn directional_lights(
+    lights: &[super::DirectionalLight],
+    model: &Mat4,
+    eye: Vec3,
+    coarse: bool,
+) -> Result<(f32, [i32; 3]), LightError> {
+    let inverse = model.inverse3();
+    let scale = model_checks_by(model, eye, inverse.as_ref())?;
+    let mut dir = [0; 3];
+    for (i, l) in lights.iter().enumerate() {
+        dir = directional_by(i, l.direction, inverse.as_ref(), coarse)?;
     }
-    directional_by(0, direction, Some(&inverse), true)
+    Ok((scale, dir))
+}
+
+/// [`directional_lights`] of one light (direction `direction`), coarse.
+#[cfg(test)]
+pub(crate) fn one_light(direction: Vec3, model: &Mat4, eye: Vec3) -> Result<[i32; 3], LightError> {
+    let one = [super::DirectionalLight::new(direction, 1.0)];
+    directional_lights(&one, model, eye, true).map(|(_, dir)| dir)
 }
 
 /// The checks of a draw's matrix and the eye that [`LightSetup::new`]
 /// makes whatever the lights.
+#[cfg(test)]
 pub(crate) fn model_checks(model: &Mat4, eye: Vec3) -> Result<(), LightError> {
-    let (_, eye, _) = model_space(model, eye)?;
+    model_checks_by(model, eye, model.inverse3().as_ref()).map(|_| ())
+}
+
+/// The checks of [`model_checks`] with the model's [`Mat4::inverse3`]
+/// made already; the model scale.
+fn model_checks_by(model: &Mat4, eye: Vec3, inverse: Option<&Inverse3>) -> Result<f32, LightError> {
+    let (scale, eye) = model_space(model, eye, inverse)?;
     match fits_raw(eye) {
-        true => Ok(()),
+        true => Ok(scale),
         false => Err(LightError::BadMatrix),
     }
 }
@@ -411,14 +442,7 @@ pub(crate) fn check_lighting(
     if count > max {
         return Err(LightError::TooManyLights { count, max });
     }
-    let identity = Mat4::IDENTITY;
-    let (scale, eye, inverse) = model_space(&identity, eye)?;
-    if !fits_raw(eye) {
-        return Err(LightError::BadMatrix);
-    }
-    for (i, l) in lighting.directional.iter().enumerate() {
-        directional_by(i, l.direction, Some(&inverse), true)?;
-    }
+    let (scale, _) = directional_lights(lighting.directional, &Mat4::IDENTITY, eye, true)?;
     for (i, l) in lighting.point.iter().enumerate() {
         // In the identity's model space a finite position stays finite.
         if !l.position.is_finite() {
