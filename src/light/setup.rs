@@ -238,7 +238,7 @@ impl Core {
                 return Err(LightError::BadRange { light: i });
             }
             let p = to_model(l.position).ok_or(LightError::BadPosition { light: i })?;
-            let r = l.range / model_scale;
+            let r = l.range / model_scale.get();
             if r.is_nan() || r * 65536.0 > (1u64 << 59) as f32 {
                 return Err(LightError::BadRange { light: i });
             }
@@ -269,7 +269,7 @@ impl Core {
                 if !(start.is_finite() && end.is_finite() && width > 0.0 && width.is_finite()) {
                     return Err(LightError::BadFog);
                 }
-                let scale = Scale::from_f32(model_scale / width).ok_or(LightError::BadFog)?;
+                let scale = Scale::from_f32(model_scale.get() / width).ok_or(LightError::BadFog)?;
                 const LIMIT: f32 = (1u64 << 46) as f32;
                 let offset =
                     crate::math::f32_to_i64((start / width * 65536.0).clamp(-LIMIT, LIMIT));
@@ -279,8 +279,9 @@ impl Core {
                 if !(density.is_finite() && density >= 0.0) {
                     return Err(LightError::BadFog);
                 }
-                let scale = Scale::from_f32(density * model_scale * core::f32::consts::LOG2_E)
-                    .ok_or(LightError::BadFog)?;
+                let scale =
+                    Scale::from_f32(density * model_scale.get() * core::f32::consts::LOG2_E)
+                        .ok_or(LightError::BadFog)?;
                 FixedFog::Exponential { scale }
             }
         };
@@ -306,7 +307,7 @@ fn model_space(
     model: &Mat4,
     eye: Vec3,
     inverse: Option<&Inverse3>,
-) -> Result<(f32, Vec3), LightError> {
+) -> Result<(ModelScale, Vec3), LightError> {
     if !model.is_finite() {
         return Err(LightError::BadMatrix);
     }
@@ -314,9 +315,11 @@ fn model_space(
     let t = Vec3::new(m[3][0], m[3][1], m[3][2]);
     // World units per model unit (exact for a uniform scale).
     let axis = |c: usize| Vec3::new(m[c][0], m[c][1], m[c][2]);
-    let model_scale =
-        sqrt((axis(0).dot(axis(0)) + axis(1).dot(axis(1)) + axis(2).dot(axis(2))) / 3.0);
-    if !(model_scale.is_finite() && model_scale > 0.0) {
+    let square = (axis(0).dot(axis(0)) + axis(1).dot(axis(1)) + axis(2).dot(axis(2))) / 3.0;
+    // `sqrt(square)` is finite and positive exactly when `square` is
+    // (math's tests check it): tested so, and the root taken only where a
+    // point light or fog asks for it (`ModelScale::get`).
+    if !(square.is_finite() && square > 0.0) {
         return Err(LightError::BadMatrix);
     }
     if !eye.is_finite() {
@@ -326,7 +329,20 @@ fn model_space(
     let eye = inverse
         .and_then(|inverse| inverse.apply(eye - t))
         .ok_or(LightError::BadMatrix)?;
-    Ok((model_scale, eye))
+    Ok((ModelScale(square), eye))
+}
+
+/// The model scale of [`model_space`] as its square: most set-ups (no
+/// point light, no fog) never take its root, a dozen `f32` operations with
+/// three divisions (about 700 instructions on the Cortex-M3).
+#[derive(Clone, Copy)]
+pub(crate) struct ModelScale(f32);
+
+impl ModelScale {
+    /// World units per model unit.
+    pub(crate) fn get(self) -> f32 {
+        sqrt(self.0)
+    }
 }
 
 /// Directional light `i` (direction `direction`, world space) in the model
@@ -392,7 +408,7 @@ pub(crate) fn directional_lights(
     model: &Mat4,
     eye: Vec3,
     coarse: bool,
-) -> Result<(f32, [i32; 3]), LightError> {
+) -> Result<(ModelScale, [i32; 3]), LightError> {
     let inverse = model.inverse3();
     let scale = model_checks_by(model, eye, inverse.as_ref())?;
     let mut dir = [0; 3];
@@ -418,7 +434,11 @@ pub(crate) fn model_checks(model: &Mat4, eye: Vec3) -> Result<(), LightError> {
 
 /// The checks of [`model_checks`] with the model's [`Mat4::inverse3`]
 /// made already; the model scale.
-fn model_checks_by(model: &Mat4, eye: Vec3, inverse: Option<&Inverse3>) -> Result<f32, LightError> {
+fn model_checks_by(
+    model: &Mat4,
+    eye: Vec3,
+    inverse: Option<&Inverse3>,
+) -> Result<ModelScale, LightError> {
     let (scale, eye) = model_space(model, eye, inverse)?;
     match fits_raw(eye) {
         true => Ok(scale),
@@ -451,7 +471,7 @@ pub(crate) fn check_lighting(
         if !(l.range.is_finite() && l.range > 0.0) {
             return Err(LightError::BadRange { light: i });
         }
-        let r = l.range / scale;
+        let r = l.range / scale.get();
         if r.is_nan() || r * 65536.0 > (1u64 << 59) as f32 {
             return Err(LightError::BadRange { light: i });
         }
@@ -464,13 +484,13 @@ pub(crate) fn check_lighting(
             if !(start.is_finite() && end.is_finite() && width > 0.0 && width.is_finite()) {
                 return Err(LightError::BadFog);
             }
-            scale / width
+            scale.get() / width
         }
         Fog::Exponential { density } => {
             if !(density.is_finite() && density >= 0.0) {
                 return Err(LightError::BadFog);
             }
-            density * scale * core::f32::consts::LOG2_E
+            density * scale.get() * core::f32::consts::LOG2_E
         }
     };
     match fog_scale.is_finite() && fog_scale >= 0.0 {

@@ -677,6 +677,27 @@ mod tests {
         }
     }
 
+    /// The root of a positive finite `f32` is positive and finite (the
+    /// light set-up tests the model scale's square so): every subnormal
+    /// and the values of every binade, its ends and a stride within.
+    #[test]
+    fn sqrt_of_positive_finite_is_positive_finite() {
+        let ok = |b: u32| {
+            let y = sqrt(f32::from_bits(b));
+            assert!(y.is_finite() && y > 0.0, "{b:#x} {y}");
+        };
+        (1..0x80_0000).step_by(7).for_each(ok);
+        (1..0x7f80_0000u32).step_by(4099).for_each(ok);
+        for e in 0..255u32 {
+            for m in [0, 1, 2, 0x40_0000, 0x7f_fffe, 0x7f_ffff] {
+                let b = e << 23 | m;
+                if b != 0 {
+                    ok(b);
+                }
+            }
+        }
+    }
+
     /// A vector fails to normalize exactly when it is not finite or is
     /// zero (the light set-up tests a direction so).
     #[test]
