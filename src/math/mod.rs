@@ -442,8 +442,11 @@ impl Mat4 {
     pub(crate) fn fixed_whole(&self) -> Option<FixedMat4> {
         let n = self;
         let fixed = n.to_fixed()?;
-        let lost =
-            (0..4).any(|r| (0..4).any(|c| n.m[c][r] != 0.0) && (0..4).all(|c| fixed.m[c][r] == 0));
+        // `v != 0.0` by the bits (the sign shifted out): without a
+        // soft-float compare per element.
+        let nonzero = |v: f32| v.to_bits() << 1 != 0;
+        let lost = (0..4)
+            .any(|r| (0..4).any(|c| nonzero(n.m[c][r])) && (0..4).all(|c| fixed.m[c][r] == 0));
         (!lost).then_some(fixed)
     }
 
