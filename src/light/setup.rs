@@ -303,45 +303,60 @@ impl Core {
 /// the model's [`Mat4::inverse3`] (made by the caller, which moves the
 /// lights by it too: passed rather than returned, the Cortex-M3's
 /// firmware optimised for size copied it about, some 200 bytes).
-fn model_space(
-    model: &Mat4,
+fn model_space<'m>(
+    model: &'m Mat4,
     eye: Vec3,
     inverse: Option<&Inverse3>,
-) -> Result<(ModelScale, Vec3), LightError> {
-    if !model.is_finite() {
-        return Err(LightError::BadMatrix);
+) -> Result<(ModelScale<'m>, Vec3), LightError> {
+    // Every failure here is the same error: the order of the tests does
+    // not show.
+    let bad = Err(LightError::BadMatrix);
+    // None for a singular matrix, too.
+    let Some(inverse) = inverse else {
+        return bad;
+    };
+    if !model.is_finite() || !eye.is_finite() {
+        return bad;
+    }
+    let scale = ModelScale(model);
+    // `sqrt(square)` is finite and positive exactly when `square` is
+    // (math's tests check it); and when the 3x3 part's largest element
+    // is within 2^-60 and 2^62 (`Inverse3::moderate`) it is: its square
+    // is a normal f32 and the nine squares' sum below 2^128. Only a
+    // matrix outside that has its square made here; the root is taken
+    // only where a point light or fog asks for it (`ModelScale::get`).
+    if !inverse.moderate() {
+        let square = scale.square();
+        if !(square.is_finite() && square > 0.0) {
+            return bad;
+        }
     }
     let m = &model.m;
     let t = Vec3::new(m[3][0], m[3][1], m[3][2]);
-    // World units per model unit (exact for a uniform scale).
-    let axis = |c: usize| Vec3::new(m[c][0], m[c][1], m[c][2]);
-    let square = (axis(0).dot(axis(0)) + axis(1).dot(axis(1)) + axis(2).dot(axis(2))) / 3.0;
-    // `sqrt(square)` is finite and positive exactly when `square` is
-    // (math's tests check it): tested so, and the root taken only where a
-    // point light or fog asks for it (`ModelScale::get`).
-    if !(square.is_finite() && square > 0.0) {
-        return Err(LightError::BadMatrix);
+    match inverse.apply(eye - t) {
+        Some(eye) => Ok((scale, eye)),
+        None => bad,
     }
-    if !eye.is_finite() {
-        return Err(LightError::BadMatrix);
-    }
-    // None for a singular matrix, too.
-    let eye = inverse
-        .and_then(|inverse| inverse.apply(eye - t))
-        .ok_or(LightError::BadMatrix)?;
-    Ok((ModelScale(square), eye))
 }
 
-/// The model scale of [`model_space`] as its square: most set-ups (no
-/// point light, no fog) never take its root, a dozen `f32` operations with
-/// three divisions (about 700 instructions on the Cortex-M3).
+/// The model scale of [`model_space`] (world units per model unit, exact
+/// for a uniform scale), made only where a point light or fog asks for it:
+/// most set-ups never need it, its sum of squares and a root with three
+/// divisions (some 2,000 instructions on the Cortex-M3).
 #[derive(Clone, Copy)]
-pub(crate) struct ModelScale(f32);
+pub(crate) struct ModelScale<'m>(&'m Mat4);
 
-impl ModelScale {
+impl ModelScale<'_> {
+    /// The mean square of the model's three axes.
+    fn square(self) -> f32 {
+        let m = &self.0.m;
+        let axis = |c: usize| Vec3::new(m[c][0], m[c][1], m[c][2]);
+        (axis(0).dot(axis(0)) + axis(1).dot(axis(1)) + axis(2).dot(axis(2))) / 3.0
+    }
+
     /// World units per model unit.
     pub(crate) fn get(self) -> f32 {
-        sqrt(self.0)
+        sqrt(self.square())
     }
 }
 
@@ -403,12 +418,12 @@ fn fits_raw(v: Vec3) -> bool {
 /// the errors [`LightSetup::new`] gives for a [`Lighting`] of those
 /// lights: the model and eye checks ([`model_checks`]) first. One
 /// [`Mat4::inverse3`] for the eye and the lights.
-pub(crate) fn directional_lights(
+pub(crate) fn directional_lights<'m>(
     lights: &[super::DirectionalLight],
-    model: &Mat4,
+    model: &'m Mat4,
     eye: Vec3,
     coarse: bool,
-) -> Result<(ModelScale, [i32; 3]), LightError> {
+) -> Result<(ModelScale<'m>, [i32; 3]), LightError> {
     let inverse = model.inverse3();
     let scale = model_checks_by(model, eye, inverse.as_ref())?;
     let mut dir = [0; 3];
@@ -434,11 +449,11 @@ pub(crate) fn model_checks(model: &Mat4, eye: Vec3) -> Result<(), LightError> {
 
 /// The checks of [`model_checks`] with the model's [`Mat4::inverse3`]
 /// made already; the model scale.
-fn model_checks_by(
-    model: &Mat4,
+fn model_checks_by<'m>(
+    model: &'m Mat4,
     eye: Vec3,
     inverse: Option<&Inverse3>,
-) -> Result<ModelScale, LightError> {
+) -> Result<ModelScale<'m>, LightError> {
     let (scale, eye) = model_space(model, eye, inverse)?;
     match fits_raw(eye) {
         true => Ok(scale),

@@ -499,6 +499,15 @@ pub(crate) struct Inverse3 {
 }
 
 impl Inverse3 {
+    /// Whether the 3x3 part's largest element (in magnitude) lies within
+    /// `[2^-60, 2^62)`: then the sum of its elements' squares is a finite
+    /// f32 of at least 2^-120 (the light set-up's model scale need not be
+    /// made to be known finite and positive).
+    pub(crate) fn moderate(&self) -> bool {
+        // `k = 2^-e` for the largest element `1.x 2^e`, `e` in `-60..=61`.
+        (self.k.to_bits() >> 23).wrapping_sub(127 - 61) <= 121
+    }
+
     /// `M⁻¹ v`; `None` when a coordinate is not finite.
     pub(crate) fn apply(&self, v: Vec3) -> Option<Vec3> {
         let ([c0, c1, c2], inv, k) = (self.c, self.inv, self.k);
@@ -699,6 +708,40 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// Where [`Inverse3::moderate`] holds, the 3x3 part's mean square is
+    /// finite and positive: random matrices and the extremes of the range.
+    #[test]
+    fn moderate_inverse_has_a_finite_positive_square() {
+        let square = |m: &Mat4| {
+            let axis = |c: usize| Vec3::new(m.m[c][0], m.m[c][1], m.m[c][2]);
+            (axis(0).dot(axis(0)) + axis(1).dot(axis(1)) + axis(2).dot(axis(2))) / 3.0
+        };
+        let mut next = crate::testing::rng();
+        let top = f32::from_bits((62 + 127) << 23).next_down();
+        let low = f32::from_bits((127 - 60) << 23);
+        let mut moderate = 0;
+        for i in 0..200_000 {
+            let mut m = Mat4 {
+                m: [[0.0; 4]; 4].map(|c| c.map(|_| odd_f32(&mut next))),
+            };
+            match i % 3 {
+                0 => m = Mat4::scale(Vec3::new(top, -top, top)),
+                1 => m.m[0][0] = [top, low, -top, -low][i % 4],
+                _ => {}
+            }
+            if m.inverse3().is_some_and(|i| i.moderate()) {
+                moderate += 1;
+                let q = square(&m);
+                assert!(q.is_finite() && q > 0.0, "{m:?}");
+            }
+        }
+        assert!(moderate > 10_000, "{moderate}");
+        // The ends: a scale of 2^62 is not moderate, one of 2^-61 neither.
+        let s = |v: f32| Mat4::scale(Vec3::new(v, v, v)).inverse3().unwrap();
+        assert!(s(top).moderate() && s(low).moderate());
+        assert!(!s(top.next_up()).moderate() && !s(low.next_down()).moderate());
     }
 
     /// A vector fails to normalize exactly when it is not finite or is
