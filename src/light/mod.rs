@@ -227,7 +227,7 @@ mod tests;
 
 pub(crate) use arith::div255;
 pub use setup::LightSetup;
-pub(crate) use setup::{check_lighting, directional, model_checks, one_light};
+pub(crate) use setup::{check_lighting, directional_lights};
 
 use crate::math::Vec3;
 use embedded_graphics::pixelcolor::Rgb888;

@@ -4,7 +4,7 @@
 
 use super::arith::*;
 use super::{Fog, LightError, Lighting, Material};
-use crate::math::{sqrt, Mat4, Vec3};
+use crate::math::{sqrt, Inverse3, Mat4, Vec3};
 use embedded_graphics::pixelcolor::Rgb888;
 use embedded_graphics::prelude::RgbColor;
 
@@ -211,16 +211,18 @@ impl Core {
                 max: lights.len(),
             });
         }
-        let (model_scale, eye) = model_space(model, eye)?;
+        // Made once, for the eye and every light.
+        let inverse = model.inverse3();
+        let (model_scale, eye) = model_space(model, eye, inverse.as_ref())?;
         let eye = to_raw(eye).ok_or(LightError::BadMatrix)?;
         let m = &model.m;
         let t = Vec3::new(m[3][0], m[3][1], m[3][2]);
-        let to_model = |p: Vec3| model.inverse_transform_vector(p - t);
+        let to_model = |p: Vec3| inverse.as_ref().and_then(|i| i.apply(p - t));
 
         let coarse = lighting.directional.len() == 1 && lighting.point.is_empty();
         let mut slots = lights.iter_mut();
         for (i, l) in lighting.directional.iter().enumerate() {
-            let dir = directional(i, l.direction, model, coarse)?;
+            let dir = directional_by(i, l.direction, inverse.as_ref(), coarse)?;
             if let Some(slot) = slots.next() {
                 *slot = FixedLight {
                     source: Source::Directional { dir },
@@ -236,7 +238,7 @@ impl Core {
                 return Err(LightError::BadRange { light: i });
             }
             let p = to_model(l.position).ok_or(LightError::BadPosition { light: i })?;
-            let r = l.range / model_scale;
+            let r = l.range / model_scale.get();
             if r.is_nan() || r * 65536.0 > (1u64 << 59) as f32 {
                 return Err(LightError::BadRange { light: i });
             }
@@ -267,7 +269,7 @@ impl Core {
                 if !(start.is_finite() && end.is_finite() && width > 0.0 && width.is_finite()) {
                     return Err(LightError::BadFog);
                 }
-                let scale = Scale::from_f32(model_scale / width).ok_or(LightError::BadFog)?;
+                let scale = Scale::from_f32(model_scale.get() / width).ok_or(LightError::BadFog)?;
                 const LIMIT: f32 = (1u64 << 46) as f32;
                 let offset =
                     crate::math::f32_to_i64((start / width * 65536.0).clamp(-LIMIT, LIMIT));
@@ -277,8 +279,9 @@ impl Core {
                 if !(density.is_finite() && density >= 0.0) {
                     return Err(LightError::BadFog);
                 }
-                let scale = Scale::from_f32(density * model_scale * core::f32::consts::LOG2_E)
-                    .ok_or(LightError::BadFog)?;
+                let scale =
+                    Scale::from_f32(density * model_scale.get() * core::f32::consts::LOG2_E)
+                        .ok_or(LightError::BadFog)?;
                 FixedFog::Exponential { scale }
             }
         };
@@ -295,45 +298,95 @@ impl Core {
 }
 
 /// The checks every set-up makes of a draw's model matrix and the eye, in
-/// [`Core::new`]'s order: the model scale (world units per model unit) and
-/// the eye in model space, not yet known to fit raw 16.16.
-fn model_space(model: &Mat4, eye: Vec3) -> Result<(f32, Vec3), LightError> {
-    if !model.is_finite() {
-        return Err(LightError::BadMatrix);
+/// [`Core::new`]'s order: the model scale (world units per model unit), the
+/// eye in model space, not yet known to fit raw 16.16, moved by `inverse`,
+/// the model's [`Mat4::inverse3`] (made by the caller, which moves the
+/// lights by it too: passed rather than returned, the Cortex-M3's
+/// firmware optimised for size copied it about, some 200 bytes).
+fn model_space<'m>(
+    model: &'m Mat4,
+    eye: Vec3,
+    inverse: Option<&Inverse3>,
+) -> Result<(ModelScale<'m>, Vec3), LightError> {
+    // Every failure here is the same error: the order of the tests does
+    // not show.
+    let bad = Err(LightError::BadMatrix);
+    // None for a singular matrix, too.
+    let Some(inverse) = inverse else {
+        return bad;
+    };
+    if !model.is_finite() || !eye.is_finite() {
+        return bad;
+    }
+    let scale = ModelScale(model);
+    // `sqrt(square)` is finite and positive exactly when `square` is
+    // (math's tests check it); and when the 3x3 part's largest element
+    // is within 2^-60 and 2^62 (`Inverse3::moderate`) it is: its square
+    // is a normal f32 and the nine squares' sum below 2^128. Only a
+    // matrix outside that has its square made here; the root is taken
+    // only where a point light or fog asks for it (`ModelScale::get`).
+    if !inverse.moderate() {
+        let square = scale.square();
+        if !(square.is_finite() && square > 0.0) {
+            return bad;
+        }
     }
     let m = &model.m;
     let t = Vec3::new(m[3][0], m[3][1], m[3][2]);
-    // World units per model unit (exact for a uniform scale).
-    let axis = |c: usize| Vec3::new(m[c][0], m[c][1], m[c][2]);
-    let model_scale =
-        sqrt((axis(0).dot(axis(0)) + axis(1).dot(axis(1)) + axis(2).dot(axis(2))) / 3.0);
-    if !(model_scale.is_finite() && model_scale > 0.0) {
-        return Err(LightError::BadMatrix);
+    match inverse.apply(eye - t) {
+        Some(eye) => Ok((scale, eye)),
+        None => bad,
     }
-    if !eye.is_finite() {
-        return Err(LightError::BadMatrix);
+}
+
+/// The model scale of [`model_space`] (world units per model unit, exact
+/// for a uniform scale), made only where a point light or fog asks for it:
+/// most set-ups never need it, its sum of squares and a root with three
+/// divisions (some 2,000 instructions on the Cortex-M3).
+#[derive(Clone, Copy)]
+pub(crate) struct ModelScale<'m>(&'m Mat4);
+
+impl ModelScale<'_> {
+    /// The mean square of the model's three axes.
+    fn square(self) -> f32 {
+        let m = &self.0.m;
+        let axis = |c: usize| Vec3::new(m[c][0], m[c][1], m[c][2]);
+        (axis(0).dot(axis(0)) + axis(1).dot(axis(1)) + axis(2).dot(axis(2))) / 3.0
     }
-    // None for a singular matrix, too.
-    let eye = model
-        .inverse_transform_vector(eye - t)
-        .ok_or(LightError::BadMatrix)?;
-    Ok((model_scale, eye))
+
+    /// World units per model unit.
+    pub(crate) fn get(self) -> f32 {
+        sqrt(self.square())
+    }
 }
 
 /// Directional light `i` (direction `direction`, world space) in the model
-/// space of `model`: its unit direction in Q16, truncated when `coarse`
-/// (one directional light and nothing else), rounded otherwise.
-pub(crate) fn directional(
+/// space of a model matrix whose [`Mat4::inverse3`] is `inverse` (`None`:
+/// singular): its unit direction in Q16, truncated when `coarse` (one
+/// directional light and nothing else), rounded otherwise. The inverse is
+/// made once for the eye and every light.
+fn directional_by(
     i: usize,
     direction: Vec3,
-    model: &Mat4,
+    inverse: Option<&Inverse3>,
     coarse: bool,
 ) -> Result<[i32; 3], LightError> {
-    if direction.normalize().is_none() {
+    // Where `direction.normalize()` is `None`: not finite, or zero (a
+    // finite non-zero vector always normalizes, scaled first if its
+    // squared length leaves f32). Tested so rather than normalized, a
+    // square root and three divisions the Cortex-M3 spent per draw, and
+    // by the bits (the sign shifted out), without soft-float compares.
+    let (x, y, z) = (
+        direction.x.to_bits() << 1,
+        direction.y.to_bits() << 1,
+        direction.z.to_bits() << 1,
+    );
+    const INF: u32 = 0xff00_0000;
+    if x >= INF || y >= INF || z >= INF || (x | y | z) == 0 {
         return Err(LightError::BadDirection { light: i });
     }
-    let local = model
-        .inverse_transform_vector(direction)
+    let local = inverse
+        .and_then(|inverse| inverse.apply(direction))
         .and_then(|v| v.normalize())
         .ok_or(LightError::BadMatrix)?;
     let fx = |v: f32| {
@@ -356,22 +409,54 @@ fn fits_raw(v: Vec3) -> bool {
         .all(|&c| !(c * 65536.0).is_nan() && (c * 65536.0).abs() <= LIMIT)
 }
 
-/// The set-up of a draw lit by one directional light (direction
-/// `direction`, world space) and nothing else, without the general
-/// lighting's code: its unit direction in the model space of `model`, Q16,
-/// truncated, as [`LightSetup::single_directional`] gives it, with the
-/// errors [`LightSetup::new`] gives for a [`Lighting`] of that one light.
+/// The set-up of a draw lit by the directional lights `lights` and
+/// nothing else, without the general lighting's code: the model-space
+/// model scale (see [`model_space`]) and the unit direction (Q16) of the
+/// last of the lights (`[0; 3]` for none) under
+/// `model`, truncated when `coarse` (one light, as
+/// [`LightSetup::single_directional`] gives it), rounded otherwise, with
+/// the errors [`LightSetup::new`] gives for a [`Lighting`] of those
+/// lights: the model and eye checks ([`model_checks`]) first. One
+/// [`Mat4::inverse3`] for the eye and the lights.
+pub(crate) fn directional_lights<'m>(
+    lights: &[super::DirectionalLight],
+    model: &'m Mat4,
+    eye: Vec3,
+    coarse: bool,
+) -> Result<(ModelScale<'m>, [i32; 3]), LightError> {
+    let inverse = model.inverse3();
+    let scale = model_checks_by(model, eye, inverse.as_ref())?;
+    let mut dir = [0; 3];
+    for (i, l) in lights.iter().enumerate() {
+        dir = directional_by(i, l.direction, inverse.as_ref(), coarse)?;
+    }
+    Ok((scale, dir))
+}
+
+/// [`directional_lights`] of one light (direction `direction`), coarse.
+#[cfg(test)]
 pub(crate) fn one_light(direction: Vec3, model: &Mat4, eye: Vec3) -> Result<[i32; 3], LightError> {
-    model_checks(model, eye)?;
-    directional(0, direction, model, true)
+    let one = [super::DirectionalLight::new(direction, 1.0)];
+    directional_lights(&one, model, eye, true).map(|(_, dir)| dir)
 }
 
 /// The checks of a draw's matrix and the eye that [`LightSetup::new`]
 /// makes whatever the lights.
+#[cfg(test)]
 pub(crate) fn model_checks(model: &Mat4, eye: Vec3) -> Result<(), LightError> {
-    let (_, eye) = model_space(model, eye)?;
+    model_checks_by(model, eye, model.inverse3().as_ref()).map(|_| ())
+}
+
+/// The checks of [`model_checks`] with the model's [`Mat4::inverse3`]
+/// made already; the model scale.
+fn model_checks_by<'m>(
+    model: &'m Mat4,
+    eye: Vec3,
+    inverse: Option<&Inverse3>,
+) -> Result<ModelScale<'m>, LightError> {
+    let (scale, eye) = model_space(model, eye, inverse)?;
     match fits_raw(eye) {
-        true => Ok(()),
+        true => Ok(scale),
         false => Err(LightError::BadMatrix),
     }
 }
@@ -392,14 +477,7 @@ pub(crate) fn check_lighting(
     if count > max {
         return Err(LightError::TooManyLights { count, max });
     }
-    let identity = Mat4::IDENTITY;
-    let (scale, eye) = model_space(&identity, eye)?;
-    if !fits_raw(eye) {
-        return Err(LightError::BadMatrix);
-    }
-    for (i, l) in lighting.directional.iter().enumerate() {
-        directional(i, l.direction, &identity, true)?;
-    }
+    let (scale, _) = directional_lights(lighting.directional, &Mat4::IDENTITY, eye, true)?;
     for (i, l) in lighting.point.iter().enumerate() {
         // In the identity's model space a finite position stays finite.
         if !l.position.is_finite() {
@@ -408,7 +486,7 @@ pub(crate) fn check_lighting(
         if !(l.range.is_finite() && l.range > 0.0) {
             return Err(LightError::BadRange { light: i });
         }
-        let r = l.range / scale;
+        let r = l.range / scale.get();
         if r.is_nan() || r * 65536.0 > (1u64 << 59) as f32 {
             return Err(LightError::BadRange { light: i });
         }
@@ -421,13 +499,13 @@ pub(crate) fn check_lighting(
             if !(start.is_finite() && end.is_finite() && width > 0.0 && width.is_finite()) {
                 return Err(LightError::BadFog);
             }
-            scale / width
+            scale.get() / width
         }
         Fog::Exponential { density } => {
             if !(density.is_finite() && density >= 0.0) {
                 return Err(LightError::BadFog);
             }
-            density * scale * core::f32::consts::LOG2_E
+            density * scale.get() * core::f32::consts::LOG2_E
         }
     };
     match fog_scale.is_finite() && fog_scale >= 0.0 {

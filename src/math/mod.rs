@@ -312,36 +312,45 @@ impl Mat4 {
     /// that neither underflows nor overflows, and a model matrix in any
     /// units (a scale of 1e-20 has a determinant of 1e-60) still inverts.
     pub fn inverse_transform_vector(&self, v: Vec3) -> Option<Vec3> {
+        self.inverse3()?.apply(v)
+    }
+
+    /// The part of [`inverse_transform_vector`](Self::inverse_transform_vector)
+    /// that does not depend on the vector: the scaled 3x3 part's adjugate,
+    /// its determinant's reciprocal and the scale; `None` when singular
+    /// (or not finite). A draw's light set-up moves the eye and every
+    /// light by one (two `M⁻¹` products took the Cortex-M3 about 4,000
+    /// instructions each).
+    pub(crate) fn inverse3(&self) -> Option<Inverse3> {
+        // The largest magnitude by the bits: for finite elements the
+        // order of `|x|` is that of `x.to_bits() & 0x7fff_ffff` (the
+        // Cortex-M3's `fmaxf` took about 40 instructions an element). A
+        // NaN or infinite element gives `None` here; `f32::max` skipped a
+        // NaN, but its determinant was NaN, and `None` all the same.
         let big = (0..3)
             .flat_map(|c| self.m[c][..3].iter())
-            .fold(0.0f32, |b, x| b.max(x.abs()));
-        if !big.is_finite() || big == 0.0 {
+            .fold(0u32, |b, x| b.max(x.to_bits() & 0x7fff_ffff));
+        if big >= 0x7f80_0000 || big == 0 {
             return None;
         }
         // big = 1.x 2^e (subnormals counted as 2^-126): scale by 2^-e.
-        let e = (((big.to_bits() >> 23) as i32).max(1) - 127).min(126);
+        let e = (((big >> 23) as i32).max(1) - 127).min(126);
         let k = f32::from_bits(((127 - e) as u32) << 23);
-        let m = self.m.map(|c| c.map(|x| x * k));
-        // Rows of the 3x3 part.
-        let r0 = Vec3::new(m[0][0], m[1][0], m[2][0]);
-        let r1 = Vec3::new(m[0][1], m[1][1], m[2][1]);
-        let r2 = Vec3::new(m[0][2], m[1][2], m[2][2]);
+        // Rows of the 3x3 part, scaled (only the nine elements it uses).
+        let m = &self.m;
+        let row = |r: usize| Vec3::new(m[0][r] * k, m[1][r] * k, m[2][r] * k);
+        let (r0, r1, r2) = (row(0), row(1), row(2));
         // Columns of the inverse are cross products of rows / det.
-        let c0 = r1.cross(r2);
-        let c1 = r2.cross(r0);
-        let c2 = r0.cross(r1);
-        let det = r0.dot(c0);
+        let c = [r1.cross(r2), r2.cross(r0), r0.cross(r1)];
+        let det = r0.dot(c[0]);
         if !(det.is_finite() && det != 0.0) {
             return None;
         }
-        let inv = 1.0 / det;
-        // The inverse of the scaled matrix is k times the inverse.
-        let out = Vec3::new(
-            (c0.x * v.x + c1.x * v.y + c2.x * v.z) * inv * k,
-            (c0.y * v.x + c1.y * v.y + c2.y * v.z) * inv * k,
-            (c0.z * v.x + c1.z * v.y + c2.z * v.z) * inv * k,
-        );
-        out.is_finite().then_some(out)
+        Some(Inverse3 {
+            c,
+            inv: 1.0 / det,
+            k,
+        })
     }
 
     /// The same projective transform with its largest element ±1: the
@@ -390,9 +399,16 @@ impl Mat4 {
         if !self.is_finite() {
             return None;
         }
-        let big = self.m.iter().flatten().fold(0.0f32, |b, v| b.max(v.abs()));
+        // By the bits, finite as they are: `|x|` orders as `x.to_bits() &
+        // 0x7fff_ffff` (the Cortex-M3's `fmaxf` took about 40 instructions
+        // an element).
+        let big = self
+            .m
+            .iter()
+            .flatten()
+            .fold(0u32, |b, v| b.max(v.to_bits() & 0x7fff_ffff));
         // 2^-100: the elements within 2^-17 of it are normal f32s.
-        (big >= f32::from_bits(27 << 23)).then_some(big)
+        (big >= 27 << 23).then(|| f32::from_bits(big))
     }
 
     /// [`normalized`](Self::normalized), converted to 16.16: what the vertex
@@ -426,8 +442,11 @@ impl Mat4 {
     pub(crate) fn fixed_whole(&self) -> Option<FixedMat4> {
         let n = self;
         let fixed = n.to_fixed()?;
-        let lost =
-            (0..4).any(|r| (0..4).any(|c| n.m[c][r] != 0.0) && (0..4).all(|c| fixed.m[c][r] == 0));
+        // `v != 0.0` by the bits (the sign shifted out): without a
+        // soft-float compare per element.
+        let nonzero = |v: f32| v.to_bits() << 1 != 0;
+        let lost = (0..4)
+            .any(|r| (0..4).any(|c| nonzero(n.m[c][r])) && (0..4).all(|c| fixed.m[c][r] == 0));
         (!lost).then_some(fixed)
     }
 
@@ -463,6 +482,42 @@ impl core::ops::Mul for Mat4 {
             }
         }
         Mat4 { m: out }
+    }
+}
+
+/// The inverse of a [`Mat4`]'s 3x3 part, made once for several vectors
+/// ([`Mat4::inverse3`]); [`apply`](Self::apply) gives
+/// [`Mat4::inverse_transform_vector`]'s result, the same bits.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Inverse3 {
+    /// The columns of the scaled part's adjugate.
+    c: [Vec3; 3],
+    /// `1 / det` of the scaled part.
+    inv: f32,
+    /// The power of two the part was scaled by.
+    k: f32,
+}
+
+impl Inverse3 {
+    /// Whether the 3x3 part's largest element (in magnitude) lies within
+    /// `[2^-60, 2^62)`: then the sum of its elements' squares is a finite
+    /// f32 of at least 2^-120 (the light set-up's model scale need not be
+    /// made to be known finite and positive).
+    pub(crate) fn moderate(&self) -> bool {
+        // `k = 2^-e` for the largest element `1.x 2^e`, `e` in `-60..=61`.
+        (self.k.to_bits() >> 23).wrapping_sub(127 - 61) <= 121
+    }
+
+    /// `M⁻¹ v`; `None` when a coordinate is not finite.
+    pub(crate) fn apply(&self, v: Vec3) -> Option<Vec3> {
+        let ([c0, c1, c2], inv, k) = (self.c, self.inv, self.k);
+        // The inverse of the scaled matrix is k times the inverse.
+        let out = Vec3::new(
+            (c0.x * v.x + c1.x * v.y + c2.x * v.z) * inv * k,
+            (c0.y * v.x + c1.y * v.y + c2.y * v.z) * inv * k,
+            (c0.z * v.x + c1.z * v.y + c2.z * v.z) * inv * k,
+        );
+        out.is_finite().then_some(out)
     }
 }
 
@@ -611,6 +666,152 @@ impl FixedMat4 {
 mod tests {
     use super::trig::tests::ulps;
     use super::*;
+
+    /// A random `f32` for the set-up's tests: often `±0`, `±1`, a
+    /// subnormal, a huge or non-finite value, otherwise of any size.
+    fn odd_f32(next: &mut impl FnMut(u64) -> u64) -> f32 {
+        let special = [
+            0.0,
+            -0.0,
+            1.0,
+            -1.0,
+            1e-40,
+            -3e-39,
+            3e38,
+            f32::INFINITY,
+            f32::NAN,
+            0.5,
+        ];
+        match next(4) {
+            0 => special[next(special.len() as u64) as usize],
+            1 => f32::from_bits(next(1 << 32) as u32),
+            _ => (next(2001) as f32 - 1000.0) / (1 + next(100)) as f32,
+        }
+    }
+
+    /// The root of a positive finite `f32` is positive and finite (the
+    /// light set-up tests the model scale's square so): every subnormal
+    /// and the values of every binade, its ends and a stride within.
+    #[test]
+    fn sqrt_of_positive_finite_is_positive_finite() {
+        let ok = |b: u32| {
+            let y = sqrt(f32::from_bits(b));
+            assert!(y.is_finite() && y > 0.0, "{b:#x} {y}");
+        };
+        (1..0x80_0000).step_by(7).for_each(ok);
+        (1..0x7f80_0000u32).step_by(4099).for_each(ok);
+        for e in 0..255u32 {
+            for m in [0, 1, 2, 0x40_0000, 0x7f_fffe, 0x7f_ffff] {
+                let b = e << 23 | m;
+                if b != 0 {
+                    ok(b);
+                }
+            }
+        }
+    }
+
+    /// Where [`Inverse3::moderate`] holds, the 3x3 part's mean square is
+    /// finite and positive: random matrices and the extremes of the range.
+    #[test]
+    fn moderate_inverse_has_a_finite_positive_square() {
+        let square = |m: &Mat4| {
+            let axis = |c: usize| Vec3::new(m.m[c][0], m.m[c][1], m.m[c][2]);
+            (axis(0).dot(axis(0)) + axis(1).dot(axis(1)) + axis(2).dot(axis(2))) / 3.0
+        };
+        let mut next = crate::testing::rng();
+        let top = f32::from_bits((62 + 127) << 23).next_down();
+        let low = f32::from_bits((127 - 60) << 23);
+        let mut moderate = 0;
+        for i in 0..200_000 {
+            let mut m = Mat4 {
+                m: [[0.0; 4]; 4].map(|c| c.map(|_| odd_f32(&mut next))),
+            };
+            match i % 3 {
+                0 => m = Mat4::scale(Vec3::new(top, -top, top)),
+                1 => m.m[0][0] = [top, low, -top, -low][i % 4],
+                _ => {}
+            }
+            if m.inverse3().is_some_and(|i| i.moderate()) {
+                moderate += 1;
+                let q = square(&m);
+                assert!(q.is_finite() && q > 0.0, "{m:?}");
+            }
+        }
+        assert!(moderate > 10_000, "{moderate}");
+        // The ends: a scale of 2^62 is not moderate, one of 2^-61 neither.
+        let s = |v: f32| Mat4::scale(Vec3::new(v, v, v)).inverse3().unwrap();
+        assert!(s(top).moderate() && s(low).moderate());
+        assert!(!s(top.next_up()).moderate() && !s(low.next_down()).moderate());
+    }
+
+    /// A vector fails to normalize exactly when it is not finite or is
+    /// zero (the light set-up tests a direction so).
+    #[test]
+    fn normalize_fails_only_on_zero_or_non_finite() {
+        let mut next = crate::testing::rng();
+        for _ in 0..200_000 {
+            let v = Vec3::new(odd_f32(&mut next), odd_f32(&mut next), odd_f32(&mut next));
+            let zero = v.x == 0.0 && v.y == 0.0 && v.z == 0.0;
+            assert_eq!(v.normalize().is_none(), !v.is_finite() || zero, "{v:?}");
+        }
+    }
+
+    /// `inverse_transform_vector` as it was before [`Mat4::inverse3`]
+    /// (scaling all sixteen elements, `f32::max` over the nine).
+    fn inverse_reference(m: &Mat4, v: Vec3) -> Option<Vec3> {
+        let big = (0..3)
+            .flat_map(|c| m.m[c][..3].iter())
+            .fold(0.0f32, |b, x| b.max(x.abs()));
+        if !big.is_finite() || big == 0.0 {
+            return None;
+        }
+        let e = (((big.to_bits() >> 23) as i32).max(1) - 127).min(126);
+        let k = f32::from_bits(((127 - e) as u32) << 23);
+        let m = m.m.map(|c| c.map(|x| x * k));
+        let r0 = Vec3::new(m[0][0], m[1][0], m[2][0]);
+        let r1 = Vec3::new(m[0][1], m[1][1], m[2][1]);
+        let r2 = Vec3::new(m[0][2], m[1][2], m[2][2]);
+        let (c0, c1, c2) = (r1.cross(r2), r2.cross(r0), r0.cross(r1));
+        let det = r0.dot(c0);
+        if !(det.is_finite() && det != 0.0) {
+            return None;
+        }
+        let inv = 1.0 / det;
+        let out = Vec3::new(
+            (c0.x * v.x + c1.x * v.y + c2.x * v.z) * inv * k,
+            (c0.y * v.x + c1.y * v.y + c2.y * v.z) * inv * k,
+            (c0.z * v.x + c1.z * v.y + c2.z * v.z) * inv * k,
+        );
+        out.is_finite().then_some(out)
+    }
+
+    /// The inverse made once gives the reference's bits, and the largest
+    /// element by the bits is `f32::max`'s.
+    #[test]
+    fn inverse3_and_normal_scale_are_the_references() {
+        let mut next = crate::testing::rng();
+        let bits = |v: Option<Vec3>| v.map(|v| [v.x, v.y, v.z].map(f32::to_bits));
+        for _ in 0..200_000 {
+            let m = Mat4 {
+                m: [[0.0; 4]; 4].map(|c| c.map(|_| odd_f32(&mut next))),
+            };
+            let v = Vec3::new(odd_f32(&mut next), odd_f32(&mut next), odd_f32(&mut next));
+            assert_eq!(
+                bits(m.inverse_transform_vector(v)),
+                bits(inverse_reference(&m, v)),
+                "{m:?} {v:?}"
+            );
+            let scale = m
+                .is_finite()
+                .then(|| m.m.iter().flatten().fold(0.0f32, |b, v| b.max(v.abs())));
+            let scale = scale.filter(|&b| b >= f32::from_bits(27 << 23));
+            assert_eq!(
+                m.normal_scale().map(f32::to_bits),
+                scale.map(f32::to_bits),
+                "{m:?}"
+            );
+        }
+    }
 
     #[test]
     fn perspective_maps_near_and_far_to_clip_bounds() {

@@ -281,8 +281,9 @@ pub(super) struct LoopConstants {
     /// (as a literal the Cortex-M3 rebuilt it, two instructions a vertex).
     magic: u32,
     /// The n·l that may carry the interior bit
-    /// ([`Lambert::interior_ndotl`]).
-    inside: [u32; 2],
+    /// ([`Lambert::interior_ndotl`]); none where no vertex carries it
+    /// ([`INSIDE`]).
+    inside: [[u32; 2]; INSIDE],
 }
 
 #[cfg_attr(not(any(test, target_pointer_width = "32")), allow(dead_code))]
@@ -299,17 +300,16 @@ impl LoopConstants {
             dir: l.dir,
             channels: [[0; 2]; 3],
             magic: DIV65280,
-            inside: [0; 2],
+            inside: [[0; 2]; INSIDE],
         };
         for (r, row) in k.rows.iter_mut().enumerate() {
             let t = (m.m[3][r] as i64) << 16 | 1 << 15;
             *row = [t as i32, (t >> 32) as i32, m.m[0][r], m.m[1][r], m.m[2][r]];
         }
         k.channels = l.folded(base);
-        k.inside = match super::screen::INTERIOR_STARTS {
-            true => interior_ndotl(&k.channels, gouraud),
-            false => [257, 0],
-        };
+        for b in k.inside.iter_mut() {
+            *b = interior_ndotl(&k.channels, gouraud);
+        }
         k
     }
 }
@@ -344,8 +344,21 @@ impl LitWork for LoopConstants {
         for (o, &[a, c]) in out.iter_mut().zip(&self.channels) {
             *o = div65280_sat_by(a + c * ndotl, self.magic);
         }
-        (out, within(ndotl, self.inside))
+        (out, within_any(ndotl, &self.inside))
     }
+}
+
+/// How many n·l intervals of the interior bit a loop's constants hold:
+/// one where vertices carry the bit ([`INTERIOR_STARTS`](super::screen::INTERIOR_STARTS)), none
+/// elsewhere. (An interval held and never read moved the Cortex-M4F's
+/// loop constants and its register allocation: `demo` 8,000
+/// instructions more.)
+const INSIDE: usize = super::screen::INTERIOR_STARTS as usize;
+
+/// [`within`] the interval of `inside`, if any (without one, never).
+#[inline(always)]
+fn within_any(ndotl: u32, inside: &[[u32; 2]; INSIDE]) -> bool {
+    inside.first().is_some_and(|&b| within(ndotl, b))
 }
 
 /// The rows of a [`narrow`](FixedMat4::narrow) matrix for ARMv6-M's

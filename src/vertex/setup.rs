@@ -194,16 +194,16 @@ impl DrawSetup {
         let bad = |_| VertexError::BadMatrix;
         match (lighting.directional, lighting.point.is_empty()) {
             ([sun], true) => {
-                let dir = crate::light::one_light(sun.direction, model, eye).map_err(bad)?;
+                let (_, dir) =
+                    crate::light::directional_lights(core::slice::from_ref(sun), model, eye, true)
+                        .map_err(bad)?;
                 let fog = lighting.fog != crate::light::Fog::None;
                 Ok((plain && !fog)
                     .then(|| Lambert::new((dir, rgb(sun.color), rgb(lighting.ambient)))))
             }
             _ => {
-                crate::light::model_checks(model, eye).map_err(bad)?;
-                for (i, l) in lighting.directional.iter().enumerate() {
-                    crate::light::directional(i, l.direction, model, false).map_err(bad)?;
-                }
+                crate::light::directional_lights(lighting.directional, model, eye, false)
+                    .map_err(bad)?;
                 Ok(None)
             }
         }
