@@ -1,9 +1,10 @@
 //! One binning pass: every triangle classified once and appended to its tiles' bins.
 
 use super::bin::Pass;
-use super::state::{margin, DrawOrder, FrameState, SetupCache};
+use super::state::{keeps_banded, margin, DrawOrder, FrameState, SetupCache};
 use super::Features;
 use crate::mesh::Indices;
+use crate::raster::{first_centre_at_or_after, PixelRect};
 use crate::scene::CullMode;
 use crate::tile::TileGrid;
 use crate::vertex::ScreenVertex;
@@ -103,11 +104,14 @@ pub(super) fn bin_pass<const TW: usize, const TH: usize, const HILBERT: bool, P:
             // and the indices' width as it goes: a copy of its own for the
             // Hilbert order had cost about 2 KB of flash.
             match draw.mesh.triangles() {
-                Indices::U16(tris) if !HILBERT || !SHARED_OTHER => {
+                Indices::U16(tris) if FAST && !HILBERT && margin == 0 => {
+                    bin_fast::<TW, TH>(&ctx, &tris[run], &mut t, bins, cache, tally)
+                }
+                Indices::U16(tris) if !FAST && (!HILBERT || !SHARED_OTHER) => {
                     let tris = tris[run].iter().copied();
                     bin_triangles::<TW, TH, u16>(&ctx, tris, HILBERT, &mut t, bins, cache, tally)
                 }
-                Indices::U32(tris) if !SHARED_OTHER && P::U32_INDICES => {
+                Indices::U32(tris) if !FAST && !SHARED_OTHER && P::U32_INDICES => {
                     bin_wide::<TW, TH>(&ctx, &tris[run], HILBERT, &mut t, bins, cache, tally)
                 }
                 // Refused by the vertex stage (Path::U32Indices).
@@ -132,6 +136,12 @@ pub(super) fn bin_pass<const TW: usize, const TH: usize, const HILBERT: bool, P:
 /// [`Pass::push_run`]: not in builds optimised for size (the build
 /// script's `microraster_size`), where its code weighs more.
 const SINGLE_PUSH: bool = !cfg!(microraster_size);
+
+/// Whether the common draws (`u16` indices, row-major tiles, filled:
+/// margin 0) take [`bin_fast`], and every other draw the shared
+/// out-of-line loop [`bin_other`]: not in builds optimised for size,
+/// where the two loops weigh more than the one.
+const FAST: bool = !cfg!(microraster_size);
 
 /// Whether the binning loop counts the visible triangles (with their
 /// pairs, in one 64-bit sum), rather than [`FrameState::classify`] (a
@@ -182,6 +192,124 @@ pub(super) fn bin_other<const TW: usize, const TH: usize>(
 ) {
     let tris = run.map(|k| tris.get(k));
     bin_triangles::<TW, TH, u32>(ctx, tris, hilbert, t, bins, cache, tally)
+}
+
+/// The binning loop of a draw of filled triangles (margin 0) with `u16`
+/// indices, in row-major tile order: the triangles `tris`, the first
+/// numbered `*t`, classified and appended to their tiles' bins, as
+/// [`bin_triangles`] does.
+///
+/// A triangle whose three outcodes are 0 (nearly all the visible ones)
+/// is classified here: the cull test, then its pixels, which lie inside
+/// the frame (the viewport's projection of a point inside the view
+/// volume is within the frame's sub-pixels, `0..=16 w`), so their meet
+/// with the frame is not needed, nor the rejected count: a rectangle
+/// without a pixel centre is the empty reach of `classify`, not counted.
+/// Any other triangle (partly outside, clipped, rejected) goes to
+/// [`classify_apart`]. The search for the next visible triangle is a loop
+/// of its own, so that the values it needs stay in registers and the
+/// pushes' values are the ones spilled.
+#[inline(always)]
+fn bin_fast<const TW: usize, const TH: usize>(
+    ctx: &BinDraw<'_, '_>,
+    tris: &[[u16; 3]],
+    t: &mut usize,
+    bins: &mut Pass<'_>,
+    cache: &mut SetupCache,
+    tally: &mut Tally,
+) {
+    let cols = ctx.grid.cols as usize;
+    let verts = ctx.verts;
+    let cull = ctx.frame.cull;
+    let small = ctx.frame.small();
+    // The visible triangles and their pairs, as in `bin_culled`.
+    const VISIBLE: u64 = 1 << 42;
+    let mut tt = *t;
+    let (mut sum, mut pairs_sum) = (0u64, tally.pairs);
+    let mut rest = tris.iter();
+    'done: loop {
+        // The next visible triangle: its number and its pixels.
+        let (k, r) = loop {
+            let Some(&idx) = rest.next() else {
+                break 'done;
+            };
+            let k = tt;
+            tt += 1;
+            let sv = [
+                &verts[idx[0] as usize],
+                &verts[idx[1] as usize],
+                &verts[idx[2] as usize],
+            ];
+            if sv[0].outcode() | sv[1].outcode() | sv[2].outcode() != 0 {
+                let idx = idx.map(Into::into);
+                match classify_apart(ctx, idx, (cull, small), cache, tally) {
+                    Some(r) => break (k, r),
+                    None => continue,
+                }
+            }
+            let v = [sv[0].xy(), sv[1].xy(), sv[2].xy()];
+            if !keeps_banded(cull, &v, small) {
+                continue;
+            }
+            let r = PixelRect::new(
+                first_centre_at_or_after(v[0].x.min(v[1].x).min(v[2].x)),
+                first_centre_at_or_after(v[0].y.min(v[1].y).min(v[2].y)),
+                first_centre_at_or_after(v[0].x.max(v[1].x).max(v[2].x)),
+                first_centre_at_or_after(v[0].y.max(v[1].y).max(v[2].y)),
+            );
+            debug_assert!({
+                let f = &ctx.frame.frame;
+                r == super::state::meet(&super::state::reach(&v, 0), f) || r.is_empty()
+            });
+            if r.is_empty() {
+                continue;
+            }
+            if !LOOP_COUNTS_VISIBLE {
+                tally.fates[Fate::Visible as usize] += 1;
+            }
+            break (k, r);
+        };
+        // Inside the frame: not negative.
+        let (c0, c1) = (r.x0 as usize / TW, (r.x1 as usize - 1) / TW + 1);
+        let (r0, r1) = (r.y0 as usize / TH, (r.y1 as usize - 1) / TH + 1);
+        let pairs = (c1 - c0) * (r1 - r0);
+        if LOOP_COUNTS_VISIBLE {
+            sum += VISIBLE + pairs as u64;
+        } else {
+            pairs_sum = pairs_sum.saturating_add(pairs as u32);
+        }
+        if SINGLE_PUSH && pairs == 1 {
+            bins.push((r0 * cols + c0).wrapping_sub(ctx.t0), k as u16);
+        } else {
+            let mut lo = (r0 * cols + c0) as isize - ctx.t0 as isize;
+            let mut hi = lo + (c1 - c0) as isize;
+            for _ in r0..r1 {
+                bins.push_run(lo.max(0) as usize..hi.max(0) as usize, k as u16);
+                lo += cols as isize;
+                hi += cols as isize;
+            }
+        }
+    }
+    *t = tt;
+    tally.fates[Fate::Visible as usize] += (sum / VISIBLE) as u32;
+    let pairs = u32::try_from(sum % VISIBLE).unwrap_or(u32::MAX);
+    tally.pairs = pairs_sum.saturating_add(pairs);
+}
+
+/// [`FrameState::classify`] of triangle `idx` of the draw `ctx`, out of
+/// line: for [`bin_fast`]'s triangles with an outcode bit set.
+///
+/// [`FrameState::classify`]: super::state::FrameState::classify
+#[inline(never)]
+fn classify_apart(
+    ctx: &BinDraw<'_, '_>,
+    idx: [u32; 3],
+    cull: (CullMode, bool),
+    cache: &mut SetupCache,
+    tally: &mut Tally,
+) -> Option<PixelRect> {
+    ctx.frame
+        .classify(ctx.d, ctx.verts, idx, ctx.margin, cull, cache, tally)
 }
 
 /// What [`bin_triangles`] needs of the draw it bins.
