@@ -105,7 +105,21 @@ pub(super) fn bin_pass<const TW: usize, const TH: usize, const HILBERT: bool, P:
             // Hilbert order had cost about 2 KB of flash.
             match draw.mesh.triangles() {
                 Indices::U16(tris) if FAST && !HILBERT && margin == 0 => {
-                    bin_fast::<TW, TH>(&ctx, &tris[run], &mut t, bins, cache, tally)
+                    // A copy of the loop for back-face culling, the usual
+                    // mode, with the mode a constant in it.
+                    let tris = &tris[run];
+                    match frame.cull {
+                        CullMode::Back => bin_fast::<TW, TH>(
+                            &ctx,
+                            tris,
+                            CullMode::Back,
+                            &mut t,
+                            bins,
+                            cache,
+                            tally,
+                        ),
+                        cull => bin_fast::<TW, TH>(&ctx, tris, cull, &mut t, bins, cache, tally),
+                    }
                 }
                 Indices::U16(tris) if !FAST && (!HILBERT || !SHARED_OTHER) => {
                     let tris = tris[run].iter().copied();
@@ -196,8 +210,8 @@ pub(super) fn bin_other<const TW: usize, const TH: usize>(
 
 /// The binning loop of a draw of filled triangles (margin 0) with `u16`
 /// indices, in row-major tile order: the triangles `tris`, the first
-/// numbered `*t`, classified and appended to their tiles' bins, as
-/// [`bin_triangles`] does.
+/// numbered `*t`, classified under cull mode `cull` and appended to their
+/// tiles' bins, as [`bin_triangles`] does.
 ///
 /// A triangle whose three outcodes are 0 (nearly all the visible ones)
 /// is classified here: the cull test, then its pixels, which lie inside
@@ -213,6 +227,7 @@ pub(super) fn bin_other<const TW: usize, const TH: usize>(
 fn bin_fast<const TW: usize, const TH: usize>(
     ctx: &BinDraw<'_, '_>,
     tris: &[[u16; 3]],
+    cull: CullMode,
     t: &mut usize,
     bins: &mut Pass<'_>,
     cache: &mut SetupCache,
@@ -220,7 +235,6 @@ fn bin_fast<const TW: usize, const TH: usize>(
 ) {
     let cols = ctx.grid.cols as usize;
     let verts = ctx.verts;
-    let cull = ctx.frame.cull;
     let small = ctx.frame.small();
     // The visible triangles and their pairs, as in `bin_culled`.
     const VISIBLE: u64 = 1 << 42;
