@@ -98,11 +98,14 @@ pub(super) fn bin_pass<const TW: usize, const TH: usize, const HILBERT: bool, P:
             };
             let run = first..first + len;
             first += len;
-            // The common loop (`u16` indices, row-major tiles) is inlined
-            // here; the others (the Hilbert order, meshes beyond 65,536
-            // vertices) share one out-of-line copy, which tests the order
-            // and the indices' width as it goes: a copy of its own for the
-            // Hilbert order had cost about 2 KB of flash.
+            // The common loop (filled triangles, `u16` indices, row-major
+            // tiles) is inlined here; the others (lines and points, the
+            // Hilbert order, meshes beyond 65,536 vertices) share one
+            // out-of-line copy, which tests the order and the indices'
+            // width as it goes: a copy of its own for the Hilbert order had
+            // cost about 2 KB of flash. In builds optimised for size, one
+            // inlined loop for `u16` indices in either order (see
+            // [`FAST`]).
             match draw.mesh.triangles() {
                 Indices::U16(tris) if FAST && !HILBERT && margin == 0 => {
                     // A copy of the loop for back-face culling, the usual
@@ -121,11 +124,11 @@ pub(super) fn bin_pass<const TW: usize, const TH: usize, const HILBERT: bool, P:
                         cull => bin_fast::<TW, TH>(&ctx, tris, cull, &mut t, bins, cache, tally),
                     }
                 }
-                Indices::U16(tris) if !FAST && (!HILBERT || !SHARED_OTHER) => {
+                Indices::U16(tris) if !FAST => {
                     let tris = tris[run].iter().copied();
                     bin_triangles::<TW, TH, u16>(&ctx, tris, HILBERT, &mut t, bins, cache, tally)
                 }
-                Indices::U32(tris) if !FAST && !SHARED_OTHER && P::U32_INDICES => {
+                Indices::U32(tris) if !FAST && P::U32_INDICES => {
                     bin_wide::<TW, TH>(&ctx, &tris[run], HILBERT, &mut t, bins, cache, tally)
                 }
                 // Refused by the vertex stage (Path::U32Indices).
@@ -153,8 +156,10 @@ const SINGLE_PUSH: bool = !cfg!(microraster_size);
 
 /// Whether the common draws (`u16` indices, row-major tiles, filled:
 /// margin 0) take [`bin_fast`], and every other draw the shared
-/// out-of-line loop [`bin_other`]: not in builds optimised for size,
-/// where the two loops weigh more than the one.
+/// out-of-line loop [`bin_other`] (binning on the `demo` frame: the
+/// Cortex-M3 467,419 -> 412,287 instructions, ARMv6-M 705,365 ->
+/// 592,573): not in builds optimised for size, where the two loops
+/// weigh more than the one.
 const FAST: bool = !cfg!(microraster_size);
 
 /// Whether the binning loop counts the visible triangles (with their
@@ -165,18 +170,9 @@ const FAST: bool = !cfg!(microraster_size);
 /// [`FrameState::classify`]: super::state::FrameState::classify
 pub(super) const LOOP_COUNTS_VISIBLE: bool = !crate::math::SPLIT;
 
-/// Whether the binning loops other than the common one (`u16` indices,
-/// row-major tiles) share one out-of-line copy, [`bin_other`]: on the
-/// Cortex-M3 its copy for the Hilbert order had taken about 2 KB of
-/// flash. Not on ARMv6-M, whose row-major loop's registers moved without
-/// the copies (binning 705,367 -> 747,137 instructions on the `demo`
-/// frame), nor in builds optimised for size (the OLED firmware +120 B):
-/// there the Hilbert order has its inlined copy and `u32` indices
-/// [`bin_wide`].
-const SHARED_OTHER: bool = !crate::math::SPLIT && !cfg!(microraster_size);
-
-/// [`bin_triangles`] for `u32` indices, out of line (see
-/// [`SHARED_OTHER`]).
+/// [`bin_triangles`] for `u32` indices, out of line: in builds
+/// optimised for size, where the shared loop [`bin_other`] measured
+/// larger (the OLED firmware +120 B).
 #[inline(never)]
 pub(super) fn bin_wide<const TW: usize, const TH: usize>(
     ctx: &BinDraw<'_, '_>,
@@ -191,7 +187,8 @@ pub(super) fn bin_wide<const TW: usize, const TH: usize>(
 }
 
 /// [`bin_triangles`] for the triangles `run` of `tris`, in either tile
-/// order, out of line: the Hilbert order and `u32` indices.
+/// order, out of line: the Hilbert order, `u32` indices, and lines and
+/// points (a margin), where [`FAST`].
 #[inline(never)]
 #[allow(clippy::too_many_arguments)]
 pub(super) fn bin_other<const TW: usize, const TH: usize>(
