@@ -240,7 +240,9 @@ fn bin_fast<const TW: usize, const TH: usize>(
     let mut rest = tris.iter();
     'done: loop {
         // The next visible triangle: its number and its pixels.
-        let (k, r) = loop {
+        // A triangle with an outcode bit set leaves the search (`Err`),
+        // so that the search's values need not survive a call.
+        let found = loop {
             let Some(&idx) = rest.next() else {
                 break 'done;
             };
@@ -252,11 +254,7 @@ fn bin_fast<const TW: usize, const TH: usize>(
                 &verts[idx[2] as usize],
             ];
             if sv[0].outcode() | sv[1].outcode() | sv[2].outcode() != 0 {
-                let idx = idx.map(Into::into);
-                match classify_apart(ctx, idx, (cull, small), cache, tally) {
-                    Some(r) => break (k, r),
-                    None => continue,
-                }
+                break Err((k, idx));
             }
             let v = [sv[0].xy(), sv[1].xy(), sv[2].xy()];
             if !keeps_banded(cull, &v, small) {
@@ -273,7 +271,17 @@ fn bin_fast<const TW: usize, const TH: usize>(
             if !LOOP_COUNTS_VISIBLE {
                 tally.fates[Fate::Visible as usize] += 1;
             }
-            break (k, r);
+            break Ok((k, r));
+        };
+        let (k, r) = match found {
+            Ok(kr) => kr,
+            Err((k, idx)) => {
+                let idx = idx.map(Into::into);
+                match classify_apart(ctx, idx, (cull, small), cache, tally) {
+                    Some(r) => (k, r),
+                    None => continue,
+                }
+            }
         };
         // Inside the frame: not negative.
         let (c0, c1) = (r.x0 as usize / TW, (r.x1 as usize - 1) / TW + 1);
