@@ -1,9 +1,10 @@
 //! One binning pass: every triangle classified once and appended to its tiles' bins.
 
 use super::bin::Pass;
-use super::state::{margin, DrawOrder, FrameState, SetupCache};
+use super::state::{keeps_banded, margin, DrawOrder, FrameState, SetupCache};
 use super::Features;
 use crate::mesh::Indices;
+use crate::raster::{first_centre_at_or_after, PixelRect, SubPoint, HALF_PIXEL, SUBPIXEL_BITS};
 use crate::scene::CullMode;
 use crate::tile::TileGrid;
 use crate::vertex::ScreenVertex;
@@ -97,17 +98,37 @@ pub(super) fn bin_pass<const TW: usize, const TH: usize, const HILBERT: bool, P:
             };
             let run = first..first + len;
             first += len;
-            // The common loop (`u16` indices, row-major tiles) is inlined
-            // here; the others (the Hilbert order, meshes beyond 65,536
-            // vertices) share one out-of-line copy, which tests the order
-            // and the indices' width as it goes: a copy of its own for the
-            // Hilbert order had cost about 2 KB of flash.
+            // The common loop (filled triangles, `u16` indices, row-major
+            // tiles) is inlined here; the others (lines and points, the
+            // Hilbert order, meshes beyond 65,536 vertices) share one
+            // out-of-line copy, which tests the order and the indices'
+            // width as it goes: a copy of its own for the Hilbert order had
+            // cost about 2 KB of flash. In builds optimised for size, one
+            // inlined loop for `u16` indices in either order (see
+            // [`FAST`]).
             match draw.mesh.triangles() {
-                Indices::U16(tris) if !HILBERT || !SHARED_OTHER => {
+                Indices::U16(tris) if FAST && !HILBERT && margin == 0 => {
+                    // A copy of the loop for back-face culling, the usual
+                    // mode, with the mode a constant in it.
+                    let tris = &tris[run];
+                    match frame.cull {
+                        CullMode::Back => bin_fast::<TW, TH>(
+                            &ctx,
+                            tris,
+                            CullMode::Back,
+                            &mut t,
+                            bins,
+                            cache,
+                            tally,
+                        ),
+                        cull => bin_fast::<TW, TH>(&ctx, tris, cull, &mut t, bins, cache, tally),
+                    }
+                }
+                Indices::U16(tris) if !FAST => {
                     let tris = tris[run].iter().copied();
                     bin_triangles::<TW, TH, u16>(&ctx, tris, HILBERT, &mut t, bins, cache, tally)
                 }
-                Indices::U32(tris) if !SHARED_OTHER && P::U32_INDICES => {
+                Indices::U32(tris) if !FAST && P::U32_INDICES => {
                     bin_wide::<TW, TH>(&ctx, &tris[run], HILBERT, &mut t, bins, cache, tally)
                 }
                 // Refused by the vertex stage (Path::U32Indices).
@@ -133,6 +154,14 @@ pub(super) fn bin_pass<const TW: usize, const TH: usize, const HILBERT: bool, P:
 /// script's `microraster_size`), where its code weighs more.
 const SINGLE_PUSH: bool = !cfg!(microraster_size);
 
+/// Whether the common draws (`u16` indices, row-major tiles, filled:
+/// margin 0) take [`bin_fast`], and every other draw the shared
+/// out-of-line loop [`bin_other`] (binning on the `demo` frame: the
+/// Cortex-M3 467,419 -> 412,287 instructions, ARMv6-M 705,365 ->
+/// 592,573): not in builds optimised for size, where the two loops
+/// weigh more than the one.
+const FAST: bool = !cfg!(microraster_size);
+
 /// Whether the binning loop counts the visible triangles (with their
 /// pairs, in one 64-bit sum), rather than [`FrameState::classify`] (a
 /// memory increment for each): not on ARMv6-M, where the sum measured
@@ -141,18 +170,9 @@ const SINGLE_PUSH: bool = !cfg!(microraster_size);
 /// [`FrameState::classify`]: super::state::FrameState::classify
 pub(super) const LOOP_COUNTS_VISIBLE: bool = !crate::math::SPLIT;
 
-/// Whether the binning loops other than the common one (`u16` indices,
-/// row-major tiles) share one out-of-line copy, [`bin_other`]: on the
-/// Cortex-M3 its copy for the Hilbert order had taken about 2 KB of
-/// flash. Not on ARMv6-M, whose row-major loop's registers moved without
-/// the copies (binning 705,367 -> 747,137 instructions on the `demo`
-/// frame), nor in builds optimised for size (the OLED firmware +120 B):
-/// there the Hilbert order has its inlined copy and `u32` indices
-/// [`bin_wide`].
-const SHARED_OTHER: bool = !crate::math::SPLIT && !cfg!(microraster_size);
-
-/// [`bin_triangles`] for `u32` indices, out of line (see
-/// [`SHARED_OTHER`]).
+/// [`bin_triangles`] for `u32` indices, out of line: in builds
+/// optimised for size, where the shared loop [`bin_other`] measured
+/// larger (the OLED firmware +120 B).
 #[inline(never)]
 pub(super) fn bin_wide<const TW: usize, const TH: usize>(
     ctx: &BinDraw<'_, '_>,
@@ -167,7 +187,8 @@ pub(super) fn bin_wide<const TW: usize, const TH: usize>(
 }
 
 /// [`bin_triangles`] for the triangles `run` of `tris`, in either tile
-/// order, out of line: the Hilbert order and `u32` indices.
+/// order, out of line: the Hilbert order, `u32` indices, and lines and
+/// points (a margin), where [`FAST`].
 #[inline(never)]
 #[allow(clippy::too_many_arguments)]
 pub(super) fn bin_other<const TW: usize, const TH: usize>(
@@ -182,6 +203,153 @@ pub(super) fn bin_other<const TW: usize, const TH: usize>(
 ) {
     let tris = run.map(|k| tris.get(k));
     bin_triangles::<TW, TH, u32>(ctx, tris, hilbert, t, bins, cache, tally)
+}
+
+/// The binning loop of a draw of filled triangles (margin 0) with `u16`
+/// indices, in row-major tile order: the triangles `tris`, the first
+/// numbered `*t`, classified under cull mode `cull` and appended to their
+/// tiles' bins, as [`bin_triangles`] does.
+///
+/// A triangle whose three outcodes are 0 (nearly all the visible ones)
+/// is classified here: the cull test, then its pixels, which lie inside
+/// the frame (the viewport's projection of a point inside the view
+/// volume is within the frame's sub-pixels, `0..=16 w`), so their meet
+/// with the frame is not needed, nor the rejected count: a rectangle
+/// without a pixel centre is the empty reach of `classify`, not counted.
+/// Any other triangle (partly outside, clipped, rejected) goes to
+/// [`classify_apart`]. The search for the next visible triangle is a loop
+/// of its own, so that the values it needs stay in registers and the
+/// pushes' values are the ones spilled.
+#[inline(always)]
+fn bin_fast<const TW: usize, const TH: usize>(
+    ctx: &BinDraw<'_, '_>,
+    tris: &[[u16; 3]],
+    cull: CullMode,
+    t: &mut usize,
+    bins: &mut Pass<'_>,
+    cache: &mut SetupCache,
+    tally: &mut Tally,
+) {
+    let cols = ctx.grid.cols as usize;
+    let verts = ctx.verts;
+    let small = ctx.frame.small();
+    // The visible triangles and their pairs, as in `bin_culled`.
+    const VISIBLE: u64 = 1 << 42;
+    let mut tt = *t;
+    let (mut sum, mut pairs_sum) = (0u64, tally.pairs);
+    let mut rest = tris.iter();
+    'done: loop {
+        // The next visible triangle: its number and its pixels.
+        // A triangle with an outcode bit set leaves the search (`Err`),
+        // so that the search's values need not survive a call.
+        let found = loop {
+            let Some(&idx) = rest.next() else {
+                break 'done;
+            };
+            let k = tt;
+            tt += 1;
+            let sv = [
+                &verts[idx[0] as usize],
+                &verts[idx[1] as usize],
+                &verts[idx[2] as usize],
+            ];
+            if sv[0].outcode() | sv[1].outcode() | sv[2].outcode() != 0 {
+                break Err((k, idx));
+            }
+            let v = [sv[0].xy(), sv[1].xy(), sv[2].xy()];
+            if !keeps_banded(cull, &v, small) {
+                continue;
+            }
+            let r = centres(&v);
+            debug_assert!({
+                let f = &ctx.frame.frame;
+                r == super::state::meet(&super::state::reach(&v, 0), f) || r.is_empty()
+            });
+            if r.is_empty() {
+                continue;
+            }
+            if !LOOP_COUNTS_VISIBLE {
+                tally.fates[Fate::Visible as usize] += 1;
+            }
+            break Ok((k, r));
+        };
+        let (k, r) = match found {
+            Ok(kr) => kr,
+            Err((k, idx)) => {
+                let idx = idx.map(Into::into);
+                match classify_apart(ctx, idx, (cull, small), cache, tally) {
+                    Some(r) => (k, r),
+                    None => continue,
+                }
+            }
+        };
+        // Inside the frame: not negative.
+        let (c0, c1) = (r.x0 as usize / TW, (r.x1 as usize - 1) / TW + 1);
+        let (r0, r1) = (r.y0 as usize / TH, (r.y1 as usize - 1) / TH + 1);
+        let pairs = (c1 - c0) * (r1 - r0);
+        if LOOP_COUNTS_VISIBLE {
+            sum += VISIBLE + pairs as u64;
+        } else {
+            pairs_sum = pairs_sum.saturating_add(pairs as u32);
+        }
+        if SINGLE_PUSH && pairs == 1 {
+            bins.push((r0 * cols + c0).wrapping_sub(ctx.t0), k as u16);
+        } else {
+            let mut lo = (r0 * cols + c0) as isize - ctx.t0 as isize;
+            let mut hi = lo + (c1 - c0) as isize;
+            for _ in r0..r1 {
+                bins.push_run(lo.max(0) as usize..hi.max(0) as usize, k as u16);
+                lo += cols as isize;
+                hi += cols as isize;
+            }
+        }
+    }
+    *t = tt;
+    tally.fates[Fate::Visible as usize] += (sum / VISIBLE) as u32;
+    let pairs = u32::try_from(sum % VISIBLE).unwrap_or(u32::MAX);
+    tally.pairs = pairs_sum.saturating_add(pairs);
+}
+
+/// The pixels whose centres a filled triangle with vertices `v` may
+/// cover ([`reach`] with margin 0): `first_centre_at_or_after(x)` as
+/// `(x + 7) >> 4` (`-floor((8 - x) / 16) = floor((x + 7) / 16)`), an add
+/// and a shift without `first_centre_at_or_after`'s negations (the
+/// Cortex-M3's `demo` binning 407,901 -> 400,433 instructions). (The
+/// extremes as vertex 0's coordinate plus the least and greatest of 0 and
+/// the two offsets, fewer instructions on paper, measured 427,102: the
+/// registers of the loop.)
+///
+/// [`reach`]: super::state::reach
+#[inline(always)]
+fn centres(v: &[SubPoint; 3]) -> PixelRect {
+    const UP: i32 = HALF_PIXEL - 1;
+    let axis = |a: i32, b: i32, c: i32| {
+        let (lo, hi) = (a.min(b).min(c), a.max(b).max(c));
+        ((lo + UP) >> SUBPIXEL_BITS, (hi + UP) >> SUBPIXEL_BITS)
+    };
+    let (x0, x1) = axis(v[0].x, v[1].x, v[2].x);
+    let (y0, y1) = axis(v[0].y, v[1].y, v[2].y);
+    debug_assert!(x0 == first_centre_at_or_after(v[0].x.min(v[1].x).min(v[2].x)));
+    debug_assert!(x1 == first_centre_at_or_after(v[0].x.max(v[1].x).max(v[2].x)));
+    debug_assert!(y0 == first_centre_at_or_after(v[0].y.min(v[1].y).min(v[2].y)));
+    debug_assert!(y1 == first_centre_at_or_after(v[0].y.max(v[1].y).max(v[2].y)));
+    PixelRect::new(x0, y0, x1, y1)
+}
+
+/// [`FrameState::classify`] of triangle `idx` of the draw `ctx`, out of
+/// line: for [`bin_fast`]'s triangles with an outcode bit set.
+///
+/// [`FrameState::classify`]: super::state::FrameState::classify
+#[inline(never)]
+fn classify_apart(
+    ctx: &BinDraw<'_, '_>,
+    idx: [u32; 3],
+    cull: (CullMode, bool),
+    cache: &mut SetupCache,
+    tally: &mut Tally,
+) -> Option<PixelRect> {
+    ctx.frame
+        .classify(ctx.d, ctx.verts, idx, ctx.margin, cull, cache, tally)
 }
 
 /// What [`bin_triangles`] needs of the draw it bins.
@@ -313,4 +481,18 @@ fn bin_culled<const TW: usize, const TH: usize, I: Copy + Into<u32>>(
     // Over every tile of the frame: saturate, never wrap.
     let pairs = u32::try_from(sum % VISIBLE).unwrap_or(u32::MAX);
     tally.pairs = pairs_sum.saturating_add(pairs);
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::raster::first_centre_at_or_after;
+
+    /// `centres`' `(x + 7) >> 4` is `first_centre_at_or_after` at every
+    /// coordinate a screen vertex holds (`-2^22..2^22`).
+    #[test]
+    fn centre_by_one_shift() {
+        for x in -(1 << 22)..(1 << 22) {
+            assert_eq!((x + 7) >> 4, first_centre_at_or_after(x), "{x}");
+        }
+    }
 }

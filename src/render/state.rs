@@ -234,7 +234,7 @@ pub(super) fn keeps(cull: CullMode, area2: i64) -> bool {
 /// Cortex-M3, whose `i64` area is two `SMULL`, the same test cost binning
 /// 10,800 more).
 #[inline(always)]
-fn keeps_banded(cull: CullMode, v: &[SubPoint; 3], inside: bool) -> bool {
+pub(super) fn keeps_banded(cull: CullMode, v: &[SubPoint; 3], inside: bool) -> bool {
     if crate::math::SPLIT && inside {
         return keeps(cull, inside_area2(v) as i64);
     }
