@@ -146,19 +146,17 @@ impl Frustum {
         // (3 E + 2) 2^-17 with E the largest model coordinate; a plane sums
         // two rows, so twice that.
         let extent = draw.mesh.extent();
-        let fixed = (3.0 * (extent as f32 * (1.0 / 65_536.0)) + 2.0) * (2.0 / 131_072.0);
+        let e = extent as f32 * (1.0 / 65_536.0);
+        let fixed = (3.0 * e + 2.0) * (2.0 / 131_072.0);
         let row = |r: usize| [m.m[0][r], m.m[1][r], m.m[2][r], m.m[3][r]];
         let (r0, r1, r2, r3) = (row(0), row(1), row(2), row(3));
-        let plane = |r: [f32; 4], sign: f32| Plane::new(r3, r, sign, fixed, extent);
+        // Each row's pair of planes shares its rounding bound: a soft-float
+        // core computes it (nine `f32` operations) once per pair.
+        let [p0, p1] = Plane::pair(r3, r0, fixed, e);
+        let [p2, p3] = Plane::pair(r3, r1, fixed, e);
+        let [p4, p5] = Plane::pair(r3, r2, fixed, e);
         Some(Self {
-            planes: [
-                plane(r0, 1.0),
-                plane(r0, -1.0),
-                plane(r1, 1.0),
-                plane(r1, -1.0),
-                plane(r2, 1.0),
-                plane(r2, -1.0),
-            ],
+            planes: [p0, p1, p2, p3, p4, p5],
         })
     }
 
@@ -221,21 +219,34 @@ fn centre_extent(bounds: &[Vec3Fx; 2]) -> ([i64; 3], [i64; 3]) {
 }
 
 impl Plane {
-    /// The plane `r3 + sign r`, in integers, with the margin for `fixed`
-    /// (the vertex stage's error of a plane's value, in clip units) and a
-    /// mesh whose largest raw coordinate is `extent`.
-    fn new(r3: [f32; 4], r: [f32; 4], sign: f32, fixed: f32, extent: u32) -> Self {
-        let p = [0, 1, 2, 3].map(|k| r3[k] + sign * r[k]);
+    /// The planes `r3 + r` and `r3 - r`, in integers, with the margin for
+    /// `fixed` (the vertex stage's error of a plane's value, in clip
+    /// units) and a mesh whose largest coordinate is `e` (in units).
+    fn pair(r3: [f32; 4], r: [f32; 4], fixed: f32, e: f32) -> [Self; 2] {
         // Each sum rounds by at most 2^-24 of its operands' size (more than
         // of its own, when they cancel); at a point within the mesh's
         // extent E that moves the plane's value by at most
         // 2^-24 (E (s0 + s1 + s2) + s3). Taken 32 times over, with f32's
-        // own rounding of this bound.
+        // own rounding of this bound. The sizes are the same for either
+        // sign.
         let size = [0, 1, 2, 3].map(|k| r3[k].abs() + r[k].abs());
-        let e = extent as f32 * (1.0 / 65_536.0);
         let slack = fixed + (e * (size[0] + size[1] + size[2]) + size[3]) * (1.0 / 524_288.0);
-        let big = p.iter().fold(0.0f32, |m, v| m.max(v.abs()));
-        if !(big.is_finite() && slack.is_finite()) {
+        [
+            Self::new([0, 1, 2, 3].map(|k| r3[k] + r[k]), slack),
+            Self::new([0, 1, 2, 3].map(|k| r3[k] - r[k]), slack),
+        ]
+    }
+
+    /// The plane `p` in integers, with `slack` the bound of its error (in
+    /// its units) that [`pair`](Self::pair) computes.
+    fn new(p: [f32; 4], slack: f32) -> Self {
+        // The largest magnitude by the bits: for the sums of finite values
+        // here (never NaN) `|x|` orders as `x.to_bits() & 0x7fff_ffff`,
+        // with infinity above every finite value (the Cortex-M3's `fmaxf`
+        // took about 40 instructions a coefficient). A NaN would count as
+        // not finite too.
+        let big = p.iter().fold(0u32, |m, v| m.max(v.to_bits() & 0x7fff_ffff));
+        if big >= 0x7f80_0000 || slack.to_bits() & 0x7fff_ffff >= 0x7f80_0000 {
             // Rows near f32's largest values summed past it: this plane
             // culls nothing (and the vertex stage will not accept such a
             // matrix anyway).
@@ -249,8 +260,8 @@ impl Plane {
         // The binary exponent of the largest coefficient: scaled by 2^s it
         // lies in [2^26, 2^27). Coarse planes (tiny coefficients) stop at
         // s = 60 and only lose precision, which the margin covers.
-        let exp = ((big.to_bits() >> 23) & 0xff) as i32 - 127;
-        let s = if big == 0.0 {
+        let exp = (big >> 23) as i32 - 127;
+        let s = if big == 0 {
             0
         } else {
             (26 - exp).clamp(-101, 60)
@@ -412,6 +423,77 @@ mod tests {
             both * 100 >= exactly_outside * 99,
             "{both} of {exactly_outside}"
         );
+    }
+
+    /// The planes as first written, one at a time with `f32::max`: the
+    /// pairs with their shared bound and their maximum by the bits give
+    /// the same integers.
+    #[test]
+    fn plane_pairs_are_the_planes_one_at_a_time() {
+        fn reference(r3: [f32; 4], r: [f32; 4], sign: f32, fixed: f32, extent: u32) -> Plane {
+            let p = [0, 1, 2, 3].map(|k| r3[k] + sign * r[k]);
+            let size = [0, 1, 2, 3].map(|k| r3[k].abs() + r[k].abs());
+            let e = extent as f32 * (1.0 / 65_536.0);
+            let slack = fixed + (e * (size[0] + size[1] + size[2]) + size[3]) * (1.0 / 524_288.0);
+            let big = p.iter().fold(0.0f32, |m, v| m.max(v.abs()));
+            if !(big.is_finite() && slack.is_finite()) {
+                return Plane {
+                    n: [0; 3],
+                    norm: 0,
+                    d2: 0,
+                    margin: 1 << 61,
+                };
+            }
+            let exp = ((big.to_bits() >> 23) & 0xff) as i32 - 127;
+            let s = if big == 0.0 {
+                0
+            } else {
+                (26 - exp).clamp(-101, 60)
+            };
+            let n = [0, 1, 2].map(|k| scaled(p[k], s) as i32);
+            let d2 = scaled(p[3], s) << 17;
+            let [x, y, z] = n.map(|v| (v.unsigned_abs() >> 12) + 1);
+            let norm = (((x * x + y * y + z * z).isqrt() + 1) << 12) as i32;
+            let margin = ((1i64 << 36) + (1 << 17) + 1)
+                .saturating_add(scaled(slack, s + 17))
+                .min(1 << 61);
+            Plane {
+                n,
+                norm,
+                d2,
+                margin,
+            }
+        }
+        let same = |a: Plane, b: Plane| {
+            a.n == b.n && a.norm == b.norm && a.d2 == b.d2 && a.margin == b.margin
+        };
+        let mut r = crate::testing::rng();
+        for i in 0..20_000 {
+            let mut v = || -> f32 {
+                match r(4) {
+                    0 => 0.0,
+                    1 => f32::from_bits(r(1 << 32) as u32 & 0xff7f_ffff),
+                    _ => {
+                        (r(1 << 24) as f32 / (1 << 23) as f32 - 1.0) * 2f32.powi(r(40) as i32 - 20)
+                    }
+                }
+            };
+            let r3 = [0; 4].map(|_| v());
+            let row = [0; 4].map(|_| v());
+            if !(r3.iter().chain(&row).all(|x| x.is_finite())) {
+                continue;
+            }
+            let extent = if i % 2 == 0 {
+                1 << 16
+            } else {
+                r(1 << 32) as u32
+            };
+            let e = extent as f32 * (1.0 / 65_536.0);
+            let fixed = (3.0 * e + 2.0) * (2.0 / 131_072.0);
+            let [plus, minus] = Plane::pair(r3, row, fixed, e);
+            assert!(same(plus, reference(r3, row, 1.0, fixed, extent)));
+            assert!(same(minus, reference(r3, row, -1.0, fixed, extent)));
+        }
     }
 
     /// The bit-shift scaling truncates exactly like `f64` arithmetic.
