@@ -9,13 +9,11 @@
 //! r0`, `bottom = r3 + r1`, `top = r3 - r1`, `near = r3 + r2`, `far = r3 -
 //! r2`, where a point `p` is inside plane `(a, b, c, d)` when
 //! `a x + b y + c z + d >= 0`. In model space the test is exact for any
-//! model matrix, and needs no normalised planes:
-//!
-//! 1. the box's bounding sphere (its centre, its half diagonal) is outside a
-//!    plane when the centre's signed distance is below `-ρ |(a, b, c)|`,
-//!    compared squared, without a square root;
-//! 2. otherwise the box itself, in centre-extent form, is outside when the
-//!    distance is below `-(|a| e_x + |b| e_y + |c| e_z)`.
+//! model matrix, and needs no normalised planes: the box, in centre-extent
+//! form, is outside when the centre's signed distance is below
+//! `-(|a| e_x + |b| e_y + |c| e_z)`. (Its bounding sphere, outside when the
+//! distance is below `-ρ |(a, b, c)|`, is never tighter: it is offered for
+//! callers, and the whole-draw test does without it.)
 //!
 //! A draw outside any plane is culled: none of its vertices is
 //! transformed, none of its triangles binned. The renderer would have
@@ -49,7 +47,7 @@ use crate::scene::Draw;
 
 /// Whether `draw`, seen through `view_proj`, lies wholly outside the view
 /// frustum (with the rounding margin of the module docs): its bounding
-/// sphere, then its bounding box. A non-finite matrix is never culled here
+/// box. A non-finite matrix is never culled here
 /// (the vertex stage reports it).
 pub fn outside(view_proj: &Mat4, draw: &Draw<'_>) -> bool {
     Frustum::new(view_proj, draw).is_some_and(|f| f.excludes_mesh(draw.mesh))
@@ -62,8 +60,6 @@ pub fn outside(view_proj: &Mat4, draw: &Draw<'_>) -> bool {
 struct Plane {
     /// `(a, b, c)` scaled by `2^s`, truncated: `|n[k]| < 2^27`.
     n: [i32; 3],
-    /// `|(a, b, c)|` scaled by `2^s`, rounded up: `< 2^28`.
-    norm: i32,
     /// `d` scaled by `2^(s + 17)` (raw 16.16, doubled): `|d2| < 2^44`.
     d2: i64,
     /// Everything the roundings can move the plane's value, in its units;
@@ -161,10 +157,13 @@ impl Frustum {
     }
 
     /// Whether the whole `mesh` (the one this frustum was made for) lies
-    /// outside: its bounding box's sphere, then the box.
+    /// outside: its bounding box, by [`excludes_box`](Self::excludes_box)
+    /// alone. The sphere around the box excludes no box the box test keeps
+    /// (by Cauchy-Schwarz, `|a| e_x + |b| e_y + |c| e_z <= |(a, b, c)|
+    /// |e|`, and both factors are rounded up), so asking it first never
+    /// changed the answer; it only cost each plane a square root.
     pub fn excludes_mesh(&self, mesh: &Mesh<'_>) -> bool {
-        let b = mesh.bounds();
-        self.excludes_sphere(&b) || self.excludes_box(&b)
+        self.excludes_box(&mesh.bounds())
     }
 
     /// Whether the box `bounds` (smallest, largest coordinates) lies
@@ -187,8 +186,8 @@ impl Frustum {
     /// Whether the sphere around the box `bounds` (its centre, its half
     /// diagonal, rounded up) lies outside the frustum, beyond the margin.
     /// It is never tighter than [`excludes_box`](Self::excludes_box),
-    /// only cheaper once its radius is known: the whole-draw test asks it
-    /// first.
+    /// and not cheaper in integers (each plane's norm takes a square
+    /// root): [`excludes_mesh`](Self::excludes_mesh) does not ask it.
     pub fn excludes_sphere(&self, bounds: &[Vec3Fx; 2]) -> bool {
         let (c, e) = centre_extent(bounds);
         // The doubled radius, rounded up, by a 32-bit root: the extents
@@ -202,7 +201,7 @@ impl Frustum {
             let dist = a * c[0] + b * c[1] + cc * c[2] + p.d2;
             // radius < 2^33.2 and norm < 2^27.8: the product stays below
             // 2^61, the sum below 2^63.
-            dist + i64::from(p.norm) * radius as i64 + p.margin < 0
+            dist + p.norm() * radius as i64 + p.margin < 0
         })
     }
 }
@@ -252,7 +251,6 @@ impl Plane {
             // matrix anyway).
             return Self {
                 n: [0; 3],
-                norm: 0,
                 d2: 0,
                 margin: 1 << 61,
             };
@@ -268,11 +266,6 @@ impl Plane {
         };
         let n = [0, 1, 2].map(|k| scaled(p[k], s) as i32);
         let d2 = scaled(p[3], s) << 17;
-        // |n| rounded up, from coefficients shifted into u32 squares (a
-        // 32-bit root is cheap on a 32-bit core): ((|n| >> 12) + 1) 2^12
-        // over-estimates each, and their squares sum below 3 2^30.
-        let [x, y, z] = n.map(|v| (v.unsigned_abs() >> 12) + 1);
-        let norm = (((x * x + y * y + z * z).isqrt() + 1) << 12) as i32;
         // Truncating n moves each coefficient by less than 1, times a
         // doubled coordinate (below 2^33): the six terms of a box test move
         // less than 2^36; truncating d, less than 2^17; truncating the
@@ -280,12 +273,16 @@ impl Plane {
         let margin = ((1i64 << 36) + (1 << 17) + 1)
             .saturating_add(scaled(slack, s + 17))
             .min(1 << 61);
-        Self {
-            n,
-            norm,
-            d2,
-            margin,
-        }
+        Self { n, d2, margin }
+    }
+
+    /// `|(a, b, c)|` of the integer plane, rounded up (below 2^28), from
+    /// coefficients shifted into u32 squares (a 32-bit root is cheap on a
+    /// 32-bit core): ((|n| >> 12) + 1) 2^12 over-estimates each, and their
+    /// squares sum below 3 2^30.
+    fn norm(&self) -> i64 {
+        let [x, y, z] = self.n.map(|v| (v.unsigned_abs() >> 12) + 1);
+        i64::from(((x * x + y * y + z * z).isqrt() + 1) << 12)
     }
 }
 
@@ -439,7 +436,6 @@ mod tests {
             if !(big.is_finite() && slack.is_finite()) {
                 return Plane {
                     n: [0; 3],
-                    norm: 0,
                     d2: 0,
                     margin: 1 << 61,
                 };
@@ -452,21 +448,12 @@ mod tests {
             };
             let n = [0, 1, 2].map(|k| scaled(p[k], s) as i32);
             let d2 = scaled(p[3], s) << 17;
-            let [x, y, z] = n.map(|v| (v.unsigned_abs() >> 12) + 1);
-            let norm = (((x * x + y * y + z * z).isqrt() + 1) << 12) as i32;
             let margin = ((1i64 << 36) + (1 << 17) + 1)
                 .saturating_add(scaled(slack, s + 17))
                 .min(1 << 61);
-            Plane {
-                n,
-                norm,
-                d2,
-                margin,
-            }
+            Plane { n, d2, margin }
         }
-        let same = |a: Plane, b: Plane| {
-            a.n == b.n && a.norm == b.norm && a.d2 == b.d2 && a.margin == b.margin
-        };
+        let same = |a: Plane, b: Plane| a.n == b.n && a.d2 == b.d2 && a.margin == b.margin;
         let mut r = crate::testing::rng();
         for i in 0..20_000 {
             let mut v = || -> f32 {
