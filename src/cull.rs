@@ -9,13 +9,11 @@
 //! r0`, `bottom = r3 + r1`, `top = r3 - r1`, `near = r3 + r2`, `far = r3 -
 //! r2`, where a point `p` is inside plane `(a, b, c, d)` when
 //! `a x + b y + c z + d >= 0`. In model space the test is exact for any
-//! model matrix, and needs no normalised planes:
-//!
-//! 1. the box's bounding sphere (its centre, its half diagonal) is outside a
-//!    plane when the centre's signed distance is below `-ρ |(a, b, c)|`,
-//!    compared squared, without a square root;
-//! 2. otherwise the box itself, in centre-extent form, is outside when the
-//!    distance is below `-(|a| e_x + |b| e_y + |c| e_z)`.
+//! model matrix, and needs no normalised planes: the box, in centre-extent
+//! form, is outside when the centre's signed distance is below
+//! `-(|a| e_x + |b| e_y + |c| e_z)`. (Its bounding sphere, outside when the
+//! distance is below `-ρ |(a, b, c)|`, is never tighter: it is offered for
+//! callers, and the whole-draw test does without it.)
 //!
 //! A draw outside any plane is culled: none of its vertices is
 //! transformed, none of its triangles binned. The renderer would have
@@ -49,7 +47,7 @@ use crate::scene::Draw;
 
 /// Whether `draw`, seen through `view_proj`, lies wholly outside the view
 /// frustum (with the rounding margin of the module docs): its bounding
-/// sphere, then its bounding box. A non-finite matrix is never culled here
+/// box. A non-finite matrix is never culled here
 /// (the vertex stage reports it).
 pub fn outside(view_proj: &Mat4, draw: &Draw<'_>) -> bool {
     Frustum::new(view_proj, draw).is_some_and(|f| f.excludes_mesh(draw.mesh))
@@ -62,8 +60,6 @@ pub fn outside(view_proj: &Mat4, draw: &Draw<'_>) -> bool {
 struct Plane {
     /// `(a, b, c)` scaled by `2^s`, truncated: `|n[k]| < 2^27`.
     n: [i32; 3],
-    /// `|(a, b, c)|` scaled by `2^s`, rounded up: `< 2^28`.
-    norm: i32,
     /// `d` scaled by `2^(s + 17)` (raw 16.16, doubled): `|d2| < 2^44`.
     d2: i64,
     /// Everything the roundings can move the plane's value, in its units;
@@ -146,27 +142,28 @@ impl Frustum {
         // (3 E + 2) 2^-17 with E the largest model coordinate; a plane sums
         // two rows, so twice that.
         let extent = draw.mesh.extent();
-        let fixed = (3.0 * (extent as f32 * (1.0 / 65_536.0)) + 2.0) * (2.0 / 131_072.0);
+        let e = extent as f32 * (1.0 / 65_536.0);
+        let fixed = (3.0 * e + 2.0) * (2.0 / 131_072.0);
         let row = |r: usize| [m.m[0][r], m.m[1][r], m.m[2][r], m.m[3][r]];
         let (r0, r1, r2, r3) = (row(0), row(1), row(2), row(3));
-        let plane = |r: [f32; 4], sign: f32| Plane::new(r3, r, sign, fixed, extent);
+        // Each row's pair of planes shares its rounding bound: a soft-float
+        // core computes it (nine `f32` operations) once per pair.
+        let [p0, p1] = Plane::pair(r3, r0, fixed, e);
+        let [p2, p3] = Plane::pair(r3, r1, fixed, e);
+        let [p4, p5] = Plane::pair(r3, r2, fixed, e);
         Some(Self {
-            planes: [
-                plane(r0, 1.0),
-                plane(r0, -1.0),
-                plane(r1, 1.0),
-                plane(r1, -1.0),
-                plane(r2, 1.0),
-                plane(r2, -1.0),
-            ],
+            planes: [p0, p1, p2, p3, p4, p5],
         })
     }
 
     /// Whether the whole `mesh` (the one this frustum was made for) lies
-    /// outside: its bounding box's sphere, then the box.
+    /// outside: its bounding box, by [`excludes_box`](Self::excludes_box)
+    /// alone. The sphere around the box excludes no box the box test keeps
+    /// (by Cauchy-Schwarz, `|a| e_x + |b| e_y + |c| e_z <= |(a, b, c)|
+    /// |e|`, and both factors are rounded up), so asking it first never
+    /// changed the answer; it only cost each plane a square root.
     pub fn excludes_mesh(&self, mesh: &Mesh<'_>) -> bool {
-        let b = mesh.bounds();
-        self.excludes_sphere(&b) || self.excludes_box(&b)
+        self.excludes_box(&mesh.bounds())
     }
 
     /// Whether the box `bounds` (smallest, largest coordinates) lies
@@ -189,8 +186,8 @@ impl Frustum {
     /// Whether the sphere around the box `bounds` (its centre, its half
     /// diagonal, rounded up) lies outside the frustum, beyond the margin.
     /// It is never tighter than [`excludes_box`](Self::excludes_box),
-    /// only cheaper once its radius is known: the whole-draw test asks it
-    /// first.
+    /// and not cheaper in integers (each plane's norm takes a square
+    /// root): [`excludes_mesh`](Self::excludes_mesh) does not ask it.
     pub fn excludes_sphere(&self, bounds: &[Vec3Fx; 2]) -> bool {
         let (c, e) = centre_extent(bounds);
         // The doubled radius, rounded up, by a 32-bit root: the extents
@@ -204,7 +201,7 @@ impl Frustum {
             let dist = a * c[0] + b * c[1] + cc * c[2] + p.d2;
             // radius < 2^33.2 and norm < 2^27.8: the product stays below
             // 2^61, the sum below 2^63.
-            dist + i64::from(p.norm) * radius as i64 + p.margin < 0
+            dist + p.norm() * radius as i64 + p.margin < 0
         })
     }
 }
@@ -221,27 +218,39 @@ fn centre_extent(bounds: &[Vec3Fx; 2]) -> ([i64; 3], [i64; 3]) {
 }
 
 impl Plane {
-    /// The plane `r3 + sign r`, in integers, with the margin for `fixed`
-    /// (the vertex stage's error of a plane's value, in clip units) and a
-    /// mesh whose largest raw coordinate is `extent`.
-    fn new(r3: [f32; 4], r: [f32; 4], sign: f32, fixed: f32, extent: u32) -> Self {
-        let p = [0, 1, 2, 3].map(|k| r3[k] + sign * r[k]);
+    /// The planes `r3 + r` and `r3 - r`, in integers, with the margin for
+    /// `fixed` (the vertex stage's error of a plane's value, in clip
+    /// units) and a mesh whose largest coordinate is `e` (in units).
+    fn pair(r3: [f32; 4], r: [f32; 4], fixed: f32, e: f32) -> [Self; 2] {
         // Each sum rounds by at most 2^-24 of its operands' size (more than
         // of its own, when they cancel); at a point within the mesh's
         // extent E that moves the plane's value by at most
         // 2^-24 (E (s0 + s1 + s2) + s3). Taken 32 times over, with f32's
-        // own rounding of this bound.
+        // own rounding of this bound. The sizes are the same for either
+        // sign.
         let size = [0, 1, 2, 3].map(|k| r3[k].abs() + r[k].abs());
-        let e = extent as f32 * (1.0 / 65_536.0);
         let slack = fixed + (e * (size[0] + size[1] + size[2]) + size[3]) * (1.0 / 524_288.0);
-        let big = p.iter().fold(0.0f32, |m, v| m.max(v.abs()));
-        if !(big.is_finite() && slack.is_finite()) {
+        [
+            Self::new([0, 1, 2, 3].map(|k| r3[k] + r[k]), slack),
+            Self::new([0, 1, 2, 3].map(|k| r3[k] - r[k]), slack),
+        ]
+    }
+
+    /// The plane `p` in integers, with `slack` the bound of its error (in
+    /// its units) that [`pair`](Self::pair) computes.
+    fn new(p: [f32; 4], slack: f32) -> Self {
+        // The largest magnitude by the bits: for the sums of finite values
+        // here (never NaN) `|x|` orders as `x.to_bits() & 0x7fff_ffff`,
+        // with infinity above every finite value (the Cortex-M3's `fmaxf`
+        // took about 40 instructions a coefficient). A NaN would count as
+        // not finite too.
+        let big = p.iter().fold(0u32, |m, v| m.max(v.to_bits() & 0x7fff_ffff));
+        if big >= 0x7f80_0000 || slack.to_bits() & 0x7fff_ffff >= 0x7f80_0000 {
             // Rows near f32's largest values summed past it: this plane
             // culls nothing (and the vertex stage will not accept such a
             // matrix anyway).
             return Self {
                 n: [0; 3],
-                norm: 0,
                 d2: 0,
                 margin: 1 << 61,
             };
@@ -249,19 +258,14 @@ impl Plane {
         // The binary exponent of the largest coefficient: scaled by 2^s it
         // lies in [2^26, 2^27). Coarse planes (tiny coefficients) stop at
         // s = 60 and only lose precision, which the margin covers.
-        let exp = ((big.to_bits() >> 23) & 0xff) as i32 - 127;
-        let s = if big == 0.0 {
+        let exp = (big >> 23) as i32 - 127;
+        let s = if big == 0 {
             0
         } else {
             (26 - exp).clamp(-101, 60)
         };
         let n = [0, 1, 2].map(|k| scaled(p[k], s) as i32);
         let d2 = scaled(p[3], s) << 17;
-        // |n| rounded up, from coefficients shifted into u32 squares (a
-        // 32-bit root is cheap on a 32-bit core): ((|n| >> 12) + 1) 2^12
-        // over-estimates each, and their squares sum below 3 2^30.
-        let [x, y, z] = n.map(|v| (v.unsigned_abs() >> 12) + 1);
-        let norm = (((x * x + y * y + z * z).isqrt() + 1) << 12) as i32;
         // Truncating n moves each coefficient by less than 1, times a
         // doubled coordinate (below 2^33): the six terms of a box test move
         // less than 2^36; truncating d, less than 2^17; truncating the
@@ -269,12 +273,16 @@ impl Plane {
         let margin = ((1i64 << 36) + (1 << 17) + 1)
             .saturating_add(scaled(slack, s + 17))
             .min(1 << 61);
-        Self {
-            n,
-            norm,
-            d2,
-            margin,
-        }
+        Self { n, d2, margin }
+    }
+
+    /// `|(a, b, c)|` of the integer plane, rounded up (below 2^28), from
+    /// coefficients shifted into u32 squares (a 32-bit root is cheap on a
+    /// 32-bit core): ((|n| >> 12) + 1) 2^12 over-estimates each, and their
+    /// squares sum below 3 2^30.
+    fn norm(&self) -> i64 {
+        let [x, y, z] = self.n.map(|v| (v.unsigned_abs() >> 12) + 1);
+        i64::from(((x * x + y * y + z * z).isqrt() + 1) << 12)
     }
 }
 
@@ -412,6 +420,67 @@ mod tests {
             both * 100 >= exactly_outside * 99,
             "{both} of {exactly_outside}"
         );
+    }
+
+    /// The planes as first written, one at a time with `f32::max`: the
+    /// pairs with their shared bound and their maximum by the bits give
+    /// the same integers.
+    #[test]
+    fn plane_pairs_are_the_planes_one_at_a_time() {
+        fn reference(r3: [f32; 4], r: [f32; 4], sign: f32, fixed: f32, extent: u32) -> Plane {
+            let p = [0, 1, 2, 3].map(|k| r3[k] + sign * r[k]);
+            let size = [0, 1, 2, 3].map(|k| r3[k].abs() + r[k].abs());
+            let e = extent as f32 * (1.0 / 65_536.0);
+            let slack = fixed + (e * (size[0] + size[1] + size[2]) + size[3]) * (1.0 / 524_288.0);
+            let big = p.iter().fold(0.0f32, |m, v| m.max(v.abs()));
+            if !(big.is_finite() && slack.is_finite()) {
+                return Plane {
+                    n: [0; 3],
+                    d2: 0,
+                    margin: 1 << 61,
+                };
+            }
+            let exp = ((big.to_bits() >> 23) & 0xff) as i32 - 127;
+            let s = if big == 0.0 {
+                0
+            } else {
+                (26 - exp).clamp(-101, 60)
+            };
+            let n = [0, 1, 2].map(|k| scaled(p[k], s) as i32);
+            let d2 = scaled(p[3], s) << 17;
+            let margin = ((1i64 << 36) + (1 << 17) + 1)
+                .saturating_add(scaled(slack, s + 17))
+                .min(1 << 61);
+            Plane { n, d2, margin }
+        }
+        let same = |a: Plane, b: Plane| a.n == b.n && a.d2 == b.d2 && a.margin == b.margin;
+        let mut r = crate::testing::rng();
+        for i in 0..20_000 {
+            let mut v = || -> f32 {
+                match r(4) {
+                    0 => 0.0,
+                    1 => f32::from_bits(r(1 << 32) as u32 & 0xff7f_ffff),
+                    _ => {
+                        (r(1 << 24) as f32 / (1 << 23) as f32 - 1.0) * 2f32.powi(r(40) as i32 - 20)
+                    }
+                }
+            };
+            let r3 = [0; 4].map(|_| v());
+            let row = [0; 4].map(|_| v());
+            if !(r3.iter().chain(&row).all(|x| x.is_finite())) {
+                continue;
+            }
+            let extent = if i % 2 == 0 {
+                1 << 16
+            } else {
+                r(1 << 32) as u32
+            };
+            let e = extent as f32 * (1.0 / 65_536.0);
+            let fixed = (3.0 * e + 2.0) * (2.0 / 131_072.0);
+            let [plus, minus] = Plane::pair(r3, row, fixed, e);
+            assert!(same(plus, reference(r3, row, 1.0, fixed, extent)));
+            assert!(same(minus, reference(r3, row, -1.0, fixed, extent)));
+        }
     }
 
     /// The bit-shift scaling truncates exactly like `f64` arithmetic.

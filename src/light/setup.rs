@@ -89,25 +89,53 @@ pub(super) fn rgb(c: Rgb888) -> [u8; 3] {
 /// A model-space point or offset as raw 16.16 in `i64`, rounded; `None` when
 /// not finite or beyond 2^60 raw (2^44 units).
 pub(super) fn to_raw(v: Vec3) -> Option<[i64; 3]> {
-    const LIMIT: f32 = (1u64 << 60) as f32;
-    let mut out = [0i64; 3];
-    for (o, c) in out.iter_mut().zip([v.x, v.y, v.z]) {
-        let x = c * 65536.0;
-        if x.is_nan() || x.abs() > LIMIT {
-            return None;
-        }
-        // Round half away from zero (the conversion truncates). From 2^23 on, `x`
-        // is an integer, and adding ½ would round to even instead.
-        let half = if x.abs() >= 8_388_608.0 {
-            0.0
-        } else if x < 0.0 {
-            -0.5
-        } else {
-            0.5
-        };
-        *o = crate::math::f32_to_i64(x + half);
+    Some([raw_coord(v.x)?, raw_coord(v.y)?, raw_coord(v.z)?])
+}
+
+/// One coordinate of [`to_raw`], by the bits: what `x = c 65536` rounded
+/// half away from zero as `f32` arithmetic gives (`x ± ½` rounded to
+/// nearest even, then truncated; from 2^23 on `x` itself), without the
+/// half-dozen soft-float calls (a multiply, four compares, an add) that
+/// cost a Cortex-M3 a few hundred instructions a coordinate. `None` when
+/// not finite or when `|x| > 2^60`.
+pub(super) fn raw_coord(c: f32) -> Option<i64> {
+    let bits = c.to_bits();
+    let abs = bits & 0x7fff_ffff;
+    // NaN, infinite, or |c| > 2^44 (the multiply by 2^16 is exact, or
+    // infinite past f32's range: beyond 2^60 either way).
+    if abs > 171 << 23 {
+        return None;
     }
-    Some(out)
+    let field = abs >> 23;
+    let m = u64::from((abs & 0x7f_ffff) | 0x80_0000);
+    let mag = if field >= 134 {
+        // |x| >= 2^23: an integer, x = m 2^(field - 134), below 2^61.
+        m << (field - 134)
+    } else if field < 109 {
+        // |x| < 1/4: |x| + ½ rounds below 1 (zero and subnormals too).
+        0
+    } else {
+        // |x| in [1/4, 2^23): in units of 2^-25 it is the integer
+        // m 2^(field - 109) < 2^48, and ½ is 2^24. Round the sum to 24
+        // significant bits, nearest even, as the f32 add does, and
+        // truncate to units.
+        let s = (m << (field - 109)) + (1 << 24);
+        let width = 64 - s.leading_zeros();
+        let r = match width.checked_sub(24) {
+            None | Some(0) => s,
+            Some(shift) => {
+                let q = s >> shift;
+                let rem = s - (q << shift);
+                let half = 1u64 << (shift - 1);
+                let up = rem > half || (rem == half && q & 1 == 1);
+                (q + u64::from(up)) << shift
+            }
+        };
+        r >> 25
+    };
+    // Both the add and the truncation are symmetric in the sign.
+    let mag = mag as i64;
+    Some(if bits >> 31 == 1 { -mag } else { mag })
 }
 
 impl<const N: usize> LightSetup<N> {

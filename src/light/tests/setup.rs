@@ -314,6 +314,49 @@ fn raw_positions_are_rounded() {
     assert_eq!(to_raw(Vec3::new(0.0, 2e13, 0.0)), None);
 }
 
+/// The coordinate by the bits is the `f32` formula it replaced, over
+/// random bits and over values near the boundaries of its cases.
+#[test]
+fn raw_coordinates_by_the_bits_are_the_f32_formula() {
+    fn reference(c: f32) -> Option<i64> {
+        const LIMIT: f32 = (1u64 << 60) as f32;
+        let x = c * 65536.0;
+        if x.is_nan() || x.abs() > LIMIT {
+            return None;
+        }
+        let half = if x.abs() >= 8_388_608.0 {
+            0.0
+        } else if x < 0.0 {
+            -0.5
+        } else {
+            0.5
+        };
+        Some(crate::math::f32_to_i64(x + half))
+    }
+    let mut rng = Rng(0x2718_2818_2845_9045);
+    for i in 0..400_000u32 {
+        let c = match i % 3 {
+            0 => f32::from_bits(rng.next() as u32),
+            // Exponents 2^-22 to 2^49 (units of 2^-16): every case.
+            _ => f32::from_bits((rng.next() as u32 & 0x807f_ffff) | ((105 + i % 72) << 23)),
+        };
+        assert_eq!(raw_coord(c), reference(c), "{c:e} {:#x}", c.to_bits());
+    }
+    // Near the halves, where the f32 add rounds.
+    for k in 0..(1u32 << 16) {
+        for c in [
+            k as f32 / 65536.0 + 0.5 / 65536.0,
+            (k as f32 + 0.5) / 65536.0,
+        ] {
+            for d in [-2i32, -1, 0, 1, 2] {
+                let c = f32::from_bits(c.to_bits().wrapping_add_signed(d));
+                assert_eq!(raw_coord(c), reference(c), "{c:e}");
+                assert_eq!(raw_coord(-c), reference(-c), "{c:e}");
+            }
+        }
+    }
+}
+
 #[test]
 fn scale_applies_like_f64() {
     let mut rng = Rng(0x3141_5926_5358_9793);
