@@ -423,7 +423,8 @@ pub(super) struct NarrowRows {
     /// `l`, then the translation `m[3][r]`.
     rows: [[i32; 7]; 4],
     /// The Lambert colour's factors per channel ([`Lambert::folded`]: one
-    /// `MULS` a channel fewer).
+    /// `MULS` a channel fewer), each `a` with 256 more for
+    /// [`div65280_narrow`].
     channels: [[u32; 2]; 3],
     /// The n·l that may carry the interior bit
     /// ([`Lambert::interior_ndotl`]).
@@ -457,6 +458,9 @@ impl NarrowRows {
             true => interior_ndotl(&k.channels, gouraud),
             false => [257, 0],
         };
+        for ch in k.channels.iter_mut() {
+            ch[0] += 256;
+        }
         for (r, row) in k.rows.iter_mut().enumerate() {
             let e = [m.m[0][r], m.m[1][r], m.m[2][r]];
             *row = [
@@ -497,10 +501,25 @@ impl NarrowRows {
         let mut out = [0u8; 3];
         for (o, &[a, c]) in out.iter_mut().zip(&self.channels) {
             // Lambert::shade's division on cores without a multiply-high.
-            *o = crate::light::div255((a + c * ndotl) >> 8).min(255) as u8;
+            *o = div65280_narrow(a + c * ndotl);
         }
         (out, within(ndotl, self.inside))
     }
+}
+
+/// `min(floor((x - 256) / 65,280), 255)` for `256 <= x < 2^32`, by one
+/// 32-bit multiply, for ARMv6-M's loop (whose channel constants hold the
+/// 256: [`NarrowRows`]): with `y = floor((x - 256) / 256)`, `x >> 8` is
+/// `y + 1`, and `z = min(y + 1, 65,280)` gives `floor((z - 1) / 255) = min(
+/// floor(y / 255), 255) = min(floor((x - 256) / 65,280), 255)`, which is
+/// `(z 257) >> 16` for every `z` in `1..=65,280` (the tests try them
+/// all; the product is below `2^24`). `div255` and its clamp took about
+/// 19 instructions a channel.
+#[inline(always)]
+fn div65280_narrow(x: u32) -> u8 {
+    debug_assert!(x >= 256);
+    let z = (x >> 8).min(65_280);
+    ((z * 257) >> 16) as u8
 }
 
 /// `(d >> 24).clamp(0, 256)` from `d`'s upper word, which is 0 exactly
@@ -565,6 +584,28 @@ mod tests {
         for x in (1 << 31) - 1_000..1 << 31 {
             check(x);
         }
+    }
+
+    /// ARMv6-M's quotient by 65,280 is the clamped division: every `z`
+    /// of its proof, and `x` across the colour's range with every
+    /// quotient's ends.
+    #[test]
+    fn div65280_narrow_is_the_clamped_quotient() {
+        for z in 1..=65_280u32 {
+            assert_eq!((z * 257) >> 16, (z - 1) / 255, "{z}");
+        }
+        let check = |x0: u32| {
+            let want = (x0 / 65_280).min(255) as u8;
+            assert_eq!(div65280_narrow(x0 + 256), want, "{x0}");
+        };
+        for x0 in (0..1u32 << 26).step_by(61) {
+            check(x0);
+        }
+        for q in 1..1_030u32 {
+            check(q * 65_280);
+            check(q * 65_280 - 1);
+        }
+        check(u32::MAX - 256);
     }
 
     /// The narrow n·l is the 64-bit one wherever it is taken: random and
