@@ -28,28 +28,30 @@ impl Lambert {
     /// n·l in 1/256 steps, clamped to `0..=256` ([`shade`](Self::shade)'s).
     #[inline(always)]
     fn ndotl(&self, n: crate::mesh::Vec3Fx) -> u32 {
-        use crate::math::mul_wide;
         let n = [n[0].to_bits(), n[1].to_bits(), n[2].to_bits()];
-        let wide = || {
-            let d = mul_wide(n[0], self.dir[0])
-                + mul_wide(n[1], self.dir[1])
-                + mul_wide(n[2], self.dir[2]);
-            // n·l in 1/256 steps, floored, clamped to [0, 1]. On 32-bit
-            // cores from d's upper word, which is 0 exactly when d >> 24 is
-            // 0 to 255 (the 64-bit clamp took twice the instructions on
-            // the Cortex-M3); 64-bit ones keep the clamp, which measured
-            // fewer there.
-            if cfg!(target_pointer_width = "64") {
-                (d >> 24).clamp(0, 256) as u32
-            } else {
-                clamp_ndotl_words(d)
-            }
-        };
         // ARMv6-M builds each 64-bit product from four 16-bit ones: a
         // normal within ±1 takes n·l from six 32-bit products instead.
         match crate::math::SPLIT {
-            true => ndotl_narrow(n, self.dir).unwrap_or_else(wide),
-            false => wide(),
+            true => ndotl_narrow(n, self.dir).unwrap_or_else(|| self.ndotl_wide(n)),
+            false => self.ndotl_wide(n),
+        }
+    }
+
+    /// [`ndotl`](Self::ndotl) of the normal's bits `n` by 64-bit products.
+    #[inline(always)]
+    fn ndotl_wide(&self, n: [i32; 3]) -> u32 {
+        use crate::math::mul_wide;
+        let d =
+            mul_wide(n[0], self.dir[0]) + mul_wide(n[1], self.dir[1]) + mul_wide(n[2], self.dir[2]);
+        // n·l in 1/256 steps, floored, clamped to [0, 1]. On 32-bit
+        // cores from d's upper word, which is 0 exactly when d >> 24 is
+        // 0 to 255 (the 64-bit clamp took twice the instructions on
+        // the Cortex-M3); 64-bit ones keep the clamp, which measured
+        // fewer there.
+        if cfg!(target_pointer_width = "64") {
+            (d >> 24).clamp(0, 256) as u32
+        } else {
+            clamp_ndotl_words(d)
         }
     }
 
@@ -205,6 +207,45 @@ pub(super) fn ndotl_narrow(n: [i32; 3], l: [i32; 3]) -> Option<u32> {
         b += (n[i] & 0xff) * l[i];
     }
     Some(((a + (b >> 8)) >> 16).clamp(0, 256) as u32)
+}
+
+/// The n·l of [`ndotl_narrow`]'s sums, unchecked, for ARMv6-M's common
+/// loop ([`NarrowRows`]), which checks the light once per draw
+/// ([`SPLIT_LIGHT`]) and the normal by one compare ([`split_normal`]):
+/// for `-2^17 <= n[i] < 2^17` and `|l[i]| <= 2^18`. Then `|h[i]| <= 2^9`
+/// and each `|h[i] l[i]| <= 2^27`, `A` within `3 2^27`; `|o[i] l[i]| <
+/// 2^26`, `B` within `3 2^26`; so every sum fits `i32` and the result is
+/// `ndotl_narrow`'s (the same floors).
+#[inline(always)]
+fn ndotl_split(n: [i32; 3], l: [i32; 3]) -> u32 {
+    debug_assert!(split_normal(n) && l.iter().all(|&v| v.unsigned_abs() <= SPLIT_LIGHT));
+    let (mut a, mut b) = (0i32, 0i32);
+    for i in 0..3 {
+        a += (n[i] >> 8) * l[i];
+        b += (n[i] & 0xff) * l[i];
+    }
+    ((a + (b >> 8)) >> 16).clamp(0, 256) as u32
+}
+
+/// The largest light component [`ndotl_split`] takes (checked once per
+/// draw by [`NarrowRows::new`]).
+const SPLIT_LIGHT: u32 = 1 << 18;
+
+/// Whether every `n[i]` is in `-2^17..2^17` ([`ndotl_split`]'s normals):
+/// each `n[i] + 2^17` below `2^18` as a word, so all three are when
+/// their `or` is (two instructions a component on ARMv6-M, where
+/// `ndotl_narrow`'s test of the normal and of the light took about 27 a
+/// vertex).
+#[inline(always)]
+fn split_normal(n: [i32; 3]) -> bool {
+    split_bits(n) >> 18 == 0
+}
+
+/// The `or` of [`split_normal`]'s three offset components.
+#[inline(always)]
+fn split_bits(n: [i32; 3]) -> u32 {
+    let k = 1i32 << 17;
+    (n[0].wrapping_add(k) | n[1].wrapping_add(k) | n[2].wrapping_add(k)) as u32
 }
 
 /// Whether the vertex stage's common loop reads its per-draw constants
@@ -382,11 +423,18 @@ pub(super) struct NarrowRows {
     /// `l`, then the translation `m[3][r]`.
     rows: [[i32; 7]; 4],
     /// The Lambert colour's factors per channel ([`Lambert::folded`]: one
-    /// `MULS` a channel fewer).
+    /// `MULS` a channel fewer), each `a` with 256 more for
+    /// [`div65280_narrow`].
     channels: [[u32; 2]; 3],
     /// The n·l that may carry the interior bit
     /// ([`Lambert::interior_ndotl`]).
     inside: [u32; 2],
+    /// The light's direction (as [`Lambert`]'s).
+    dir: [i32; 3],
+    /// 0 where every component of the light is within [`SPLIT_LIGHT`],
+    /// else `2^18`: or-ed into [`split_bits`], it sends every vertex of
+    /// such a draw to the 64-bit n·l.
+    fail: u32,
 }
 
 #[cfg_attr(not(any(test, microraster_narrow_multiply)), allow(dead_code))]
@@ -399,12 +447,20 @@ impl NarrowRows {
             rows: [[0; 7]; 4],
             channels: [[0; 2]; 3],
             inside: [0; 2],
+            dir: l.dir,
+            fail: match l.dir.iter().all(|&v| v.unsigned_abs() <= SPLIT_LIGHT) {
+                true => 0,
+                false => 1 << 18,
+            },
         };
         k.channels = l.folded(base);
         k.inside = match super::screen::INTERIOR_STARTS {
             true => interior_ndotl(&k.channels, gouraud),
             false => [257, 0],
         };
+        for ch in k.channels.iter_mut() {
+            ch[0] += 256;
+        }
         for (r, row) in k.rows.iter_mut().enumerate() {
             let e = [m.m[0][r], m.m[1][r], m.m[2][r]];
             *row = [
@@ -437,14 +493,33 @@ impl NarrowRows {
     /// light this was made with: the same colour.
     #[inline(always)]
     pub(super) fn shade(&self, l: &Lambert, n: Vec3Fx) -> ([u8; 3], bool) {
-        let ndotl = l.ndotl(n);
+        let n = [n[0].to_bits(), n[1].to_bits(), n[2].to_bits()];
+        let ndotl = match (split_bits(n) | self.fail) >> 18 == 0 {
+            true => ndotl_split(n, self.dir),
+            false => l.ndotl_wide(n),
+        };
         let mut out = [0u8; 3];
         for (o, &[a, c]) in out.iter_mut().zip(&self.channels) {
             // Lambert::shade's division on cores without a multiply-high.
-            *o = crate::light::div255((a + c * ndotl) >> 8).min(255) as u8;
+            *o = div65280_narrow(a + c * ndotl);
         }
         (out, within(ndotl, self.inside))
     }
+}
+
+/// `min(floor((x - 256) / 65,280), 255)` for `256 <= x < 2^32`, by one
+/// 32-bit multiply, for ARMv6-M's loop (whose channel constants hold the
+/// 256: [`NarrowRows`]): with `y = floor((x - 256) / 256)`, `x >> 8` is
+/// `y + 1`, and `z = min(y + 1, 65,280)` gives `floor((z - 1) / 255) = min(
+/// floor(y / 255), 255) = min(floor((x - 256) / 65,280), 255)`, which is
+/// `(z 257) >> 16` for every `z` in `1..=65,280` (the tests try them
+/// all; the product is below `2^24`). `div255` and its clamp took about
+/// 19 instructions a channel.
+#[inline(always)]
+fn div65280_narrow(x: u32) -> u8 {
+    debug_assert!(x >= 256);
+    let z = (x >> 8).min(65_280);
+    ((z * 257) >> 16) as u8
 }
 
 /// `(d >> 24).clamp(0, 256)` from `d`'s upper word, which is 0 exactly
@@ -511,6 +586,28 @@ mod tests {
         }
     }
 
+    /// ARMv6-M's quotient by 65,280 is the clamped division: every `z`
+    /// of its proof, and `x` across the colour's range with every
+    /// quotient's ends.
+    #[test]
+    fn div65280_narrow_is_the_clamped_quotient() {
+        for z in 1..=65_280u32 {
+            assert_eq!((z * 257) >> 16, (z - 1) / 255, "{z}");
+        }
+        let check = |x0: u32| {
+            let want = (x0 / 65_280).min(255) as u8;
+            assert_eq!(div65280_narrow(x0 + 256), want, "{x0}");
+        };
+        for x0 in (0..1u32 << 26).step_by(61) {
+            check(x0);
+        }
+        for q in 1..1_030u32 {
+            check(q * 65_280);
+            check(q * 65_280 - 1);
+        }
+        check(u32::MAX - 256);
+    }
+
     /// The narrow n·l is the 64-bit one wherever it is taken: random and
     /// extreme normals and light directions within its bounds, and just
     /// beyond them (where it declines).
@@ -570,6 +667,84 @@ mod tests {
             let n = [r(1 << 16), r(1 << 16), r(1 << 16)];
             let l = [r(1 << 20), r(1 << 20), r(1 << 20)];
             assert_eq!(ndotl_narrow(n, l), Some(wide(n, l)), "{n:?} {l:?}");
+        }
+    }
+
+    /// The split n·l of ARMv6-M's loop is the 64-bit one over its whole
+    /// range: the ends of the normal's and the light's, and random ones;
+    /// a light beyond its range sends every normal to the 64-bit n·l.
+    #[test]
+    fn split_ndotl_is_the_wide_one() {
+        let mut next = crate::testing::rng();
+        let wide = |n: [i32; 3], l: [i32; 3]| {
+            let d: i64 = (0..3).map(|i| n[i] as i64 * l[i] as i64).sum();
+            (d >> 24).clamp(0, 256) as u32
+        };
+        let ends = [
+            -(1 << 17),
+            -(1 << 17) + 1,
+            -257,
+            -256,
+            -1,
+            0,
+            1,
+            255,
+            256,
+            (1 << 17) - 1,
+        ];
+        let lends = [
+            -(1 << 18),
+            -(1 << 18) + 1,
+            -1,
+            0,
+            1,
+            1 << 16,
+            (1 << 18) - 1,
+            1 << 18,
+        ];
+        for &a in &ends {
+            for &b in &ends {
+                for &c in &ends {
+                    for &l in &lends {
+                        for l in [[l, l, l], [l, -l, l], [-l, l, 1 << 18]] {
+                            let n = [a, b, c];
+                            assert!(split_normal(n));
+                            assert_eq!(ndotl_split(n, l), wide(n, l), "{n:?} {l:?}");
+                        }
+                    }
+                }
+            }
+        }
+        for bad in [1 << 17, -(1 << 17) - 1, i32::MIN, i32::MAX] {
+            for i in 0..3 {
+                let mut n = [0; 3];
+                n[i] = bad;
+                assert!(!split_normal(n), "{n:?}");
+            }
+        }
+        for _ in 0..1_000_000 {
+            let mut r = |m: u64| (next(2 * m) as i64 - m as i64) as i32;
+            let n = [r(1 << 17), r(1 << 17), r(1 << 17)];
+            let l = [r(1 << 18), r(1 << 18), r(1 << 18)];
+            assert_eq!(ndotl_split(n, l), wide(n, l), "{n:?} {l:?}");
+        }
+        let zero = FixedMat4 { m: [[0; 4]; 4] };
+        for dir in [
+            [(1 << 18) + 1, 0, 0],
+            [0, -(1 << 18) - 1, 0],
+            [1 << 18, 1 << 18, -(1 << 18)],
+        ] {
+            let l = Lambert {
+                dir,
+                color: [255; 3],
+                ambient: [0; 3],
+            };
+            let k = NarrowRows::new(&zero, &l, [255; 3], false);
+            for _ in 0..10_000 {
+                let n = [0; 3]
+                    .map(|_| fixed::types::I16F16::from_bits(next(1 << 18) as i32 - (1 << 17)));
+                assert_eq!(k.shade(&l, n).0, l.shade(n, [255; 3]), "{n:?} {dir:?}");
+            }
         }
     }
 

@@ -89,14 +89,17 @@ pub(crate) const INTERIOR_STARTS: bool = cfg!(microraster_interior);
 /// [`INTERIOR_STARTS`]).
 #[inline(always)]
 const fn interior(z: u16, c: [u8; 3]) -> bool {
-    depth_interior(z) & channels_interior(c)
+    depth_interior(z as u32) & channels_interior(c)
 }
 
-/// The depth half of [`interior`]: `z` in `2..=65533`, as one subtraction
-/// and one unsigned compare (never, without [`INTERIOR_STARTS`]).
+/// The depth half of [`interior`]: `z` (at most 65,535) in `2..=65533`,
+/// as one subtraction and one unsigned compare (never, without
+/// [`INTERIOR_STARTS`]). A word, not a `u16`: the projection's depth is
+/// a word known to be below 2^16, which as a `u16` the Cortex-M cores
+/// zero-extended again for this test (a `UXTH` a vertex).
 #[inline(always)]
-const fn depth_interior(z: u16) -> bool {
-    INTERIOR_STARTS && (z as u32).wrapping_sub(2) <= 65_531
+const fn depth_interior(z: u32) -> bool {
+    INTERIOR_STARTS && z.wrapping_sub(2) <= 65_531
 }
 
 /// The colour half of [`interior`]: every channel of `c` in `1..=254`,
@@ -118,7 +121,7 @@ impl ScreenVertex {
     /// test runs); outside the range the high bits would be lost.
     #[inline(always)]
     pub(crate) const fn new(x: i32, y: i32, z: u16, outcode: u8, color: [u8; 3]) -> Self {
-        Self::with_interior(x, y, z, outcode, color, interior(z, color))
+        Self::with_interior(x, y, z as u32, outcode, color, interior(z, color))
     }
 
     /// [`ScreenVertex::new`] of a vertex whose colour the caller has
@@ -127,12 +130,13 @@ impl ScreenVertex {
     /// in two instructions), or is false for a vertex that should not
     /// carry the [`interior`](Self::interior) bit (of a draw that is not
     /// Gouraud shaded: only the Gouraud span starts read it). The depth is
-    /// tested here.
+    /// tested here; it is a word at most 65,535 (the projection's, see
+    /// `depth_interior`), checked in debug builds.
     #[inline(always)]
     pub(crate) const fn new_tested(
         x: i32,
         y: i32,
-        z: u16,
+        z: u32,
         outcode: u8,
         color: [u8; 3],
         color_inside: bool,
@@ -148,16 +152,17 @@ impl ScreenVertex {
     /// OLED firmware's flash.
     #[inline(always)]
     pub(crate) const fn new_clipped(x: i32, y: i32, z: u16, color: [u8; 3]) -> Self {
-        Self::with_interior(x, y, z, 0, color, false)
+        Self::with_interior(x, y, z as u32, 0, color, false)
     }
 
     /// [`ScreenVertex::new`] with the [`interior`](Self::interior) bit
-    /// `inside` (which only `interior` may set).
+    /// `inside` (which only `interior` may set), for a depth `z` of at most
+    /// 65,535.
     #[inline(always)]
     const fn with_interior(
         x: i32,
         y: i32,
-        z: u16,
+        z: u32,
         outcode: u8,
         color: [u8; 3],
         inside: bool,
@@ -166,11 +171,12 @@ impl ScreenVertex {
             COORD_MIN <= x && x <= COORD_MAX && COORD_MIN <= y && y <= COORD_MAX,
             "screen vertex outside the coordinate fields"
         );
+        debug_assert!(z <= 65_535, "screen vertex depth beyond 16 bits");
         let inside = if inside { INTERIOR } else { 0 };
         Self {
             xo: (x as u32) << 8 | outcode as u32,
             yr: (y as u32) << 9 | inside | color[0] as u32,
-            gbz: (z as u32) << 16 | (color[2] as u32) << 8 | color[1] as u32,
+            gbz: z << 16 | (color[2] as u32) << 8 | color[1] as u32,
         }
     }
 

@@ -95,19 +95,20 @@ impl Viewport {
     /// two to four divisions: on the Cortex-M3 about 110 instructions a
     /// vertex fewer.
     #[inline(always)]
-    pub(crate) fn project_inside(&self, p: &[i32; 4]) -> (SubPoint, u16) {
+    pub(crate) fn project_inside(&self, p: &[i32; 4]) -> (SubPoint, u32) {
+        let wide = |(p, z): (SubPoint, u16)| (p, z as u32);
         if !LONG_DIVISION {
             if !crate::math::SPLIT {
-                return self.project(p);
+                return wide(self.project(p));
             }
             return match NonZeroU32::new(p[3] as u32) {
                 Some(w) if w.get() >> DIGITS_W_BITS == 0 => self.project_recip(p, w),
-                _ => self.project_wide(p[0], p[1], p[2], p[3]),
+                _ => wide(self.project_wide(p[0], p[1], p[2], p[3])),
             };
         }
         match NonZeroU32::new(p[3] as u32) {
             Some(w) if w.get() < self.short_w => self.project_digits(p, w),
-            _ => self.project_wide(p[0], p[1], p[2], p[3]),
+            _ => wide(self.project_wide(p[0], p[1], p[2], p[3])),
         }
     }
 
@@ -146,7 +147,7 @@ impl Viewport {
     /// two and their shifts); depth's quotient is two divisions
     /// ([`depth_digits`]).
     #[inline(always)]
-    pub(crate) fn project_digits(&self, p: &[i32; 4], w: NonZeroU32) -> (SubPoint, u16) {
+    pub(crate) fn project_digits(&self, p: &[i32; 4], w: NonZeroU32) -> (SubPoint, u32) {
         debug_assert!(w.get() < self.short_w && w.get() as i64 >= W_MIN);
         let half = w.get() / 2;
         // Half a viewport side in sub-pixels is at most 2^15; |x|, |y| <=
@@ -169,7 +170,7 @@ impl Viewport {
         // dividend's two divisions took its shifts and leading-zero count
         // besides: 8 instructions a vertex more on the Cortex-M3.)
         let z = depth_digits((p[2] + w.get() as i32) as u32, w);
-        (SubPoint::new(x, y), z as u16)
+        (SubPoint::new(x, y), z)
     }
 
     /// [`project`](Self::project) of a vertex without [`MUST_CLIP`] bits
@@ -194,7 +195,7 @@ impl Viewport {
     /// `w < 2^23`, below `2^32`.
     #[inline(always)]
     #[cfg_attr(not(microraster_narrow_multiply), allow(dead_code))]
-    pub(crate) fn project_recip(&self, p: &[i32; 4], w: NonZeroU32) -> (SubPoint, u16) {
+    pub(crate) fn project_recip(&self, p: &[i32; 4], w: NonZeroU32) -> (SubPoint, u32) {
         debug_assert!(w.get() >> DIGITS_W_BITS == 0 && w.get() as i64 >= W_MIN);
         let f = Recip16::new(w);
         let wu = w.get();
@@ -223,7 +224,7 @@ impl Viewport {
         let (d0, _) = f.digit((r1 << 8) + (wu - b));
         let z = (a * 65_535 + (d1 << 8) + d0) >> 1;
         debug_assert!(z <= 65_535);
-        (SubPoint::new(x, y), z as u16)
+        (SubPoint::new(x, y), z)
     }
 
     /// Runs the vertex stage on one vertex.
@@ -267,7 +268,7 @@ impl Viewport {
         // within `(K + 1) * 2^15 < 2^18` sub-pixels.
         let (color, inside) = color();
         match CHANNELS {
-            true => ScreenVertex::new(p.x, p.y, z, outcode, color),
+            true => ScreenVertex::new(p.x, p.y, z as u16, outcode, color),
             false => ScreenVertex::new_tested(p.x, p.y, z, outcode, color, inside),
         }
     }
@@ -275,7 +276,7 @@ impl Viewport {
     /// The outcode of `pos` and, for a vertex without [`MUST_CLIP`] bits,
     /// its projection ([`project_inside`](Self::project_inside)).
     #[inline(always)]
-    fn outcode_and_project(&self, pos: &[i32; 4]) -> (u8, SubPoint, u16) {
+    fn outcode_and_project(&self, pos: &[i32; 4]) -> (u8, SubPoint, u32) {
         let outcode = outcode(pos);
         let (p, z) = if outcode & MUST_CLIP == 0 {
             self.project_inside(pos)
@@ -294,7 +295,7 @@ impl Viewport {
         any(microraster_narrow_multiply, target_pointer_width = "64"),
         allow(dead_code)
     )]
-    fn project_rest(&self, x: i32, y: i32, z: i32, w: i32) -> (u8, SubPoint, u16) {
+    fn project_rest(&self, x: i32, y: i32, z: i32, w: i32) -> (u8, SubPoint, u32) {
         self.outcode_and_project(&[x, y, z, w])
     }
 
@@ -322,7 +323,7 @@ impl Viewport {
         any(microraster_narrow_multiply, target_pointer_width = "64"),
         allow(dead_code)
     )]
-    pub(crate) fn project_fast(&self, p: &[i32; 4]) -> Option<(SubPoint, u16)> {
+    pub(crate) fn project_fast(&self, p: &[i32; 4]) -> Option<(SubPoint, u32)> {
         let w = p[3] as u32;
         // W_MIN <= w < short_w, as one unsigned compare (short_w > W_MIN).
         if w.wrapping_sub(W_MIN as u32) >= self.short_w - W_MIN as u32 {
@@ -345,7 +346,7 @@ impl Viewport {
         let x = (c[0] * tw + odd(p[0])) / w2n;
         let y = th - (c[1] * th + odd(p[1])) / w2n;
         let z = depth_digits(c[2], wn);
-        Some((SubPoint::new(x as i32, y as i32), z as u16))
+        Some((SubPoint::new(x as i32, y as i32), z))
     }
 }
 
@@ -447,13 +448,15 @@ mod tests {
                 };
                 let p = [c(g), c(g), c(w), w];
                 assert_eq!(outcode(&p) & MUST_CLIP, 0, "{p:?}");
-                assert_eq!(vp.project_inside(&p), vp.project(&p), "{p:?}");
+                let want = vp.project(&p);
+                let want = (want.0, want.1 as u32);
+                assert_eq!(vp.project_inside(&p), want, "{p:?}");
                 let nz = NonZeroU32::new(w as u32).unwrap();
                 if nz.get() < vp.short_w {
-                    assert_eq!(vp.project_digits(&p, nz), vp.project(&p), "{p:?}");
+                    assert_eq!(vp.project_digits(&p, nz), want, "{p:?}");
                 }
                 if w >> DIGITS_W_BITS == 0 {
-                    assert_eq!(vp.project_recip(&p, nz), vp.project(&p), "{p:?}");
+                    assert_eq!(vp.project_recip(&p, nz), want, "{p:?}");
                 }
             }
         }
@@ -491,7 +494,8 @@ mod tests {
                 let p = [c(), c(), c(), w];
                 let inside = outcode(&p) == 0 && (w as u32) < vp.short_w;
                 let fast = vp.project_fast(&p);
-                assert_eq!(fast, inside.then(|| vp.project(&p)), "{p:?}");
+                let want = inside.then(|| vp.project(&p)).map(|(p, z)| (p, z as u32));
+                assert_eq!(fast, want, "{p:?}");
                 taken += inside as u32;
             }
         }
