@@ -292,22 +292,44 @@ fn bin_fast<const TW: usize, const TH: usize>(
         } else {
             pairs_sum = pairs_sum.saturating_add(pairs as u32);
         }
-        if SINGLE_PUSH && pairs == 1 {
-            bins.push((r0 * cols + c0).wrapping_sub(ctx.t0), k as u16);
-        } else {
-            let mut lo = (r0 * cols + c0) as isize - ctx.t0 as isize;
-            let mut hi = lo + (c1 - c0) as isize;
-            for _ in r0..r1 {
-                bins.push_run(lo.max(0) as usize..hi.max(0) as usize, k as u16);
-                lo += cols as isize;
-                hi += cols as isize;
-            }
-        }
+        push_row_major(bins, (c0, c1), (r0, r1), cols, ctx.t0, k as u16);
     }
     *t = tt;
     tally.fates[Fate::Visible as usize] += (sum / VISIBLE) as u32;
     let pairs = u32::try_from(sum % VISIBLE).unwrap_or(u32::MAX);
     tally.pairs = pairs_sum.saturating_add(pairs);
+}
+
+/// Pushes triangle `k` into the tiles of columns `c0..c1` and rows
+/// `r0..r1` of a row-major grid of `cols` columns, numbered in the pass
+/// from tile `t0`.
+#[inline(always)]
+fn push_row_major(
+    bins: &mut Pass<'_>,
+    (c0, c1): (usize, usize),
+    (r0, r1): (usize, usize),
+    cols: usize,
+    t0: usize,
+    k: u16,
+) {
+    if SINGLE_PUSH && (c1 - c0) * (r1 - r0) == 1 {
+        // Most visible triangles lie in one tile: one push, without the
+        // row loop's set-up. At most 2^24 tiles: no overflow; a tile
+        // before the pass wraps to an index it does not hold.
+        bins.push((r0 * cols + c0).wrapping_sub(t0), k);
+    } else {
+        // Each row's tiles in the pass's numbering, from `t0`: those
+        // before the pass are negative, and the pass holds none of them
+        // (it gives up tiles from its end). At most 2^24 tiles: no
+        // overflow.
+        let mut lo = (r0 * cols + c0) as isize - t0 as isize;
+        let mut hi = lo + (c1 - c0) as isize;
+        for _ in r0..r1 {
+            bins.push_run(lo.max(0) as usize..hi.max(0) as usize, k);
+            lo += cols as isize;
+            hi += cols as isize;
+        }
+    }
 }
 
 /// The pixels whose centres a filled triangle with vertices `v` may
@@ -455,23 +477,8 @@ fn bin_culled<const TW: usize, const TH: usize, I: Copy + Into<u32>>(
                         bins.push(p.wrapping_sub(ctx.t0), tt as u16);
                     }
                 }
-            } else if SINGLE_PUSH && pairs == 1 {
-                // Most visible triangles lie in one tile: one push, without
-                // the row loop's set-up. At most 2^24 tiles: no overflow;
-                // a tile before the pass wraps to an index it does not hold.
-                bins.push((r0 * cols + c0).wrapping_sub(ctx.t0), tt as u16);
             } else {
-                // Each row's tiles in the pass's numbering, from `t0`:
-                // those before the pass are negative, and the pass holds
-                // none of them (it gives up tiles from its end).
-                // At most 2^24 tiles: no overflow.
-                let mut lo = (r0 * cols + c0) as isize - ctx.t0 as isize;
-                let mut hi = lo + (c1 - c0) as isize;
-                for _ in r0..r1 {
-                    bins.push_run(lo.max(0) as usize..hi.max(0) as usize, tt as u16);
-                    lo += cols as isize;
-                    hi += cols as isize;
-                }
+                push_row_major(bins, (c0, c1), (r0, r1), cols, ctx.t0, tt as u16);
             }
         }
         tt += 1;
