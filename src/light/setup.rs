@@ -444,7 +444,7 @@ fn fits_raw(v: Vec3) -> bool {
 /// `model`, truncated when `coarse` (one light, as
 /// [`LightSetup::single_directional`] gives it), rounded otherwise, with
 /// the errors [`LightSetup::new`] gives for a [`Lighting`] of those
-/// lights: the model and eye checks ([`model_checks`]) first. One
+/// lights: the model and eye checks ([`model_checks_by`]) first. One
 /// [`Mat4::inverse3`] for the eye and the lights.
 pub(crate) fn directional_lights<'m>(
     lights: &[super::DirectionalLight],
@@ -475,8 +475,9 @@ pub(crate) fn model_checks(model: &Mat4, eye: Vec3) -> Result<(), LightError> {
     model_checks_by(model, eye, model.inverse3().as_ref()).map(|_| ())
 }
 
-/// The checks of [`model_checks`] with the model's [`Mat4::inverse3`]
-/// made already; the model scale.
+/// The checks of a draw's matrix and the eye that [`LightSetup::new`]
+/// makes whatever the lights, with the model's [`Mat4::inverse3`] made
+/// already; the model scale.
 fn model_checks_by<'m>(
     model: &'m Mat4,
     eye: Vec3,
