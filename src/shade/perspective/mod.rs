@@ -36,6 +36,7 @@ use fixed::types::I16F16;
 
 mod barycentric;
 mod lerp;
+mod nearest;
 mod plane;
 mod span;
 
