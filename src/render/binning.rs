@@ -170,6 +170,27 @@ const FAST: bool = !cfg!(microraster_size);
 /// [`FrameState::classify`]: super::state::FrameState::classify
 pub(super) const LOOP_COUNTS_VISIBLE: bool = !crate::math::SPLIT;
 
+/// The binning loops count the visible triangles and their pairs in one
+/// sum, `VISIBLE` a triangle above the pairs: one 64-bit add a triangle
+/// (two instructions on a 32-bit core) rather than a saturating add and a
+/// memory increment. At most 2^16 triangles of at most 2^24 tiles each:
+/// the pairs stay below 2^40, and the count below 2^16. On ARMv6-M
+/// (`SPLIT`), whose 64-bit add costs it registers, the visible triangles
+/// are counted by `classify` and the pairs alone apart
+/// ([`LOOP_COUNTS_VISIBLE`]).
+const VISIBLE: u64 = 1 << 42;
+
+/// A binning loop's counts added to `tally` once, at its end: the visible
+/// triangles and pairs of `sum` ([`VISIBLE`]) and the pairs `pairs_sum`
+/// (which started at `tally.pairs`).
+#[inline(always)]
+fn close_tally(tally: &mut Tally, sum: u64, pairs_sum: u32) {
+    tally.fates[Fate::Visible as usize] += (sum / VISIBLE) as u32;
+    // Over every tile of the frame: saturate, never wrap.
+    let pairs = u32::try_from(sum % VISIBLE).unwrap_or(u32::MAX);
+    tally.pairs = pairs_sum.saturating_add(pairs);
+}
+
 /// [`bin_triangles`] for `u32` indices, out of line: in builds
 /// optimised for size, where the shared loop [`bin_other`] measured
 /// larger (the OLED firmware +120 B).
@@ -233,8 +254,7 @@ fn bin_fast<const TW: usize, const TH: usize>(
     let cols = ctx.grid.cols as usize;
     let verts = ctx.verts;
     let small = ctx.frame.small();
-    // The visible triangles and their pairs, as in `bin_culled`.
-    const VISIBLE: u64 = 1 << 42;
+    // The visible triangles and their pairs ([`VISIBLE`]).
     let mut tt = *t;
     let (mut sum, mut pairs_sum) = (0u64, tally.pairs);
     let mut rest = tris.iter();
@@ -295,9 +315,7 @@ fn bin_fast<const TW: usize, const TH: usize>(
         push_row_major(bins, (c0, c1), (r0, r1), cols, ctx.t0, k as u16);
     }
     *t = tt;
-    tally.fates[Fate::Visible as usize] += (sum / VISIBLE) as u32;
-    let pairs = u32::try_from(sum % VISIBLE).unwrap_or(u32::MAX);
-    tally.pairs = pairs_sum.saturating_add(pairs);
+    close_tally(tally, sum, pairs_sum);
 }
 
 /// Pushes triangle `k` into the tiles of columns `c0..c1` and rows
@@ -432,15 +450,7 @@ fn bin_culled<const TW: usize, const TH: usize, I: Copy + Into<u32>>(
     let (ctx, tris, hilbert, cull) = draw;
     let cols = ctx.grid.cols as usize;
     // Counted here and added once: `t` and `tally` live in the caller.
-    // The visible triangles and their pairs in one sum, `VISIBLE` a
-    // triangle above the pairs: one 64-bit add a triangle (two
-    // instructions on a 32-bit core) rather than a saturating add and a
-    // memory increment. At most 2^16 triangles of at most 2^24 tiles
-    // each: the pairs stay below 2^40, and the count below 2^16.
-    // On ARMv6-M (`SPLIT`), whose 64-bit add costs it registers, the
-    // visible triangles are counted by `classify` and the pairs alone here
-    // ([`LOOP_COUNTS_VISIBLE`]).
-    const VISIBLE: u64 = 1 << 42;
+    // The visible triangles and their pairs ([`VISIBLE`]).
     let mut tt = *t;
     let (mut sum, mut pairs_sum) = (0u64, tally.pairs);
     let small = ctx.frame.small();
@@ -484,10 +494,7 @@ fn bin_culled<const TW: usize, const TH: usize, I: Copy + Into<u32>>(
         tt += 1;
     }
     *t = tt;
-    tally.fates[Fate::Visible as usize] += (sum / VISIBLE) as u32;
-    // Over every tile of the frame: saturate, never wrap.
-    let pairs = u32::try_from(sum % VISIBLE).unwrap_or(u32::MAX);
-    tally.pairs = pairs_sum.saturating_add(pairs);
+    close_tally(tally, sum, pairs_sum);
 }
 
 #[cfg(test)]
