@@ -26,6 +26,30 @@ fn needs_uv_texture(draw: &Draw<'_>) -> Result<(), ShaderError> {
     }
 }
 
+/// The span methods of [`Textured`] (`$lit` false) and [`TexturedLit`]
+/// (true): one loop per kind of texture ([`Texture::sampler`]), decided once
+/// per triangle and tile; an `Rgb565` texel goes to the target as it is
+/// ([`FromTexel`]), and the light's product is taken in 8 bits per channel,
+/// as `fragment` takes it: the same colours, whatever the target.
+macro_rules! textured_span_methods {
+    ($lit:literal) => {
+        #[inline(always)]
+        fn shade_span(&self, span: SpanInput<'_, C, [I16F16; 2]>) -> u32
+        where
+            C: Copy + From<Rgb888> + Into<Rgb888>,
+        {
+            textured_span::<C, $lit>(span)
+        }
+        #[inline(always)]
+        fn shade_spans(&self, spans: TriangleSpans<'_, C, [I16F16; 2]>) -> u32
+        where
+            C: Copy + From<Rgb888> + Into<Rgb888>,
+        {
+            textured_spans::<C, $lit>(spans)
+        }
+    };
+}
+
 /// The draw's texture at the interpolated texture coordinates, unlit.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Textured;
@@ -45,24 +69,7 @@ impl<C: FromTexel> FragmentShader<C> for Textured {
         let [r, g, b] = f.texture?.sample(f.varyings[0], f.varyings[1]);
         Some(C::from(Rgb888::new(r, g, b)))
     }
-    /// One loop per kind of texture ([`Texture::sampler`]); an `Rgb565`
-    /// texel goes to the target as it is ([`FromTexel`]).
-    #[inline(always)]
-    fn shade_span(&self, span: SpanInput<'_, C, [I16F16; 2]>) -> u32
-    where
-        C: Copy + From<Rgb888> + Into<Rgb888>,
-    {
-        textured_span::<C, false>(span)
-    }
-    /// [`shade_span`](FragmentShader::shade_span) with the texture's kind
-    /// decided once per triangle and tile.
-    #[inline(always)]
-    fn shade_spans(&self, spans: TriangleSpans<'_, C, [I16F16; 2]>) -> u32
-    where
-        C: Copy + From<Rgb888> + Into<Rgb888>,
-    {
-        textured_spans::<C, false>(spans)
-    }
+    textured_span_methods!(false);
 }
 
 /// A colour from its bytes.
@@ -103,25 +110,7 @@ impl<C: FromTexel> FragmentShader<C> for TexturedLit {
         let t = f.texture?.sample(f.varyings[0], f.varyings[1]);
         Some(rgb(modulate(t, f.color)))
     }
-    /// One loop per kind of texture ([`Texture::sampler`]). The product is
-    /// taken in 8 bits per channel, as `fragment` takes it: the same
-    /// colours, whatever the target.
-    #[inline(always)]
-    fn shade_span(&self, span: SpanInput<'_, C, [I16F16; 2]>) -> u32
-    where
-        C: Copy + From<Rgb888> + Into<Rgb888>,
-    {
-        textured_span::<C, true>(span)
-    }
-    /// [`shade_span`](FragmentShader::shade_span) with the texture's kind
-    /// decided once per triangle and tile.
-    #[inline(always)]
-    fn shade_spans(&self, spans: TriangleSpans<'_, C, [I16F16; 2]>) -> u32
-    where
-        C: Copy + From<Rgb888> + Into<Rgb888>,
-    {
-        textured_spans::<C, true>(spans)
-    }
+    textured_span_methods!(true);
 }
 
 /// Depth as grey: white at depth `near`, black at `far` and beyond,
@@ -237,7 +226,7 @@ impl<C: From<Rgb888>> FragmentShader<C> for Flat {
     }
     #[inline(always)]
     fn fragment(&self, f: &Fragment<'_, [I16F16; 0]>) -> Option<C> {
-        Some(C::from(Rgb888::new(f.color[0], f.color[1], f.color[2])))
+        Some(rgb(f.color))
     }
     /// One colour, converted once per span.
     #[inline(always)]
@@ -266,7 +255,7 @@ impl<C: From<Rgb888> + 'static> FragmentShader<C> for Gouraud {
     }
     #[inline(always)]
     fn fragment(&self, f: &Fragment<'_, [I16F16; 0]>) -> Option<C> {
-        Some(C::from(Rgb888::new(f.color[0], f.color[1], f.color[2])))
+        Some(rgb(f.color))
     }
     /// The weights and the colour, no varyings.
     #[inline(always)]
