@@ -67,7 +67,10 @@ impl Recip16 {
         Self {
             d: d.get(),
             r,
-            s: t.saturating_sub(3),
+            // Masked (`t < 31`: the same value), so that the optimiser
+            // knows the shift below 32 and each digit's shift by it needs
+            // no mask of its own (ARMv6-M: two instructions a digit).
+            s: t.saturating_sub(3) & 31,
         }
     }
 
