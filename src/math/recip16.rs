@@ -67,7 +67,10 @@ impl Recip16 {
         Self {
             d: d.get(),
             r,
-            s: t.saturating_sub(3),
+            // Masked (`t < 31`: the same value), so that the optimiser
+            // knows the shift below 32 and each digit's shift by it needs
+            // no mask of its own (ARMv6-M: two instructions a digit).
+            s: t.saturating_sub(3) & 31,
         }
     }
 
@@ -160,14 +163,16 @@ const LOG2: [u8; 256] = {
 fn log2_small(d: NonZeroU32) -> u32 {
     let d = d.get();
     debug_assert!(d < 1 << 21);
-    let (v, base) = if d >> 13 != 0 {
-        (d >> 13, 13)
+    // The byte's place alone chosen, then one shift by it: one value
+    // out of the branches where there were two.
+    let base = if d >> 13 != 0 {
+        13
     } else if d >> 5 != 0 {
-        (d >> 5, 5)
+        5
     } else {
-        (d, 0)
+        0
     };
-    base + LOG2[v as usize & 0xff] as u32
+    base + LOG2[(d >> base) as usize & 0xff] as u32
 }
 
 /// `floor(2^31 / (2^15 + (i + 1) 2^7))` for `i` in `0..256`: [`recip31`]'s

@@ -250,7 +250,13 @@ impl SmallBasis {
         let m = n << 10;
         let q = m / d;
         let r = m - q * d;
-        let sign = n >> 31;
+        // `n`'s sign, read from `m` (the same bit: the shift loses none).
+        // The optimiser takes it as one bit-field extract of `n` and
+        // allocates the set-up's registers differently: Cortex-M3 `demo`
+        // 3,641,795 -> 3,637,327 instructions, `rock` 2,976,250 ->
+        // 2,972,752. (From the remainder's sign instead, which is `n`'s
+        // or 0, and a zero remainder gives 0 with either `half`: +33 K.)
+        let sign = m >> 31;
         // `half` with n's sign. `|area2| <= 2 * 1023^2` (edge vectors of at
         // most 1023 sub-pixels), so `|r| 2^10 + half <= (|area2| - 1) 2^10
         // + |area2| / 2 < 2^31`: no overflow.
