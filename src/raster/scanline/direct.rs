@@ -72,25 +72,24 @@ impl Direct {
     }
 }
 
-/// [`half`](super::half) for [`Direct`] edges: with `CLAMP`, the spans
-/// clipped to columns `x0..x1` (a triangle across its tile's side
-/// columns), without (a triangle within them; `x0` and `x1` unused).
+/// [`half`](super::half) for [`Direct`] edges: records the non-empty
+/// spans of rows `row..stop` in `out` from its start, and returns the
+/// slots left. With `CLAMP`, the spans clipped to columns `x0..x1` (a
+/// triangle across its tile's side columns), without (a triangle within
+/// them; `x0` and `x1` unused).
 #[inline(always)]
-#[allow(clippy::too_many_arguments)]
-pub(super) fn half_direct<const CLAMP: bool>(
-    out: &mut [Span],
-    n: usize,
+pub(super) fn half_direct<'a, const CLAMP: bool>(
+    out: &'a mut [Span],
     row: i32,
     stop: i32,
     left: &mut Direct,
     right: &mut Direct,
     x0: i32,
     x1: i32,
-) -> usize {
+) -> &'a mut [Span] {
     let (mut lm, ls, ld) = (left.m, left.s, left.d);
     let (mut rm, rs, rd) = (right.m, right.s, right.d);
-    let len = out.len();
-    let mut rest = &mut out[n.min(len)..];
+    let mut rest = out;
     for j in row..stop {
         // Below 2^29 / 16: the casts keep the value.
         let (c0, c1) = ((lm / ld) as i32, (rm / rd) as i32);
@@ -106,7 +105,7 @@ pub(super) fn half_direct<const CLAMP: bool>(
         // Written whether empty or not, kept only if not: no branch.
         let r = core::mem::take(&mut rest);
         let Some(o) = r.first_mut() else {
-            // No slot left: the caller's rows never exceed them.
+            // No slot left.
             break;
         };
         *o = s;
@@ -116,5 +115,5 @@ pub(super) fn half_direct<const CLAMP: bool>(
         rm = rm.wrapping_add(rs);
     }
     (left.m, right.m) = (lm, rm);
-    len - rest.len()
+    rest
 }

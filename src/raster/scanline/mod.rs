@@ -169,10 +169,6 @@ fn find_spans_with<const DIRECT: bool>(
             return 0;
         }
     }
-    // At most one span per row of `out`.
-    if (row_end - row_top) as usize > out.len() {
-        row_end = row_top + out.len() as i32;
-    }
     // Whether every span lies within the clip's columns: its columns are
     // those of the edges between the vertices, so the vertices' extent
     // bounds them. A triangle inside its tile's columns (most of a mesh's
@@ -204,51 +200,38 @@ fn find_spans_with<const DIRECT: bool>(
     };
     let (x0, x1) = (clip.x0, clip.x1);
     if DIRECT {
-        // As below, for `Direct` edges: the clip's columns within
-        // `0..DIRECT_COLS` and the triangle below `DIRECT_DY`.
-        let outside = clip.x0
-            | (DIRECT_COLS - 1).wrapping_sub(clip.x1)
-            | (DIRECT_DY - 1 - (c.y - a.y))
-            | a.x.wrapping_sub(lo)
-            | b.x.wrapping_sub(lo)
-            | c.x.wrapping_sub(lo)
-            | hi.wrapping_sub(a.x)
-            | hi.wrapping_sub(b.x)
-            | hi.wrapping_sub(c.x);
-        let inside = outside >= 0;
-        // Otherwise the vertices within `-7..DIRECT_COLS * SUBPIXEL - 8`
-        // (`x + 7` within `0..2^14`) and the height below `DIRECT_DY`.
-        let direct = inside || {
-            let w = (a.x + (HALF_PIXEL - 1))
-                | (b.x + (HALF_PIXEL - 1))
-                | (c.x + (HALF_PIXEL - 1))
-                | ((c.y - a.y) >> 1);
-            (w as u32) >> 14 == 0
-        };
-        if direct {
-            // The orientation in `i32`: x differences below 2^14, y
-            // differences below 2^15.
-            let long_on_left = (b.x - a.x) * (c.y - a.y) > (c.x - a.x) * (b.y - a.y);
-            let long = Direct::new(a, c, row_top);
-            let short = Direct::new(p, q, row_top);
-            let (mut left, mut right) = sides(long_on_left, long, short);
-            let n = if inside {
-                half_direct::<false>(out, 0, row_top, stop, &mut left, &mut right, x0, x1)
+        // The vertices within `-7..DIRECT_COLS * SUBPIXEL - 8` (`x + 7`
+        // within `0..2^14`) and the height below `DIRECT_DY` (its half
+        // below 2^14).
+        const _: () = assert!(DIRECT_COLS * SUBPIXEL == 1 << 14 && DIRECT_DY == 1 << 15);
+        let w = (a.x + (HALF_PIXEL - 1))
+            | (b.x + (HALF_PIXEL - 1))
+            | (c.x + (HALF_PIXEL - 1))
+            | ((c.y - a.y) >> 1);
+        if (w as u32) >> 14 == 0 {
+            // Whether every span lies within the clip's columns (as
+            // below), with the clip's columns within `0..DIRECT_COLS`,
+            // which keeps `lo` and `hi` from wrapping.
+            let outside = clip.x0
+                | (DIRECT_COLS - 1).wrapping_sub(clip.x1)
+                | a.x.wrapping_sub(lo)
+                | b.x.wrapping_sub(lo)
+                | c.x.wrapping_sub(lo)
+                | hi.wrapping_sub(a.x)
+                | hi.wrapping_sub(b.x)
+                | hi.wrapping_sub(c.x);
+            return if outside >= 0 {
+                walk_direct::<false>(a, b, c, (row_top, stop, row_end), (p, q), x0, x1, out)
             } else {
-                half_direct::<true>(out, 0, row_top, stop, &mut left, &mut right, x0, x1)
-            };
-            if stop >= row_end {
-                return n;
-            }
-            // The lower half, from `stop == row_mid`.
-            replace_short(long_on_left, Direct::new(b, c, stop), &mut left, &mut right);
-            return if inside {
-                half_direct::<false>(out, n, stop, row_end, &mut left, &mut right, x0, x1)
-            } else {
-                half_direct::<true>(out, n, stop, row_end, &mut left, &mut right, x0, x1)
+                walk_direct::<true>(a, b, c, (row_top, stop, row_end), (p, q), x0, x1, out)
             };
         }
     }
+    // At most one span per row of `out`.
+    if (row_end - row_top) as usize > out.len() {
+        row_end = row_top + out.len() as i32;
+    }
+    let stop = stop.min(row_end);
     let outside = clip.x0
         | (PACKED_COLS - 1).wrapping_sub(clip.x1)
         | (PACKED_DY - (c.y - a.y))
@@ -327,6 +310,39 @@ fn find_spans_with<const DIRECT: bool>(
     // The lower half, from `stop == row_mid`.
     lower_half(b, c, stop, long_on_left, &mut left, &mut right);
     half::<SLOTS_LEFT>(out, n, stop, row_end, &mut left, &mut right, x0, x1)
+}
+
+/// The walk of [`find_spans_with`] for a triangle `a, b, c` (sorted by
+/// y) within `0..DIRECT_COLS` as [`Direct`] edges: the rows
+/// `row_top..row_end`, the short edge `p -> q` down to `stop`, then `b ->
+/// c`. At most `out.len()` spans: a half stops when no slot is left.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+fn walk_direct<const CLAMP: bool>(
+    a: SubPoint,
+    b: SubPoint,
+    c: SubPoint,
+    (row_top, stop, row_end): (i32, i32, i32),
+    (p, q): (SubPoint, SubPoint),
+    x0: i32,
+    x1: i32,
+    out: &mut [Span],
+) -> usize {
+    // The orientation in `i32`: x differences below 2^14, y differences
+    // below 2^15.
+    let long_on_left = (b.x - a.x) * (c.y - a.y) > (c.x - a.x) * (b.y - a.y);
+    let long = Direct::new(a, c, row_top);
+    let short = Direct::new(p, q, row_top);
+    let (mut left, mut right) = sides(long_on_left, long, short);
+    let len = out.len();
+    let rest = half_direct::<CLAMP>(out, row_top, stop, &mut left, &mut right, x0, x1);
+    if stop >= row_end {
+        return len - rest.len();
+    }
+    // The lower half, from `stop == row_mid`.
+    replace_short(long_on_left, Direct::new(b, c, stop), &mut left, &mut right);
+    let rest = half_direct::<CLAMP>(rest, stop, row_end, &mut left, &mut right, x0, x1);
+    len - rest.len()
 }
 
 /// Marks the path that calls it as rarely taken (as `core::hint::cold_path`
