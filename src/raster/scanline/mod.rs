@@ -190,12 +190,6 @@ fn find_spans_with<const DIRECT: bool>(
         clip.x0.wrapping_mul(SUBPIXEL).wrapping_sub(HALF_PIXEL - 1),
         clip.x1.wrapping_mul(SUBPIXEL).wrapping_add(HALF_PIXEL),
     );
-    // The short edge of the first row, and where its half ends.
-    let ((p, q), stop) = if row_top < row_mid {
-        ((a, b), row_mid.min(row_end))
-    } else {
-        ((b, c), row_end)
-    };
     let (x0, x1) = (clip.x0, clip.x1);
     if DIRECT {
         // The vertices within `-7..DIRECT_COLS * SUBPIXEL - 8` (`x + 7`
@@ -219,9 +213,9 @@ fn find_spans_with<const DIRECT: bool>(
                 | hi.wrapping_sub(b.x)
                 | hi.wrapping_sub(c.x);
             return if outside >= 0 {
-                walk_direct::<false>(a, b, c, (row_top, stop, row_end), (p, q), x0, x1, out)
+                walk_direct::<false>(a, b, c, (row_top, row_mid, row_end), x0, x1, out)
             } else {
-                walk_direct::<true>(a, b, c, (row_top, stop, row_end), (p, q), x0, x1, out)
+                walk_direct::<true>(a, b, c, (row_top, row_mid, row_end), x0, x1, out)
             };
         }
     }
@@ -229,7 +223,12 @@ fn find_spans_with<const DIRECT: bool>(
     if (row_end - row_top) as usize > out.len() {
         row_end = row_top + out.len() as i32;
     }
-    let stop = stop.min(row_end);
+    // The short edge of the first row, and where its half ends.
+    let ((p, q), stop) = if row_top < row_mid {
+        ((a, b), row_mid.min(row_end))
+    } else {
+        ((b, c), row_end)
+    };
     let outside = clip.x0
         | (PACKED_COLS - 1).wrapping_sub(clip.x1)
         | (PACKED_DY - (c.y - a.y))
@@ -312,16 +311,15 @@ fn find_spans_with<const DIRECT: bool>(
 
 /// The walk of [`find_spans_with`] for a triangle `a, b, c` (sorted by
 /// y) within `0..DIRECT_COLS` as [`Direct`] edges: the rows
-/// `row_top..row_end`, the short edge `p -> q` down to `stop`, then `b ->
-/// c`. At most `out.len()` spans: a half stops when no slot is left.
+/// `row_top..row_end`, the short edge `a -> b` above `row_mid`, then `b
+/// -> c`. At most `out.len()` spans: a half stops when no slot is left.
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
 fn walk_direct<const CLAMP: bool>(
     a: SubPoint,
     b: SubPoint,
     c: SubPoint,
-    (row_top, stop, row_end): (i32, i32, i32),
-    (p, q): (SubPoint, SubPoint),
+    (row_top, row_mid, row_end): (i32, i32, i32),
     x0: i32,
     x1: i32,
     out: &mut [Span],
@@ -330,6 +328,12 @@ fn walk_direct<const CLAMP: bool>(
     // below 2^15.
     let long_on_left = (b.x - a.x) * (c.y - a.y) > (c.x - a.x) * (b.y - a.y);
     let long = Direct::new(a, c, row_top);
+    // The short edge of the first row, and where its half ends.
+    let ((p, q), stop) = if row_top < row_mid {
+        ((a, b), row_mid.min(row_end))
+    } else {
+        ((b, c), row_end)
+    };
     let short = Direct::new(p, q, row_top);
     let (mut left, mut right) = sides(long_on_left, long, short);
     let len = out.len();
