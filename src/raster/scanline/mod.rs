@@ -196,22 +196,16 @@ fn find_spans_with<const DIRECT: bool>(
         // within `0..2^14`) and the height below `DIRECT_DY` (its half
         // below 2^14).
         const _: () = assert!(DIRECT_COLS * SUBPIXEL == 1 << 14 && DIRECT_DY == 1 << 15);
-        let w = (a.x + (HALF_PIXEL - 1))
-            | (b.x + (HALF_PIXEL - 1))
-            | (c.x + (HALF_PIXEL - 1))
-            | ((c.y - a.y) >> 1);
+        let (xmin, xmax) = (a.x.min(b.x).min(c.x), a.x.max(b.x).max(c.x));
+        let w = (xmin + (HALF_PIXEL - 1)) | (xmax + (HALF_PIXEL - 1)) | ((c.y - a.y) >> 1);
         if (w as u32) >> 14 == 0 {
             // Whether every span lies within the clip's columns (as
             // below), with the clip's columns within `0..DIRECT_COLS`,
             // which keeps `lo` and `hi` from wrapping.
             let outside = clip.x0
                 | (DIRECT_COLS - 1).wrapping_sub(clip.x1)
-                | a.x.wrapping_sub(lo)
-                | b.x.wrapping_sub(lo)
-                | c.x.wrapping_sub(lo)
-                | hi.wrapping_sub(a.x)
-                | hi.wrapping_sub(b.x)
-                | hi.wrapping_sub(c.x);
+                | xmin.wrapping_sub(lo)
+                | hi.wrapping_sub(xmax);
             return if outside >= 0 {
                 walk_direct::<false>(a, b, c, (row_top, row_mid, row_end), x0, x1, out)
             } else {
