@@ -167,31 +167,12 @@ fn find_spans_with<const DIRECT: bool>(
             return 0;
         }
     }
-    // Whether every span lies within the clip's columns: its columns are
-    // those of the edges between the vertices, so the vertices' extent
-    // bounds them. A triangle inside its tile's columns (most of a mesh's
-    // small ones) then takes a row loop with no clamps, whose two fewer
-    // live values spare it loads from the stack on a 32-bit core. On
-    // x86-64 that loop without packing measured slower (`demo` +0.8 %,
-    // `fill` +3.6 %), packed faster: `demo` 4,701,139 -> 4,641,680
-    // instructions, `rock` 3,910,785 -> 3,860,305, `fill` 9.70 -> 9.81
-    // per pixel (its quads take the other loop, whose code moved).
-    //
-    // The loop without clamps also packs each edge's column and error
-    // term into one word ([`Packed`]), which needs the columns within
-    // `0..PACKED_COLS` and the edges at most `PACKED_DY` sub-pixels tall.
-    //
-    // A vertex at `x` keeps its edges' columns at or after `x0` when
-    // `x >= 16 x0 - 7` and at or before `x1` when `x <= 16 x1 + 8`. Each
-    // condition is the sign of a difference, tested at once: within the
-    // guard band only a clip far outside it could wrap a difference,
-    // and the column bounds then fail first.
-    let (lo, hi) = (
-        clip.x0.wrapping_mul(SUBPIXEL).wrapping_sub(HALF_PIXEL - 1),
-        clip.x1.wrapping_mul(SUBPIXEL).wrapping_add(HALF_PIXEL),
-    );
-    let (x0, x1) = (clip.x0, clip.x1);
     if DIRECT {
+        let (lo, hi) = (
+            clip.x0.wrapping_mul(SUBPIXEL).wrapping_sub(HALF_PIXEL - 1),
+            clip.x1.wrapping_mul(SUBPIXEL).wrapping_add(HALF_PIXEL),
+        );
+        let (x0, x1) = (clip.x0, clip.x1);
         // The vertices within `-7..DIRECT_COLS * SUBPIXEL - 8` (`x + 7`
         // within `0..2^14`) and the height below `DIRECT_DY` (its half
         // below 2^14).
@@ -217,12 +198,29 @@ fn find_spans_with<const DIRECT: bool>(
     if (row_end - row_top) as usize > out.len() {
         row_end = row_top + out.len() as i32;
     }
-    // The short edge of the first row, and where its half ends.
-    let ((p, q), stop) = if row_top < row_mid {
-        ((a, b), row_mid.min(row_end))
-    } else {
-        ((b, c), row_end)
-    };
+    // Whether every span lies within the clip's columns: its columns are
+    // those of the edges between the vertices, so the vertices' extent
+    // bounds them. A triangle inside its tile's columns (most of a mesh's
+    // small ones) then takes a row loop with no clamps, whose two fewer
+    // live values spare it loads from the stack on a 32-bit core. On
+    // x86-64 that loop without packing measured slower (`demo` +0.8 %,
+    // `fill` +3.6 %), packed faster: `demo` 4,701,139 -> 4,641,680
+    // instructions, `rock` 3,910,785 -> 3,860,305, `fill` 9.70 -> 9.81
+    // per pixel (its quads take the other loop, whose code moved).
+    //
+    // The loop without clamps also packs each edge's column and error
+    // term into one word ([`Packed`]), which needs the columns within
+    // `0..PACKED_COLS` and the edges at most `PACKED_DY` sub-pixels tall.
+    //
+    // A vertex at `x` keeps its edges' columns at or after `x0` when
+    // `x >= 16 x0 - 7` and at or before `x1` when `x <= 16 x1 + 8`. Each
+    // condition is the sign of a difference, tested at once: within the
+    // guard band only a clip far outside it could wrap a difference,
+    // and the column bounds then fail first.
+    let (lo, hi) = (
+        clip.x0.wrapping_mul(SUBPIXEL).wrapping_sub(HALF_PIXEL - 1),
+        clip.x1.wrapping_mul(SUBPIXEL).wrapping_add(HALF_PIXEL),
+    );
     let outside = clip.x0
         | (PACKED_COLS - 1).wrapping_sub(clip.x1)
         | (PACKED_DY - (c.y - a.y))
@@ -252,6 +250,13 @@ fn find_spans_with<const DIRECT: bool>(
                 | (hi - c.x)
                 >= 0
         };
+    // The short edge of the first row, and where its half ends.
+    let ((p, q), stop) = if row_top < row_mid {
+        ((a, b), row_mid.min(row_end))
+    } else {
+        ((b, c), row_end)
+    };
+    let (x0, x1) = (clip.x0, clip.x1);
     // (Where `DIRECT`, the direct walk took every triangle the packed one
     // could, but for one exactly `PACKED_DY` tall: none is packed, and
     // its code is left out.)
