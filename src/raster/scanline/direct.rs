@@ -1,0 +1,119 @@
+//! The scanline walk's edges evaluated row by row with one division each
+//! ([`Direct`]), and the row loop that divides ([`half_direct`]): how a
+//! core with a division instruction (the Cortex-M3 and M4) takes a
+//! triangle whose columns lie within `0..DIRECT_COLS`.
+//!
+//! An edge's column at a row is `ceil((x_edge(y_c) - ½) / 1)` in pixels,
+//! the ceiling of the numerator `N = (p.x - ½) dy + t dx` (`t` the row
+//! centre's offset below `p`) over `16 dy`. The stepped edges of
+//! [`EdgeStepper`](super::edge::EdgeStepper) and [`Packed`](super::packed::Packed)
+//! keep that quotient and its remainder, and set them up with a division
+//! for the step, a start from it, the sign of each tested; here the
+//! numerator itself is kept, biased to be non-negative, and divided at
+//! each row: its set-up is two multiplies, and a row's step one add and
+//! one division, where the stepper takes an add, a compare and a subtract.
+//! On the Cortex-M3 a division is one instruction (2 to 12 cycles).
+
+use crate::raster::{Span, SubPoint, HALF_PIXEL, SUBPIXEL};
+use core::num::NonZeroU32;
+
+/// Columns a [`Direct`] edge may take, `0..DIRECT_COLS`: its vertices'
+/// `x` within `-7..DIRECT_COLS * SUBPIXEL - 8`, so that `x + 8`, with
+/// the edge at most [`DIRECT_DY`] sub-pixels tall, keeps the numerator
+/// below 2^29.
+pub(super) const DIRECT_COLS: i32 = 1 << 10;
+
+/// Height in sub-pixels below which an edge can be [`Direct`].
+pub(super) const DIRECT_DY: i32 = 1 << 15;
+
+/// One edge being walked down the rows, as the numerator of its column
+/// at the current row: `m / d` is the column.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Direct {
+    /// `N + d - 1`, with `N = (p.x - ½) dy + t dx` the edge's numerator
+    /// at the current row: `floor(m / d) = ceil(N / d)`. Non-negative
+    /// at every row of the edge, where `x_edge >= -7` sub-pixels makes
+    /// `N > -d`.
+    m: u32,
+    /// `SUBPIXEL * dx`: the numerator's step per row (wrapping: `dx` may
+    /// be negative).
+    s: u32,
+    /// `SUBPIXEL * dy`.
+    d: NonZeroU32,
+}
+
+impl Direct {
+    /// Starts the edge `p -> q` (`q.y > p.y`) at pixel row `row`, whose
+    /// centre lies within the edge's rows (`p.y <= y_c < q.y`). The
+    /// vertices' `x` must lie within `-7..DIRECT_COLS * SUBPIXEL - 8` and
+    /// the edge's height below [`DIRECT_DY`].
+    ///
+    /// Any row: with `0 <= t < dy < 2^15`, `|dx| < 2^14` and
+    /// `0 < p.x + 8 <= 2^14`, both products are below 2^29.
+    #[inline(always)]
+    pub(super) fn new(p: SubPoint, q: SubPoint, row: i32) -> Self {
+        let dx = q.x - p.x;
+        let dy = q.y - p.y;
+        debug_assert!(dy > 0 && dy < DIRECT_DY);
+        debug_assert!(p.x >= 1 - HALF_PIXEL && p.x <= DIRECT_COLS * SUBPIXEL - HALF_PIXEL);
+        let t = row * SUBPIXEL + HALF_PIXEL - p.y;
+        debug_assert!(t >= 0 && t < dy);
+        // (p.x - ½) dy + t dx + 16 dy - 1.
+        let m = (p.x + HALF_PIXEL) * dy + t * dx - 1;
+        debug_assert!(m >= 0);
+        let d = (dy * SUBPIXEL) as u32;
+        Self {
+            m: m as u32,
+            s: (dx * SUBPIXEL) as u32,
+            // dy > 0 (the caller walks edges downwards); the fallback only
+            // spares the divisions their checks.
+            d: NonZeroU32::new(d).unwrap_or(NonZeroU32::MIN),
+        }
+    }
+}
+
+/// [`half`](super::half) for [`Direct`] edges: records the non-empty
+/// spans of rows `row..stop` in `out` from its start, and returns the
+/// slots left. With `CLAMP`, the spans clipped to columns `x0..x1` (a
+/// triangle across its tile's side columns), without (a triangle within
+/// them; `x0` and `x1` unused).
+#[inline(always)]
+pub(super) fn half_direct<'a, const CLAMP: bool>(
+    out: &'a mut [Span],
+    row: i32,
+    stop: i32,
+    left: &mut Direct,
+    right: &mut Direct,
+    x0: i32,
+    x1: i32,
+) -> &'a mut [Span] {
+    let (mut lm, ls, ld) = (left.m, left.s, left.d);
+    let (mut rm, rs, rd) = (right.m, right.s, right.d);
+    let mut rest = out;
+    for j in row..stop {
+        // Below 2^29 / 16: the casts keep the value.
+        let (c0, c1) = ((lm / ld) as i32, (rm / rd) as i32);
+        let s = if CLAMP {
+            Span {
+                j,
+                x0: c0.max(x0),
+                x1: c1.min(x1),
+            }
+        } else {
+            Span { j, x0: c0, x1: c1 }
+        };
+        // Written whether empty or not, kept only if not: no branch.
+        let r = core::mem::take(&mut rest);
+        let Some(o) = r.first_mut() else {
+            // No slot left.
+            break;
+        };
+        *o = s;
+        rest = if s.x0 < s.x1 { &mut r[1..] } else { r };
+        // Past the edge's last row the numerator is never divided.
+        lm = lm.wrapping_add(ls);
+        rm = rm.wrapping_add(rs);
+    }
+    (left.m, right.m) = (lm, rm);
+    rest
+}
