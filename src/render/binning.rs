@@ -276,14 +276,29 @@ fn bin_fast<const TW: usize, const TH: usize>(
             if sv[0].outcode() | sv[1].outcode() | sv[2].outcode() != 0 {
                 break Err((k, idx));
             }
-            let v = [sv[0].xy(), sv[1].xy(), sv[2].xy()];
-            if !keeps_banded(cull, &v, small) {
-                continue;
-            }
-            let r = centres(&v);
+            let r = if WORDS {
+                let w = [sv[0].xy_words(), sv[1].xy_words(), sv[2].xy_words()];
+                let keep = keeps_words(cull, &w);
+                debug_assert_eq!(
+                    keep,
+                    keeps_banded(cull, &[sv[0].xy(), sv[1].xy(), sv[2].xy()], small)
+                );
+                if !keep {
+                    continue;
+                }
+                centres_words(&w)
+            } else {
+                let v = [sv[0].xy(), sv[1].xy(), sv[2].xy()];
+                if !keeps_banded(cull, &v, small) {
+                    continue;
+                }
+                centres(&v)
+            };
             debug_assert!({
+                let v = [sv[0].xy(), sv[1].xy(), sv[2].xy()];
                 let f = &ctx.frame.frame;
-                r == super::state::meet(&super::state::reach(&v, 0), f) || r.is_empty()
+                r == centres(&v)
+                    && (r == super::state::meet(&super::state::reach(&v, 0), f) || r.is_empty())
             });
             if r.is_empty() {
                 continue;
@@ -373,6 +388,56 @@ fn centres(v: &[SubPoint; 3]) -> PixelRect {
     debug_assert!(x1 == first_centre_at_or_after(v[0].x.max(v[1].x).max(v[2].x)));
     debug_assert!(y0 == first_centre_at_or_after(v[0].y.min(v[1].y).min(v[2].y)));
     debug_assert!(y1 == first_centre_at_or_after(v[0].y.max(v[1].y).max(v[2].y)));
+    PixelRect::new(x0, y0, x1, y1)
+}
+
+/// Whether [`bin_fast`] culls and bounds a triangle from its vertices'
+/// words ([`ScreenVertex::xy_words`], [`keeps_words`], [`centres_words`])
+/// rather than from their coordinates: not on ARMv6-M, whose `i32` area
+/// (see [`keeps_banded`]) takes the coordinates themselves.
+const WORDS: bool = !crate::math::SPLIT;
+
+/// [`keeps_banded`] (on cores with a long multiply) of a triangle whose
+/// three outcodes are 0, from its vertices' words `w` ([`ScreenVertex::xy_words`]):
+/// each x word is then `x 2^8` exactly, so an x difference is one
+/// subtraction of words (`2^8` times the coordinates'), y's the difference
+/// of the words shifted by 9 (an operand shift on Thumb-2). Both products
+/// of the area are `2^8` times the coordinates' (x within `±2^18`, so below
+/// `2^46`), so they compare as those do.
+#[inline(always)]
+fn keeps_words(cull: CullMode, w: &[(i32, i32); 3]) -> bool {
+    let (x1, y1) = (w[1].0 - w[0].0, (w[1].1 >> 9) - (w[0].1 >> 9));
+    let (x2, y2) = (w[2].0 - w[0].0, (w[2].1 >> 9) - (w[0].1 >> 9));
+    let (p, q) = (crate::math::mul_wide(x1, y2), crate::math::mul_wide(x2, y1));
+    match cull {
+        CullMode::None => p != q,
+        CullMode::Back => p < q,
+        CullMode::Front => p > q,
+    }
+}
+
+/// [`centres`] of a triangle whose three outcodes are 0, from its
+/// vertices' words `w` ([`ScreenVertex::xy_words`]), without shifting
+/// each coordinate out: the least and greatest x word are `2^8` times the
+/// least and greatest x, so `(x + 7) >> 4` is `(word + 7 2^8) >> 12`;
+/// a y word is `y 2^9 + l` with `0 <= l < 2^9`, so the least and greatest
+/// word hold the least and greatest y, and `(word + 7 2^9) >> 13` is
+/// `floor((y + 7 + l / 2^9) / 16)`, which is `(y + 7) >> 4` (`y + 7` is
+/// an integer and `l / 2^9 < 1`). The words are within `±2^27`: no
+/// overflow.
+#[inline(always)]
+fn centres_words(w: &[(i32, i32); 3]) -> PixelRect {
+    const UP: i32 = HALF_PIXEL - 1;
+    let axis = |a: i32, b: i32, c: i32, s: u32| {
+        let (lo, hi) = (a.min(b).min(c), a.max(b).max(c));
+        let up = UP << s;
+        (
+            (lo + up) >> (SUBPIXEL_BITS + s),
+            (hi + up) >> (SUBPIXEL_BITS + s),
+        )
+    };
+    let (x0, x1) = axis(w[0].0, w[1].0, w[2].0, 8);
+    let (y0, y1) = axis(w[0].1, w[1].1, w[2].1, 9);
     PixelRect::new(x0, y0, x1, y1)
 }
 
