@@ -201,9 +201,38 @@ impl<'p> Pass<'p> {
     /// exhausted, the pass gives up its last tile, whose chunks go back to
     /// the pool, until a chunk is found; `None` when tile `k` itself had to
     /// go.
+    ///
+    /// Out of line; where not optimised for size, a chunk never used
+    /// before (every chunk of a pass that does not run dry: its only case)
+    /// is linked here and the rest is a function of its own, so that this
+    /// one saves and loads few registers (about 30 instructions a new
+    /// chunk the Cortex-M3 spent on the whole function's prologue and
+    /// loads).
     #[cold]
     #[inline(never)]
     fn grow(&mut self, k: usize) -> Option<usize> {
+        if !cfg!(microraster_size) && self.fresh < self.chunks {
+            // `k` is held, and a tail lies in the pool: neither `get`
+            // fails (and none would take a chunk).
+            let c = self.fresh;
+            let at = match self.tails.get(k) {
+                Some(&EMPTY) => self.heads.get_mut(k),
+                Some(&tail) => self.pool.get_mut(tail as usize),
+                None => None,
+            };
+            *at? = c;
+            self.fresh += 1;
+            return Some(c as usize * CHUNK);
+        }
+        self.grow_apart(k)
+    }
+
+    /// [`grow`](Self::grow)'s general case: a chunk from the free list, or
+    /// the pass's last tiles given up until one is found.
+    #[cold]
+    #[cfg_attr(microraster_size, inline(always))]
+    #[cfg_attr(not(microraster_size), inline(never))]
+    fn grow_apart(&mut self, k: usize) -> Option<usize> {
         loop {
             if let Some(c) = self.alloc() {
                 let tail = self.tails[k];
