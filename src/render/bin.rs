@@ -66,6 +66,19 @@ impl<'w> Bins<'w> {
         self.held
     }
 
+    /// Whether tile `k` of the last pass holds no triangle (`iter(k)`
+    /// empty): a tile is given a chunk only with its first entry. Its tail
+    /// alone, without [`iter`](Self::iter)'s set-up (about 45 instructions
+    /// on the Cortex-M3, for each tile the frame's tile stream looks at).
+    pub(super) fn is_empty(&self, k: usize) -> bool {
+        let empty = match self.tails.get(k) {
+            Some(&tail) if k < self.held => tail == EMPTY,
+            _ => true,
+        };
+        debug_assert_eq!(empty, self.iter(k).is_empty());
+        empty
+    }
+
     /// The triangles of tile `k` of the last pass, in submission order.
     pub(super) fn iter(&self, k: usize) -> BinIter<'_> {
         let tail = if k < self.held { self.tails[k] } else { EMPTY };
