@@ -299,7 +299,7 @@ where
     /// empty (`cheap`) or not (`!cheap`), or the pass's length if none
     /// is. A rescanned tile counts as dear.
     fn seek(&self, mut k: usize, cheap: bool) -> usize {
-        while k < self.len && (!self.rescan && self.bins.iter(k).is_empty()) != cheap {
+        while k < self.len && (!self.rescan && self.bins.is_empty(k)) != cheap {
             k += 1;
         }
         k

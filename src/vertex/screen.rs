@@ -203,6 +203,16 @@ impl ScreenVertex {
         self.yr as i32 >> 9
     }
 
+    /// The words that hold x and y, as they are: x times 2^8 plus the
+    /// outcode, and y times 2^9 plus the interior bit and red (so `x()`
+    /// is the first `>> 8` and `y()` the second `>> 9`). For binning's
+    /// common loop, which culls and bounds a triangle whose outcodes are
+    /// 0 from them without shifting each coordinate out.
+    #[inline(always)]
+    pub(crate) const fn xy_words(&self) -> (i32, i32) {
+        (self.xo as i32, self.yr as i32)
+    }
+
     /// Whether depth is in `2..=65533` and every colour channel in
     /// `1..=254` (always false in the builds that do not use it, the
     /// Cortex-M4F's and those optimised for size): a triangle whose three vertices have this bit set has
