@@ -5,7 +5,9 @@ use super::Features;
 use crate::raster::scanline;
 use crate::raster::{hilbert, PixelRect, Rasterizer, Span, SubPoint};
 use crate::shade::perspective::{Output, PerspectiveSetup, ShaderTriangle};
-use crate::shade::{span_flat, span_gouraud, Corners, DepthFn, DepthTest, SpanPos, TriangleSetup};
+use crate::shade::{
+    span_flat, span_gouraud, Corners, DepthFn, DepthTest, SpanPos, TriangleSetup, SPLIT_INTERIOR,
+};
 use crate::shader::{FragmentShader, Perspective, ShaderSet, TriangleSpans};
 use crate::texture::Texture;
 use crate::tile::TileBuffer;
@@ -230,9 +232,16 @@ where
     // passed for every pair.
     let [r, g, b] = sv[0].color();
     let flat = crate::shade::rgb::<C>(r, g, b);
+    if GOURAUD && SPLIT_INTERIOR && setup.interior() {
+        // Tested once, not at every span start (the interior bit is
+        // never set where the vertex stage does not make it: no copy).
+        return each_span::<C, GOURAUD, TW, TH>(tile, rect, found, |color, depth, sp, n| {
+            span_gouraud::<C, D, WRITE, true>(dt, setup, corners, color, depth, sp, n)
+        });
+    }
     each_span::<C, GOURAUD, TW, TH>(tile, rect, found, |color, depth, sp, n| {
         if GOURAUD {
-            span_gouraud::<C, D, WRITE>(dt, setup, corners, color, depth, sp, n)
+            span_gouraud::<C, D, WRITE, false>(dt, setup, corners, color, depth, sp, n)
         } else {
             n + span_flat::<C, D, WRITE>(dt, setup, corners, flat, color, depth, sp)
         }

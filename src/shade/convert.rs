@@ -155,10 +155,37 @@ pub(crate) fn rgb_scalar<C: From<Rgb888> + 'static>(r: u8, g: u8, b: u8) -> C {
     }
 }
 
-/// [`rgb`] of channels in 8.16 fixed point, truncated to their integer
-/// byte (`(c >> 16) as u8`, as the Gouraud span loops take them).
+/// How far [`rgb16_green_up`] takes green up: 256 in its integer part,
+/// the offset of the 6-bit half of `TO565`.
+pub(crate) const GREEN_UP: u32 = 256 << 16;
+
+/// [`rgb`] of the integer bytes of `r`, `g - GREEN_UP` and `b`, channels
+/// in 8.16 fixed point (`(c >> 16) as u8`, as the Gouraud span loops take
+/// them), for a green channel `g`
+/// within `GREEN_UP..GREEN_UP + 2^24` (8.16 fixed point, 256 added to its
+/// integer part): bits 16 to 24 of `g` are then the index of its 6-bit
+/// value in `TO565`, taken by one bit-field extract, where the channel's
+/// byte took an extract, and an add of 256 to the table's address (a
+/// register short of an instruction's offset) at every pixel. The low
+/// byte of that integer part is green's byte, so any other colour type
+/// converts the same byte.
 #[inline(always)]
-pub(crate) fn rgb16<C: From<Rgb888> + 'static>(r: i32, g: i32, b: i32) -> C {
+pub(crate) fn rgb16_green_up<C: From<Rgb888> + 'static>(r: u32, g: u32, b: u32) -> C {
+    #[cfg(any(test, not(target_pointer_width = "64")))]
+    {
+        let (r, g9, b) = ((r >> 16) as u8, (g >> 16) as usize & 511, (b >> 16) as u8);
+        let bits = || RawU16::new((to5(r) << 11) | ((TO565[g9] as u16) << 5) | to5(b));
+        let c = TypeId::of::<C>();
+        let table = if c == TypeId::of::<Rgb565>() {
+            cast(Rgb565::from(bits()))
+        } else if c == TypeId::of::<Rgb565Be>() {
+            cast(Rgb565Be::from(bits()))
+        } else {
+            None
+        };
+        table.unwrap_or_else(|| C::from(Rgb888::new(r, g9 as u8, b)))
+    }
+    #[cfg(not(any(test, not(target_pointer_width = "64"))))]
     rgb((r >> 16) as u8, (g >> 16) as u8, (b >> 16) as u8)
 }
 
@@ -203,9 +230,24 @@ mod tests {
             assert_eq!(rgb::<Gray4>(r, g, b), e);
             assert_eq!(rgb::<Rgb888>(r, g, b), Rgb888::new(r, g, b));
         }
-        assert_eq!(
-            rgb16::<Rgb565>(200 << 16 | 0xffff, 3 << 16, 255 << 16 | 0x8000),
-            Rgb565::from(Rgb888::new(200, 3, 255))
-        );
+    }
+
+    /// [`rgb16_green_up`] (its table path, which the tests take on every
+    /// target) converts the channels' integer bytes as [`rgb`] does, for
+    /// every green byte, in every format, whatever the fraction bits.
+    #[test]
+    fn green_up_converts_the_bytes() {
+        for v in 0..=255u32 {
+            let (r, b) = (255 - v, (v * 7) & 255);
+            for frac in [0, 1, 0x8000, 0xffff] {
+                let up = |c: u32| (c << 16) | frac;
+                let g = up(v) + GREEN_UP;
+                let (r8, g8, b8) = (r as u8, v as u8, b as u8);
+                assert_eq!(rgb16_green_up::<Rgb565>(up(r), g, up(b)), rgb(r8, g8, b8));
+                assert_eq!(rgb16_green_up::<Rgb565Be>(up(r), g, up(b)), rgb(r8, g8, b8));
+                assert_eq!(rgb16_green_up::<Gray4>(up(r), g, up(b)), rgb(r8, g8, b8));
+                assert_eq!(rgb16_green_up::<Rgb888>(up(r), g, up(b)), rgb(r8, g8, b8));
+            }
+        }
     }
 }

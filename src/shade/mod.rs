@@ -45,7 +45,8 @@ mod setup;
 mod sliver;
 mod small;
 
-pub(crate) use convert::{rgb, rgb16, rgb565_bits, rgb_scalar};
+pub(crate) use convert::{rgb, rgb565_bits, rgb_scalar};
+use convert::{rgb16_green_up, GREEN_UP};
 use embedded_graphics::pixelcolor::Rgb888;
 use plane::Basis;
 pub(crate) use setup::{Corners, TriangleSetup};
@@ -261,7 +262,12 @@ fn flat_run<C: Copy, D: DepthFn, const WRITE: bool>(
 /// fragments written before, plus its own. `s` is from
 /// [`TriangleSetup::for_spans`] (its depth step shifted).
 #[inline(always)]
-pub(crate) fn span_gouraud<C: Copy + From<Rgb888> + 'static, D: DepthFn, const WRITE: bool>(
+pub(crate) fn span_gouraud<
+    C: Copy + From<Rgb888> + 'static,
+    D: DepthFn,
+    const WRITE: bool,
+    const INTERIOR: bool,
+>(
     dt: D,
     s: &TriangleSetup,
     t: &Corners<'_>,
@@ -271,23 +277,23 @@ pub(crate) fn span_gouraud<C: Copy + From<Rgb888> + 'static, D: DepthFn, const W
     n: u32,
 ) -> u32 {
     let SpanPos { ox, j, x0, x1 } = sp;
+    let (a0, a1) = ((x0 - ox) as usize, (x1 - ox) as usize);
+    if !VECTOR_LOOPS {
+        // `INTERIOR` is the triangle's, tested once ([`SPLIT_INTERIOR`]).
+        let [z, r, g, b] = s.start_tested_as(t, x0, j, INTERIOR);
+        let [gz, gr, gg, gb] = s.steps();
+        // The depth step is shifted already ([`TriangleSetup::for_spans`]).
+        let (start, step) = loop_values(
+            [z << (16 - Z_FRAC), r, g, b].map(|v| v as u32),
+            [gz, gr, gg, gb].map(|v| v as u32),
+        );
+        return gouraud_loop::<C, D, WRITE>(dt, color, depth, (a0, a1), start, step, n);
+    }
     let [z, r, g, b] = s.start(t, x0, j);
     let z = (z as u32) << (16 - Z_FRAC);
     let [gz, gr, gg, gb] = s.steps();
     // Shifted already ([`TriangleSetup::for_spans`]).
     let gz = gz as u32;
-    let (a0, a1) = ((x0 - ox) as usize, (x1 - ox) as usize);
-    if !VECTOR_LOOPS {
-        return gouraud_loop::<C, D, WRITE>(
-            dt,
-            color,
-            depth,
-            (a0, a1),
-            [z, r as u32, g as u32, b as u32],
-            [gz, gr as u32, gg as u32, gb as u32],
-            n,
-        );
-    }
     // Never taken: the walk keeps only spans of a pixel or more. (The test
     // does not spare the loop its own test of an empty span, which the
     // remainder after the vector loop needs; but with it the set-up
@@ -321,7 +327,7 @@ pub(crate) fn span_gouraud<C: Copy + From<Rgb888> + 'static, D: DepthFn, const W
         (color, depth)
     };
     // The channels shifted left by 8 (wrapping, as `depth16` holds
-    // depth): the byte that `rgb16` takes, bits 16 to 23, is then the top
+    // depth): the byte that `rgb` takes, bits 16 to 23, is then the top
     // byte, taken by one shift and no mask; the wrapping steps keep
     // exactly the bits that matter.
     let [mut z, r, g, b] = start;
@@ -342,6 +348,35 @@ pub(crate) fn span_gouraud<C: Copy + From<Rgb888> + 'static, D: DepthFn, const W
         b = b.wrapping_add(gb);
     }
     n
+}
+
+/// Whether the Gouraud span loops of an [`interior`](TriangleSetup::interior)
+/// triangle are a copy of their own, [`span_gouraud`] with `INTERIOR`
+/// (targets without SIMD): the triangle tested once, not at every span
+/// start.
+pub(crate) const SPLIT_INTERIOR: bool = !VECTOR_LOOPS;
+
+/// On ARMv6-M the Gouraud loop holds the channels shifted left by 8
+/// (wrapping, as in `span_gouraud`'s remainder loop): the byte that
+/// `rgb` takes, bits 16 to 23, is then the top byte, taken by one shift
+/// and no `uxtb`. `(c << 8) + k (g << 8)` is `(c + k g) << 8` modulo
+/// 2^32, whose top byte is bits 16 to 23 of `c + k g`: the same bytes.
+const TOP_BYTE: bool = cfg!(microraster_narrow_multiply);
+
+/// The start and step of depth (shifted, see `depth16`), red, green and
+/// blue as [`gouraud_loop`] takes them: the channels shifted left by 8
+/// on ARMv6-M ([`TOP_BYTE`]), green raised by [`GREEN_UP`] elsewhere (see
+/// `rgb16_green_up`: a covered pixel's channel is within `0..256` units,
+/// see `Plane`, so its bits 16 to 24 are then its index in the 6-bit half
+/// of the table).
+#[inline(always)]
+fn loop_values(start: [u32; 4], step: [u32; 4]) -> ([u32; 4], [u32; 4]) {
+    let ([z, r, g, b], [gz, gr, gg, gb]) = (start, step);
+    if TOP_BYTE {
+        ([z, r << 8, g << 8, b << 8], [gz, gr << 8, gg << 8, gb << 8])
+    } else {
+        ([z, r, g.wrapping_add(GREEN_UP), b], step)
+    }
 }
 
 /// The loop of [`span_gouraud`] on targets without SIMD: pixels `a0..a1`
@@ -378,17 +413,16 @@ fn gouraud_loop<C: Copy + From<Rgb888> + 'static, D: DepthFn, const WRITE: bool>
     step: [u32; 4],
     mut n: u32,
 ) -> u32 {
+    // As `loop_values` makes them.
     let [mut z, mut r, mut g, mut b] = start;
-    let [gz, mut gr, mut gg, mut gb] = step;
-    // On ARMv6-M the channels are held shifted left by 8 (wrapping, as in
-    // `span_gouraud`'s remainder loop): the byte that `rgb16` takes, bits
-    // 16 to 23, is then the top byte, taken by one shift and no `uxtb`.
-    // `(c << 8) + k (g << 8)` is `(c + k g) << 8` modulo 2^32, whose top
-    // byte is bits 16 to 23 of `c + k g`: the same bytes.
-    const TOP: bool = cfg!(microraster_narrow_multiply);
-    if TOP {
-        (r, g, b) = (r << 8, g << 8, b << 8);
-        (gr, gg, gb) = (gr << 8, gg << 8, gb << 8);
+    let [gz, gr, gg, gb] = step;
+    const TOP: bool = TOP_BYTE;
+    // Never taken: the walk keeps spans of a pixel or more, inside the
+    // tile. One test for the slices' ranges and the loop's first pixel,
+    // where the slices' checks and the loop's own test of an empty span
+    // took three.
+    if a0 >= a1 || a1 > color.len() || a1 > depth.len() {
+        return n;
     }
     let (color, depth) = (&mut color[a0..a1], &mut depth[a0..a1]);
     // Every fragment counted as written; those that fail are taken off.
@@ -404,7 +438,7 @@ fn gouraud_loop<C: Copy + From<Rgb888> + 'static, D: DepthFn, const WRITE: bool>
             *c = if TOP {
                 rgb::<C>((r >> 24) as u8, (g >> 24) as u8, (b >> 24) as u8)
             } else {
-                rgb16(r as i32, g as i32, b as i32)
+                rgb16_green_up(r, g, b)
             };
         } else {
             // Counted in `n` already: rare (see above). Not marked cold
@@ -1195,6 +1229,18 @@ mod tests {
                         if unclamped(reference) && unclamped(next) {
                             assert_eq!(next[a] - reference[a], steps[a], "{v:?} at ({x0}, {j})");
                         }
+                    }
+                }
+                // Every pixel's channels, stepped from the start, within
+                // `0..256` units: the Gouraud loop's table index of green
+                // raised by `GREEN_UP` relies on it (`rgb16_green_up`).
+                for k in 0..x1 - x0 {
+                    for a in 1..4 {
+                        let c = start[a].wrapping_add(steps[a].wrapping_mul(k));
+                        assert!(
+                            (0..256 << C_FRAC).contains(&c),
+                            "{v:?} at ({x0}, {j}) + {k}"
+                        );
                     }
                 }
                 pixels += (x1 - x0) as u64;

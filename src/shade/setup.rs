@@ -111,7 +111,7 @@ impl TriangleSetup {
     /// Whether the span starts may skip their clamps (see the field
     /// `interior`; never where the vertex stage does not make the bit).
     #[inline(always)]
-    pub(super) fn interior(&self) -> bool {
+    pub(crate) fn interior(&self) -> bool {
         #[cfg(microraster_interior)]
         return self.interior;
         #[cfg(not(microraster_interior))]
@@ -387,6 +387,20 @@ impl TriangleSetup {
     /// [`TriangleSetup::start`] with the values tested first.
     #[inline(always)]
     pub(super) fn start_tested(&self, t: &Corners<'_>, i: i32, j: i32) -> [i32; 4] {
+        self.start_tested_as(t, i, j, self.interior())
+    }
+
+    /// [`TriangleSetup::start_tested`] with [`interior`](Self::interior)
+    /// given: the span loops of a triangle that is not interior test it
+    /// once, not at every span start.
+    #[inline(always)]
+    pub(super) fn start_tested_as(
+        &self,
+        t: &Corners<'_>,
+        i: i32,
+        j: i32,
+        interior: bool,
+    ) -> [i32; 4] {
         if super::VECTOR_LOOPS && self.wide {
             // Where `start` takes `start_selects` (only the tests call this
             // there), `finish` leaves a wide triangle's depth plane as it
@@ -394,7 +408,7 @@ impl TriangleSetup {
             return wide_start(t, i, j);
         }
         let v = self.values_at(i, j);
-        if self.interior() || z_inside(v[0]) && c_inside(v[1]) && c_inside(v[2]) && c_inside(v[3]) {
+        if interior || z_inside(v[0]) && c_inside(v[1]) && c_inside(v[2]) && c_inside(v[3]) {
             v
         } else {
             // Marked rare, so that the register allocator favours the
