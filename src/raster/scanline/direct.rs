@@ -93,23 +93,22 @@ pub(super) fn half_direct<'a, const CLAMP: bool>(
     for j in row..stop {
         // Below 2^29 / 16: the casts keep the value.
         let (c0, c1) = ((lm / ld) as i32, (rm / rd) as i32);
-        let s = if CLAMP {
-            Span {
-                j,
-                x0: c0.max(x0),
-                x1: c1.min(x1),
-            }
+        let (x0, x1) = if CLAMP {
+            (c0.max(x0), c1.min(x1))
         } else {
-            Span { j, x0: c0, x1: c1 }
+            (c0, c1)
         };
-        // Written whether empty or not, kept only if not: no branch.
-        let r = core::mem::take(&mut rest);
-        let Some(o) = r.first_mut() else {
-            // No slot left.
-            break;
-        };
-        *o = s;
-        rest = if s.x0 < s.x1 { &mut r[1..] } else { r };
+        // Only a non-empty span takes a slot, and is written: an empty
+        // row (half the rows walked, at a triangle's tips) then costs a
+        // compare and a branch rather than the stores and the slot test.
+        if x0 < x1 {
+            let Some((o, r)) = core::mem::take(&mut rest).split_first_mut() else {
+                // No slot left.
+                break;
+            };
+            *o = Span { j, x0, x1 };
+            rest = r;
+        }
         // Past the edge's last row the numerator is never divided.
         lm = lm.wrapping_add(ls);
         rm = rm.wrapping_add(rs);
