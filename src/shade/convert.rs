@@ -41,31 +41,78 @@ const fn table() -> [u8; 512] {
     t
 }
 
-/// 8-bit channels to 5 bits, as embedded-graphics rounds them, then to 6
-/// bits: one table, so that the span loops, short of registers on the
-/// Cortex-M3, keep one address for both rather than rebuilding two at
-/// every pixel.
+/// An entry of [`TO565`]: 16 bits where its 6-bit half holds green
+/// already in its place (shifted left by 5), which spares a written
+/// Gouraud pixel the shift on Thumb-2 (a halfword load with its index
+/// shifted costs what a byte load does). Bytes in builds optimised for
+/// size (the build script's `microraster_size`), where the 512 bytes of
+/// table are worth more than the speed, and on ARMv6-M, whose loops take
+/// green from `TO6`.
+#[cfg(all(
+    any(test, not(target_pointer_width = "64")),
+    not(any(microraster_size, microraster_narrow_multiply))
+))]
+type Entry = u16;
+/// See the other `Entry`.
+#[cfg(all(
+    any(test, not(target_pointer_width = "64")),
+    any(microraster_size, microraster_narrow_multiply)
+))]
+type Entry = u8;
+
+/// How far the 6-bit half of [`TO565`] holds green shifted left: 5 with
+/// 16-bit entries (its place in the 16 bits), 0 with bytes.
 #[cfg(any(test, not(target_pointer_width = "64")))]
-static TO565: [u8; 512] = table();
+const GREEN_SHIFT: u32 = 5 * (core::mem::size_of::<Entry>() as u32 - 1);
+
+/// 8-bit channels to 5 bits, as embedded-graphics rounds them, then to 6
+/// bits (shifted by [`GREEN_SHIFT`]): one table, so that the span loops,
+/// short of registers on the Cortex-M3, keep one address for both rather
+/// than rebuilding two at every pixel.
+#[cfg(any(test, not(target_pointer_width = "64")))]
+static TO565: [Entry; 512] = {
+    let t = table();
+    let mut p = [0; 512];
+    let mut v = 0;
+    while v < 256 {
+        p[v] = t[v] as Entry;
+        // At most 63 << 5: within 16 bits.
+        p[256 + v] = (t[256 + v] as Entry) << GREEN_SHIFT;
+        v += 1;
+    }
+    p
+};
 
 /// 8-bit channel `v` to 5 bits.
 #[cfg(any(test, not(target_pointer_width = "64")))]
 #[inline(always)]
+// `Entry` is a byte in some builds: not always the same type.
+#[allow(clippy::useless_conversion)]
 fn to5(v: u8) -> u16 {
-    TO565[v as usize] as u16
+    u16::from(TO565[v as usize])
 }
 
-/// 8-bit channel `v` to 6 bits.
+/// Entry `i` of the 6-bit half of [`TO565`] (`256 + v` for channel `v`)
+/// in its place in the 16 bits, shifted left by 5.
 #[cfg(any(test, not(target_pointer_width = "64")))]
 #[inline(always)]
-fn to6(v: u8) -> u16 {
+// `Entry` is a byte in some builds: not always the same type.
+#[allow(clippy::useless_conversion)]
+fn green_placed(i: usize) -> u16 {
+    u16::from(TO565[i]) << (5 - GREEN_SHIFT)
+}
+
+/// 8-bit channel `v` to 6 bits, shifted left by 5 (its place).
+#[cfg(any(test, not(target_pointer_width = "64")))]
+#[inline(always)]
+fn to6_placed(v: u8) -> u16 {
     #[cfg(microraster_narrow_multiply)]
     {
-        TO6[v as usize] as u16
+        (TO6[v as usize] as u16) << 5
     }
     #[cfg(not(microraster_narrow_multiply))]
     {
-        TO565[256 + v as usize] as u16
+        green_placed(256 + v as usize)
     }
 }
 
@@ -113,7 +160,7 @@ pub(crate) fn rgb565_bits(r: u8, g: u8, b: u8) -> u16 {
     }
     #[cfg(not(target_pointer_width = "64"))]
     {
-        (to5(r) << 11) | (to6(g) << 5) | to5(b)
+        (to5(r) << 11) | to6_placed(g) | to5(b)
     }
 }
 
@@ -174,7 +221,7 @@ pub(crate) fn rgb16_green_up<C: From<Rgb888> + 'static>(r: u32, g: u32, b: u32) 
     #[cfg(any(test, not(target_pointer_width = "64")))]
     {
         let (r, g9, b) = ((r >> 16) as u8, (g >> 16) as usize & 511, (b >> 16) as u8);
-        let bits = || RawU16::new((to5(r) << 11) | ((TO565[g9] as u16) << 5) | to5(b));
+        let bits = || RawU16::new((to5(r) << 11) | green_placed(g9) | to5(b));
         let c = TypeId::of::<C>();
         let table = if c == TypeId::of::<Rgb565>() {
             cast(Rgb565::from(bits()))
@@ -202,7 +249,7 @@ mod tests {
         for v in 0..=255u8 {
             let e = Rgb565::from(Rgb888::new(v, v, v));
             assert_eq!(to5(v), e.r() as u16, "{v}");
-            assert_eq!(to6(v), e.g() as u16, "{v}");
+            assert_eq!(to6_placed(v) >> 5, e.g() as u16, "{v}");
         }
         // Then every colour (about two seconds in a debug build).
         for r in 0..=255u8 {
