@@ -430,11 +430,7 @@ fn keeps_words(cull: CullMode, w: &[(i32, i32); 3]) -> bool {
     let (x1, y1) = (w[1].0 - w[0].0, (w[1].1 >> 9) - (w[0].1 >> 9));
     let (x2, y2) = (w[2].0 - w[0].0, (w[2].1 >> 9) - (w[0].1 >> 9));
     let (p, q) = (crate::math::mul_wide(x1, y2), crate::math::mul_wide(x2, y1));
-    match cull {
-        CullMode::None => p != q,
-        CullMode::Back => p < q,
-        CullMode::Front => p > q,
-    }
+    super::state::keeps_by(cull, p, q)
 }
 
 /// [`centres`] of a triangle whose three outcodes are 0, from its

@@ -260,6 +260,13 @@ fn keeps_products(cull: CullMode, v: &[SubPoint; 3]) -> bool {
     let (x1, y1) = (v[1].x - v[0].x, v[1].y - v[0].y);
     let (x2, y2) = (v[2].x - v[0].x, v[2].y - v[0].y);
     let (p, q) = (crate::math::mul_wide(x1, y2), crate::math::mul_wide(x2, y1));
+    keeps_by(cull, p, q)
+}
+
+/// Whether `cull` keeps a triangle whose twice-area is `p - q` (the two
+/// products compared, not subtracted: no overflow).
+#[inline(always)]
+pub(super) fn keeps_by(cull: CullMode, p: i64, q: i64) -> bool {
     match cull {
         CullMode::None => p != q,
         CullMode::Back => p < q,

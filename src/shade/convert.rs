@@ -176,16 +176,22 @@ fn cast<T: 'static, C: 'static>(v: T) -> Option<C> {
 /// is `Rgb565` or [`Rgb565Be`] (see the [module docs](self)).
 #[inline(always)]
 pub(crate) fn rgb<C: From<Rgb888> + 'static>(r: u8, g: u8, b: u8) -> C {
+    from_bits(|| rgb565_bits(r, g, b)).unwrap_or_else(|| C::from(Rgb888::new(r, g, b)))
+}
+
+/// `C` from `Rgb565` bits where `C` is `Rgb565` or [`Rgb565Be`], `None`
+/// otherwise: the type test folds away in each instance, and `bits` runs
+/// only where it answers.
+#[inline(always)]
+fn from_bits<C: 'static>(bits: impl FnOnce() -> u16) -> Option<C> {
     let c = TypeId::of::<C>();
-    let bits = || RawU16::new(rgb565_bits(r, g, b));
-    let table = if c == TypeId::of::<Rgb565>() {
-        cast(Rgb565::from(bits()))
+    if c == TypeId::of::<Rgb565>() {
+        cast(Rgb565::from(RawU16::new(bits())))
     } else if c == TypeId::of::<Rgb565Be>() {
-        cast(Rgb565Be::from(bits()))
+        cast(Rgb565Be::from(RawU16::new(bits())))
     } else {
         None
-    };
-    table.unwrap_or_else(|| C::from(Rgb888::new(r, g, b)))
+    }
 }
 
 /// [`rgb`] where the target has SIMD for the span loops
@@ -221,16 +227,8 @@ pub(crate) fn rgb16_green_up<C: From<Rgb888> + 'static>(r: u32, g: u32, b: u32) 
     #[cfg(any(test, not(target_pointer_width = "64")))]
     {
         let (r, g9, b) = ((r >> 16) as u8, (g >> 16) as usize & 511, (b >> 16) as u8);
-        let bits = || RawU16::new((to5(r) << 11) | green_placed(g9) | to5(b));
-        let c = TypeId::of::<C>();
-        let table = if c == TypeId::of::<Rgb565>() {
-            cast(Rgb565::from(bits()))
-        } else if c == TypeId::of::<Rgb565Be>() {
-            cast(Rgb565Be::from(bits()))
-        } else {
-            None
-        };
-        table.unwrap_or_else(|| C::from(Rgb888::new(r, g9 as u8, b)))
+        from_bits(|| (to5(r) << 11) | green_placed(g9) | to5(b))
+            .unwrap_or_else(|| C::from(Rgb888::new(r, g9 as u8, b)))
     }
     #[cfg(not(any(test, not(target_pointer_width = "64"))))]
     rgb((r >> 16) as u8, (g >> 16) as u8, (b >> 16) as u8)
