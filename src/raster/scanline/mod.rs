@@ -31,12 +31,9 @@
 //! triangle within `0..DIRECT_COLS` columns is walked as `Direct`
 //! edges instead: the numerator of each edge's column is kept and
 //! divided at every row, so an edge's set-up is two multiplies and no
-//! division or sign test (Cortex-M3 `demo` 3,641,795 -> 3,430,979
-//! instructions, `rock` 2,976,250 -> 2,819,481; x86-64 `demo`
-//! 4,120,770 -> 3,865,945, `rock` 3,403,495 -> 3,210,504, `fill` 9.61 ->
-//! 9.23 per pixel: counted instructions, where a division takes more
-//! cycles than the stepper's three, 2 to 12 on the M3, about 10 to 25 on
-//! x86-64).
+//! division or sign test. It takes fewer instructions (BENCHMARKS.md,
+//! "The round of `289aa7d`"), though a division takes more cycles than
+//! the stepper's three: 2 to 12 on the M3, about 10 to 25 on x86-64.
 //!
 //! The walk records the spans of a triangle's rows in a buffer rather than
 //! calling back for each: the renderer walks a triangle's rows in a tile
