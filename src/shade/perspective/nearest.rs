@@ -107,8 +107,8 @@ fn top_bits(f: u32, m: u32) -> u32 {
 /// 67.3, 52.9 out of line with the count in a register; 64.6, 49.1 with it
 /// in memory; 62.6, 49.5 without the bounds check; 59.9, 47.1 with the
 /// index by one multiply-add; 53.45, 45.14 -> 51.73, 42.91 with the
-/// constants read in the loop (see there) rather than copied to stack
-/// slots at every call. The same loop for `TexturedLit` (its colour
+/// constants read in the loop on ARMv7-M (see there) rather than copied
+/// to stack slots at every call. The same loop for `TexturedLit` (its colour
 /// beside the texel) was slower (`fill-lit-exact` 112.2 -> 116.3; again
 /// at `20d410c`, 111.33 -> 114.28, and 117.93 with its constants read in
 /// the loop: its two tables' addresses are rebuilt at every pixel), and
@@ -124,14 +124,17 @@ fn nearest_span<C: FromTexel, const WEIGHTS: u8>(
     // another such pointer, which might alias it, so the reads stay in
     // the loop (mostly in pairs, `LDRD`, or `LDM`) rather than being
     // hoisted, copied to stack slots at every call (about 30 instructions
-    // a span on the Cortex-M3) and reloaded from there one by one. Not on
-    // 64-bit hosts, whose registers hold them: x86-64 `fill-nearest-exact`
-    // took 56.28 -> 59.91 instructions per fragment with it.
+    // a span on the Cortex-M3) and reloaded from there one by one. Only
+    // for ARMv7-M (`thumbv7m`, the Cortex-M3: the build script's
+    // `microraster_lm3s6965`), where it was measured faster: per fragment,
+    // x86-64 `fill-nearest-exact` took 56.28 -> 59.91 with it, the
+    // Cortex-M4F 53.32 -> 57.52 (affine 43.81 -> 44.01), ARMv6-M 172.43
+    // -> 177.90 (affine 151.94 -> 157.43).
     let copied = s.c.k;
-    let k = if cfg!(target_pointer_width = "64") {
-        &copied
-    } else {
+    let k = if cfg!(microraster_lm3s6965) {
         core::hint::black_box(&s.c.k)
+    } else {
+        &copied
     };
     let last = k[12];
     let [mut q, mut b1, mut b2] = s.planes;
