@@ -106,8 +106,12 @@ fn top_bits(f: u32, m: u32) -> u32 {
 /// (`fill-nearest-exact`, `fill-nearest-affine`): 69.85, 49.79 inline;
 /// 67.3, 52.9 out of line with the count in a register; 64.6, 49.1 with it
 /// in memory; 62.6, 49.5 without the bounds check; 59.9, 47.1 with the
-/// index by one multiply-add. The same loop for `TexturedLit` (its colour
-/// beside the texel) was slower (`fill-lit-exact` 112.2 -> 116.3), and
+/// index by one multiply-add; 53.45, 45.14 -> 51.73, 42.91 with the
+/// constants read in the loop on ARMv7-M (see there) rather than copied
+/// to stack slots at every call. The same loop for `TexturedLit` (its colour
+/// beside the texel) was slower (`fill-lit-exact` 112.2 -> 116.3; again
+/// at `20d410c`, 111.33 -> 114.28, and 117.93 with its constants read in
+/// the loop: its two tables' addresses are rebuilt at every pixel), and
 /// one for bilinear sampling too (162.1 -> 192.2).
 #[inline(never)]
 fn nearest_span<C: FromTexel, const WEIGHTS: u8>(
@@ -115,7 +119,24 @@ fn nearest_span<C: FromTexel, const WEIGHTS: u8>(
     depth: &mut [u16],
     s: &NearestSpan,
 ) -> u32 {
-    let [f0u, d1u, d2u, f0v, d1v, d2v, gz, gq, g1, g2, w, h, last] = s.c.k;
+    // The constants read where they are used, through a pointer that
+    // `black_box` hides: the count of failed pixels is stored through
+    // another such pointer, which might alias it, so the reads stay in
+    // the loop (mostly in pairs, `LDRD`, or `LDM`) rather than being
+    // hoisted, copied to stack slots at every call (about 30 instructions
+    // a span on the Cortex-M3) and reloaded from there one by one. Only
+    // for ARMv7-M (`thumbv7m`, the Cortex-M3: the build script's
+    // `microraster_lm3s6965`), where it was measured faster: per fragment,
+    // x86-64 `fill-nearest-exact` took 56.28 -> 59.91 with it, the
+    // Cortex-M4F 53.32 -> 57.52 (affine 43.81 -> 44.01), ARMv6-M 172.43
+    // -> 177.90 (affine 151.94 -> 157.43).
+    let copied = s.c.k;
+    let k = if cfg!(microraster_lm3s6965) {
+        core::hint::black_box(&s.c.k)
+    } else {
+        &copied
+    };
+    let last = k[12];
     let [mut q, mut b1, mut b2] = s.planes;
     let mut z = s.z;
     // At most 15 (`span_shift`): masked, the shifts by it need no mask.
@@ -150,12 +171,13 @@ fn nearest_span<C: FromTexel, const WEIGHTS: u8>(
                 shifted_weights(q, b1, b2, sh)
             };
             let (w1, w2) = (w1 as u32, w2 as u32);
-            let fu = f0u
-                .wrapping_add(d1u.wrapping_mul(w1))
-                .wrapping_add(d2u.wrapping_mul(w2));
-            let fv = f0v
-                .wrapping_add(d1v.wrapping_mul(w1))
-                .wrapping_add(d2v.wrapping_mul(w2));
+            let fu = k[0]
+                .wrapping_add(k[1].wrapping_mul(w1))
+                .wrapping_add(k[2].wrapping_mul(w2));
+            let fv = k[3]
+                .wrapping_add(k[4].wrapping_mul(w1))
+                .wrapping_add(k[5].wrapping_mul(w2));
+            let (w, h) = (k[10], k[11]);
             // `Pow2Rgb565::nearest_fine`'s index: the row `y < h` (the
             // top `log2(h)` bits of `fv`) times the width, plus `x < w`
             // (those of `fu`); one multiply-add where the row had taken a
@@ -167,12 +189,12 @@ fn nearest_span<C: FromTexel, const WEIGHTS: u8>(
         } else {
             fails[0] += 1;
         }
-        z = z.wrapping_add(gz);
+        z = z.wrapping_add(k[6]);
         if WEIGHTS != FLAT_Q {
-            q = q.wrapping_add(gq as i32);
+            q = q.wrapping_add(k[7] as i32);
         }
-        b1 = b1.wrapping_add(g1 as i32);
-        b2 = b2.wrapping_add(g2 as i32);
+        b1 = b1.wrapping_add(k[8] as i32);
+        b2 = b2.wrapping_add(k[9] as i32);
     }
     len - fails[0]
 }
