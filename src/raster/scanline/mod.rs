@@ -165,21 +165,18 @@ fn find_spans_with<const DIRECT: bool>(
         }
     }
     if DIRECT {
-        let (lo, hi) = (
-            clip.x0.wrapping_mul(SUBPIXEL).wrapping_sub(HALF_PIXEL - 1),
-            clip.x1.wrapping_mul(SUBPIXEL).wrapping_add(HALF_PIXEL),
-        );
         let (x0, x1) = (clip.x0, clip.x1);
         let (xmin, xmax) = (a.x.min(b.x).min(c.x), a.x.max(b.x).max(c.x));
         if direct_fits(xmin, xmax, c.y - a.y) {
             // Whether every span lies within the clip's columns (as
-            // below), with the clip's columns within `0..DIRECT_COLS`,
-            // which keeps `lo` and `hi` from wrapping.
-            let outside = clip.x0
-                | (DIRECT_COLS - 1).wrapping_sub(clip.x1)
-                | xmin.wrapping_sub(lo)
-                | hi.wrapping_sub(xmax);
-            return if outside >= 0 {
+            // below): `xmin >= 16 x0 - 7` is `floor((xmin + 7) / 16) >=
+            // x0`, and `xmax <= 16 x1 + 8` is `ceil((xmax - 8) / 16) <=
+            // x1`, the same floor of `xmax + 7`; compared, no difference
+            // can wrap, whatever the clip (the differences' signs took
+            // a test of the clip's columns too: M3 `demo` -21.7 K).
+            let h = HALF_PIXEL - 1;
+            let inside = ((xmin + h) >> 4 >= x0) & ((xmax + h) >> 4 <= x1);
+            return if inside {
                 walk_direct::<false>(a, b, c, (row_top, row_mid, row_end), x0, x1, out)
             } else {
                 walk_direct::<true>(a, b, c, (row_top, row_mid, row_end), x0, x1, out)
