@@ -9,9 +9,11 @@
 //! [`EdgeStepper`](super::edge::EdgeStepper) and [`Packed`](super::packed::Packed)
 //! keep that quotient and its remainder, and set them up with a division
 //! for the step, a start from it, the sign of each tested; here the
-//! numerator itself is kept, biased to be non-negative, and divided at
-//! each row: its set-up is two multiplies, and a row's step one add and
-//! one division, where the stepper takes an add, a compare and a subtract.
+//! numerator itself is kept, biased to be non-negative and divided by 16
+//! (floored, exact: its step per row is a multiple of 16), and divided
+//! by `dy` at each row: its set-up is two multiplies, and a row's step
+//! one add and one division, where the stepper takes an add, a compare
+//! and a subtract.
 //! On the Cortex-M3 a division is one instruction (2 to 12 cycles).
 
 use crate::raster::{Span, SubPoint, HALF_PIXEL, SUBPIXEL};
@@ -30,15 +32,15 @@ pub(super) const DIRECT_DY: i32 = 1 << 15;
 /// at the current row: `m / d` is the column.
 #[derive(Clone, Copy, Debug)]
 pub(super) struct Direct {
-    /// `N + d - 1`, with `N = (p.x - ½) dy + t dx` the edge's numerator
-    /// at the current row: `floor(m / d) = ceil(N / d)`. Non-negative
-    /// at every row of the edge, where `x_edge >= -7` sub-pixels makes
-    /// `N > -d`.
+    /// `floor((N + 16 dy - 1) / 16)`, with `N = (p.x - ½) dy + t dx` the
+    /// edge's numerator at the current row: `floor(m / d) = ceil(N / 16
+    /// dy)`. Non-negative at every row of the edge, where `x_edge >= -7`
+    /// sub-pixels makes `N > -16 dy`.
     m: u32,
-    /// `SUBPIXEL * dx`: the numerator's step per row (wrapping: `dx` may
-    /// be negative).
+    /// `dx`: the numerator's step per row (wrapping: `dx` may be
+    /// negative).
     s: u32,
-    /// `SUBPIXEL * dy`.
+    /// `dy`.
     d: NonZeroU32,
 }
 
@@ -58,13 +60,17 @@ impl Direct {
         debug_assert!(p.x >= 1 - HALF_PIXEL && p.x <= DIRECT_COLS * SUBPIXEL - HALF_PIXEL);
         let t = row * SUBPIXEL + HALF_PIXEL - p.y;
         debug_assert!(t >= 0 && t < dy);
-        // (p.x - ½) dy + t dx + 16 dy - 1.
-        let m = (p.x + HALF_PIXEL) * dy + t * dx - 1;
+        // (p.x - ½) dy + t dx + 16 dy - 1, divided by 16 (floored): the
+        // column `floor(m / 16 dy)` is `floor(floor(m / 16) / dy)`, and
+        // the row's step `16 dx` a multiple of 16, so `floor(m / 16)`
+        // steps by `dx` exactly.
+        const _: () = assert!(SUBPIXEL == 1 << 4);
+        let m = ((p.x + HALF_PIXEL) * dy + t * dx - 1) >> 4;
         debug_assert!(m >= 0);
-        let d = (dy * SUBPIXEL) as u32;
+        let d = dy as u32;
         Self {
             m: m as u32,
-            s: (dx * SUBPIXEL) as u32,
+            s: dx as u32,
             // dy > 0 (the caller walks edges downwards); the fallback only
             // spares the divisions their checks.
             d: NonZeroU32::new(d).unwrap_or(NonZeroU32::MIN),
