@@ -227,8 +227,20 @@ pub(crate) fn rgb16_green_up<C: From<Rgb888> + 'static>(r: u32, g: u32, b: u32) 
     #[cfg(any(test, not(target_pointer_width = "64")))]
     {
         let (r, g9, b) = ((r >> 16) as u8, (g >> 16) as usize & 511, (b >> 16) as u8);
-        from_bits(|| (to5(r) << 11) | green_placed(g9) | to5(b))
-            .unwrap_or_else(|| C::from(Rgb888::new(r, g9 as u8, b)))
+        from_bits(|| {
+            // The empty `black_box`es (inline assembly of no instruction,
+            // as in the Gouraud loop) only part the three lookups for the
+            // optimiser: the Cortex-M4F's Gouraud pixel loops then keep a
+            // step more in a register (3 instructions fewer a written
+            // pixel, `demo` 3,293,360 -> 3,251,382 instructions, `rock`
+            // 2,748,045 -> 2,710,189); the Cortex-M3's code is the same.
+            let c = to5(r) << 11;
+            core::hint::black_box(());
+            let c = c | green_placed(g9);
+            core::hint::black_box(());
+            c | to5(b)
+        })
+        .unwrap_or_else(|| C::from(Rgb888::new(r, g9 as u8, b)))
     }
     #[cfg(not(any(test, not(target_pointer_width = "64"))))]
     rgb((r >> 16) as u8, (g >> 16) as u8, (b >> 16) as u8)

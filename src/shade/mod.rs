@@ -49,7 +49,7 @@ pub(crate) use convert::{rgb, rgb565_bits, rgb_scalar};
 use convert::{rgb16_green_up, GREEN_UP};
 use embedded_graphics::pixelcolor::Rgb888;
 use plane::Basis;
-pub(crate) use setup::{Corners, TriangleSetup};
+pub(crate) use setup::{Corners, TriangleSetup, SMALL_INLINE};
 
 /// Fraction bits of interpolated depth.
 pub const Z_FRAC: u32 = 14;

@@ -56,6 +56,10 @@ impl Corners<'_> {
     }
 }
 
+/// Whether [`TriangleSetup::small_for_spans`] inlines the small set-up:
+/// on 32-bit cores with a long multiply.
+pub(crate) const SMALL_INLINE: bool = SMALL_SETUP && !cfg!(microraster_narrow_multiply);
+
 /// A triangle ready to shade: its attribute planes (depth, then red,
 /// green and blue for Gouraud shading).
 #[derive(Clone, Copy, Debug)]
@@ -284,12 +288,14 @@ impl TriangleSetup {
         self
     }
 
-    /// [`TriangleSetup::for_spans`] for the span loops that nearly every
-    /// frame takes (the caller's choice), with the [`Small`](super::small::Small) set-up
-    /// inlined on 32-bit cores with a long multiply: its planes are then
-    /// written where the span loop reads them, without a call, the
-    /// returned set-up's stores through a pointer and the spills around
-    /// them. Any other triangle takes the out-of-line set-up.
+    /// [`TriangleSetup::for_spans`] of a small triangle, inlined, for the
+    /// span loops that nearly every frame takes (the caller's choice), on
+    /// 32-bit cores with a long multiply ([`SMALL_INLINE`]); `None` for
+    /// any other triangle (which the caller sets up by the out-of-line
+    /// `for_spans`) and on other cores. The [`Small`](super::small::Small)
+    /// set-up's planes are then written where the span loop reads them,
+    /// without a call, the returned set-up's stores through a pointer and
+    /// the spills around them.
     ///
     /// Cortex-M3: `demo` 4,442,124 -> 4,427,326 instructions, `demo-flat`
     /// 3,882,021 -> 3,758,164, `rock` 3,641,659 -> 3,629,468, `fill`
@@ -302,13 +308,13 @@ impl TriangleSetup {
     /// out-of-line set-up measured cheaper (ARMv6-M `demo` 10,241,926,
     /// inlined 10,272,942).
     #[inline(always)]
-    pub(crate) fn for_spans_inline<const GOURAUD: bool>(t: &Corners<'_>) -> Self {
-        if SMALL_SETUP && !cfg!(microraster_narrow_multiply) {
+    pub(crate) fn small_for_spans<const GOURAUD: bool>(t: &Corners<'_>) -> Option<Self> {
+        if SMALL_INLINE {
             if let Some(s) = Self::small(&t.points(), t, GOURAUD) {
-                return if GOURAUD { s.for_gouraud_spans(t) } else { s };
+                return Some(if GOURAUD { s.for_gouraud_spans(t) } else { s });
             }
         }
-        Self::for_spans::<GOURAUD>(t)
+        None
     }
 
     /// [`TriangleSetup::new`] of a Gouraud triangle.

@@ -72,12 +72,13 @@ const INTERIOR: u32 = 1 << 8;
 
 /// Whether the vertex stage makes [`ScreenVertex::interior`] and the
 /// Gouraud span starts use it (the build script's `microraster_interior`):
-/// everywhere but on the Arm cores with an FPU (`thumbv7em-none-eabihf`,
-/// the Cortex-M4F, where the bit cost the vertex stage more than it spared
-/// the span starts: `demo` 3,899,069 -> 3,909,985 instructions, the vertex
-/// stage +42,000, 21 a vertex, the span starts -31,000) and in builds
-/// optimised for size (the OLED firmware's, where it took 172 bytes: the
-/// test in both vertex loops, the flag in the set-up). On the others:
+/// everywhere but in builds optimised for size (the OLED firmware's,
+/// where it took 172 bytes: the test in both vertex loops, the flag in
+/// the set-up). The Cortex-M4F, left out while the bit cost its vertex
+/// stage more than it spared the span starts, takes it since they test
+/// the flag once a pair: `demo` 3,352,005 -> 3,293,360 instructions (the
+/// vertex stage +29 K, raster and shade -88 K), `rock` 2,818,161 ->
+/// 2,748,045. On the others:
 /// x86-64 `demo` 4,317,453 -> 4,258,981, `rock` 3,584,878 -> 3,520,426;
 /// Cortex-M3 `demo` 3,904,200 -> 3,856,708, `rock` 3,207,716 ->
 /// 3,158,427; ARMv6-M `demo` 7,759,390 -> 7,716,260, `rock` 6,421,527 ->
@@ -214,8 +215,8 @@ impl ScreenVertex {
     }
 
     /// Whether depth is in `2..=65533` and every colour channel in
-    /// `1..=254` (always false in the builds that do not use it, the
-    /// Cortex-M4F's and those optimised for size): a triangle whose three vertices have this bit set has
+    /// `1..=254` (always false in the builds that do not use it, those
+    /// optimised for size): a triangle whose three vertices have this bit set has
     /// every covered pixel centre's plane values inside their ranges, so
     /// its span starts need no clamp (the Gouraud set-up's start).
     ///
