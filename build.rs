@@ -122,6 +122,13 @@ fn main() {
     if !size {
         println!("cargo:rustc-cfg=microraster_interior");
     }
+    // ARMv7-M without the DSP extension (`thumbv7m`: the Cortex-M3), for
+    // code generation choices measured faster on it alone (the nearest
+    // texture loop's constants read in place, `shade::perspective`).
+    println!("cargo::rustc-check-cfg=cfg(microraster_armv7m)");
+    if target.starts_with("thumbv7m-") {
+        println!("cargo:rustc-cfg=microraster_armv7m");
+    }
     // Builds optimised for size: code that buys speed with flash (the
     // binning loop's single-tile push) is left out of them.
     println!("cargo::rustc-check-cfg=cfg(microraster_size)");

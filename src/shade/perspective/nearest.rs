@@ -126,12 +126,12 @@ fn nearest_span<C: FromTexel, const WEIGHTS: u8>(
     // hoisted, copied to stack slots at every call (about 30 instructions
     // a span on the Cortex-M3) and reloaded from there one by one. Only
     // for ARMv7-M (`thumbv7m`, the Cortex-M3: the build script's
-    // `microraster_lm3s6965`), where it was measured faster: per fragment,
+    // `microraster_armv7m`), where it was measured faster: per fragment,
     // x86-64 `fill-nearest-exact` took 56.28 -> 59.91 with it, the
     // Cortex-M4F 53.32 -> 57.52 (affine 43.81 -> 44.01), ARMv6-M 172.43
     // -> 177.90 (affine 151.94 -> 157.43).
     let copied = s.c.k;
-    let k = if cfg!(microraster_lm3s6965) {
+    let k = if cfg!(microraster_armv7m) {
         core::hint::black_box(&s.c.k)
     } else {
         &copied
