@@ -289,7 +289,11 @@ impl DrawSetup {
             None => {
                 for (k, o) in out.iter_mut().enumerate() {
                     let pos = self.clip_position_apart(mesh, first + k)?;
-                    *o = viewport.screen_vertex_lit::<DUPLICATE>(&pos, false, || {
+                    // On 64-bit hosts (`DUPLICATE`) a vertex inside the
+                    // view volume is projected inline here too
+                    // (`Viewport::project_fast_wide`); on 32-bit cores
+                    // out of line, for flash.
+                    *o = viewport.screen_vertex_lit::<DUPLICATE>(&pos, DUPLICATE, || {
                         self.lit_color_apart(mesh, first + k, gouraud)
                     });
                 }
