@@ -41,7 +41,7 @@ const fn table() -> [u8; 512] {
     t
 }
 
-/// An entry of [`TO565`]: 16 bits where its 6-bit half holds green
+/// An entry of [`to565`]: 16 bits where its 6-bit half holds green
 /// already in its place (shifted left by 5), which spares a written
 /// Gouraud pixel the shift on Thumb-2 (a halfword load with its index
 /// shifted costs what a byte load does). Bytes in builds optimised for
@@ -60,7 +60,7 @@ type Entry = u16;
 ))]
 type Entry = u8;
 
-/// How far the 6-bit half of [`TO565`] holds green shifted left: 5 with
+/// How far the 6-bit half of [`to565`] holds green shifted left: 5 with
 /// 16-bit entries (its place in the 16 bits), 0 with bytes.
 #[cfg(any(test, not(target_pointer_width = "64")))]
 const GREEN_SHIFT: u32 = 5 * (core::mem::size_of::<Entry>() as u32 - 1);
@@ -70,7 +70,7 @@ const GREEN_SHIFT: u32 = 5 * (core::mem::size_of::<Entry>() as u32 - 1);
 /// short of registers on the Cortex-M3, keep one address for both rather
 /// than rebuilding two at every pixel.
 #[cfg(any(test, not(target_pointer_width = "64")))]
-static TO565: [Entry; 512] = {
+const fn to565() -> [Entry; 512] {
     let t = table();
     let mut p = [0; 512];
     let mut v = 0;
@@ -81,6 +81,29 @@ static TO565: [Entry; 512] = {
         v += 1;
     }
     p
+}
+
+/// [`TABLES`]: the colour conversion's table and the lit texel's, one
+/// after the other.
+#[cfg(any(test, not(target_pointer_width = "64")))]
+#[repr(C)]
+struct Tables {
+    /// [`to565`].
+    to565: [Entry; 512],
+    /// An `Rgb565` channel's 8-bit expansion times 257
+    /// (`crate::texture::expanded257`).
+    e257: [u16; 96],
+}
+
+/// [`to565`] and, after it, `TexturedLit`'s table of expanded channels:
+/// one static, so that a lit texel's pixel builds one address (a
+/// `MOVW`/`MOVT` pair on Thumb-2, at every pixel of the span loops,
+/// short of registers) for both rather than two. The conversion alone
+/// reads its first field, at the same address as before.
+#[cfg(any(test, not(target_pointer_width = "64")))]
+static TABLES: Tables = Tables {
+    to565: to565(),
+    e257: crate::texture::expanded257(),
 };
 
 /// 8-bit channel `v` to 5 bits.
@@ -89,17 +112,17 @@ static TO565: [Entry; 512] = {
 // `Entry` is a byte in some builds: not always the same type.
 #[allow(clippy::useless_conversion)]
 fn to5(v: u8) -> u16 {
-    u16::from(TO565[v as usize])
+    u16::from(TABLES.to565[v as usize])
 }
 
-/// Entry `i` of the 6-bit half of [`TO565`] (`256 + v` for channel `v`)
+/// Entry `i` of the 6-bit half of [`to565`] (`256 + v` for channel `v`)
 /// in its place in the 16 bits, shifted left by 5.
 #[cfg(any(test, not(target_pointer_width = "64")))]
 #[inline(always)]
 // `Entry` is a byte in some builds: not always the same type.
 #[allow(clippy::useless_conversion)]
 fn green_placed(i: usize) -> u16 {
-    u16::from(TO565[i]) << (5 - GREEN_SHIFT)
+    u16::from(TABLES.to565[i]) << (5 - GREEN_SHIFT)
 }
 
 /// 8-bit channel `v` to 6 bits, shifted left by 5 (its place).
@@ -116,7 +139,7 @@ fn to6_placed(v: u8) -> u16 {
     }
 }
 
-/// The 6-bit half of [`TO565`] as a table of its own on ARMv6-M, whose
+/// The 6-bit half of [`to565`] as a table of its own on ARMv6-M, whose
 /// span loops load its address from the literal pool in one instruction
 /// where `TO565 + 256` took an add of 256 built from a hoisted constant.
 #[cfg(microraster_narrow_multiply)]
@@ -149,6 +172,33 @@ static TO565_PLACED: [u16; 768] = {
     }
     p
 };
+
+/// `TexturedLit`'s texel bits for the `Rgb565` targets (the crate's
+/// `texture::lit565_bits`): each channel's expansion times 257 read from
+/// [`TABLES`]' second field, multiplied by the light and rounded, then
+/// converted by its first, both from one address.
+#[cfg(microraster_armv7m)]
+#[inline(always)]
+// `Entry` is a byte in some builds: not always the same type.
+#[allow(clippy::useless_conversion)]
+pub(crate) fn lit565_bits(raw: u16, light: [u8; 3]) -> u16 {
+    let t = &TABLES;
+    let raw = raw as usize;
+    // At most 65,535 · 255 + 32,896 < 2^24: no overflow. The indices are
+    // below 96 (a 5-bit channel, or 32 plus a 6-bit one).
+    let m = |i: usize, l: u8| match t.e257.get(i) {
+        Some(&e) => ((e as u32 * l as u32 + 32_896) >> 16) as usize & 255,
+        None => 0,
+    };
+    let (r, g, b) = (
+        m(raw >> 11, light[0]),
+        m(32 + (raw >> 5 & 0x3F), light[1]),
+        m(raw & 0x1F, light[2]),
+    );
+    (u16::from(t.to565[r]) << 11)
+        | (u16::from(t.to565[256 + g]) << (5 - GREEN_SHIFT))
+        | u16::from(t.to565[b])
+}
 
 /// The bits of `Rgb565::from(Rgb888::new(r, g, b))`, by the table.
 #[inline(always)]

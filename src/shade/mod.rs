@@ -45,6 +45,8 @@ mod setup;
 mod sliver;
 mod small;
 
+#[cfg(microraster_armv7m)]
+pub(crate) use convert::lit565_bits;
 pub(crate) use convert::{rgb, rgb565_bits, rgb_scalar};
 use convert::{rgb16_green_up, GREEN_UP};
 use embedded_graphics::pixelcolor::Rgb888;

@@ -134,6 +134,8 @@ mod tests;
 
 use axis::Axis;
 use fixed::types::I16F16;
+#[cfg(any(test, not(target_pointer_width = "64")))]
+pub(crate) use sampler::expanded257;
 pub(crate) use sampler::Quad;
 pub use sampler::{FromTexel, Pow2Rgb565, Sampler};
 

@@ -6,6 +6,8 @@
 //! [`Texture::sample`]. Both give the same colour at every coordinate.
 
 use super::{rgb565_to_rgb888, Filter, Texels, Texture, Wrap, HALF, WEIGHT_BITS};
+#[cfg(microraster_armv7m)]
+use crate::shade::lit565_bits;
 use embedded_graphics::pixelcolor::raw::RawU16;
 use embedded_graphics::pixelcolor::{
     Bgr555, Bgr565, Bgr888, BinaryColor, Gray2, Gray4, Gray8, Rgb555, Rgb565, Rgb888,
@@ -60,7 +62,7 @@ pub trait FromTexel: From<Rgb888> {
 
 /// An `Rgb565` channel's 8-bit expansion ([`rgb565_to_rgb888`]) times
 /// 257: at `c` for a 5-bit channel `c`, at `32 + c` for a 6-bit one.
-const fn expanded257() -> [u16; 96] {
+pub(crate) const fn expanded257() -> [u16; 96] {
     let mut t = [0; 96];
     let mut c = 0;
     while c < 64 {
@@ -75,7 +77,10 @@ const fn expanded257() -> [u16; 96] {
 
 /// [`expanded257`]: a channel's expansion and its factor 257 in one load
 /// (three instructions less per channel on the Cortex-M3 than the
-/// expansion's shifts and the product's rounding steps).
+/// expansion's shifts and the product's rounding steps). On ARMv7-M the
+/// same table sits after the colour conversion's (`shade::convert`'s
+/// `TABLES`), read there instead.
+#[cfg(not(microraster_armv7m))]
 static EXPANDED257: [u16; 96] = expanded257();
 
 /// [`FromTexel::from_lit_rgb565`]'s bits for the `Rgb565` targets: each
@@ -84,6 +89,7 @@ static EXPANDED257: [u16; 96] = expanded257();
 /// the expanded channel times 257 read from [`EXPANDED257`], so a
 /// channel is a load, one multiply-add and a shift, then the table's
 /// conversion to 5 or 6 bits, as `from_rgb888` takes it.
+#[cfg(not(microraster_armv7m))]
 #[inline(always)]
 fn lit565_bits(raw: u16, light: [u8; 3]) -> u16 {
     let raw = raw as usize;
