@@ -184,12 +184,7 @@ static TO565_PLACED: [u16; 768] = {
 pub(crate) fn lit565_bits(raw: u16, light: [u8; 3]) -> u16 {
     let t = &TABLES;
     let raw = raw as usize;
-    // At most 65,535 · 255 + 32,896 < 2^24: no overflow. The indices are
-    // below 96 (a 5-bit channel, or 32 plus a 6-bit one).
-    let m = |i: usize, l: u8| match t.e257.get(i) {
-        Some(&e) => ((e as u32 * l as u32 + 32_896) >> 16) as usize & 255,
-        None => 0,
-    };
+    let m = |i: usize, l: u8| usize::from(crate::texture::lit_channel(&t.e257, i, l));
     let (r, g, b) = (
         m(raw >> 11, light[0]),
         m(32 + (raw >> 5 & 0x3F), light[1]),

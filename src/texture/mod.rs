@@ -136,6 +136,8 @@ use axis::Axis;
 use fixed::types::I16F16;
 #[cfg(any(test, not(target_pointer_width = "64")))]
 pub(crate) use sampler::expanded257;
+#[cfg(microraster_armv7m)]
+pub(crate) use sampler::lit_channel;
 pub(crate) use sampler::Quad;
 pub use sampler::{FromTexel, Pow2Rgb565, Sampler};
 

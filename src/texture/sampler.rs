@@ -83,6 +83,20 @@ pub(crate) const fn expanded257() -> [u16; 96] {
 #[cfg(not(microraster_armv7m))]
 static EXPANDED257: [u16; 96] = expanded257();
 
+/// A lit channel of an `Rgb565` texel: entry `i` of `e257` (an
+/// [`expanded257`] table: `i` is a 5-bit channel, or 32 plus a 6-bit
+/// one) times the light `l`, rounded by `mul255`'s identity (see
+/// `lit565_bits`); 0 for an index beyond the table, which a texel's
+/// channels never give.
+#[inline(always)]
+pub(crate) fn lit_channel(e257: &[u16; 96], i: usize, l: u8) -> u8 {
+    // At most 65,535 · 255 + 32,896 < 2^24: no overflow.
+    match e257.get(i) {
+        Some(&e) => ((e as u32 * l as u32 + 32_896) >> 16) as u8,
+        None => 0,
+    }
+}
+
 /// [`FromTexel::from_lit_rgb565`]'s bits for the `Rgb565` targets: each
 /// channel's product by [`mul255`](crate::shader::mul255)'s identity
 /// `round(p / 255) = ((p + 128) · 257) >> 16` (for `p <= 255 · 255`),
@@ -93,12 +107,7 @@ static EXPANDED257: [u16; 96] = expanded257();
 #[inline(always)]
 fn lit565_bits(raw: u16, light: [u8; 3]) -> u16 {
     let raw = raw as usize;
-    // At most 65,535 · 255 + 32,896 < 2^24: no overflow. The indices are
-    // below 96 (a 5-bit channel, or 32 plus a 6-bit one).
-    let m = |i: usize, l: u8| match EXPANDED257.get(i) {
-        Some(&e) => ((e as u32 * l as u32 + 32_896) >> 16) as u8,
-        None => 0,
-    };
+    let m = |i: usize, l: u8| lit_channel(&EXPANDED257, i, l);
     crate::shade::rgb565_bits(
         m(raw >> 11, light[0]),
         m(32 + (raw >> 5 & 0x3F), light[1]),
