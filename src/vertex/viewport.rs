@@ -349,9 +349,7 @@ impl Viewport {
         let z = depth_digits(c[2], wn);
         Some((SubPoint::new(x as i32, y as i32), z))
     }
-}
 
-impl Viewport {
     /// [`project_fast`](Self::project_fast) in 64-bit words, for any `w`
     /// from `W_MIN` up, where a 64-bit division is an instruction
     /// ([`WIDE_DIVISION`]): the same three quotients by `2w` (depth's
