@@ -32,24 +32,19 @@ impl<C> TriangleSpans<'_, C, [I16F16; 2]> {
         // The texels hold the count (`Pow2Rgb565::fine_parts`; never short,
         // by `Texture::new`).
         let texels = texels.get(..=parts[2] as usize)?;
-        Some(NearestConstants {
-            texels,
-            k: [
-                f0u.to_bits() as u32,
-                d1u.to_bits() as u32,
-                d2u.to_bits() as u32,
-                f0v.to_bits() as u32,
-                d1v.to_bits() as u32,
-                d2v.to_bits() as u32,
-                (p.depth.steps()[0] as u32) << (16 - Z_FRAC),
-                pq.step() as u32,
-                p1.step() as u32,
-                p2.step() as u32,
-                parts[0],
-                parts[1],
-                parts[2],
-            ],
-        })
+        let mut k = [0; at::LAST + 1];
+        k[at::F0U] = f0u.to_bits() as u32;
+        k[at::D1U] = d1u.to_bits() as u32;
+        k[at::D2U] = d2u.to_bits() as u32;
+        k[at::F0V] = f0v.to_bits() as u32;
+        k[at::D1V] = d1v.to_bits() as u32;
+        k[at::D2V] = d2v.to_bits() as u32;
+        k[at::DZ] = (p.depth.steps()[0] as u32) << (16 - Z_FRAC);
+        k[at::DQ] = pq.step() as u32;
+        k[at::DB1] = p1.step() as u32;
+        k[at::DB2] = p2.step() as u32;
+        [k[at::WIDTH], k[at::HEIGHT], k[at::LAST]] = parts;
+        Some(NearestConstants { texels, k })
     }
 }
 
@@ -72,6 +67,26 @@ impl<C: FromTexel> SpanInput<'_, C, [I16F16; 2]> {
     }
 }
 
+/// Where each of [`NearestConstants`]'s words sits in `k`: the fractions'
+/// bases and differences, the steps of depth, `Q`, `B1` and `B2`, the
+/// texture's width, height and texel count less one. `nearest_span` reads
+/// them by index through one pointer on ARMv7-M (see there).
+mod at {
+    pub(super) const F0U: usize = 0;
+    pub(super) const D1U: usize = 1;
+    pub(super) const D2U: usize = 2;
+    pub(super) const F0V: usize = 3;
+    pub(super) const D1V: usize = 4;
+    pub(super) const D2V: usize = 5;
+    pub(super) const DZ: usize = 6;
+    pub(super) const DQ: usize = 7;
+    pub(super) const DB1: usize = 8;
+    pub(super) const DB2: usize = 9;
+    pub(super) const WIDTH: usize = 10;
+    pub(super) const HEIGHT: usize = 11;
+    pub(super) const LAST: usize = 12;
+}
+
 /// What [`nearest_span`] reads that is the same for all of a triangle's
 /// spans in a tile: the texels, cut to the texel count; the fractions'
 /// bases and differences (`f0u, d1u, d2u, f0v, d1v, d2v`), the steps of
@@ -79,7 +94,7 @@ impl<C: FromTexel> SpanInput<'_, C, [I16F16; 2]> {
 /// less one (`Pow2Rgb565::fine_parts`).
 pub(crate) struct NearestConstants<'a> {
     texels: &'a [u16],
-    k: [u32; 13],
+    k: [u32; at::LAST + 1],
 }
 
 /// What [`nearest_span`] reads: the triangle's constants, the span's
@@ -136,7 +151,7 @@ fn nearest_span<C: FromTexel, const WEIGHTS: u8>(
     } else {
         &copied
     };
-    let last = k[12];
+    let last = k[at::LAST];
     let [mut q, mut b1, mut b2] = s.planes;
     let mut z = s.z;
     // At most 15 (`span_shift`): masked, the shifts by it need no mask.
@@ -171,13 +186,13 @@ fn nearest_span<C: FromTexel, const WEIGHTS: u8>(
                 shifted_weights(q, b1, b2, sh)
             };
             let (w1, w2) = (w1 as u32, w2 as u32);
-            let fu = k[0]
-                .wrapping_add(k[1].wrapping_mul(w1))
-                .wrapping_add(k[2].wrapping_mul(w2));
-            let fv = k[3]
-                .wrapping_add(k[4].wrapping_mul(w1))
-                .wrapping_add(k[5].wrapping_mul(w2));
-            let (w, h) = (k[10], k[11]);
+            let fu = k[at::F0U]
+                .wrapping_add(k[at::D1U].wrapping_mul(w1))
+                .wrapping_add(k[at::D2U].wrapping_mul(w2));
+            let fv = k[at::F0V]
+                .wrapping_add(k[at::D1V].wrapping_mul(w1))
+                .wrapping_add(k[at::D2V].wrapping_mul(w2));
+            let (w, h) = (k[at::WIDTH], k[at::HEIGHT]);
             // `Pow2Rgb565::nearest_fine`'s index: the row `y < h` (the
             // top `log2(h)` bits of `fv`) times the width, plus `x < w`
             // (those of `fu`); one multiply-add where the row had taken a
@@ -189,12 +204,12 @@ fn nearest_span<C: FromTexel, const WEIGHTS: u8>(
         } else {
             fails[0] += 1;
         }
-        z = z.wrapping_add(k[6]);
+        z = z.wrapping_add(k[at::DZ]);
         if WEIGHTS != FLAT_Q {
-            q = q.wrapping_add(k[7] as i32);
+            q = q.wrapping_add(k[at::DQ] as i32);
         }
-        b1 = b1.wrapping_add(k[8] as i32);
-        b2 = b2.wrapping_add(k[9] as i32);
+        b1 = b1.wrapping_add(k[at::DB1] as i32);
+        b2 = b2.wrapping_add(k[at::DB2] as i32);
     }
     len - fails[0]
 }
