@@ -35,7 +35,10 @@ pub struct FrameStats {
     /// draw, culled or not. `VERTICES` must be at least this.
     pub vertex_slots: u32,
     /// (Triangle, tile) pairs of the frame: the bin entries it needs,
-    /// before the chunks' links and their unused slots.
+    /// before the chunks' links and their unused slots. A triangle takes
+    /// one for each tile its pixel bounds touch, whether or not it covers
+    /// a pixel centre there (on the `demo` frame 363 of 2,597 pairs cover
+    /// none).
     pub tile_pairs: u32,
     /// The most bin-pool slots one binning pass took (whole chunks of
     /// [`CHUNK`](super::CHUNK), links included). With `bin_passes == 1`, a
