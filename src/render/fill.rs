@@ -6,8 +6,8 @@ use crate::raster::scanline;
 use crate::raster::{hilbert, PixelRect, Rasterizer, Span, SubPoint};
 use crate::shade::perspective::{Output, PerspectiveSetup, ShaderTriangle};
 use crate::shade::{
-    span_flat, span_gouraud, Corners, DepthFn, DepthTest, SpanPos, TriangleSetup, SMALL_INLINE,
-    SPLIT_INTERIOR,
+    span_flat, span_gouraud, Corners, DepthFn, DepthTest, SpanPos, To565, TriangleSetup,
+    OPAQUE_TABLE, SMALL_INLINE, SPLIT_INTERIOR,
 };
 use crate::shader::{FragmentShader, Perspective, ShaderSet, TriangleSpans};
 use crate::texture::Texture;
@@ -237,7 +237,15 @@ where
     if let Some(setup) = &small {
         if GOURAUD && SPLIT_INTERIOR && setup.interior() {
             return each_span::<C, GOURAUD, TW, TH>(tile, rect, found, |color, depth, sp, n| {
-                span_gouraud::<C, D, WRITE, true>(dt, setup, corners, color, depth, sp, n)
+                span_gouraud::<C, D, WRITE, true>(
+                    (dt, To565::fixed()),
+                    setup,
+                    corners,
+                    color,
+                    depth,
+                    sp,
+                    n,
+                )
             });
         }
     }
@@ -257,12 +265,25 @@ where
         // Not where the loop above took the interior triangles: one
         // interior loop in each span loop's code.
         return each_span::<C, GOURAUD, TW, TH>(tile, rect, found, |color, depth, sp, n| {
-            span_gouraud::<C, D, WRITE, true>(dt, setup, corners, color, depth, sp, n)
+            span_gouraud::<C, D, WRITE, true>(
+                (dt, To565::fixed()),
+                setup,
+                corners,
+                color,
+                depth,
+                sp,
+                n,
+            )
         });
     }
+    let table = if OPAQUE_TABLE {
+        To565::opaque()
+    } else {
+        To565::fixed()
+    };
     each_span::<C, GOURAUD, TW, TH>(tile, rect, found, |color, depth, sp, n| {
         if GOURAUD {
-            span_gouraud::<C, D, WRITE, false>(dt, setup, corners, color, depth, sp, n)
+            span_gouraud::<C, D, WRITE, false>((dt, table), setup, corners, color, depth, sp, n)
         } else {
             n + span_flat::<C, D, WRITE>(dt, setup, corners, flat, color, depth, sp)
         }

@@ -112,7 +112,16 @@ static TABLES: Tables = Tables {
 // `Entry` is a byte in some builds: not always the same type.
 #[allow(clippy::useless_conversion)]
 fn to5(v: u8) -> u16 {
-    u16::from(TABLES.to565[v as usize])
+    to5_in(&TABLES.to565, v)
+}
+
+/// [`to5`] from the table at `t`.
+#[cfg(any(test, not(target_pointer_width = "64")))]
+#[inline(always)]
+// `Entry` is a byte in some builds: not always the same type.
+#[allow(clippy::useless_conversion)]
+fn to5_in(t: &[Entry; 512], v: u8) -> u16 {
+    u16::from(t[v as usize])
 }
 
 /// Entry `i` of the 6-bit half of [`to565`] (`256 + v` for channel `v`)
@@ -121,8 +130,8 @@ fn to5(v: u8) -> u16 {
 #[inline(always)]
 // `Entry` is a byte in some builds: not always the same type.
 #[allow(clippy::useless_conversion)]
-fn green_placed(i: usize) -> u16 {
-    u16::from(TABLES.to565[i]) << (5 - GREEN_SHIFT)
+fn green_placed(t: &[Entry; 512], i: usize) -> u16 {
+    u16::from(t[i]) << (5 - GREEN_SHIFT)
 }
 
 /// 8-bit channel `v` to 6 bits, shifted left by 5 (its place).
@@ -135,7 +144,7 @@ fn to6_placed(v: u8) -> u16 {
     }
     #[cfg(not(microraster_narrow_multiply))]
     {
-        green_placed(256 + v as usize)
+        green_placed(&TABLES.to565, 256 + v as usize)
     }
 }
 
@@ -267,11 +276,14 @@ pub(crate) const GREEN_UP: u32 = 256 << 16;
 /// register short of an instruction's offset) at every pixel. The low
 /// byte of that integer part is green's byte, so any other colour type
 /// converts the same byte.
+///
+/// It reads the table at `table` (see [`To565`]).
 #[inline(always)]
-pub(crate) fn rgb16_green_up<C: From<Rgb888> + 'static>(r: u32, g: u32, b: u32) -> C {
+pub(crate) fn rgb16_green_up<C: From<Rgb888> + 'static>(table: To565, r: u32, g: u32, b: u32) -> C {
     #[cfg(any(test, not(target_pointer_width = "64")))]
     {
         let (r, g9, b) = ((r >> 16) as u8, (g >> 16) as usize & 511, (b >> 16) as u8);
+        let t = table.0;
         from_bits(|| {
             // The empty `black_box`es (inline assembly of no instruction,
             // as in the Gouraud loop) only part the three lookups for the
@@ -279,16 +291,51 @@ pub(crate) fn rgb16_green_up<C: From<Rgb888> + 'static>(r: u32, g: u32, b: u32) 
             // step more in a register (3 instructions fewer a written
             // pixel, `demo` 3,293,360 -> 3,251,382 instructions, `rock`
             // 2,748,045 -> 2,710,189); the Cortex-M3's code is the same.
-            let c = to5(r) << 11;
+            let c = to5_in(t, r) << 11;
             core::hint::black_box(());
-            let c = c | green_placed(g9);
+            let c = c | green_placed(t, g9);
             core::hint::black_box(());
-            c | to5(b)
+            c | to5_in(t, b)
         })
         .unwrap_or_else(|| C::from(Rgb888::new(r, g9 as u8, b)))
     }
     #[cfg(not(any(test, not(target_pointer_width = "64"))))]
-    rgb((r >> 16) as u8, (g >> 16) as u8, (b >> 16) as u8)
+    {
+        let _ = table;
+        rgb((r >> 16) as u8, (g >> 16) as u8, (b >> 16) as u8)
+    }
+}
+
+/// Where [`rgb16_green_up`] reads the conversion's table (`TABLES`'
+/// first field; nothing on 64-bit hosts, which take [`rgb`]).
+#[derive(Clone, Copy)]
+pub(crate) struct To565(#[cfg(any(test, not(target_pointer_width = "64")))] &'static [Entry; 512]);
+
+impl To565 {
+    /// The table at its address, a constant: the optimiser may build the
+    /// address anew wherever it is used, and move the table's loads as
+    /// it likes (it knows the table never changes).
+    #[inline(always)]
+    pub(crate) fn fixed() -> Self {
+        Self(
+            #[cfg(any(test, not(target_pointer_width = "64")))]
+            &TABLES.to565,
+        )
+    }
+
+    /// The table's address passed through a `black_box` (once a pair):
+    /// for the optimiser a value in a register like any other, which it
+    /// can no longer rebuild from two instructions at each use, and whose
+    /// loads it no longer moves across the empty `black_box`es that part
+    /// [`rgb16_green_up`]'s three lookups (they are loads of memory it
+    /// does not know to be constant).
+    #[inline(always)]
+    pub(crate) fn opaque() -> Self {
+        Self(
+            #[cfg(any(test, not(target_pointer_width = "64")))]
+            core::hint::black_box(&TABLES.to565),
+        )
+    }
 }
 
 #[cfg(test)]
@@ -345,10 +392,22 @@ mod tests {
                 let up = |c: u32| (c << 16) | frac;
                 let g = up(v) + GREEN_UP;
                 let (r8, g8, b8) = (r as u8, v as u8, b as u8);
-                assert_eq!(rgb16_green_up::<Rgb565>(up(r), g, up(b)), rgb(r8, g8, b8));
-                assert_eq!(rgb16_green_up::<Rgb565Be>(up(r), g, up(b)), rgb(r8, g8, b8));
-                assert_eq!(rgb16_green_up::<Gray4>(up(r), g, up(b)), rgb(r8, g8, b8));
-                assert_eq!(rgb16_green_up::<Rgb888>(up(r), g, up(b)), rgb(r8, g8, b8));
+                assert_eq!(
+                    rgb16_green_up::<Rgb565>(To565::fixed(), up(r), g, up(b)),
+                    rgb(r8, g8, b8)
+                );
+                assert_eq!(
+                    rgb16_green_up::<Rgb565Be>(To565::opaque(), up(r), g, up(b)),
+                    rgb(r8, g8, b8)
+                );
+                assert_eq!(
+                    rgb16_green_up::<Gray4>(To565::fixed(), up(r), g, up(b)),
+                    rgb(r8, g8, b8)
+                );
+                assert_eq!(
+                    rgb16_green_up::<Rgb888>(To565::fixed(), up(r), g, up(b)),
+                    rgb(r8, g8, b8)
+                );
             }
         }
     }
