@@ -256,16 +256,13 @@ impl Viewport {
         fast: bool,
         color: impl FnOnce() -> ([u8; 3], bool),
     ) -> ScreenVertex {
-        let (outcode, p, z) = match (LONG_DIVISION, WIDE_DIVISION) {
-            (true, _) => match fast.then(|| self.project_fast(pos)).flatten() {
+        let (outcode, p, z) = if LONG_DIVISION || WIDE_DIVISION {
+            match fast.then(|| self.project_fast_any(pos)).flatten() {
                 Some((p, z)) => (0, p, z),
                 None => self.project_rest(pos[0], pos[1], pos[2], pos[3]),
-            },
-            (false, true) => match fast.then(|| self.project_fast_wide(pos)).flatten() {
-                Some((p, z)) => (0, p, z),
-                None => self.project_rest(pos[0], pos[1], pos[2], pos[3]),
-            },
-            _ => self.outcode_and_project(pos),
+            }
+        } else {
+            self.outcode_and_project(pos)
         };
         // Within the coordinate fields: `p` is 0 for a vertex that must be
         // clipped, otherwise inside the guard band (`|x|, |y| <= K w`), so
@@ -274,6 +271,20 @@ impl Viewport {
         match CHANNELS {
             true => ScreenVertex::new(p.x, p.y, z as u16, outcode, color),
             false => ScreenVertex::new_tested(p.x, p.y, z, outcode, color, inside),
+        }
+    }
+
+    /// The inline projection of a vertex inside the view volume where a
+    /// division is an instruction: [`project_fast_wide`](Self::project_fast_wide)
+    /// on 64-bit targets ([`WIDE_DIVISION`]), otherwise
+    /// [`project_fast`](Self::project_fast). Chosen by a constant, so
+    /// [`screen_vertex_lit`](Self::screen_vertex_lit) keeps one match.
+    #[inline(always)]
+    fn project_fast_any(&self, pos: &[i32; 4]) -> Option<(SubPoint, u32)> {
+        if WIDE_DIVISION {
+            self.project_fast_wide(pos)
+        } else {
+            self.project_fast(pos)
         }
     }
 
@@ -295,7 +306,6 @@ impl Viewport {
     /// coordinates by value: a reference would keep the vertex in memory.)
     #[inline(never)]
     #[cold]
-    #[cfg_attr(microraster_narrow_multiply, allow(dead_code))]
     fn project_rest(&self, x: i32, y: i32, z: i32, w: i32) -> (u8, SubPoint, u32) {
         self.outcode_and_project(&[x, y, z, w])
     }
@@ -320,10 +330,6 @@ impl Viewport {
     /// The same results; about 30 instructions a vertex fewer on the
     /// Cortex-M3 than the outcode and [`project_digits`](Self::project_digits).
     #[inline(always)]
-    #[cfg_attr(
-        any(microraster_narrow_multiply, target_pointer_width = "64"),
-        allow(dead_code)
-    )]
     pub(crate) fn project_fast(&self, p: &[i32; 4]) -> Option<(SubPoint, u32)> {
         let w = p[3] as u32;
         // W_MIN <= w < short_w, as one unsigned compare (short_w > W_MIN).
@@ -359,7 +365,6 @@ impl Viewport {
     /// sign tests, clamp and `w`'s divisor took x86-64 about 20
     /// instructions a vertex more, besides the outcode.
     #[inline(always)]
-    #[cfg_attr(not(target_pointer_width = "64"), allow(dead_code))]
     pub(crate) fn project_fast_wide(&self, p: &[i32; 4]) -> Option<(SubPoint, u32)> {
         let w = p[3] as i64;
         if w < W_MIN {
@@ -407,10 +412,6 @@ const LONG_DIVISION: bool = cfg!(all(
 /// 2w < w 2^8 + 2w`). (Three digits of one division each, the first `c /
 /// w`, took a multiply and three instructions more.)
 #[inline(always)]
-#[cfg_attr(
-    any(microraster_narrow_multiply, target_pointer_width = "64"),
-    allow(dead_code)
-)]
 fn depth_digits(c: u32, w: NonZeroU32) -> u32 {
     debug_assert!(w.get() >> DIGITS_W_BITS == 0 && c <= 2 * w.get());
     let c8 = c << 8;
