@@ -197,7 +197,8 @@ impl Viewport {
     #[cfg_attr(not(microraster_narrow_multiply), allow(dead_code))]
     pub(crate) fn project_recip(&self, p: &[i32; 4], w: NonZeroU32) -> (SubPoint, u32) {
         debug_assert!(w.get() >> DIGITS_W_BITS == 0 && w.get() as i64 >= W_MIN);
-        let f = Recip16::new(w);
+        // w < 2^23: its logarithm from a table, not a search.
+        let f = Recip16::new_w23(w);
         let wu = w.get();
         let half = wu / 2;
         // div_round(n h, w) with the sign of n: floor((|n| h + half) / w)
@@ -205,7 +206,11 @@ impl Viewport {
         // kept the closure out of line (two calls a vertex).
         #[inline(always)]
         fn round(f: &Recip16, half: u32, n: i32, h: u32) -> i32 {
-            let (a, b) = f.digit(n.unsigned_abs());
+            // The first digit is 0 for nearly every vertex (inside the
+            // view volume, `|n| <= w`): a compare rather than a digit's
+            // two products and correction.
+            let m = n.unsigned_abs();
+            let (a, b) = if m < f.d { (0, m) } else { f.digit(m) };
             let (d1, r1) = f.digit(b * (h >> 7));
             let (d0, _) = f.digit((r1 << 7) + b * (h & 127) + half);
             let q = (a * h + (d1 << 7) + d0) as i32;
@@ -219,7 +224,12 @@ impl Viewport {
         let y = self.half_h as i32 - round(&f, half, p[1], self.half_h as u32);
         // -w <= z <= w: c in 0..=2w, and the quotient at most 2 * 65535 + 1.
         let c = (p[2] + wu as i32) as u32;
-        let (a, b) = f.digit(c);
+        // The first digit `floor(c / w)` (0, 1 or 2) by compares.
+        let (a, b) = match c.checked_sub(wu) {
+            None => (0, c),
+            Some(e) if e < wu => (1, e),
+            Some(e) => (2, e - wu),
+        };
         let (d1, r1) = f.digit(b << 8);
         let (d0, _) = f.digit((r1 << 8) + (wu - b));
         let z = (a * 65_535 + (d1 << 8) + d0) >> 1;
