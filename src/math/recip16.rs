@@ -55,6 +55,14 @@ impl Recip16 {
         Self::with_log2(d, log2_small(d))
     }
 
+    /// [`Recip16::new`] for `d < 2^23` (the vertex stage's `w` on
+    /// ARMv6-M), its logarithm by [`log2_w23`]'s table rather than
+    /// [`leading_zeros`]' search of five steps.
+    #[inline(always)]
+    pub(crate) fn new_w23(d: NonZeroU32) -> Self {
+        Self::with_log2(d, log2_w23(d))
+    }
+
     /// [`Recip16::new`] given `t = floor(log2(d))`.
     #[inline(always)]
     fn with_log2(d: NonZeroU32, t: u32) -> Self {
@@ -175,6 +183,22 @@ fn log2_small(d: NonZeroU32) -> u32 {
     base + LOG2[(d >> base) as usize & 0xff] as u32
 }
 
+/// `floor(log2(d))` for `d < 2^23`, as [`log2_small`] by the byte that
+/// holds `d`'s top bit (`d`'s bits 15 to 22, 7 to 14 or 0 to 7).
+#[inline(always)]
+fn log2_w23(d: NonZeroU32) -> u32 {
+    let d = d.get();
+    debug_assert!(d < 1 << 23);
+    let base = if d >> 15 != 0 {
+        15
+    } else if d >> 7 != 0 {
+        7
+    } else {
+        0
+    };
+    base + LOG2[(d >> base) as usize & 0xff] as u32
+}
+
 /// `floor(2^31 / (2^15 + (i + 1) 2^7))` for `i` in `0..256`: [`recip31`]'s
 /// first estimate, from below, for the 16-bit divisors whose upper 9 bits
 /// are `2^8 + i`.
@@ -261,6 +285,16 @@ mod tests {
         for d in 1u32..1 << 21 {
             let nz = NonZeroU32::new(d).unwrap();
             assert_eq!(log2_small(nz), 31 - d.leading_zeros(), "{d}");
+        }
+    }
+
+    /// [`log2_w23`] is `31 - leading_zeros` for every `d < 2^23`, so
+    /// [`Recip16::new_w23`] is [`Recip16::new`].
+    #[test]
+    fn w23_logarithm_is_the_leading_zeros() {
+        for d in 1u32..1 << 23 {
+            let nz = NonZeroU32::new(d).unwrap();
+            assert_eq!(log2_w23(nz), 31 - d.leading_zeros(), "{d}");
         }
     }
 }

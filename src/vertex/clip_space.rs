@@ -63,9 +63,10 @@ pub const BARY_ONE: i32 = 1 << 30;
 pub fn outcode(p: &[i32; 4]) -> u8 {
     // Most vertices are inside the view volume: then every bit is clear
     // (inside `|x| <= w` is inside the guard band too).
-    let inside = match cfg!(target_pointer_width = "64") {
-        true => inside_wide(p),
-        false => inside_words(p),
+    let inside = match (cfg!(target_pointer_width = "64"), crate::math::SPLIT) {
+        (true, _) => inside_wide(p),
+        (false, true) => inside_signs(p),
+        (false, false) => inside_words(p),
     };
     if inside {
         return 0;
@@ -82,6 +83,25 @@ pub fn outcode(p: &[i32; 4]) -> u8 {
 fn inside_wide(p: &[i32; 4]) -> bool {
     let (x, y, z, w) = (p[0] as i64, p[1] as i64, p[2] as i64, p[3] as i64);
     w >= W_MIN && x.abs() <= w && y.abs() <= w && z.abs() <= w
+}
+
+/// [`inside_words`] by one sign test of the three `w - |v|` or-ed, for
+/// ARMv6-M, whose vertex loop made each compare of `inside_words` a flag
+/// in a stack slot and combined the flags (about 25 instructions a
+/// vertex). With `W_MIN <= w < 2^31` and `|v| <= 2^31`, `w - |v|` as an
+/// unsigned word is `0..=w` (below `2^31`) where `|v| <= w`, and
+/// otherwise wraps to `2^32 - (|v| - w)` with `0 < |v| - w < 2^31`
+/// (above `2^31`): its top bit is set exactly when `|v| > w`.
+#[inline(always)]
+#[cfg_attr(not(microraster_narrow_multiply), allow(dead_code))]
+fn inside_signs(p: &[i32; 4]) -> bool {
+    let w = p[3];
+    if (w as i64) < W_MIN {
+        return false;
+    }
+    let wu = w as u32;
+    let d = [p[0], p[1], p[2]].map(|v| wu.wrapping_sub(v.unsigned_abs()));
+    (d[0] | d[1] | d[2]) >> 31 == 0
 }
 
 /// [`inside_wide`] in 32 bits, for 32-bit cores: with `w` positive,
@@ -168,7 +188,8 @@ mod tests {
         assert_eq!(outcode(&[0, 0, 0, -w]) & OUT_W, OUT_W);
     }
 
-    /// The tests of a vertex inside the view volume (32- and 64-bit) agree
+    /// The tests of a vertex inside the view volume (32- and 64-bit, and
+    /// ARMv6-M's by signs) agree
     /// with the full outcode everywhere: the extremes of `i32`, `w` around `W_MIN`,
     /// coordinates around `±w`.
     #[test]
@@ -202,6 +223,7 @@ mod tests {
                         let p = [x, y, z, w];
                         assert_eq!(outcode(&p), full(&p), "{p:?}");
                         assert_eq!(inside_words(&p), inside_wide(&p), "{p:?}");
+                        assert_eq!(inside_signs(&p), inside_wide(&p), "{p:?}");
                     }
                 }
             }
@@ -212,6 +234,7 @@ mod tests {
             let p = [c(), c(), c(), w];
             assert_eq!(outcode(&p), full(&p), "{p:?}");
             assert_eq!(inside_words(&p), inside_wide(&p), "{p:?}");
+            assert_eq!(inside_signs(&p), inside_wide(&p), "{p:?}");
         }
     }
 }

@@ -197,7 +197,8 @@ impl Viewport {
     #[cfg_attr(not(microraster_narrow_multiply), allow(dead_code))]
     pub(crate) fn project_recip(&self, p: &[i32; 4], w: NonZeroU32) -> (SubPoint, u32) {
         debug_assert!(w.get() >> DIGITS_W_BITS == 0 && w.get() as i64 >= W_MIN);
-        let f = Recip16::new(w);
+        // w < 2^23: its logarithm from a table, not a search.
+        let f = Recip16::new_w23(w);
         let wu = w.get();
         let half = wu / 2;
         // div_round(n h, w) with the sign of n: floor((|n| h + half) / w)
@@ -205,7 +206,11 @@ impl Viewport {
         // kept the closure out of line (two calls a vertex).
         #[inline(always)]
         fn round(f: &Recip16, half: u32, n: i32, h: u32) -> i32 {
-            let (a, b) = f.digit(n.unsigned_abs());
+            // The first digit is 0 for nearly every vertex (inside the
+            // view volume, `|n| <= w`): a compare rather than a digit's
+            // two products and correction.
+            let m = n.unsigned_abs();
+            let (a, b) = if m < f.d { (0, m) } else { f.digit(m) };
             let (d1, r1) = f.digit(b * (h >> 7));
             let (d0, _) = f.digit((r1 << 7) + b * (h & 127) + half);
             let q = (a * h + (d1 << 7) + d0) as i32;
@@ -219,7 +224,12 @@ impl Viewport {
         let y = self.half_h as i32 - round(&f, half, p[1], self.half_h as u32);
         // -w <= z <= w: c in 0..=2w, and the quotient at most 2 * 65535 + 1.
         let c = (p[2] + wu as i32) as u32;
-        let (a, b) = f.digit(c);
+        // The first digit `floor(c / w)` (0, 1 or 2) by compares.
+        let (a, b) = match c.checked_sub(wu) {
+            None => (0, c),
+            Some(e) if e < wu => (1, e),
+            Some(e) => (2, e - wu),
+        };
         let (d1, r1) = f.digit(b << 8);
         let (d0, _) = f.digit((r1 << 8) + (wu - b));
         let z = (a * 65_535 + (d1 << 8) + d0) >> 1;
@@ -256,16 +266,13 @@ impl Viewport {
         fast: bool,
         color: impl FnOnce() -> ([u8; 3], bool),
     ) -> ScreenVertex {
-        let (outcode, p, z) = match (LONG_DIVISION, WIDE_DIVISION) {
-            (true, _) => match fast.then(|| self.project_fast(pos)).flatten() {
+        let (outcode, p, z) = if LONG_DIVISION || WIDE_DIVISION {
+            match fast.then(|| self.project_fast_any(pos)).flatten() {
                 Some((p, z)) => (0, p, z),
                 None => self.project_rest(pos[0], pos[1], pos[2], pos[3]),
-            },
-            (false, true) => match fast.then(|| self.project_fast_wide(pos)).flatten() {
-                Some((p, z)) => (0, p, z),
-                None => self.project_rest(pos[0], pos[1], pos[2], pos[3]),
-            },
-            _ => self.outcode_and_project(pos),
+            }
+        } else {
+            self.outcode_and_project(pos)
         };
         // Within the coordinate fields: `p` is 0 for a vertex that must be
         // clipped, otherwise inside the guard band (`|x|, |y| <= K w`), so
@@ -274,6 +281,20 @@ impl Viewport {
         match CHANNELS {
             true => ScreenVertex::new(p.x, p.y, z as u16, outcode, color),
             false => ScreenVertex::new_tested(p.x, p.y, z, outcode, color, inside),
+        }
+    }
+
+    /// The inline projection of a vertex inside the view volume where a
+    /// division is an instruction: [`project_fast_wide`](Self::project_fast_wide)
+    /// on 64-bit targets ([`WIDE_DIVISION`]), otherwise
+    /// [`project_fast`](Self::project_fast). Chosen by a constant, so
+    /// [`screen_vertex_lit`](Self::screen_vertex_lit) keeps one match.
+    #[inline(always)]
+    fn project_fast_any(&self, pos: &[i32; 4]) -> Option<(SubPoint, u32)> {
+        if WIDE_DIVISION {
+            self.project_fast_wide(pos)
+        } else {
+            self.project_fast(pos)
         }
     }
 
@@ -295,7 +316,6 @@ impl Viewport {
     /// coordinates by value: a reference would keep the vertex in memory.)
     #[inline(never)]
     #[cold]
-    #[cfg_attr(microraster_narrow_multiply, allow(dead_code))]
     fn project_rest(&self, x: i32, y: i32, z: i32, w: i32) -> (u8, SubPoint, u32) {
         self.outcode_and_project(&[x, y, z, w])
     }
@@ -320,10 +340,6 @@ impl Viewport {
     /// The same results; about 30 instructions a vertex fewer on the
     /// Cortex-M3 than the outcode and [`project_digits`](Self::project_digits).
     #[inline(always)]
-    #[cfg_attr(
-        any(microraster_narrow_multiply, target_pointer_width = "64"),
-        allow(dead_code)
-    )]
     pub(crate) fn project_fast(&self, p: &[i32; 4]) -> Option<(SubPoint, u32)> {
         let w = p[3] as u32;
         // W_MIN <= w < short_w, as one unsigned compare (short_w > W_MIN).
@@ -359,7 +375,6 @@ impl Viewport {
     /// sign tests, clamp and `w`'s divisor took x86-64 about 20
     /// instructions a vertex more, besides the outcode.
     #[inline(always)]
-    #[cfg_attr(not(target_pointer_width = "64"), allow(dead_code))]
     pub(crate) fn project_fast_wide(&self, p: &[i32; 4]) -> Option<(SubPoint, u32)> {
         let w = p[3] as i64;
         if w < W_MIN {
@@ -407,10 +422,6 @@ const LONG_DIVISION: bool = cfg!(all(
 /// 2w < w 2^8 + 2w`). (Three digits of one division each, the first `c /
 /// w`, took a multiply and three instructions more.)
 #[inline(always)]
-#[cfg_attr(
-    any(microraster_narrow_multiply, target_pointer_width = "64"),
-    allow(dead_code)
-)]
 fn depth_digits(c: u32, w: NonZeroU32) -> u32 {
     debug_assert!(w.get() >> DIGITS_W_BITS == 0 && c <= 2 * w.get());
     let c8 = c << 8;
