@@ -41,7 +41,9 @@
 //! nothing else in registers, and shades them afterwards. [`spans`] runs
 //! the same walk over bands of 32 rows through a small buffer.
 
-use super::{first_centre_at_or_after, PixelRect, Span, SubPoint, HALF_PIXEL, SUBPIXEL};
+use super::{
+    first_centre_at_or_after, PixelRect, Span, SubPoint, HALF_PIXEL, SUBPIXEL, SUBPIXEL_BITS,
+};
 use direct::{half_direct, Direct, DIRECT_COLS, DIRECT_DY};
 use edge::EdgeStepper;
 use packed::{half_packed, Packed, PACKED_COLS, PACKED_DY};
@@ -143,9 +145,17 @@ fn find_spans_with<const DIRECT: bool>(
     // reject it), and an empty clip's rows are empty and its spans
     // clamped empty (a triangle within its columns then lies within one
     // column, whose spans are empty too).
-    let row_top = first_centre_at_or_after(a.y).max(clip.y0);
-    let row_mid = first_centre_at_or_after(b.y);
-    let mut row_end = first_centre_at_or_after(c.y).min(clip.y1);
+    // The rows by `first_row` where the walk divides (M3 `demo`
+    // 3,184,820 -> 3,184,128 instructions, M4F 3,158,058 -> 3,149,398,
+    // x86-64 3,605,162 -> 3,595,512); ARMv6-M keeps its code.
+    let first_row = if DIRECT {
+        first_row
+    } else {
+        first_centre_at_or_after
+    };
+    let row_top = first_row(a.y).max(clip.y0);
+    let row_mid = first_row(b.y);
+    let mut row_end = first_row(c.y).min(clip.y1);
     if row_top >= row_end {
         return 0;
     }
@@ -295,6 +305,15 @@ fn find_spans_with<const DIRECT: bool>(
     // The lower half, from `stop == row_mid`.
     lower_half(b, c, stop, long_on_left, &mut left, &mut right);
     half::<SLOTS_LEFT>(out, n, stop, row_end, &mut left, &mut right, x0, x1)
+}
+
+/// [`first_centre_at_or_after`] as `floor((v + 7) / 16)`, the same
+/// ceiling of `(v - 8) / 16`: an add and a shift, where its negated
+/// shift of `8 - v` took a register holding zero through the walk's
+/// set-up. (`v` within the guard band: no overflow.)
+#[inline(always)]
+const fn first_row(v: i32) -> i32 {
+    (v + (HALF_PIXEL - 1)) >> SUBPIXEL_BITS
 }
 
 /// Whether a triangle whose vertices' `x` lie within `xmin..=xmax` and
