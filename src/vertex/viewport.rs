@@ -27,7 +27,10 @@ pub struct Viewport {
     /// [`Viewport::project_recip`] takes x's and y's remainders' quotient
     /// in one digit for a `w` up to this (0 for none): with both half
     /// sides below `2^12`, `b h + w / 2 < w 2^12` (one digit's range) for
-    /// `b < w`, and below `2^32` for `w (h + 1) <= 2^32 - 1`.
+    /// `b < w`, and below `2^32` for `w (h + 1) <= 2^32 - 1`. Only where
+    /// `project_recip` is used (elsewhere 8 instructions a `demo` frame
+    /// more on the Cortex-M3 for nothing).
+    #[cfg(any(test, microraster_narrow_multiply))]
     one_w: u32,
 }
 
@@ -39,6 +42,7 @@ impl Viewport {
         let (half_w, half_h) = (width * SUBPIXEL as u32 / 2, height * SUBPIXEL as u32 / 2);
         // w (4 h + 1) <= 2^32 - 1 bounds 4 w h + w / 2.
         let short_w = (u32::MAX / (4 * half_w.max(half_h) + 1) + 1).min(1 << DIGITS_W_BITS);
+        #[cfg(any(test, microraster_narrow_multiply))]
         let one_w = match half_w.max(half_h) < 1 << 12 {
             true => u32::MAX / (half_w.max(half_h) + 1),
             false => 0,
@@ -47,6 +51,7 @@ impl Viewport {
             half_w: half_w as i64,
             half_h: half_h as i64,
             short_w,
+            #[cfg(any(test, microraster_narrow_multiply))]
             one_w,
         }
     }
@@ -202,10 +207,12 @@ impl Viewport {
     /// `b 2^8 = d1 w + r1`: `c 65535 + w = (a 65535 + d1 2^8) w + (r1 2^8
     /// + w - b)`, the last term below `w (2^8 + 1)`. Every digit's dividend
     /// is below `w 2^12` (within [`Recip16::digit`]'s range) and, with
-    /// `w < 2^23`, below `2^32`. Where both half sides are below `2^12`
-    /// and `w` at most `one_w`, x's and y's `floor((b h + e) / w)` is one
-    /// digit (its dividend below `w 2^12` and `2^32`): ARMv6-M `demo`
-    /// 6,746,451 -> 6,663,049 instructions (vertex 1,060,241 -> 976,845).
+    /// `w < 2^23`, below `2^32`.
+    ///
+    /// Where both half sides are below `2^12` and `w` is at most `one_w`,
+    /// x's and y's `floor((b h + e) / w)` is one digit (its dividend below
+    /// `w 2^12` and `2^32`): ARMv6-M `demo` 6,746,451 to 6,663,049
+    /// instructions (vertex 1,060,241 to 976,845).
     #[inline(always)]
     #[cfg_attr(not(microraster_narrow_multiply), allow(dead_code))]
     pub(crate) fn project_recip(&self, p: &[i32; 4], w: NonZeroU32) -> (SubPoint, u32) {
@@ -241,7 +248,7 @@ impl Viewport {
                 q
             }
         }
-        let one = wu <= self.one_w;
+        let one = wu <= self.one_w();
         let x = self.half_w as i32 + round(&f, half, p[0], self.half_w as u32, one);
         let y = self.half_h as i32 - round(&f, half, p[1], self.half_h as u32, one);
         // -w <= z <= w: c in 0..=2w, and the quotient at most 2 * 65535 + 1.
@@ -257,6 +264,16 @@ impl Viewport {
         let z = (a * 65_535 + (d1 << 8) + d0) >> 1;
         debug_assert!(z <= 65_535);
         (SubPoint::new(x, y), z)
+    }
+
+    /// The largest `w` of [`project_recip`](Self::project_recip)'s one
+    /// digit (0 where the field is not kept: `project_recip` unused).
+    #[inline(always)]
+    fn one_w(&self) -> u32 {
+        #[cfg(any(test, microraster_narrow_multiply))]
+        return self.one_w;
+        #[cfg(not(any(test, microraster_narrow_multiply)))]
+        0
     }
 
     /// Runs the vertex stage on one vertex.
