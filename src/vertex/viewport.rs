@@ -24,6 +24,14 @@ pub struct Viewport {
     /// ([`Viewport::project_digits`]): below `2^23`, and such that `(4 w h
     /// + w / 2) < 2^32` for either half side `h`.
     short_w: u32,
+    /// [`Viewport::project_recip`] takes x's and y's remainders' quotient
+    /// in one digit for a `w` up to this (0 for none): with both half
+    /// sides below `2^12`, `b h + w / 2 < w 2^12` (one digit's range) for
+    /// `b < w`, and below `2^32` for `w (h + 1) <= 2^32 - 1`. Only where
+    /// `project_recip` is used (elsewhere 8 instructions a `demo` frame
+    /// more on the Cortex-M3 for nothing).
+    #[cfg(any(test, microraster_narrow_multiply))]
+    one_w: u32,
 }
 
 impl Viewport {
@@ -34,10 +42,17 @@ impl Viewport {
         let (half_w, half_h) = (width * SUBPIXEL as u32 / 2, height * SUBPIXEL as u32 / 2);
         // w (4 h + 1) <= 2^32 - 1 bounds 4 w h + w / 2.
         let short_w = (u32::MAX / (4 * half_w.max(half_h) + 1) + 1).min(1 << DIGITS_W_BITS);
+        #[cfg(any(test, microraster_narrow_multiply))]
+        let one_w = match half_w.max(half_h) < 1 << 12 {
+            true => u32::MAX / (half_w.max(half_h) + 1),
+            false => 0,
+        };
         Self {
             half_w: half_w as i64,
             half_h: half_h as i64,
             short_w,
+            #[cfg(any(test, microraster_narrow_multiply))]
+            one_w,
         }
     }
 
@@ -193,6 +208,11 @@ impl Viewport {
     /// + w - b)`, the last term below `w (2^8 + 1)`. Every digit's dividend
     /// is below `w 2^12` (within [`Recip16::digit`]'s range) and, with
     /// `w < 2^23`, below `2^32`.
+    ///
+    /// Where both half sides are below `2^12` and `w` is at most `one_w`,
+    /// x's and y's `floor((b h + e) / w)` is one digit (its dividend below
+    /// `w 2^12` and `2^32`): ARMv6-M `demo` 6,746,451 to 6,663,049
+    /// instructions (vertex 1,060,241 to 976,845).
     #[inline(always)]
     #[cfg_attr(not(microraster_narrow_multiply), allow(dead_code))]
     pub(crate) fn project_recip(&self, p: &[i32; 4], w: NonZeroU32) -> (SubPoint, u32) {
@@ -205,23 +225,32 @@ impl Viewport {
         // for |n| <= 4w, h <= 2^15. A function inline, not a closure: LLVM
         // kept the closure out of line (two calls a vertex).
         #[inline(always)]
-        fn round(f: &Recip16, half: u32, n: i32, h: u32) -> i32 {
+        fn round(f: &Recip16, half: u32, n: i32, h: u32, one: bool) -> i32 {
             // The first digit is 0 for nearly every vertex (inside the
             // view volume, `|n| <= w`): a compare rather than a digit's
             // two products and correction.
             let m = n.unsigned_abs();
             let (a, b) = if m < f.d { (0, m) } else { f.digit(m) };
-            let (d1, r1) = f.digit(b * (h >> 7));
-            let (d0, _) = f.digit((r1 << 7) + b * (h & 127) + half);
-            let q = (a * h + (d1 << 7) + d0) as i32;
+            // One digit where `one_w` allows it (a small viewport and
+            // `w`), else two of 8 and 7 bits.
+            let rest = match one {
+                true => f.digit(b * h + half).0,
+                false => {
+                    let (d1, r1) = f.digit(b * (h >> 7));
+                    let (d0, _) = f.digit((r1 << 7) + b * (h & 127) + half);
+                    (d1 << 7) + d0
+                }
+            };
+            let q = (a * h + rest) as i32;
             if n < 0 {
                 -q
             } else {
                 q
             }
         }
-        let x = self.half_w as i32 + round(&f, half, p[0], self.half_w as u32);
-        let y = self.half_h as i32 - round(&f, half, p[1], self.half_h as u32);
+        let one = wu <= self.one_w();
+        let x = self.half_w as i32 + round(&f, half, p[0], self.half_w as u32, one);
+        let y = self.half_h as i32 - round(&f, half, p[1], self.half_h as u32, one);
         // -w <= z <= w: c in 0..=2w, and the quotient at most 2 * 65535 + 1.
         let c = (p[2] + wu as i32) as u32;
         // The first digit `floor(c / w)` (0, 1 or 2) by compares.
@@ -235,6 +264,16 @@ impl Viewport {
         let z = (a * 65_535 + (d1 << 8) + d0) >> 1;
         debug_assert!(z <= 65_535);
         (SubPoint::new(x, y), z)
+    }
+
+    /// The largest `w` of [`project_recip`](Self::project_recip)'s one
+    /// digit (0 where the field is not kept: `project_recip` unused).
+    #[inline(always)]
+    fn one_w(&self) -> u32 {
+        #[cfg(any(test, microraster_narrow_multiply))]
+        return self.one_w;
+        #[cfg(not(any(test, microraster_narrow_multiply)))]
+        0
     }
 
     /// Runs the vertex stage on one vertex.
@@ -480,11 +519,24 @@ mod tests {
     #[test]
     fn projection_inside_matches_project() {
         let mut next = crate::testing::rng();
-        for (width, height) in [(320, 240), (4096, 4096), (1, 4096), (4096, 3001)] {
+        // (511 and 512 pixels: half sides just below and at 2^12 sub-pixels,
+        // the ends of `project_recip`'s one digit.)
+        for (width, height) in [
+            (320, 240),
+            (4096, 4096),
+            (1, 4096),
+            (4096, 3001),
+            (511, 2),
+            (2, 512),
+        ] {
             let vp = Viewport::new(width, height);
             for i in 0..200_000u64 {
                 let w = match i % 8 {
                     0 => W_MIN + next(16) as i64,
+                    // `project_recip`'s largest w of one digit, and beyond.
+                    3 if vp.one_w > 0 => {
+                        (vp.one_w as i64 - 2 + next(4) as i64).min((1 << DIGITS_W_BITS) - 1)
+                    }
                     1 => (1 << DIGITS_W_BITS) - 1 - next(4) as i64,
                     // The largest w of the 32-bit quotients.
                     2 => vp.short_w as i64 - 1 - next(4) as i64,
