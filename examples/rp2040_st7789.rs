@@ -2,11 +2,13 @@
 //! 2,048 triangles with a cube orbiting it, with microraster, in 32x32
 //! tiles, on a 240x240 ST7789 on SPI1, frame after frame. A DMA channel
 //! sends the finished tiles while the core draws the next ones
-//! (`Frame::render_queued` over five tile buffers, up to four tiles on
+//! (`Frame::render_to_queue` over five tile buffers, up to four tiles on
 //! the wire): the channel's completion interrupt starts the next queued
 //! tile by itself, so the core draws ahead through cheap tiles while the
 //! wire catches up during dear ones, and a frame takes about the longer
-//! of the drawing and the sending, not their sum.
+//! of the drawing and the sending, not their sum. The buffers stay in a
+//! `TileQueue` from frame to frame, so a frame's last tiles are sent
+//! while the next frame's vertex stage and binning run.
 //!
 //! ```text
 //! cargo build --release --example rp2040_st7789 --target thumbv6m-none-eabi
@@ -401,9 +403,14 @@ mod firmware {
         // No `Renderer`: its own tile buffer would go unused (each frame
         // is begun with `Frame::begin` and drawn into `tiles`).
         let config = config();
-        let Some(mut tiles) = tiles() else {
+        // Kept from frame to frame: a frame returns with its last tiles
+        // still on the wire, sent while the next one's vertex stage and
+        // binning run.
+        let Some(tiles) = tiles() else {
             fault(&mut led, 4)
         };
+        let mut queue = TileQueue::new(tiles);
+        let mut lit = false;
 
         let mut frame = 0u64;
         loop {
@@ -416,17 +423,22 @@ mod firmware {
             frame += 1;
             let draws = draws(&knot, &cube, time_us);
             let scene = Scene::new(camera, &draws).light(light());
-            let (back, result) = match PicoFrame::begin(config, workspace, &scene) {
-                Ok(frame) => frame.render_queued(tiles, &mut panel),
-                Err(e) => (tiles, Err(e.for_sink())),
+            let result = match PicoFrame::begin(config, workspace, &scene) {
+                Ok(frame) => frame.render_to_queue(&mut queue, &mut panel),
+                Err(e) => Err(e.for_sink()),
             };
-            tiles = back;
             if result.is_err() {
                 fault(&mut led, 5);
             }
-            // Lit once the first frame is on the panel, so the panel's
-            // power-up contents are never seen; a no-op after that.
-            let Ok(()) = backlight.set_high();
+            // Lit once the first frame is on the panel (its last tiles
+            // sent), so the panel's power-up contents are never seen.
+            if !lit {
+                if queue.flush(&mut panel).is_err() {
+                    fault(&mut led, 5);
+                }
+                let Ok(()) = backlight.set_high();
+                lit = true;
+            }
             let Ok(()) = led.toggle();
         }
     }

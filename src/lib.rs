@@ -85,7 +85,8 @@ pub use raster::Rasterizer;
 pub use render::{Config, Features, FrameStats, Profiler, RenderError, Renderer, Stage, Workspace};
 pub use shade::DepthTest;
 pub use sink::{
-    AsyncTileSink, FrameBuffer, FrameBufferError, NullSink, Rgb565Be, TileSink, TileTransfer,
+    AsyncTileSink, FrameBuffer, FrameBufferError, NullSink, Rgb565Be, TileQueue, TileSink,
+    TileTransfer,
 };
 pub use tile::{TileBuffer, TileOrder, TileView};
 
@@ -106,7 +107,8 @@ pub mod prelude {
         Perspective, PixelFn, ShaderSet, SpanInput, Textured, TexturedLit, VertexInput,
     };
     pub use crate::sink::{
-        AsyncTileSink, FrameBuffer, FrameBufferError, NullSink, Rgb565Be, TileSink, TileTransfer,
+        AsyncTileSink, FrameBuffer, FrameBufferError, NullSink, Rgb565Be, TileQueue, TileSink,
+        TileTransfer,
     };
     pub use crate::texture::{Filter, FromTexel, Texels, Texture};
     pub use crate::tile::{TileBuffer, TileOrder, TileView};

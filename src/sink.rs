@@ -17,7 +17,11 @@
 //! the next tile into a second buffer while the previous one is on the
 //! wire. A driver that moves on to the next queued tile by itself (a
 //! DMA-completion interrupt) lets the core draw further ahead, over `N`
-//! buffers: [`Renderer::render_queued`](crate::Renderer::render_queued). [`Rgb565Be`] draws tiles in an SPI panel's byte order, and
+//! buffers: [`Renderer::render_queued`](crate::Renderer::render_queued); a
+//! [`TileQueue`] keeps those buffers from frame to frame, so that a
+//! frame's last tiles are sent while the next frame begins
+//! ([`Frame::render_to_queue`](crate::render::Frame::render_to_queue)).
+//! [`Rgb565Be`] draws tiles in an SPI panel's byte order, and
 //! [`wire`] has the window commands that precede a tile's pixels.
 //!
 //! | file | what |
@@ -25,7 +29,7 @@
 //! | `sink.rs` | [`TileSink`], every `DrawTarget` as one, [`NullSink`] |
 //! | `sink/framebuffer.rs` | [`FrameBuffer`]: tiles placed in a whole frame |
 //! | `sink/transfer.rs` | [`TileTransfer`] and the double-buffered frame loop |
-//! | `sink/queue.rs` | the frame loop over `N` buffers, `N - 1` tiles in flight |
+//! | `sink/queue.rs` | the frame loop over `N` buffers, `N - 1` tiles in flight; [`TileQueue`] |
 //! | `sink/async_sink.rs` | [`AsyncTileSink`] and the async frame loop |
 //! | `sink/wire.rs` | [`Rgb565Be`], [`wire::Window`]: the panel's wire format |
 
@@ -37,6 +41,7 @@ pub mod wire;
 
 pub use async_sink::AsyncTileSink;
 pub use framebuffer::{FrameBuffer, FrameBufferError};
+pub use queue::TileQueue;
 pub use transfer::TileTransfer;
 pub use wire::Rgb565Be;
 

@@ -213,3 +213,101 @@ fn buffers_given_back_out_of_order_are_used_all_the_same() {
     assert_eq!((queue.started, queue.waited), (15, 15));
     assert_eq!(book.borrow().most, 3);
 }
+
+/// Frames through one `TileQueue` (`render_to_queue`): each returns with
+/// its last `N - 1` tiles in flight, which the next frame waits for as it
+/// needs their buffers; no buffer is drawn into while in flight, never
+/// more than `N - 1` are, each frame's statistics are `render`'s, and once
+/// the queue is emptied the panel holds the last frame.
+#[test]
+fn a_kept_queue_sends_each_frames_last_tiles_during_the_next() {
+    const N: usize = 4;
+    let assets = DemoAssets::new();
+    let (knot, cube) = (assets.knot(), cube());
+    let size = Size::new(160, 96); // 15 tiles
+    let config = Config::new(size, Rgb565::new(2, 4, 6));
+    let mut renderer: Renderer<Rgb565, 32, 32> = Renderer::new(config);
+    let mut ws: Box<Workspace<2048, 8192, 16>> = Box::new(Workspace::new());
+    let book: Shared = Rc::default();
+    let mut store: Box<[Tile; N]> = Box::new(core::array::from_fn(|_| Tile::new(Rgb565::BLACK)));
+    let mut dma = Queue::new(size, N - 1, &book, Rgb565::new(31, 0, 31));
+    let mut queue = TileQueue::new(buffers(&mut store, &book));
+    let times = [0.1, 0.5, 0.9];
+    let mut last = Order::new(size, config.clear_color);
+    let mut first = Order::new(size, config.clear_color);
+    for (i, &t) in times.iter().enumerate() {
+        let d = draws(&knot, &cube, t, Shading::Gouraud);
+        let scene = scene_of(&d, size);
+        let mut sink = Order::new(size, config.clear_color);
+        let want = renderer.render(&mut ws, &scene, &mut sink).unwrap();
+        let stats = renderer
+            .render_to_queue(&mut ws, &scene, &mut queue, &mut dma)
+            .unwrap();
+        assert_eq!(stats, want, "frame {i}");
+        assert_eq!(queue.in_flight(), N - 1, "frame {i}'s last tiles in flight");
+        assert_eq!(dma.queue.len(), N - 1);
+        assert_eq!(dma.started, 15 * (i + 1));
+        if i == 0 {
+            first = sink;
+        } else {
+            last = sink;
+        }
+    }
+    let (back, sent) = queue.into_tiles(&mut dma);
+    assert_eq!(sent, Ok(()));
+    assert_eq!(ids(&back), (0..N).collect::<Vec<_>>(), "every buffer back");
+    assert!(dma.queue.is_empty(), "nothing in flight");
+    assert_eq!((dma.started, dma.waited), (45, 45));
+    assert_eq!(book.borrow().most, N - 1);
+    // Tile k (counted across frames) from buffer k % N: the queue goes on
+    // where the frame before left it. Each frame's last draw finds no
+    // tile and leaves its buffer for the next frame's first.
+    let draws = book.borrow().draws();
+    assert_eq!(draws.len(), 3 * 16);
+    for (j, &id) in draws.iter().enumerate() {
+        let (frame, m) = (j / 16, j % 16);
+        assert_eq!(id, (15 * frame + m) % N, "frame {frame}, draw {m}");
+    }
+    // Every pixel sent once a frame, the last frame's last.
+    assert!(dma.frame.writes.iter().all(|&w| w == 3));
+    assert_ne!(first.1.pixels, last.1.pixels, "the frames differ");
+    assert_eq!(
+        dma.frame.pixels, last.1.pixels,
+        "the panel shows the last frame"
+    );
+}
+
+/// A tile of the frame before that fails when the next frame waits for
+/// it: that frame returns the error, starts nothing more, and leaves
+/// nothing in flight; every buffer comes back.
+#[test]
+fn an_error_of_the_frame_before_comes_back_from_the_next() {
+    const N: usize = 4;
+    let cube = cube();
+    let d = [Draw::new(&cube)];
+    let size = Size::new(160, 96); // 15 tiles
+    let scene = scene_of(&d, size);
+    let renderer: Renderer<Rgb565, 32, 32> = Renderer::new(Config::new(size, Rgb565::BLACK));
+    let mut ws: Box<Workspace<2048, 1024, 16>> = Box::new(Workspace::new());
+    let book: Shared = Rc::default();
+    let mut store: Box<[Tile; N]> = Box::new(core::array::from_fn(|_| Tile::new(Rgb565::BLACK)));
+    let mut dma = Queue::new(size, N - 1, &book, Rgb565::new(31, 0, 31));
+    // Tiles 12, 13 and 14 are in flight when the first frame returns.
+    dma.fail_wait = Some(13);
+    let mut queue = TileQueue::new(buffers(&mut store, &book));
+    let first = renderer.render_to_queue(&mut ws, &scene, &mut queue, &mut dma);
+    assert_eq!(first.unwrap().tiles, 15);
+    assert_eq!(queue.in_flight(), 3);
+    book.borrow_mut().calls.clear();
+    let second = renderer.render_to_queue(&mut ws, &scene, &mut queue, &mut dma);
+    assert_eq!(second, Err(RenderError::Sink(WireError(13))));
+    // Tile 15 drawn, 12 waited for, 15 started; tile 16 drawn, 13's wait
+    // fails; 14 and 15 are waited for.
+    assert_eq!(book.borrow().calls, "dwsdwww");
+    assert_eq!(queue.in_flight(), 0);
+    assert!(dma.queue.is_empty(), "nothing left in flight");
+    assert_eq!((dma.started, dma.waited), (16, 16));
+    let (back, sent) = queue.into_tiles(&mut dma);
+    assert_eq!(sent, Ok(()));
+    assert_eq!(ids(&back), (0..N).collect::<Vec<_>>(), "every buffer back");
+}

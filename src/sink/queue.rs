@@ -9,7 +9,10 @@
 //! run of cheap tiles fills the queue while the wire catches up on them
 //! during the dear ones that follow; and tiles with nothing to draw are
 //! taken between the others, at most `N - 2` in a row, so that no long
-//! run of them makes the core wait (see [`Renderer::render_queued`]).
+//! run of them makes the core wait (see [`Renderer::render_queued`]). A
+//! [`TileQueue`] keeps the buffers from one frame to the next
+//! ([`Frame::render_to_queue`]), so that a frame's last tiles are sent
+//! while the next frame's vertex stage and binning run.
 //!
 //! [`Frame::render_double_buffered`] keeps its own loop although it makes
 //! the calls of this one with `N = 2`: the slots and the count here cost
@@ -119,6 +122,36 @@ where
             Err(e) => (tiles, Err(e.for_sink())),
         }
     }
+
+    /// Renders `scene` into the buffers of `queue` as
+    /// [`render_queued`](Self::render_queued) does, but returns with the
+    /// frame's last tiles still in flight, sent while the caller begins
+    /// the next frame: [`Frame::render_to_queue`], for a frame begun by
+    /// this renderer.
+    pub fn render_to_queue<
+        X,
+        B,
+        F,
+        const N: usize,
+        const V: usize,
+        const BN: usize,
+        const T: usize,
+    >(
+        &self,
+        ws: &mut Workspace<V, BN, T>,
+        scene: &Scene<'_, F>,
+        queue: &mut TileQueue<B, N>,
+        transfer: &mut X,
+    ) -> Result<FrameStats, RenderError<X::Error>>
+    where
+        X: TileTransfer<B>,
+        B: BorrowMut<TileBuffer<C, TW, TH>>,
+        F: ShaderSet<C>,
+    {
+        self.begin(ws, scene)
+            .map_err(RenderError::for_sink)?
+            .render_to_queue(queue, transfer)
+    }
 }
 
 impl<C, F, const TW: usize, const TH: usize, P> Frame<'_, C, F, TW, TH, P>
@@ -132,9 +165,13 @@ where
     /// [`Renderer::render_queued`] describes: its loop, for a frame begun without a renderer
     /// ([`Frame::begin`]). Gives the buffers back with the frame's
     /// statistics or the transfer's first error, nothing in flight.
+    ///
+    /// [`render_to_queue`](Self::render_to_queue) does the same but leaves
+    /// the frame's last tiles in flight, to be sent while the next frame's
+    /// vertex stage and binning run.
     #[must_use = "the tile buffers come back with the frame's result"]
     pub fn render_queued<X, B, const N: usize>(
-        mut self,
+        self,
         tiles: [B; N],
         transfer: &mut X,
     ) -> ([B; N], Result<FrameStats, RenderError<X::Error>>)
@@ -142,26 +179,102 @@ where
         X: TileTransfer<B>,
         B: BorrowMut<TileBuffer<C, TW, TH>>,
     {
+        let mut queue = TileQueue::new(tiles);
+        let result = self.render_to_queue(&mut queue, transfer);
+        // Nothing is in flight after an error; after a frame, its last
+        // tiles are.
+        let (tiles, sent) = queue.into_tiles(transfer);
+        let result = match (result, sent) {
+            (Ok(stats), Ok(())) => Ok(stats),
+            (Err(e), _) => Err(e),
+            (Ok(_), Err(e)) => Err(RenderError::Sink(e)),
+        };
+        (tiles, result)
+    }
+
+    /// Draws the frame's tiles into the buffers of `queue`, in the order of
+    /// [`Renderer::render_queued`], with up to `N - 1` finished tiles in
+    /// flight in `transfer`, and returns with the frame's last tiles still
+    /// in flight: the next frame's vertex stage and binning (which use no
+    /// tile buffer) then run while the wire sends them, where
+    /// [`render_queued`](Self::render_queued) would wait for the wire to
+    /// empty. Tiles in flight from the frame before are waited for as this
+    /// frame's buffers are needed, oldest first.
+    ///
+    /// Returns the frame's statistics, or the first error; a transfer's
+    /// error may be that of a tile of the frame before, waited for during
+    /// this one. After an error no tile is started, the tiles in flight
+    /// are waited for, and none is in flight when this returns.
+    /// [`TileQueue::into_tiles`] waits for the last ones and gives the
+    /// buffers back.
+    ///
+    /// ```
+    /// use microraster::embedded_graphics::pixelcolor::{Rgb565, RgbColor};
+    /// use microraster::prelude::*;
+    /// use microraster::render::Frame;
+    /// use microraster::{TileBuffer, TileQueue};
+    /// use std::collections::VecDeque;
+    ///
+    /// type Tile = Box<TileBuffer<Rgb565, 16, 16>>;
+    ///
+    /// /// A queued DMA driver that sends nothing: it holds the buffers in
+    /// /// flight and gives the oldest back first.
+    /// struct Dma(VecDeque<Tile>);
+    ///
+    /// impl TileTransfer<Tile> for Dma {
+    ///     type Error = ();
+    ///     fn start(&mut self, _: &Rectangle, tile: Tile) -> Result<(), ((), Tile)> {
+    ///         self.0.push_back(tile);
+    ///         Ok(())
+    ///     }
+    ///     fn wait(&mut self) -> (Tile, Result<(), ()>) {
+    ///         (self.0.pop_front().expect("a tile in flight"), Ok(()))
+    ///     }
+    /// }
+    ///
+    /// let draws = [];
+    /// let scene = Scene::new(Camera::new(Mat4::IDENTITY, Mat4::IDENTITY), &draws);
+    /// let config = Config::new(Size::new(40, 30), Rgb565::BLACK);
+    /// let mut ws: Workspace<4, 64, 8> = Workspace::new();
+    /// let mut queue = TileQueue::new([0; 4].map(|_| Box::new(TileBuffer::new(Rgb565::BLACK))));
+    /// let mut dma = Dma(VecDeque::new());
+    /// for _ in 0..3 {
+    ///     let frame: Frame<'_, Rgb565, _, 16, 16> = Frame::begin(config, &mut ws, &scene).unwrap();
+    ///     let stats = frame.render_to_queue(&mut queue, &mut dma).unwrap();
+    ///     assert_eq!(stats.tiles, 6);
+    ///     // The frame's last three tiles are still on the wire.
+    ///     assert_eq!((queue.in_flight(), dma.0.len()), (3, 3));
+    /// }
+    /// let (tiles, sent) = queue.into_tiles(&mut dma);
+    /// assert_eq!((tiles.len(), sent, dma.0.len()), (4, Ok(()), 0));
+    /// ```
+    pub fn render_to_queue<X, B, const N: usize>(
+        mut self,
+        queue: &mut TileQueue<B, N>,
+        transfer: &mut X,
+    ) -> Result<FrameStats, RenderError<X::Error>>
+    where
+        X: TileTransfer<B>,
+        B: BorrowMut<TileBuffer<C, TW, TH>>,
+    {
         const {
-            assert!(N >= 2, "render_queued needs at least two tile buffers");
+            assert!(N >= 2, "a tile queue needs at least two tile buffers");
         }
-        // The buffers not in flight. Transfers come back oldest first, so
-        // tile `k` is drawn into slot `k % N`, and the oldest tile in
-        // flight while tile `k` is drawn is the one from slot `k + 1`
-        // (mod `N`): its buffer goes back there.
-        let mut slots = tiles.map(Some);
-        let mut next = 0;
-        let mut in_flight = 0;
+        let TileQueue {
+            slots,
+            next,
+            in_flight,
+        } = queue;
         // Cheap tiles (an empty bin: a clear and nothing else) drawn since
         // the last dear one. See the order in `render_queued`'s docs.
         let mut cheap_run = 0;
         let outcome = loop {
             // Always a buffer here, whatever order the driver gives them
-            // back in: slot `next` holds one of the `N` to begin with, and
-            // once `N - 1` are in flight, the wait before each start
+            // back in: slot `next` holds one while fewer than `N` are in
+            // flight, and once `N - 1` are, the wait before each start
             // fills the slot after. (Were it empty, the frame would end
             // here rather than panic.)
-            let Some(mut tile) = slots[next].take() else {
+            let Some(mut tile) = slots[*next].take() else {
                 break Ok(());
             };
             let pick = if N == 2 {
@@ -172,47 +285,105 @@ where
                 Pick::Dear
             };
             let Some((area, cheap)) = self.render_picked(tile.borrow_mut(), &mut (), pick) else {
-                slots[next] = Some(tile);
-                break Ok(());
+                slots[*next] = Some(tile);
+                return Ok(self.stats());
             };
             cheap_run = if cheap { cheap_run + 1 } else { 0 };
-            let after = (next + 1) % N;
-            if in_flight == N - 1 {
+            let after = (*next + 1) % N;
+            if *in_flight == N - 1 {
                 let (done, result) = transfer.wait();
-                in_flight -= 1;
-                put_back(&mut slots, after, done);
+                *in_flight -= 1;
+                put_back(slots, after, done);
                 if let Err(e) = result {
-                    slots[next] = Some(tile);
+                    slots[*next] = Some(tile);
                     break Err(e);
                 }
             }
             if let Err((e, back)) = transfer.start(&area, tile) {
-                slots[next] = Some(back);
+                slots[*next] = Some(back);
                 break Err(e);
             }
-            in_flight += 1;
-            next = after;
+            *in_flight += 1;
+            *next = after;
         };
-        // The end of the frame, or its first error: the tiles still in
-        // flight are waited for, oldest first (the one drawn `in_flight`
-        // tiles before `next`), so that every buffer comes back and none
-        // is left with the driver. The first error is the one returned.
-        let mut outcome = outcome;
-        while in_flight > 0 {
-            let (done, result) = transfer.wait();
-            put_back(&mut slots, (next + N - in_flight) % N, done);
-            in_flight -= 1;
-            outcome = outcome.and(result);
+        // An error (or a slot left empty by a driver that kept a buffer):
+        // the tiles still in flight are waited for, so that none is left
+        // with the driver. The first error is the one returned.
+        let sent = queue.flush(transfer);
+        match outcome.and(sent) {
+            Ok(()) => Ok(self.stats()),
+            Err(e) => Err(RenderError::Sink(e)),
         }
+    }
+}
+
+/// `N` tile buffers and which of them are in flight in a
+/// [`TileTransfer`], kept from frame to frame by
+/// [`Frame::render_to_queue`] (and its
+/// [`Renderer`](Renderer::render_to_queue) form), so that a frame's last
+/// tiles are sent while the next frame begins.
+///
+/// Tile `k` (counting across frames) is drawn into slot `k % N`; the
+/// transfer gives buffers back oldest first, so the oldest tile in flight
+/// is the one drawn `in_flight` tiles before the next, and its buffer goes
+/// back to its slot.
+#[derive(Debug)]
+pub struct TileQueue<B, const N: usize> {
+    /// The buffers not in flight.
+    slots: [Option<B>; N],
+    /// The slot the next tile is drawn into.
+    next: usize,
+    /// Tiles started and not yet waited for.
+    in_flight: usize,
+}
+
+impl<B, const N: usize> TileQueue<B, N> {
+    /// A queue of the `N` buffers `tiles`, none in flight.
+    pub fn new(tiles: [B; N]) -> Self {
+        Self {
+            slots: tiles.map(Some),
+            next: 0,
+            in_flight: 0,
+        }
+    }
+
+    /// How many tiles are in flight: started and not yet waited for.
+    pub fn in_flight(&self) -> usize {
+        self.in_flight
+    }
+
+    /// Waits for every tile in flight, oldest first, and gives the `N`
+    /// buffers back (in any order) with the first transfer error among
+    /// them.
+    #[must_use = "the tile buffers come back with the transfers' result"]
+    pub fn into_tiles<X: TileTransfer<B>>(
+        mut self,
+        transfer: &mut X,
+    ) -> ([B; N], Result<(), X::Error>) {
+        let sent = self.flush(transfer);
         // Every slot is full now: `N` buffers came back into `N` slots. (A
         // slot that were not would take one more buffer from the driver
         // rather than panic.)
-        let tiles = slots.map(|slot| slot.unwrap_or_else(|| transfer.wait().0));
-        let result = match outcome {
-            Ok(()) => Ok(self.stats()),
-            Err(e) => Err(RenderError::Sink(e)),
-        };
-        (tiles, result)
+        let tiles = self
+            .slots
+            .map(|slot| slot.unwrap_or_else(|| transfer.wait().0));
+        (tiles, sent)
+    }
+
+    /// Waits for every tile in flight, oldest first (the one drawn
+    /// `in_flight` tiles before the next), each buffer back into the
+    /// queue, and returns the first transfer error among them: for a
+    /// caller that must know the frame is on the panel (before lighting
+    /// it, say) or the wire idle.
+    pub fn flush<X: TileTransfer<B>>(&mut self, transfer: &mut X) -> Result<(), X::Error> {
+        let mut outcome = Ok(());
+        while self.in_flight > 0 {
+            let (done, result) = transfer.wait();
+            put_back(&mut self.slots, (self.next + N - self.in_flight) % N, done);
+            self.in_flight -= 1;
+            outcome = outcome.and(result);
+        }
+        outcome
     }
 }
 
