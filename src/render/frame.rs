@@ -34,8 +34,13 @@ use embedded_graphics::primitives::Rectangle;
 pub(crate) enum Pick {
     /// The next in visiting order.
     InOrder,
-    /// The next with an empty bin if any is left, else the next.
-    Cheap,
+    /// A tile with an empty bin or one with triangles, whichever keeps
+    /// the two kinds spread evenly over the pass: an empty one while the
+    /// share of the pass's empty tiles drawn is at most the share of its
+    /// other tiles drawn, so that the cheap tiles, which the wire takes
+    /// longer to send than the core to draw, come between the dear ones
+    /// all through the pass rather than at its start.
+    Spread,
     /// The next with triangles if any is left, else the next.
     Dear,
 }
@@ -63,6 +68,11 @@ pub struct Frame<'a, C, F, const TW: usize, const TH: usize, P = super::All> {
     cheap: usize,
     dear: usize,
     taken: usize,
+    /// How many of the pass's tiles have an empty bin, counted when
+    /// [`Pick::Spread`] first needs it (`usize::MAX` until then), and how
+    /// many of those have been drawn.
+    cheap_total: usize,
+    cheap_taken: usize,
     /// The current pass is tile `t0` alone, whose bin overflowed the pool:
     /// it is drawn by scanning every triangle against it.
     rescan: bool,
@@ -169,6 +179,8 @@ where
             cheap: 0,
             dear: 0,
             taken: 0,
+            cheap_total: usize::MAX,
+            cheap_taken: 0,
             rescan: false,
             cache: SetupCache::empty(),
             stats: FrameStats {
@@ -229,12 +241,13 @@ where
         }
         let cheap = match pick {
             Pick::InOrder => self.cheap < self.dear,
-            Pick::Cheap => self.cheap < self.len,
+            Pick::Spread => self.spread(),
             Pick::Dear => self.dear == self.len,
         };
         let k = if cheap {
             let k = self.cheap;
             self.cheap = self.seek(k + 1, true);
+            self.cheap_taken += 1;
             k
         } else {
             let k = self.dear;
@@ -295,6 +308,24 @@ where
         Some((rectangle(&rect), false))
     }
 
+    /// [`Pick::Spread`]'s choice: a cheap tile (an empty bin) if dear
+    /// ones have been drawn in at least the share of the pass's cheap ones
+    /// drawn, `cheap_taken / cheap_total <= dear_taken / dear_total`, or
+    /// if no dear one is left.
+    fn spread(&mut self) -> bool {
+        if self.cheap == self.len || self.dear == self.len {
+            return self.dear == self.len;
+        }
+        if self.cheap_total == usize::MAX {
+            let empty = |k: &usize| !self.rescan && self.bins.is_empty(*k);
+            self.cheap_total = (0..self.len).filter(empty).count();
+        }
+        let dear_taken = self.taken - self.cheap_taken;
+        let dear_total = self.len - self.cheap_total;
+        // In u64: a pass may hold more than 2^16 tiles.
+        self.cheap_taken as u64 * dear_total as u64 <= dear_taken as u64 * self.cheap_total as u64
+    }
+
     /// The first tile of the pass at or after position `k` whose bin is
     /// empty (`cheap`) or not (`!cheap`), or the pass's length if none
     /// is. A rescanned tile counts as dear.
@@ -345,6 +376,8 @@ where
             self.len = self.bins.tiles();
         }
         self.taken = 0;
+        self.cheap_total = usize::MAX;
+        self.cheap_taken = 0;
         self.cheap = self.seek(0, true);
         self.dear = self.seek(0, false);
         let s = &mut self.stats;
