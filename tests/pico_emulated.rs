@@ -8,7 +8,8 @@
 //! shows here.
 //!
 //! The firmware runs twice: as it ships, sending the finished tiles by DMA
-//! (up to three queued, the DMA interrupt moving on to the next) while it
+//! (up to four queued, the DMA interrupt moving on to the next; a frame's
+//! last tiles still on the wire while the next frame begins) while it
 //! draws the next, and with `--serial` (each tile sent before the next is
 //! drawn), whose idle wire is the render alone. The test prints render
 //! alone, transfer alone and the overlapped frame, in cycles, and requires
