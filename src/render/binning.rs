@@ -299,7 +299,8 @@ fn bin_fast<const TW: usize, const TH: usize, const SMALL: bool>(
             }
             let r = if WORDS {
                 let w = [sv[0].xy_words(), sv[1].xy_words(), sv[2].xy_words()];
-                let keep = keeps_words(cull, &w);
+                let e = Edges::of(&w);
+                let keep = e.keeps(cull);
                 debug_assert_eq!(
                     keep,
                     keeps_banded(cull, &[sv[0].xy(), sv[1].xy(), sv[2].xy()], small)
@@ -307,7 +308,7 @@ fn bin_fast<const TW: usize, const TH: usize, const SMALL: bool>(
                 if !keep {
                     continue;
                 }
-                centres_words(&w)
+                e.centres()
             } else {
                 let v = [sv[0].xy(), sv[1].xy(), sv[2].xy()];
                 if !keeps_banded(cull, &v, small) {
@@ -432,56 +433,96 @@ fn centres(v: &[SubPoint; 3]) -> PixelRect {
 }
 
 /// Whether [`bin_fast`] culls and bounds a triangle from its vertices'
-/// words ([`ScreenVertex::xy_words`], [`keeps_words`], [`centres_words`])
-/// rather than from their coordinates: not on ARMv6-M, whose `i32` area
-/// (see [`keeps_banded`]) takes the coordinates themselves.
+/// words ([`ScreenVertex::xy_words`], [`Edges`]) rather than from their
+/// coordinates: not on ARMv6-M, whose `i32` area (see [`keeps_banded`])
+/// takes the coordinates themselves.
 const WORDS: bool = !crate::math::SPLIT;
 
-/// [`keeps_banded`] (on cores with a long multiply) of a triangle whose
-/// three outcodes are 0, from its vertices' words `w` ([`ScreenVertex::xy_words`]):
-/// each x word is then `x 2^8` exactly, so an x difference is one
-/// subtraction of words (`2^8` times the coordinates'), y's the difference
-/// of the words shifted by 9 (an operand shift on Thumb-2). Both products
-/// of the area are `2^8` times the coordinates' (x within `±2^18`, so below
-/// `2^46`), so they compare as those do.
-#[inline(always)]
-fn keeps_words(cull: CullMode, w: &[(i32, i32); 3]) -> bool {
-    let (x1, y1) = (w[1].0 - w[0].0, (w[1].1 >> 9) - (w[0].1 >> 9));
-    let (x2, y2) = (w[2].0 - w[0].0, (w[2].1 >> 9) - (w[0].1 >> 9));
-    let (p, q) = (crate::math::mul_wide(x1, y2), crate::math::mul_wide(x2, y1));
-    super::state::keeps_by(cull, p, q)
+/// A triangle whose three outcodes are 0, from its vertices' words `w`
+/// ([`ScreenVertex::xy_words`]) for [`bin_fast`]: vertex 0's x word and y,
+/// and its two edges from vertex 0, from which both the cull test
+/// ([`keeps`](Self::keeps)) and the pixels ([`centres`](Self::centres))
+/// follow. Each x word is then `x 2^8` exactly, so an x difference is one
+/// subtraction of words (`2^8` times the coordinates'); a y word is `y 2^9
+/// + l` with `0 <= l < 2^9`, so its y is the word shifted by 9 (an operand
+/// shift on Thumb-2). The words are within `±2^27`: no overflow.
+///
+/// The four differences, rather than the six words, are what the cull
+/// test leaves for the pixels: fewer values live across the search loop's
+/// products, which had spilled the loop's own registers on the
+/// Cortex-M3 (binning on the `demo` frame 359,554 -> 344,559
+/// instructions; the Cortex-M4F 363,102 -> 345,991, x86-64 396,883 ->
+/// 391,087).
+struct Edges {
+    /// Vertex 0's x word (`x 2^8`).
+    x0: i32,
+    /// Vertex 0's y.
+    y0: i32,
+    /// Vertex 1's x word less vertex 0's, and vertex 0's less vertex 2's:
+    /// the second negated, so that the area is a multiply and a
+    /// multiply-accumulate, with the negation on the visible path alone
+    /// (Cortex-M3 -1.2 K).
+    dx: (i32, i32),
+    /// Vertex 1's and 2's y less vertex 0's.
+    dy: (i32, i32),
 }
 
-/// [`centres`] of a triangle whose three outcodes are 0, from its
-/// vertices' words `w` ([`ScreenVertex::xy_words`]), without shifting
-/// each coordinate out: the least and greatest x word are `2^8` times the
-/// least and greatest x, so `(x + 7) >> 4` is `(word + 7 2^8) >> 12`;
-/// a y word is `y 2^9 + l` with `0 <= l < 2^9`, so the least and greatest
-/// word hold the least and greatest y, and `(word + 7 2^9) >> 13` is
-/// `floor((y + 7 + l / 2^9) / 16)`, which is `(y + 7) >> 4` (`y + 7` is
-/// an integer and `l / 2^9 < 1`). The words are within `±2^27`: no
-/// overflow.
-#[inline(always)]
-fn centres_words(w: &[(i32, i32); 3]) -> PixelRect {
-    const UP: i32 = HALF_PIXEL - 1;
-    let axis = |a: i32, b: i32, c: i32, s: u32| {
-        let (lo, hi) = (a.min(b).min(c), a.max(b).max(c));
-        let up = UP << s;
-        (
-            (lo + up) >> (SUBPIXEL_BITS + s),
-            (hi + up) >> (SUBPIXEL_BITS + s),
+impl Edges {
+    #[inline(always)]
+    fn of(w: &[(i32, i32); 3]) -> Self {
+        let y0 = w[0].1 >> 9;
+        Self {
+            x0: w[0].0,
+            y0,
+            dx: (w[1].0 - w[0].0, w[0].0 - w[2].0),
+            dy: ((w[1].1 >> 9) - y0, (w[2].1 >> 9) - y0),
+        }
+    }
+
+    /// [`keeps_banded`] (on cores with a long multiply): twice the signed
+    /// area, `x1 y2 - x2 y1`, as one sum `x1 y2 + (-x2) y1` (a multiply
+    /// and a multiply-accumulate on Thumb-2, against two products
+    /// compared) is `2^8` times the coordinates' (x within `±2^18`, so
+    /// below `2^47`): its sign is theirs.
+    #[inline(always)]
+    fn keeps(&self, cull: CullMode) -> bool {
+        let (x1, neg_x2) = self.dx;
+        let (y1, y2) = self.dy;
+        let a = crate::math::mul_wide(x1, y2) + crate::math::mul_wide(neg_x2, y1);
+        super::state::keeps_by(cull, a, 0)
+    }
+
+    /// [`centres`]: the least and greatest x word are vertex 0's plus the
+    /// least and greatest of 0 and the two differences, `2^8` times the
+    /// least and greatest x, so `(x + 7) >> 4` is `(word + 7 2^8) >> 12`;
+    /// y's likewise from the y differences.
+    #[inline(always)]
+    fn centres(&self) -> PixelRect {
+        const UP: i32 = HALF_PIXEL - 1;
+        let span = |a: i32, b: i32| (a.min(b).min(0), a.max(b).max(0));
+        let (lx, hx) = span(self.dx.0, -self.dx.1);
+        let (ly, hy) = span(self.dy.0, self.dy.1);
+        PixelRect::new(
+            (self.x0 + lx + (UP << 8)) >> (SUBPIXEL_BITS + 8),
+            (self.y0 + ly + UP) >> SUBPIXEL_BITS,
+            (self.x0 + hx + (UP << 8)) >> (SUBPIXEL_BITS + 8),
+            (self.y0 + hy + UP) >> SUBPIXEL_BITS,
         )
-    };
-    let (x0, x1) = axis(w[0].0, w[1].0, w[2].0, 8);
-    let (y0, y1) = axis(w[0].1, w[1].1, w[2].1, 9);
-    PixelRect::new(x0, y0, x1, y1)
+    }
 }
 
 /// [`FrameState::classify`] of triangle `idx` of the draw `ctx`, out of
 /// line: for [`bin_fast`]'s triangles with an outcode bit set.
 ///
+/// Cold on ARMv6-M and 64-bit hosts, where its branch's weight moved the
+/// search loop's registers and blocks for the better (binning on the
+/// `demo` frame: ARMv6-M 531,813 -> 524,538 instructions, x86-64 391,087
+/// -> 383,293); not on the Cortex-M3 and M4F (the M4F's binning 345,991
+/// -> 364,150: its loop then copied two registers round each triangle).
+///
 /// [`FrameState::classify`]: super::state::FrameState::classify
 #[inline(never)]
+#[cfg_attr(any(microraster_narrow_multiply, target_pointer_width = "64"), cold)]
 fn classify_apart(
     ctx: &BinDraw<'_, '_>,
     idx: [u32; 3],
