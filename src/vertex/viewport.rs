@@ -117,7 +117,7 @@ impl Viewport {
                 return wide(self.project(p));
             }
             return match NonZeroU32::new(p[3] as u32) {
-                Some(w) if w.get() >> DIGITS_W_BITS == 0 => self.project_recip(p, w),
+                Some(w) if w.get() < RECIP_W => self.project_recip(p, w),
                 _ => wide(self.project_wide(p[0], p[1], p[2], p[3])),
             };
         }
@@ -189,7 +189,7 @@ impl Viewport {
     }
 
     /// [`project`](Self::project) of a vertex without [`MUST_CLIP`] bits
-    /// and `w < 2^23` by `w`'s 16-bit reciprocal ([`Recip16`]), for
+    /// and `w <` [`RECIP_W`] by `w`'s 16-bit reciprocal ([`Recip16`]), for
     /// ARMv6-M, which has neither a divide instruction nor a 32 x 32 ->
     /// 64-bit multiply: every quotient is three digits of a long division
     /// ([`Recip16::digit`]: two `MULS` and one correction each), with no
@@ -203,11 +203,13 @@ impl Viewport {
     /// `|x| hw + e = (a hw + d1 2^7) w + (r1 2^7 + b c0 + e)`, the last
     /// term below `w (2^8 + 1)`; so the quotient is `a hw + d1 2^7 +
     /// floor((r1 2^7 + b c0 + e) / w)`. Likewise y. Depth's `floor((c
-    /// 65535 + w) / w)` (`c = z + w` in `0..=2w`) from `c = a w + b` and
-    /// `b 2^8 = d1 w + r1`: `c 65535 + w = (a 65535 + d1 2^8) w + (r1 2^8
-    /// + w - b)`, the last term below `w (2^8 + 1)`. Every digit's dividend
-    /// is below `w 2^12` (within [`Recip16::digit`]'s range) and, with
-    /// `w < 2^23`, below `2^32`.
+    /// 65535 + w) / w)` (`c = z + w` in `0..=2w`) as [`depth_digits`]'.
+    /// The first digit of each pair is left uncorrected
+    /// ([`Recip16::estimate`]): the identities hold for any `d1`, `r1`
+    /// with `b c1 = d1 w + r1` (or `c 2^8`), and `r1 < 2w` keeps the last
+    /// term below `w 2^9` and `w 514`. Every digit's dividend is below `w
+    /// 2^12` (within [`Recip16::digit`]'s range) and, with `w <`
+    /// [`RECIP_W`], below `2^32`.
     ///
     /// Where both half sides are below `2^12` and `w` is at most `one_w`,
     /// x's and y's `floor((b h + e) / w)` is one digit (its dividend below
@@ -216,7 +218,7 @@ impl Viewport {
     #[inline(always)]
     #[cfg_attr(not(microraster_narrow_multiply), allow(dead_code))]
     pub(crate) fn project_recip(&self, p: &[i32; 4], w: NonZeroU32) -> (SubPoint, u32) {
-        debug_assert!(w.get() >> DIGITS_W_BITS == 0 && w.get() as i64 >= W_MIN);
+        debug_assert!(w.get() < RECIP_W && w.get() as i64 >= W_MIN);
         // w < 2^23: its logarithm from a table, not a search.
         let f = Recip16::new_w23(w);
         let wu = w.get();
@@ -236,7 +238,9 @@ impl Viewport {
             let rest = match one {
                 true => f.digit(b * h + half).0,
                 false => {
-                    let (d1, r1) = f.digit(b * (h >> 7));
+                    // The first uncorrected: `r1 < 2w` keeps the second's
+                    // dividend below `w 2^9` (and 2^32).
+                    let (d1, r1) = f.estimate(b * (h >> 7));
                     let (d0, _) = f.digit((r1 << 7) + b * (h & 127) + half);
                     (d1 << 7) + d0
                 }
@@ -251,17 +255,15 @@ impl Viewport {
         let one = wu <= self.one_w();
         let x = self.half_w as i32 + round(&f, half, p[0], self.half_w as u32, one);
         let y = self.half_h as i32 - round(&f, half, p[1], self.half_h as u32, one);
-        // -w <= z <= w: c in 0..=2w, and the quotient at most 2 * 65535 + 1.
+        // -w <= z <= w: c in 0..=2w. Depth as `depth_digits`' two digits,
+        // the first uncorrected (`estimate`: `r1 < 2w`, `c 2^8 = d1 w +
+        // r1` all the same), the second's dividend below `w 514` and so
+        // below 2^32 (`RECIP_W`).
         let c = (p[2] + wu as i32) as u32;
-        // The first digit `floor(c / w)` (0, 1 or 2) by compares.
-        let (a, b) = match c.checked_sub(wu) {
-            None => (0, c),
-            Some(e) if e < wu => (1, e),
-            Some(e) => (2, e - wu),
-        };
-        let (d1, r1) = f.digit(b << 8);
-        let (d0, _) = f.digit((r1 << 8) + (wu - b));
-        let z = (a * 65_535 + (d1 << 8) + d0) >> 1;
+        let (d1, r1) = f.estimate(c << 8);
+        let (d0, _) = f.digit((r1 << 8) + (2 * wu - c));
+        // Not negative: the quotient is at least 1.
+        let z = ((d1 << 8) + d0 - 1) >> 1;
         debug_assert!(z <= 65_535);
         (SubPoint::new(x, y), z)
     }
@@ -475,6 +477,11 @@ fn depth_digits(c: u32, w: NonZeroU32) -> u32 {
 /// [`Viewport::project_digits`] takes `w` below `2^DIGITS_W_BITS`.
 const DIGITS_W_BITS: u32 = 23;
 
+/// [`Viewport::project_recip`] takes `w` below this: below `2^23` (its
+/// logarithm's table) and such that `514 w < 2^32`, the bound of depth's
+/// second dividend after an uncorrected first digit.
+const RECIP_W: u32 = u32::MAX / 514;
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -538,6 +545,8 @@ mod tests {
                         (vp.one_w as i64 - 2 + next(4) as i64).min((1 << DIGITS_W_BITS) - 1)
                     }
                     1 => (1 << DIGITS_W_BITS) - 1 - next(4) as i64,
+                    // `project_recip`'s largest w, and beyond.
+                    4 => RECIP_W as i64 - 2 + next(4) as i64,
                     // The largest w of the 32-bit quotients.
                     2 => vp.short_w as i64 - 1 - next(4) as i64,
                     _ => W_MIN + (next(1 << 28) >> next(24)) as i64,
@@ -557,7 +566,7 @@ mod tests {
                 if nz.get() < vp.short_w {
                     assert_eq!(vp.project_digits(&p, nz), want, "{p:?}");
                 }
-                if w >> DIGITS_W_BITS == 0 {
+                if nz.get() < RECIP_W {
                     assert_eq!(vp.project_recip(&p, nz), want, "{p:?}");
                 }
             }
