@@ -27,9 +27,12 @@ pub struct Viewport {
     /// [`Viewport::project_recip`] takes x's and y's remainders' quotient
     /// in one digit for a `w` up to this (0 for none): with both half
     /// sides below `2^12`, `b h + w / 2 < w 2^12` (one digit's range) for
-    /// `b < w`, and below `2^32` for `w (h + 1) <= 2^32 - 1`. Only where
-    /// `project_recip` is used (elsewhere 8 instructions a `demo` frame
-    /// more on the Cortex-M3 for nothing).
+    /// `b < w`, and below `2^32` for `w (h + 1) <= 2^32 - 1`; and below
+    /// [`RECIP_W`], so that [`Viewport::project_inside`] sends a vertex
+    /// inside the view volume to `project_recip`'s one digit after one
+    /// bound (ARMv6-M `demo` 6,599,789 to 6,578,535 instructions). Only
+    /// where `project_recip` is used (elsewhere 8 instructions a `demo`
+    /// frame more on the Cortex-M3 for nothing).
     #[cfg(any(test, microraster_narrow_multiply))]
     one_w: u32,
 }
@@ -44,7 +47,8 @@ impl Viewport {
         let short_w = (u32::MAX / (4 * half_w.max(half_h) + 1) + 1).min(1 << DIGITS_W_BITS);
         #[cfg(any(test, microraster_narrow_multiply))]
         let one_w = match half_w.max(half_h) < 1 << 12 {
-            true => u32::MAX / (half_w.max(half_h) + 1),
+            // Below RECIP_W too: `project_inside` then tests one bound.
+            true => (u32::MAX / (half_w.max(half_h) + 1)).min(RECIP_W - 1),
             false => 0,
         };
         Self {
@@ -109,15 +113,23 @@ impl Viewport {
     /// than a multiply-high by `w`'s 64-bit reciprocal, which itself took
     /// two to four divisions: on the Cortex-M3 about 110 instructions a
     /// vertex fewer.
+    ///
+    /// `inside` says the vertex is inside the view volume (outcode 0:
+    /// `|x|, |y|, |z| <= w`), which ARMv6-M's projection
+    /// ([`project_recip`](Self::project_recip)) takes as the bound of its
+    /// one-digit quotients.
     #[inline(always)]
-    pub(crate) fn project_inside(&self, p: &[i32; 4]) -> (SubPoint, u32) {
+    pub(crate) fn project_inside(&self, p: &[i32; 4], inside: bool) -> (SubPoint, u32) {
         let wide = |(p, z): (SubPoint, u16)| (p, z as u32);
         if !LONG_DIVISION {
             if !crate::math::SPLIT {
                 return wide(self.project(p));
             }
             return match NonZeroU32::new(p[3] as u32) {
-                Some(w) if w.get() >> DIGITS_W_BITS == 0 => self.project_recip(p, w),
+                // Nearly every vertex: `w <= one_w` (below `RECIP_W`) and
+                // inside the view volume, one bound and one flag tested.
+                Some(w) if inside && w.get() <= self.one_w() => self.project_recip(p, w, true),
+                Some(w) if w.get() < RECIP_W => self.project_recip(p, w, false),
                 _ => wide(self.project_wide(p[0], p[1], p[2], p[3])),
             };
         }
@@ -189,7 +201,7 @@ impl Viewport {
     }
 
     /// [`project`](Self::project) of a vertex without [`MUST_CLIP`] bits
-    /// and `w < 2^23` by `w`'s 16-bit reciprocal ([`Recip16`]), for
+    /// and `w <` [`RECIP_W`] by `w`'s 16-bit reciprocal ([`Recip16`]), for
     /// ARMv6-M, which has neither a divide instruction nor a 32 x 32 ->
     /// 64-bit multiply: every quotient is three digits of a long division
     /// ([`Recip16::digit`]: two `MULS` and one correction each), with no
@@ -203,29 +215,40 @@ impl Viewport {
     /// `|x| hw + e = (a hw + d1 2^7) w + (r1 2^7 + b c0 + e)`, the last
     /// term below `w (2^8 + 1)`; so the quotient is `a hw + d1 2^7 +
     /// floor((r1 2^7 + b c0 + e) / w)`. Likewise y. Depth's `floor((c
-    /// 65535 + w) / w)` (`c = z + w` in `0..=2w`) from `c = a w + b` and
-    /// `b 2^8 = d1 w + r1`: `c 65535 + w = (a 65535 + d1 2^8) w + (r1 2^8
-    /// + w - b)`, the last term below `w (2^8 + 1)`. Every digit's dividend
-    /// is below `w 2^12` (within [`Recip16::digit`]'s range) and, with
-    /// `w < 2^23`, below `2^32`.
+    /// 65535 + w) / w)` (`c = z + w` in `0..=2w`) as [`depth_digits`]'.
+    /// The first digit of each pair is left uncorrected
+    /// ([`Recip16::estimate`]): the identities hold for any `d1`, `r1`
+    /// with `b c1 = d1 w + r1` (or `c 2^8`), and `r1 < 2w` keeps the last
+    /// term below `w 2^9` and `w 514`. Every digit's dividend is below `w
+    /// 2^12` (within [`Recip16::digit`]'s range) and, with `w <`
+    /// [`RECIP_W`], below `2^32`.
     ///
     /// Where both half sides are below `2^12` and `w` is at most `one_w`,
     /// x's and y's `floor((b h + e) / w)` is one digit (its dividend below
     /// `w 2^12` and `2^32`): ARMv6-M `demo` 6,746,451 to 6,663,049
-    /// instructions (vertex 1,060,241 to 976,845).
+    /// instructions (vertex 1,060,241 to 976,845). For a vertex inside the
+    /// view volume (`inside`: `|x|, |y| <= w`, so `a` is 0 or `b = 0`)
+    /// the whole `floor((|x| h + e) / w)` is that one digit, without the
+    /// first digit's compare and `a h`: `demo` 6,661,509 to 6,630,124
+    /// (vertex 927,437 to 896,052).
     #[inline(always)]
     #[cfg_attr(not(microraster_narrow_multiply), allow(dead_code))]
-    pub(crate) fn project_recip(&self, p: &[i32; 4], w: NonZeroU32) -> (SubPoint, u32) {
-        debug_assert!(w.get() >> DIGITS_W_BITS == 0 && w.get() as i64 >= W_MIN);
+    pub(crate) fn project_recip(
+        &self,
+        p: &[i32; 4],
+        w: NonZeroU32,
+        inside: bool,
+    ) -> (SubPoint, u32) {
+        debug_assert!(w.get() < RECIP_W && w.get() as i64 >= W_MIN);
         // w < 2^23: its logarithm from a table, not a search.
         let f = Recip16::new_w23(w);
         let wu = w.get();
         let half = wu / 2;
-        // div_round(n h, w) with the sign of n: floor((|n| h + half) / w)
-        // for |n| <= 4w, h <= 2^15. A function inline, not a closure: LLVM
-        // kept the closure out of line (two calls a vertex).
+        // floor((|n| h + half) / w) for |n| <= 4w, h <= 2^15. A function
+        // inline, not a closure: LLVM kept the closure out of line (two
+        // calls a vertex).
         #[inline(always)]
-        fn round(f: &Recip16, half: u32, n: i32, h: u32, one: bool) -> i32 {
+        fn quotient(f: &Recip16, half: u32, n: i32, h: u32, one: bool) -> u32 {
             // The first digit is 0 for nearly every vertex (inside the
             // view volume, `|n| <= w`): a compare rather than a digit's
             // two products and correction.
@@ -236,32 +259,44 @@ impl Viewport {
             let rest = match one {
                 true => f.digit(b * h + half).0,
                 false => {
-                    let (d1, r1) = f.digit(b * (h >> 7));
+                    // The first uncorrected: `r1 < 2w` keeps the second's
+                    // dividend below `w 2^9` (and 2^32).
+                    let (d1, r1) = f.estimate(b * (h >> 7));
                     let (d0, _) = f.digit((r1 << 7) + b * (h & 127) + half);
                     (d1 << 7) + d0
                 }
             };
-            let q = (a * h + rest) as i32;
-            if n < 0 {
-                -q
-            } else {
-                q
-            }
+            a * h + rest
         }
+        let (hw, hh) = (self.half_w as u32, self.half_h as u32);
         let one = wu <= self.one_w();
-        let x = self.half_w as i32 + round(&f, half, p[0], self.half_w as u32, one);
-        let y = self.half_h as i32 - round(&f, half, p[1], self.half_h as u32, one);
-        // -w <= z <= w: c in 0..=2w, and the quotient at most 2 * 65535 + 1.
-        let c = (p[2] + wu as i32) as u32;
-        // The first digit `floor(c / w)` (0, 1 or 2) by compares.
-        let (a, b) = match c.checked_sub(wu) {
-            None => (0, c),
-            Some(e) if e < wu => (1, e),
-            Some(e) => (2, e - wu),
+        let (qx, qy) = match inside && one {
+            // `|n| <= w` (inside the view volume: nearly every vertex):
+            // `|n| h + half < w (h + 1)`, below `w 2^12` and, for `w <=
+            // one_w`, `2^32`, so each quotient is one digit, without the
+            // first digit's compare and its product `a h`.
+            true => {
+                let digit = |n: i32, h: u32| f.digit(n.unsigned_abs() * h + half).0;
+                (digit(p[0], hw), digit(p[1], hh))
+            }
+            false => (
+                quotient(&f, half, p[0], hw, one),
+                quotient(&f, half, p[1], hh, one),
+            ),
         };
-        let (d1, r1) = f.digit(b << 8);
-        let (d0, _) = f.digit((r1 << 8) + (wu - b));
-        let z = (a * 65_535 + (d1 << 8) + d0) >> 1;
+        // div_round(n h, w) with the sign of n.
+        let signed = |n: i32, q: u32| if n < 0 { -(q as i32) } else { q as i32 };
+        let x = self.half_w as i32 + signed(p[0], qx);
+        let y = self.half_h as i32 - signed(p[1], qy);
+        // -w <= z <= w: c in 0..=2w. Depth as `depth_digits`' two digits,
+        // the first uncorrected (`estimate`: `r1 < 2w`, `c 2^8 = d1 w +
+        // r1` all the same), the second's dividend below `w 514` and so
+        // below 2^32 (`RECIP_W`).
+        let c = (p[2] + wu as i32) as u32;
+        let (d1, r1) = f.estimate(c << 8);
+        let (d0, _) = f.digit((r1 << 8) + (2 * wu - c));
+        // Not negative: the quotient is at least 1.
+        let z = ((d1 << 8) + d0 - 1) >> 1;
         debug_assert!(z <= 65_535);
         (SubPoint::new(x, y), z)
     }
@@ -343,7 +378,7 @@ impl Viewport {
     fn outcode_and_project(&self, pos: &[i32; 4]) -> (u8, SubPoint, u32) {
         let outcode = outcode(pos);
         let (p, z) = if outcode & MUST_CLIP == 0 {
-            self.project_inside(pos)
+            self.project_inside(pos, outcode == 0)
         } else {
             (SubPoint::default(), 0)
         };
@@ -475,6 +510,11 @@ fn depth_digits(c: u32, w: NonZeroU32) -> u32 {
 /// [`Viewport::project_digits`] takes `w` below `2^DIGITS_W_BITS`.
 const DIGITS_W_BITS: u32 = 23;
 
+/// [`Viewport::project_recip`] takes `w` below this: below `2^23` (its
+/// logarithm's table) and such that `514 w < 2^32`, the bound of depth's
+/// second dividend after an uncorrected first digit.
+const RECIP_W: u32 = u32::MAX / 514;
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -538,6 +578,8 @@ mod tests {
                         (vp.one_w as i64 - 2 + next(4) as i64).min((1 << DIGITS_W_BITS) - 1)
                     }
                     1 => (1 << DIGITS_W_BITS) - 1 - next(4) as i64,
+                    // `project_recip`'s largest w, and beyond.
+                    4 => RECIP_W as i64 - 2 + next(4) as i64,
                     // The largest w of the 32-bit quotients.
                     2 => vp.short_w as i64 - 1 - next(4) as i64,
                     _ => W_MIN + (next(1 << 28) >> next(24)) as i64,
@@ -548,17 +590,24 @@ mod tests {
                     1 => -limit,
                     _ => (next(2 * limit as u64 + 1) as i64 - limit as i64) as i32,
                 };
-                let p = [c(g), c(g), c(w), w];
+                // A third inside the view volume (`project_recip`'s one
+                // digit).
+                let p = match i % 3 {
+                    0 => [c(w), c(w), c(w), w],
+                    _ => [c(g), c(g), c(w), w],
+                };
                 assert_eq!(outcode(&p) & MUST_CLIP, 0, "{p:?}");
                 let want = vp.project(&p);
                 let want = (want.0, want.1 as u32);
-                assert_eq!(vp.project_inside(&p), want, "{p:?}");
+                let inside = outcode(&p) == 0;
+                assert_eq!(vp.project_inside(&p, inside), want, "{p:?}");
                 let nz = NonZeroU32::new(w as u32).unwrap();
                 if nz.get() < vp.short_w {
                     assert_eq!(vp.project_digits(&p, nz), want, "{p:?}");
                 }
-                if w >> DIGITS_W_BITS == 0 {
-                    assert_eq!(vp.project_recip(&p, nz), want, "{p:?}");
+                if nz.get() < RECIP_W {
+                    assert_eq!(vp.project_recip(&p, nz, inside), want, "{p:?}");
+                    assert_eq!(vp.project_recip(&p, nz, false), want, "{p:?}");
                 }
             }
         }
