@@ -64,7 +64,7 @@ split_functions() {
         printf "    %12s %12s  %s\n", "self/frame", "incl/frame", "function"
         for (f in seen) if (self[f] + callcost[f] > 0)
             printf "    %12d %12d  %s\n", self[f] / frames, (self[f] + callcost[f]) / frames, f
-    }' "$file" | { read -r header; echo "$header"; sort -k1,1nr | head -n "$top"; }
+    }' "$file" | { read -r header; echo "$header"; sort -k1,1nr | awk -v top="$top" 'NR <= top'; }
 }
 
 printf '%-10s %14s %14s %10s %12s\n' scene "instr/frame" "(difference)" pixels "instr/pixel"
