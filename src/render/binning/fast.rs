@@ -1,0 +1,265 @@
+//! Binning's own loop for the common draw: filled triangles with `u16`
+//! indices in row-major tile order ([`bin_fast`]), the search for the
+//! next visible triangle kept in registers; its cull test and bounds from
+//! one vertex and two edges ([`Edges`]) or the coordinates ([`centres`]),
+//! and the out-of-line classification of the triangles it cannot take
+//! ([`classify_apart`]).
+
+use super::{close_tally, push_row_major, BinDraw, Fate, Tally, LOOP_COUNTS_VISIBLE, VISIBLE};
+use crate::raster::{first_centre_at_or_after, PixelRect, SubPoint, HALF_PIXEL, SUBPIXEL_BITS};
+use crate::render::bin::Pass;
+use crate::render::state::{keeps_banded, SetupCache};
+use crate::scene::CullMode;
+
+/// The binning loop of a draw of filled triangles (margin 0) with `u16`
+/// indices, in row-major tile order: the triangles `tris`, the first
+/// numbered `*t`, classified under cull mode `cull` and appended to their
+/// tiles' bins, as [`bin_triangles`](super::bin_triangles) does; with `SMALL`, for a frame known
+/// to be [`small`](crate::render::state::FrameState::small).
+///
+/// A triangle whose three outcodes are 0 (nearly all the visible ones)
+/// is classified here: the cull test, then its pixels, which lie inside
+/// the frame (the viewport's projection of a point inside the view
+/// volume is within the frame's sub-pixels, `0..=16 w`), so their meet
+/// with the frame is not needed, nor the rejected count: a rectangle
+/// without a pixel centre is the empty reach of `classify`, not counted.
+/// Any other triangle (partly outside, clipped, rejected) goes to
+/// [`classify_apart`]. The search for the next visible triangle is a loop
+/// of its own, so that the values it needs stay in registers and the
+/// pushes' values are the ones spilled.
+#[inline(always)]
+pub(super) fn bin_fast<const TW: usize, const TH: usize, const SMALL: bool>(
+    ctx: &BinDraw<'_, '_>,
+    tris: &[[u16; 3]],
+    cull: CullMode,
+    t: &mut usize,
+    bins: &mut Pass<'_>,
+    cache: &mut SetupCache,
+    tally: &mut Tally,
+) {
+    let cols = ctx.grid.cols as usize;
+    let verts = ctx.verts;
+    debug_assert!(!SMALL || ctx.frame.small());
+    let small = SMALL || ctx.frame.small();
+    // The visible triangles and their pairs ([`VISIBLE`]).
+    let mut tt = *t;
+    let (mut sum, mut pairs_sum) = (0u64, tally.pairs);
+    let mut rest = tris.iter();
+    'done: loop {
+        // The next visible triangle: its number and its pixels.
+        // A triangle with an outcode bit set leaves the search (`Err`),
+        // so that the search's values need not survive a call.
+        let found = loop {
+            let Some(&idx) = rest.next() else {
+                break 'done;
+            };
+            let k = tt;
+            tt += 1;
+            let sv = [
+                &verts[idx[0] as usize],
+                &verts[idx[1] as usize],
+                &verts[idx[2] as usize],
+            ];
+            if sv[0].outcode() | sv[1].outcode() | sv[2].outcode() != 0 {
+                break Err((k, idx));
+            }
+            let r = if WORDS {
+                let w = [sv[0].xy_words(), sv[1].xy_words(), sv[2].xy_words()];
+                let e = Edges::of(&w);
+                let keep = e.keeps(cull);
+                debug_assert_eq!(
+                    keep,
+                    keeps_banded(cull, &[sv[0].xy(), sv[1].xy(), sv[2].xy()], small)
+                );
+                if !keep {
+                    continue;
+                }
+                e.centres()
+            } else {
+                let v = [sv[0].xy(), sv[1].xy(), sv[2].xy()];
+                if !keeps_banded(cull, &v, small) {
+                    continue;
+                }
+                centres(&v)
+            };
+            debug_assert!({
+                let v = [sv[0].xy(), sv[1].xy(), sv[2].xy()];
+                let f = &ctx.frame.frame;
+                r == centres(&v)
+                    && (r == crate::render::state::meet(&crate::render::state::reach(&v, 0), f)
+                        || r.is_empty())
+            });
+            if r.is_empty() {
+                continue;
+            }
+            if !LOOP_COUNTS_VISIBLE {
+                tally.fates[Fate::Visible as usize] += 1;
+            }
+            break Ok((k, r));
+        };
+        let (k, r) = match found {
+            Ok(kr) => kr,
+            Err((k, idx)) => {
+                let idx = idx.map(Into::into);
+                match classify_apart(ctx, idx, (cull, small), cache, tally) {
+                    Some(r) => (k, r),
+                    None => continue,
+                }
+            }
+        };
+        // Inside the frame: not negative.
+        let (c0, c1) = (r.x0 as usize / TW, (r.x1 as usize - 1) / TW + 1);
+        let (r0, r1) = (r.y0 as usize / TH, (r.y1 as usize - 1) / TH + 1);
+        let pairs = (c1 - c0) * (r1 - r0);
+        if LOOP_COUNTS_VISIBLE {
+            sum += VISIBLE + pairs as u64;
+        } else {
+            pairs_sum = pairs_sum.saturating_add(pairs as u32);
+        }
+        push_row_major(bins, (c0, c1), (r0, r1), cols, ctx.t0, k as u16);
+    }
+    *t = tt;
+    close_tally(tally, sum, pairs_sum);
+}
+
+/// The pixels whose centres a filled triangle with vertices `v` may
+/// cover ([`reach`] with margin 0): `first_centre_at_or_after(x)` as
+/// `(x + 7) >> 4` (`-floor((8 - x) / 16) = floor((x + 7) / 16)`), an add
+/// and a shift without `first_centre_at_or_after`'s negations (the
+/// Cortex-M3's `demo` binning 407,901 -> 400,433 instructions). (The
+/// extremes as vertex 0's coordinate plus the least and greatest of 0 and
+/// the two offsets, fewer instructions on paper, measured 427,102: the
+/// registers of the loop.)
+///
+/// [`reach`]: crate::render::state::reach
+#[inline(always)]
+fn centres(v: &[SubPoint; 3]) -> PixelRect {
+    const UP: i32 = HALF_PIXEL - 1;
+    let axis = |a: i32, b: i32, c: i32| {
+        let (lo, hi) = (a.min(b).min(c), a.max(b).max(c));
+        ((lo + UP) >> SUBPIXEL_BITS, (hi + UP) >> SUBPIXEL_BITS)
+    };
+    let (x0, x1) = axis(v[0].x, v[1].x, v[2].x);
+    let (y0, y1) = axis(v[0].y, v[1].y, v[2].y);
+    debug_assert!(x0 == first_centre_at_or_after(v[0].x.min(v[1].x).min(v[2].x)));
+    debug_assert!(x1 == first_centre_at_or_after(v[0].x.max(v[1].x).max(v[2].x)));
+    debug_assert!(y0 == first_centre_at_or_after(v[0].y.min(v[1].y).min(v[2].y)));
+    debug_assert!(y1 == first_centre_at_or_after(v[0].y.max(v[1].y).max(v[2].y)));
+    PixelRect::new(x0, y0, x1, y1)
+}
+
+/// Whether [`bin_fast`] culls and bounds a triangle from its vertices'
+/// words ([`ScreenVertex::xy_words`](crate::vertex::ScreenVertex::xy_words), [`Edges`]) rather than from their
+/// coordinates: not on ARMv6-M, whose `i32` area (see [`keeps_banded`])
+/// takes the coordinates themselves.
+const WORDS: bool = !crate::math::SPLIT;
+
+/// A triangle whose three outcodes are 0, from its vertices' words `w`
+/// ([`ScreenVertex::xy_words`](crate::vertex::ScreenVertex::xy_words)) for [`bin_fast`]: vertex 0's x word and y,
+/// and its two edges from vertex 0, from which both the cull test
+/// ([`keeps`](Self::keeps)) and the pixels ([`centres`](Self::centres))
+/// follow. Each x word is then `x 2^8` exactly, so an x difference is one
+/// subtraction of words (`2^8` times the coordinates'); a y word is `y 2^9
+/// + l` with `0 <= l < 2^9`, so its y is the word shifted by 9 (an operand
+/// shift on Thumb-2). The words are within `±2^27`: no overflow.
+///
+/// The four differences, rather than the six words, are what the cull
+/// test leaves for the pixels: fewer values live across the search loop's
+/// products, which had spilled the loop's own registers on the
+/// Cortex-M3 (binning on the `demo` frame 359,554 -> 344,559
+/// instructions; the Cortex-M4F 363,102 -> 345,991, x86-64 396,883 ->
+/// 391,087).
+struct Edges {
+    /// Vertex 0's x word (`x 2^8`).
+    x0: i32,
+    /// Vertex 0's y.
+    y0: i32,
+    /// Vertex 1's x word less vertex 0's, and vertex 0's less vertex 2's:
+    /// the second negated, so that the area is a multiply and a
+    /// multiply-accumulate, with the negation on the visible path alone
+    /// (Cortex-M3 -1.2 K).
+    dx: (i32, i32),
+    /// Vertex 1's and 2's y less vertex 0's.
+    dy: (i32, i32),
+}
+
+impl Edges {
+    #[inline(always)]
+    fn of(w: &[(i32, i32); 3]) -> Self {
+        let y0 = w[0].1 >> 9;
+        Self {
+            x0: w[0].0,
+            y0,
+            dx: (w[1].0 - w[0].0, w[0].0 - w[2].0),
+            dy: ((w[1].1 >> 9) - y0, (w[2].1 >> 9) - y0),
+        }
+    }
+
+    /// [`keeps_banded`] (on cores with a long multiply): twice the signed
+    /// area, `x1 y2 - x2 y1`, as one sum `x1 y2 + (-x2) y1` (a multiply
+    /// and a multiply-accumulate on Thumb-2, against two products
+    /// compared) is `2^8` times the coordinates' (x within `±2^18`, so
+    /// below `2^47`): its sign is theirs.
+    #[inline(always)]
+    fn keeps(&self, cull: CullMode) -> bool {
+        let (x1, neg_x2) = self.dx;
+        let (y1, y2) = self.dy;
+        let a = crate::math::mul_wide(x1, y2) + crate::math::mul_wide(neg_x2, y1);
+        crate::render::state::keeps_by(cull, a, 0)
+    }
+
+    /// [`centres`]: the least and greatest x word are vertex 0's plus the
+    /// least and greatest of 0 and the two differences, `2^8` times the
+    /// least and greatest x, so `(x + 7) >> 4` is `(word + 7 2^8) >> 12`;
+    /// y's likewise from the y differences.
+    #[inline(always)]
+    fn centres(&self) -> PixelRect {
+        const UP: i32 = HALF_PIXEL - 1;
+        let span = |a: i32, b: i32| (a.min(b).min(0), a.max(b).max(0));
+        let (lx, hx) = span(self.dx.0, -self.dx.1);
+        let (ly, hy) = span(self.dy.0, self.dy.1);
+        PixelRect::new(
+            (self.x0 + lx + (UP << 8)) >> (SUBPIXEL_BITS + 8),
+            (self.y0 + ly + UP) >> SUBPIXEL_BITS,
+            (self.x0 + hx + (UP << 8)) >> (SUBPIXEL_BITS + 8),
+            (self.y0 + hy + UP) >> SUBPIXEL_BITS,
+        )
+    }
+}
+
+/// [`FrameState::classify`] of triangle `idx` of the draw `ctx`, out of
+/// line: for [`bin_fast`]'s triangles with an outcode bit set.
+///
+/// Cold on ARMv6-M and 64-bit hosts, where its branch's weight moved the
+/// search loop's registers and blocks for the better (binning on the
+/// `demo` frame: ARMv6-M 531,813 -> 524,538 instructions, x86-64 391,087
+/// -> 383,293); not on the Cortex-M3 and M4F (the M4F's binning 345,991
+/// -> 364,150: its loop then copied two registers round each triangle).
+///
+/// [`FrameState::classify`]: crate::render::state::FrameState::classify
+#[inline(never)]
+#[cfg_attr(any(microraster_narrow_multiply, target_pointer_width = "64"), cold)]
+fn classify_apart(
+    ctx: &BinDraw<'_, '_>,
+    idx: [u32; 3],
+    cull: (CullMode, bool),
+    cache: &mut SetupCache,
+    tally: &mut Tally,
+) -> Option<PixelRect> {
+    ctx.frame
+        .classify(ctx.d, ctx.verts, idx, ctx.margin, cull, cache, tally)
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::raster::first_centre_at_or_after;
+
+    /// `centres`' `(x + 7) >> 4` is `first_centre_at_or_after` at every
+    /// coordinate a screen vertex holds (`-2^22..2^22`).
+    #[test]
+    fn centre_by_one_shift() {
+        for x in -(1 << 22)..(1 << 22) {
+            assert_eq!((x + 7) >> 4, first_centre_at_or_after(x), "{x}");
+        }
+    }
+}
