@@ -245,7 +245,19 @@ const RECIP_SEED: [u16; 256] = {
 /// is of 16-bit factors.
 #[inline(always)]
 fn recip31(d: u32) -> u32 {
-    let r0 = RECIP_SEED[(d >> 7) as usize & 0xff] as u32;
+    newton31(seed31(d), d)
+}
+
+/// [`RECIP_SEED`]'s seed for `d`'s bucket of 2^7.
+#[inline(always)]
+fn seed31(d: u32) -> u32 {
+    RECIP_SEED[(d >> 7) as usize & 0xff] as u32
+}
+
+/// One Newton step from below from the seed `r0` towards `2^31 / D`
+/// (see [`recip31`]).
+#[inline(always)]
+fn newton31(r0: u32, d: u32) -> u32 {
     let e = (1u32 << 31) - d * r0;
     r0 + ((r0 * (e >> 9)) >> 22)
 }
@@ -258,9 +270,7 @@ fn recip31(d: u32) -> u32 {
 /// is `2^31`, no wrap). Otherwise `D` shares `d`'s bucket: `recip31(D)`.
 #[inline(always)]
 fn recip31_next(d: u32) -> u32 {
-    let r0 = RECIP_SEED[(d >> 7) as usize & 0xff] as u32;
-    let e = (1u32 << 31) - (d + 1) * r0;
-    r0 + ((r0 * (e >> 9)) >> 22)
+    newton31(seed31(d), d + 1)
 }
 
 #[cfg(test)]

@@ -295,10 +295,7 @@ impl Viewport {
         let c = (p[2] + wu as i32) as u32;
         let (d1, r1) = f.estimate(c << 8);
         let (d0, _) = f.digit((r1 << 8) + (2 * wu - c));
-        // Not negative: the quotient is at least 1.
-        let z = ((d1 << 8) + d0 - 1) >> 1;
-        debug_assert!(z <= 65_535);
-        (SubPoint::new(x, y), z)
+        (SubPoint::new(x, y), depth_of_digits(d1, d0))
     }
 
     /// The largest `w` of [`project_recip`](Self::project_recip)'s one
@@ -501,6 +498,14 @@ fn depth_digits(c: u32, w: NonZeroU32) -> u32 {
     let c8 = c << 8;
     let (d1, r1) = (c8 / w, c8 % w);
     let d0 = ((r1 << 8) + (2 * w.get() - c)) / w;
+    depth_of_digits(d1, d0)
+}
+
+/// Depth from the two digits of [`depth_digits`] (and of
+/// [`Viewport::project_recip`]'s), `d1 2^8 + d0 = floor((c 65535 + w) /
+/// w) + 1`: that quotient halved.
+#[inline(always)]
+fn depth_of_digits(d1: u32, d0: u32) -> u32 {
     // Not negative: the quotient is at least 1.
     let z = ((d1 << 8) + d0 - 1) >> 1;
     debug_assert!(z <= 65_535);
