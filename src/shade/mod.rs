@@ -1276,9 +1276,16 @@ mod tests {
                 // Every pixel's channels, stepped from the start, within
                 // `0..256` units: the Gouraud loop's table index of green
                 // raised by `GREEN_UP` relies on it (`rgb16_green_up`).
-                for k in 0..x1 - x0 {
-                    for a in 1..4 {
-                        let c = start[a].wrapping_add(steps[a].wrapping_mul(k));
+                // The exact value `start + steps k` is linear in `k`, so it
+                // lies in the range at every pixel iff it does at the
+                // span's two ends; there it is below 2^31 in magnitude, so
+                // the loop's wrapping `i32` steps are exact at every pixel
+                // too. (Two checks a span rather than one a pixel: some
+                // spans are 4,096 pixels long.)
+                let last = (x1 - x0 - 1) as i64;
+                for a in 1..4 {
+                    for k in [0, last].into_iter().filter(|_| last >= 0) {
+                        let c = start[a] as i64 + steps[a] as i64 * k;
                         assert!(
                             (0..256 << C_FRAC).contains(&c),
                             "{v:?} at ({x0}, {j}) + {k}"
