@@ -362,7 +362,17 @@ impl<'a, C, V: Varyings> SpanInput<'a, C, V> {
                 // whose `1 / w` is the same along the screen's rows) takes
                 // the weights' reciprocal once ([`FLAT_Q`]).
                 let flat = self.steps[0] == 0;
-                match self.opaque_shift() {
+                // `TexturedLit`'s test in `i64` on a 64-bit host
+                // (`opaque_shift_lit`).
+                #[cfg(target_pointer_width = "64")]
+                let shift = if V::LEN > 0 && interpolate_color {
+                    self.opaque_shift_lit()
+                } else {
+                    self.opaque_shift()
+                };
+                #[cfg(not(target_pointer_width = "64"))]
+                let shift = self.opaque_shift();
+                match shift {
                     Some(sh) if COLOUR_LOOP && V::LEN == 0 && interpolate_color => {
                         if flat {
                             self.run_colour_shifted::<true>(fragment, sh)

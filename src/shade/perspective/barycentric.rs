@@ -40,6 +40,30 @@ pub(super) fn span_shift(planes: [i32; 3], steps: [i32; 3], len: usize) -> Optio
         .then(|| (32 - q.leading_zeros()).saturating_sub(16))
 }
 
+/// [`span_shift`] in `i64`, on a 64-bit host where its products and sums
+/// are single instructions: the ends cannot overflow (`|g| < 2^31`, the
+/// length below 2^31), so no checked arithmetic, and an end outside `i32`
+/// fails the same tests that its overflow failed. `Q`'s bit lengths at
+/// both ends are compared as `q ^ qe < q & qe` (two positive numbers have
+/// the same highest bit exactly when their `and` is above their `xor`),
+/// and `0 <= B <= Q` as one unsigned comparison (`Q` positive). The same
+/// answer as `span_shift` (a unit test holds them together).
+#[cfg_attr(not(target_pointer_width = "64"), allow(dead_code))]
+#[inline(always)]
+pub(super) fn span_shift_wide(planes: [i32; 3], steps: [i32; 3], len: usize) -> Option<u32> {
+    let last = i32::try_from(len.saturating_sub(1)).ok()? as i64;
+    let [q, b1, b2] = planes.map(i64::from);
+    let [gq, g1, g2] = steps.map(i64::from);
+    let qe = q + gq * last;
+    if q < 1 || qe < 1 || qe > i32::MAX as i64 || (q ^ qe) >= (q & qe) {
+        return None;
+    }
+    let (b1e, b2e) = (b1 + g1 * last, b2 + g2 * last);
+    let within = |b: i64, q: i64| b as u64 <= q as u64;
+    (within(b1, q) && within(b2, q) && within(b1e, qe) && within(b2e, qe))
+        .then(|| (32 - (q as u32).leading_zeros()).saturating_sub(16))
+}
+
 /// [`weights`] where its clamps change nothing and `Q`'s normalising
 /// shift `sh` is known: `1 <= Q < 2^31`, `0 <= B1, B2 <= Q`
 /// ([`span_shift`]), so `qn > 0` and each product is at most 2^31.
@@ -143,6 +167,36 @@ mod tests {
             }
         }
         assert!(allowed > 5_000, "{allowed} spans allowed");
+    }
+
+    /// `span_shift_wide` decides as `span_shift`, ends that overflow `i32`
+    /// and every edge of its tests included.
+    #[test]
+    fn span_shift_wide_matches() {
+        let mut next = crate::testing::rng();
+        let mut allowed = 0;
+        for n in 0..400_000 {
+            let len = match n % 4 {
+                0 => next(4) as usize,
+                _ => 1 + next(64) as usize,
+            };
+            let v = |next: &mut dyn FnMut(u64) -> u64| match next(4) {
+                0 => [i32::MIN, -1, 0, 1, 2, i32::MAX, 1 << 16, (1 << 16) - 1][next(8) as usize],
+                1 => next(1 << 32) as u32 as i32,
+                _ => (next(1 << 30) as i32) >> next(20),
+            };
+            let planes = [v(&mut next), v(&mut next), v(&mut next)];
+            let g = |next: &mut dyn FnMut(u64) -> u64| match next(3) {
+                0 => next(1 << 32) as u32 as i32,
+                _ => (next(1 << 20) as i32 - (1 << 19)) >> next(12),
+            };
+            let steps = [g(&mut next), g(&mut next), g(&mut next)];
+            let wide = span_shift_wide(planes, steps, len);
+            let narrow = span_shift(planes, steps, len);
+            assert_eq!(wide, narrow, "{planes:?} {steps:?} {len}");
+            allowed += wide.is_some() as u32;
+        }
+        assert!(allowed > 10_000, "{allowed} spans allowed");
     }
 
     /// Where `span_shift` allows a span whose `Q` does not change,
