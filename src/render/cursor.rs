@@ -200,12 +200,23 @@ impl<P: Features> Iterator for TileList<'_, '_, P> {
         if let Some(t) = self.bin.next() {
             return Some(t);
         }
+        self.scan.as_mut()?.next_touching()
+    }
+}
+
+impl<P: Features> Scan<'_, '_, P> {
+    /// A rescanned tile's next triangle: out of line, so that the tile
+    /// loop, into which [`TileList::next`] is inlined, does not carry the
+    /// scan's code and state (a tile rescans only when its bin overflowed
+    /// the pool).
+    #[inline(never)]
+    fn next_touching(&mut self) -> Option<usize> {
         let Scan {
             frame,
             rect,
             next,
             state,
-        } = self.scan.as_mut()?;
+        } = self;
         loop {
             let ScanState {
                 cur,
