@@ -80,10 +80,12 @@ where
             &verts[i1 as usize],
             &verts[i2 as usize],
         ];
-        let any = sv[0].outcode() | sv[1].outcode() | sv[2].outcode();
-        if any & MUST_CLIP != 0 {
+        // The outcodes tested in the vertices' whole first words (their
+        // low byte): one `tst` rather than a byte extension and a compare.
+        let any = sv[0].xy_words().0 | sv[1].xy_words().0 | sv[2].xy_words().0;
+        if any & MUST_CLIP as i32 != 0 {
             let idx = [i0 as u32, i1 as u32, i2 as u32];
-            n += job.clipped(&cur, idx, any, sv[0].color());
+            n += job.clipped(&cur, idx, any as u8, sv[0].color());
             continue;
         }
         // `fill`, with the tile's rasterizer, the draw's span loop and the
@@ -148,7 +150,8 @@ where
     /// Draws global triangle `t`, of the cursor's draw or a later one,
     /// down whichever path its draw takes: the tile loop's general path,
     /// for a pair its common path does not take (see [`DrawCursor::fast`]),
-    /// out of line so that the common path keeps its registers.
+    /// out of line and cold so that the common path keeps its registers.
+    #[cold]
     #[inline(never)]
     fn general<P: Features>(
         &mut self,
