@@ -433,8 +433,12 @@ where
 /// tile loop's common path's copy of `fill`'s own.
 #[inline(always)]
 fn drawn<'f>(found: &'f [Span], count: usize, rows: &mut (i32, i32)) -> Option<&'f [Span]> {
+    // The last span first, by `count - 1`: one unsigned compare tells
+    // `1..=found.len()` (ARMv6-M built the range test's constant in two
+    // instructions), and leaves the others unchecked.
+    let last = found.get(count.wrapping_sub(1))?;
     let found = found.get(..count)?;
-    let (first, last) = (found.first()?, found.last()?);
+    let first = found.first()?;
     // Stored only when they grow, which few pairs of a tile make them.
     if first.j < rows.0 {
         rows.0 = first.j;
