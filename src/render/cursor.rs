@@ -29,6 +29,12 @@ pub(super) struct DrawCursor<'f> {
     /// The draw's triangles when its indices are `u16` (the common
     /// case), else empty: see [`indices`](Self::indices).
     pub(super) tris16: &'f [[u16; 3]],
+    /// The draw's triangles when it takes the tile loop's common path
+    /// (`u16` indices and [`plain`](Self::plain)), else empty: a global
+    /// triangle index `t` of the draw is `fast[t - first]`, and any other
+    /// (a later draw's, or a rare path's) misses it, which the tile loop
+    /// then sends down its general path, with one bounds check a pair.
+    pub(super) fast: &'f [[u16; 3]],
     pub(super) verts: &'f [ScreenVertex],
     pub(super) shading: Shading,
     /// `shading == Shading::Gouraud`, decided once per draw: the tile
@@ -56,6 +62,7 @@ impl<'f> DrawCursor<'f> {
             vbase: 0,
             triangles: Indices::U16(&[]),
             tris16: &[],
+            fast: &[],
             verts: &[],
             shading: Shading::Flat,
             gouraud: false,
@@ -95,6 +102,7 @@ impl<'f> DrawCursor<'f> {
         self.blend = draw.blend;
         self.lines = margin(draw) != 0;
         self.plain = !self.lines && self.blend == Blend::Opaque && self.shading != Shading::Shader;
+        self.fast = if self.plain { self.tris16 } else { &[] };
     }
 
     /// The vertex indices of global triangle `t` of the current draw:
@@ -192,12 +200,23 @@ impl<P: Features> Iterator for TileList<'_, '_, P> {
         if let Some(t) = self.bin.next() {
             return Some(t);
         }
+        self.scan.as_mut()?.next_touching()
+    }
+}
+
+impl<P: Features> Scan<'_, '_, P> {
+    /// A rescanned tile's next triangle: out of line, so that the tile
+    /// loop, into which [`TileList::next`] is inlined, does not carry the
+    /// scan's code and state (a tile rescans only when its bin overflowed
+    /// the pool).
+    #[inline(never)]
+    fn next_touching(&mut self) -> Option<usize> {
         let Scan {
             frame,
             rect,
             next,
             state,
-        } = self.scan.as_mut()?;
+        } = self;
         loop {
             let ScanState {
                 cur,

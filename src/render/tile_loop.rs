@@ -34,6 +34,9 @@ where
     P: Features,
 {
     let mut cur = DrawCursor::new(frame);
+    // Per tile, in locals: the pair's path reads them without going
+    // through `shaders`.
+    let (find, test) = (shaders.find, shaders.out.test);
     let job = &mut TileJob {
         frame,
         cache,
@@ -51,53 +54,47 @@ where
     // triangle), 4 bytes each on the stack.
     let mut later: heapless::Vec<(u16, u16), MAX_TRANSPARENT> = heapless::Vec::new();
     let mut n = 0;
+    // The current draw's common path, per draw rather than per pair (a
+    // bin's entries come in draw order): its triangles (empty unless the
+    // draw is plain with `u16` indices), its first triangle, its vertices
+    // and its span loop.
+    let (mut fast, mut first, mut verts, mut shade) = (
+        cur.fast,
+        cur.first,
+        cur.verts,
+        shaders.fill[cur.gouraud as usize],
+    );
     for t in list {
-        cur.seek(t);
-        // The indices one by one: an array handed to the rare paths below
-        // would live in memory, stored there for every triangle.
-        let [i0, i1, i2] = cur.indices(t);
-        let sv = [
-            &cur.verts[i0 as usize],
-            &cur.verts[i1 as usize],
-            &cur.verts[i2 as usize],
-        ];
-        let any = sv[0].outcode() | sv[1].outcode() | sv[2].outcode();
-        // One test for the common draw, rather than one per rare path.
-        if (P::LINES || P::BLEND || P::SHADERS) && !cur.plain {
-            if P::LINES && cur.lines {
-                n += job.lines(&cur, [i0, i1, i2], any);
-                if matches!(cur.shading, Shading::Wireframe | Shading::Points(_)) {
-                    continue;
-                }
-            }
-            if P::BLEND && cur.blend != Blend::Opaque {
-                // Farthest vertex first; a clipped triangle (whose depths the
-                // vertex buffer does not hold) reaches the near plane: last.
-                let key = if any & MUST_CLIP != 0 {
-                    0
-                } else {
-                    sv[0].z().max(sv[1].z()).max(sv[2].z())
-                };
-                // `t < MAX_TRIANGLES`, so it fits u16. A full list is drawn
-                // (sorted) and emptied first: a tile with more transparent
-                // triangles than the list holds sorts them in batches of
-                // `MAX_TRANSPARENT`, in submission order between batches.
-                if later.is_full() {
-                    n += job.draw_later::<P>(&mut later);
-                }
-                let _ = later.push((key, t as u16));
-                continue;
-            }
-            if P::SHADERS && cur.shading == Shading::Shader {
-                n += job.with_shader::<P>(&cur, [i0, i1, i2], any, Blend::Opaque);
-                continue;
-            }
-        }
-        n += if any & MUST_CLIP != 0 {
-            job.clipped(&cur, [i0, i1, i2], any, sv[0].color())
-        } else {
-            fill(&mut job.to, sv, cur.gouraud)
+        // One bounds check finds the common pair: a triangle of the
+        // current draw, which is plain. Any other (the next draw's, a rare
+        // path's, `u32` indices) takes the general path, which moves the
+        // cursor.
+        let Some(&[i0, i1, i2]) = fast.get(t.wrapping_sub(first)) else {
+            n += job.general::<P>(&mut cur, t, &mut later);
+            (fast, first, verts) = (cur.fast, cur.first, cur.verts);
+            shade = shaders.fill[cur.gouraud as usize];
+            continue;
         };
+        let sv = [
+            &verts[i0 as usize],
+            &verts[i1 as usize],
+            &verts[i2 as usize],
+        ];
+        // The outcodes tested in the vertices' whole first words (their
+        // low byte): one `tst` rather than a byte extension and a compare.
+        let any = sv[0].xy_words().0 | sv[1].xy_words().0 | sv[2].xy_words().0;
+        if any & MUST_CLIP as i32 != 0 {
+            let idx = [i0 as u32, i1 as u32, i2 as u32];
+            n += job.clipped(&cur, idx, any as u8, sv[0].color());
+            continue;
+        }
+        // `fill`, with the tile's rasterizer, the draw's span loop and the
+        // depth test from locals.
+        let to = &mut job.to;
+        let count = find(&sv, to.rect, &mut to.found);
+        if let Some(found) = drawn(&to.found, count, &mut to.rows) {
+            n += shade(to.tile, to.rect, &sv, found, test);
+        }
     }
     if P::BLEND {
         n += job.draw_later::<P>(&mut later);
@@ -148,6 +145,66 @@ where
         };
         // `begin` checked that every shader draw's index is in the set.
         set.visit(index, visit).unwrap_or(0)
+    }
+
+    /// Draws global triangle `t`, of the cursor's draw or a later one,
+    /// down whichever path its draw takes: the tile loop's general path,
+    /// for a pair its common path does not take (see [`DrawCursor::fast`]),
+    /// out of line and cold so that the common path keeps its registers.
+    #[cold]
+    #[inline(never)]
+    fn general<P: Features>(
+        &mut self,
+        cur: &mut DrawCursor<'_>,
+        t: usize,
+        later: &mut heapless::Vec<(u16, u16), MAX_TRANSPARENT>,
+    ) -> u32 {
+        cur.seek(t);
+        let mut n = 0;
+        // The indices one by one: an array handed to the rare paths below
+        // would live in memory, stored there for every triangle.
+        let [i0, i1, i2] = cur.indices(t);
+        let sv = [
+            &cur.verts[i0 as usize],
+            &cur.verts[i1 as usize],
+            &cur.verts[i2 as usize],
+        ];
+        let any = sv[0].outcode() | sv[1].outcode() | sv[2].outcode();
+        // One test for the common draw, rather than one per rare path.
+        if (P::LINES || P::BLEND || P::SHADERS) && !cur.plain {
+            if P::LINES && cur.lines {
+                n += self.lines(cur, [i0, i1, i2], any);
+                if matches!(cur.shading, Shading::Wireframe | Shading::Points(_)) {
+                    return n;
+                }
+            }
+            if P::BLEND && cur.blend != Blend::Opaque {
+                // Farthest vertex first; a clipped triangle (whose depths the
+                // vertex buffer does not hold) reaches the near plane: last.
+                let key = if any & MUST_CLIP != 0 {
+                    0
+                } else {
+                    sv[0].z().max(sv[1].z()).max(sv[2].z())
+                };
+                // `t < MAX_TRIANGLES`, so it fits u16. A full list is drawn
+                // (sorted) and emptied first: a tile with more transparent
+                // triangles than the list holds sorts them in batches of
+                // `MAX_TRANSPARENT`, in submission order between batches.
+                if later.is_full() {
+                    n += self.draw_later::<P>(later);
+                }
+                let _ = later.push((key, t as u16));
+                return n;
+            }
+            if P::SHADERS && cur.shading == Shading::Shader {
+                return n + self.with_shader::<P>(cur, [i0, i1, i2], any, Blend::Opaque);
+            }
+        }
+        n + if any & MUST_CLIP != 0 {
+            self.clipped(cur, [i0, i1, i2], any, sv[0].color())
+        } else {
+            fill(&mut self.to, sv, cur.gouraud)
+        }
     }
 
     /// Draws the transparent triangles of `later` back to front (equal keys in
@@ -369,6 +426,27 @@ where
         };
         fill_shaded(&mut self.to, &tri, draw.texture, &pass)
     }
+}
+
+/// The first `count` spans of `found`, about to be drawn, with their rows
+/// noted in `rows` (see [`Target::rows`]); `None` when there is none: the
+/// tile loop's common path's copy of `fill`'s own.
+#[inline(always)]
+fn drawn<'f>(found: &'f [Span], count: usize, rows: &mut (i32, i32)) -> Option<&'f [Span]> {
+    // The last span first, by `count - 1`: one unsigned compare tells
+    // `1..=found.len()` (ARMv6-M built the range test's constant in two
+    // instructions), and leaves the others unchecked.
+    let last = found.get(count.wrapping_sub(1))?;
+    let found = found.get(..count)?;
+    let first = found.first()?;
+    // Stored only when they grow, which few pairs of a tile make them.
+    if first.j < rows.0 {
+        rows.0 = first.j;
+    }
+    if last.j > rows.1 {
+        rows.1 = last.j;
+    }
+    Some(found)
 }
 
 /// The output of a transparent triangle: blended by `blend`, never
