@@ -73,6 +73,17 @@ impl Recip16 {
         if v >> 15 == 0 {
             return Self::with_log2(d, log2_w23(d));
         }
+        Self::new_w15(v)
+    }
+
+    /// [`Recip16::new_w23`] of `d` from `2^15` up (below `2^23`): its
+    /// second branch alone, for ARMv6-M's vertex loop, whose inline path
+    /// takes only such a `w` (`Viewport::project_recip_fast`). `d` as a
+    /// plain word (it is at least `2^15`): a `NonZeroU32` made from it
+    /// cost that loop a test of `w` against 0.
+    #[inline(always)]
+    pub(crate) fn new_w15(v: u32) -> Self {
+        debug_assert!(v >> 15 != 0 && v < 1 << 23);
         // Masked: the optimiser then knows both shifts below 32 (`k <= 7`).
         let k = LOG2[(v >> 15) as usize & 0xff] as u32 & 7;
         Self {

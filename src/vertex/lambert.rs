@@ -484,7 +484,11 @@ impl NarrowRows {
         for (o, k) in out.iter_mut().zip(&self.rows) {
             let h = k[0] * p[0] + k[1] * p[1] + k[2] * p[2];
             let l = k[3] * p[0] + k[4] * p[1] + k[5] * p[2];
-            *o = k[6].wrapping_add((h + ((l + (1 << 15)) >> 8)) >> 8);
+            // `(l + 2^15) >> 8` as `(l >> 8) + 128` (2^15 a multiple of
+            // 2^8, and `|l| < 3 2^29`: no overflow either way), an
+            // immediate added to `h`, where the loop kept 2^15 in a stack
+            // slot and loaded it for each row.
+            *o = k[6].wrapping_add((h + 128 + (l >> 8)) >> 8);
         }
         out
     }

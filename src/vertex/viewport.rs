@@ -35,6 +35,11 @@ pub struct Viewport {
     /// frame more on the Cortex-M3 for nothing).
     #[cfg(any(test, microraster_narrow_multiply))]
     one_w: u32,
+    /// `one_w + 1 - 2^15` (0 where `one_w` is below `2^15`): the `w` of
+    /// [`Viewport::project_recip_fast`] are `2^15 <= w <= one_w`, one
+    /// unsigned compare of `w - 2^15` with this.
+    #[cfg(any(test, microraster_narrow_multiply))]
+    fast_w: u32,
 }
 
 impl Viewport {
@@ -57,6 +62,8 @@ impl Viewport {
             short_w,
             #[cfg(any(test, microraster_narrow_multiply))]
             one_w,
+            #[cfg(any(test, microraster_narrow_multiply))]
+            fast_w: (one_w + 1).saturating_sub(1 << 15),
         }
     }
 
@@ -288,14 +295,55 @@ impl Viewport {
         let signed = |n: i32, q: u32| if n < 0 { -(q as i32) } else { q as i32 };
         let x = self.half_w as i32 + signed(p[0], qx);
         let y = self.half_h as i32 - signed(p[1], qy);
-        // -w <= z <= w: c in 0..=2w. Depth as `depth_digits`' two digits,
-        // the first uncorrected (`estimate`: `r1 < 2w`, `c 2^8 = d1 w +
-        // r1` all the same), the second's dividend below `w 514` and so
-        // below 2^32 (`RECIP_W`).
-        let c = (p[2] + wu as i32) as u32;
-        let (d1, r1) = f.estimate(c << 8);
-        let (d0, _) = f.digit((r1 << 8) + (2 * wu - c));
-        (SubPoint::new(x, y), depth_of_digits(d1, d0))
+        // -w <= z <= w (`depth_recip`).
+        (SubPoint::new(x, y), depth_recip(&f, p[2], wu))
+    }
+
+    /// [`project_recip`](Self::project_recip) of a vertex inside the view
+    /// volume (outcode 0) with `2^15 <= w <= one_w` (nearly every vertex:
+    /// `w` from half a unit up), inline in ARMv6-M's vertex loop; `None`
+    /// for any other vertex, which the loop sends out of line
+    /// ([`project_rest`](Self::project_rest)). Its outcode is then the
+    /// constant 0 and its `inside` true, where the loop's one inline path
+    /// for every vertex carried both (and the outcode) as values from the
+    /// outcode's paths to the packing, and `w`'s reciprocal is
+    /// [`Recip16::new_w15`], without `new_w23`'s branch below `2^15`. The
+    /// test of the view volume is [`outcode`]'s for ARMv6-M (the three
+    /// `w - |v|` or-ed, one sign test), its `|v|` kept for the digits.
+    #[inline(always)]
+    #[cfg_attr(not(microraster_narrow_multiply), allow(dead_code))]
+    pub(crate) fn project_recip_fast(&self, p: &[i32; 4]) -> Option<(SubPoint, u32)> {
+        let wu = p[3] as u32;
+        // 2^15 <= w <= one_w (W_MIN <= 2^15, one_w < RECIP_W < 2^23).
+        if wu.wrapping_sub(1 << 15) >= self.fast_w() {
+            return None;
+        }
+        let m = [p[0], p[1], p[2]].map(|v| v.unsigned_abs());
+        // |v| <= w for each, as `w - |v|` below 2^31 (see `outcode`).
+        if (wu.wrapping_sub(m[0]) | wu.wrapping_sub(m[1]) | wu.wrapping_sub(m[2])) >> 31 != 0 {
+            return None;
+        }
+        let f = Recip16::new_w15(wu);
+        let half = wu / 2;
+        // `|n| h + half < w (h + 1)`, below `w 2^12` and, for `w <=
+        // one_w`, `2^32`: one digit (as `project_recip`'s).
+        let (hw, hh) = (self.half_w as u32, self.half_h as u32);
+        let qx = f.digit(m[0] * hw + half).0;
+        let qy = f.digit(m[1] * hh + half).0;
+        let signed = |n: i32, q: u32| if n < 0 { -(q as i32) } else { q as i32 };
+        let x = self.half_w as i32 + signed(p[0], qx);
+        let y = self.half_h as i32 - signed(p[1], qy);
+        Some((SubPoint::new(x, y), depth_recip(&f, p[2], wu)))
+    }
+
+    /// `fast_w` (0 where the field is not kept: `project_recip_fast`
+    /// unused).
+    #[inline(always)]
+    fn fast_w(&self) -> u32 {
+        #[cfg(any(test, microraster_narrow_multiply))]
+        return self.fast_w;
+        #[cfg(not(any(test, microraster_narrow_multiply)))]
+        0
     }
 
     /// The largest `w` of [`project_recip`](Self::project_recip)'s one
@@ -339,6 +387,12 @@ impl Viewport {
     ) -> ScreenVertex {
         let (outcode, p, z) = if LONG_DIVISION || WIDE_DIVISION {
             match fast.then(|| self.project_fast_any(pos)).flatten() {
+                Some((p, z)) => (0, p, z),
+                None => self.project_rest(pos[0], pos[1], pos[2], pos[3]),
+            }
+        } else if fast {
+            // ARMv6-M: nearly every vertex inline, any other out of line.
+            match self.project_recip_fast(pos) {
                 Some((p, z)) => (0, p, z),
                 None => self.project_rest(pos[0], pos[1], pos[2], pos[3]),
             }
@@ -512,6 +566,19 @@ fn depth_of_digits(d1: u32, d0: u32) -> u32 {
     z
 }
 
+/// Depth of `z` by `w`'s [`Recip16`] `f` (`-w <= z <= w`, `w <`
+/// [`RECIP_W`]), as [`depth_digits`]' two digits of `c = z + w` in
+/// `0..=2w`, the first uncorrected (`estimate`: `r1 < 2w`, `c 2^8 = d1 w +
+/// r1` all the same), the second's dividend below `w 514` and so below
+/// 2^32 (`RECIP_W`).
+#[inline(always)]
+fn depth_recip(f: &Recip16, z: i32, w: u32) -> u32 {
+    let c = (z + w as i32) as u32;
+    let (d1, r1) = f.estimate(c << 8);
+    let (d0, _) = f.digit((r1 << 8) + (2 * w - c));
+    depth_of_digits(d1, d0)
+}
+
 /// [`Viewport::project_digits`] takes `w` below `2^DIGITS_W_BITS`.
 const DIGITS_W_BITS: u32 = 23;
 
@@ -610,6 +677,9 @@ mod tests {
                 if nz.get() < vp.short_w {
                     assert_eq!(vp.project_digits(&p, nz), want, "{p:?}");
                 }
+                if inside && (1 << 15..=vp.one_w).contains(&nz.get()) {
+                    assert_eq!(vp.project_recip_fast(&p), Some(want), "{p:?}");
+                }
                 if nz.get() < RECIP_W {
                     assert_eq!(vp.project_recip(&p, nz, inside), want, "{p:?}");
                     assert_eq!(vp.project_recip(&p, nz, false), want, "{p:?}");
@@ -652,6 +722,11 @@ mod tests {
                 let fast = vp.project_fast(&p);
                 let want = inside.then(|| vp.project(&p)).map(|(p, z)| (p, z as u32));
                 assert_eq!(fast, want, "{p:?}");
+                // ARMv6-M's inline path: outcode 0 and `2^15 <= w <=
+                // one_w`, otherwise declined.
+                let recip = outcode(&p) == 0 && (1 << 15..=vp.one_w).contains(&(w as u32));
+                let want = recip.then(|| vp.project(&p)).map(|(p, z)| (p, z as u32));
+                assert_eq!(vp.project_recip_fast(&p), want, "{p:?}");
                 // The 64-bit form for every `w` (no `short_w`).
                 let wide = vp.project_fast_wide(&p);
                 let want = (outcode(&p) == 0).then(|| vp.project(&p));
