@@ -337,6 +337,9 @@ pub(crate) fn span_gouraud<
     let [mut z, r, g, b] = start;
     let (mut r, mut g, mut b) = (r << 8, g << 8, b << 8);
     let (gr, gg, gb) = (step[1] << 8, step[2] << 8, step[3] << 8);
+    // Every fragment counted as written, those that fail taken off on a
+    // path marked rare, as in `gouraud_loop`.
+    n += color.len() as u32;
     for (c, d) in color.iter_mut().zip(depth.iter_mut()) {
         let zz = depth16(z);
         if dt.pass(zz, *d) {
@@ -344,7 +347,9 @@ pub(crate) fn span_gouraud<
                 *d = zz;
             }
             *c = rgb::<C>((r >> 24) as u8, (g >> 24) as u8, (b >> 24) as u8);
-            n += 1;
+        } else {
+            cold();
+            n -= 1;
         }
         z = z.wrapping_add(gz);
         r = r.wrapping_add(gr);
