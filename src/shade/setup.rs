@@ -579,6 +579,12 @@ impl Offset {
             .wrapping_mul(self.o[0])
             .wrapping_add((gy as i64).wrapping_mul(self.o[1]));
         let base = (values[0] << frac) + (1i64 << (frac - 1));
+        // An empty `black_box` (inline assembly of no instruction) after
+        // each plane: the optimiser then finishes a plane before it starts
+        // the next, where it had made all eight numerators before the
+        // first division and spilled them (x86-64 `demo` 3,483,659 ->
+        // 3,450,391 instructions, `rock` 2,892,528 -> 2,866,412).
+        core::hint::black_box(());
         Plane {
             gx: gx as i32,
             gy: gy as i32,
