@@ -7,7 +7,7 @@ use crate::raster::{hilbert, PixelRect, Rasterizer, Span, SubPoint};
 use crate::shade::perspective::{Output, PerspectiveSetup, ShaderTriangle};
 use crate::shade::{
     span_flat, span_gouraud, Corners, DepthFn, DepthTest, SpanPos, To565, TriangleSetup,
-    OPAQUE_TABLE, SMALL_INLINE, SPLIT_INTERIOR,
+    OFFSET_SETUP, OPAQUE_TABLE, SMALL_INLINE, SPLIT_INTERIOR,
 };
 use crate::shader::{FragmentShader, Perspective, ShaderSet, TriangleSpans};
 use crate::texture::Texture;
@@ -253,45 +253,85 @@ where
             });
         }
     }
+    // The span loops of a triangle's `setup`, written out once for the
+    // offset set-up's triangles (64-bit hosts: their planes go to the loop
+    // without a merge with the general set-up's, see `OFFSET_SETUP`) and
+    // once for the others: a macro, so that each has a closure of its own,
+    // inlined (one function called from both, the closure was not).
+    macro_rules! spans {
+        ($setup:expr, $corners:expr) => {{
+            let (setup, corners): (&TriangleSetup, &Corners<'_>) = ($setup, $corners);
+            // Flat shading's colour is the first vertex's (the tile loop gives a
+            // clipped piece the colour of the triangle's own first vertex there):
+            // read here, by the flat span loops only, rather than loaded and
+            // passed for every pair.
+            let [r, g, b] = sv[0].color();
+            let flat = crate::shade::rgb::<C>(r, g, b);
+            if GOURAUD && SPLIT_INTERIOR && !(common && SMALL_INLINE) && setup.interior() {
+                // Tested once, not at every span start (the interior bit is
+                // never set where the vertex stage does not make it: no copy).
+                // Not where the loop above took the interior triangles: one
+                // interior loop in each span loop's code.
+                return each_span::<C, GOURAUD, TW, TH>(
+                    tile,
+                    rect,
+                    found,
+                    |color, depth, sp, n| {
+                        span_gouraud::<C, D, WRITE, true>(
+                            (dt, To565::fixed()),
+                            setup,
+                            corners,
+                            color,
+                            depth,
+                            sp,
+                            n,
+                        )
+                    },
+                );
+            }
+            let table = if OPAQUE_TABLE {
+                To565::opaque()
+            } else {
+                To565::fixed()
+            };
+            each_span::<C, GOURAUD, TW, TH>(tile, rect, found, |color, depth, sp, n| {
+                if GOURAUD {
+                    span_gouraud::<C, D, WRITE, false>(
+                        (dt, table),
+                        setup,
+                        corners,
+                        color,
+                        depth,
+                        sp,
+                        n,
+                    )
+                } else {
+                    n + span_flat::<C, D, WRITE>(dt, setup, corners, flat, color, depth, sp)
+                }
+            })
+        }};
+    }
+    if OFFSET_SETUP {
+        if let Some(setup) = &small {
+            return spans!(setup, corners);
+        }
+    }
+    // Where the offset set-up's triangles took the loops above, the
+    // others' corners are a copy of their own: the general set-up and
+    // `wide_start` take their address, and with one copy for both paths
+    // its stores were made at every call.
+    let apart;
+    let corners = if OFFSET_SETUP {
+        apart = Corners(*sv);
+        &apart
+    } else {
+        corners
+    };
     let setup = &match small {
         Some(s) => s,
         None => TriangleSetup::for_spans::<GOURAUD>(corners),
     };
-    // Flat shading's colour is the first vertex's (the tile loop gives a
-    // clipped piece the colour of the triangle's own first vertex there):
-    // read here, by the flat span loops only, rather than loaded and
-    // passed for every pair.
-    let [r, g, b] = sv[0].color();
-    let flat = crate::shade::rgb::<C>(r, g, b);
-    if GOURAUD && SPLIT_INTERIOR && !(common && SMALL_INLINE) && setup.interior() {
-        // Tested once, not at every span start (the interior bit is
-        // never set where the vertex stage does not make it: no copy).
-        // Not where the loop above took the interior triangles: one
-        // interior loop in each span loop's code.
-        return each_span::<C, GOURAUD, TW, TH>(tile, rect, found, |color, depth, sp, n| {
-            span_gouraud::<C, D, WRITE, true>(
-                (dt, To565::fixed()),
-                setup,
-                corners,
-                color,
-                depth,
-                sp,
-                n,
-            )
-        });
-    }
-    let table = if OPAQUE_TABLE {
-        To565::opaque()
-    } else {
-        To565::fixed()
-    };
-    each_span::<C, GOURAUD, TW, TH>(tile, rect, found, |color, depth, sp, n| {
-        if GOURAUD {
-            span_gouraud::<C, D, WRITE, false>((dt, table), setup, corners, color, depth, sp, n)
-        } else {
-            n + span_flat::<C, D, WRITE>(dt, setup, corners, flat, color, depth, sp)
-        }
-    })
+    spans!(setup, corners)
 }
 
 /// Calls `shade` with the tile's colour and depth buffers, the place of

@@ -52,7 +52,7 @@ pub(crate) use convert::{rgb, rgb565_bits, rgb_scalar};
 use convert::{rgb16_green_up, GREEN_UP};
 use embedded_graphics::pixelcolor::Rgb888;
 use plane::Basis;
-pub(crate) use setup::{Corners, TriangleSetup, SMALL_INLINE};
+pub(crate) use setup::{Corners, TriangleSetup, OFFSET_SETUP, SMALL_INLINE};
 
 /// Fraction bits of interpolated depth.
 pub const Z_FRAC: u32 = 14;
@@ -182,8 +182,11 @@ fn depth16(z: u32) -> u16 {
 const SHORT_SPAN: usize = 8;
 
 /// [`span_gouraud`]'s spans this long or longer take its vector loop for
-/// their whole groups of eight (see there).
-const LONG_SPAN: usize = 16;
+/// their whole groups of eight (see there). 24 since the plain loop's
+/// written pixel is 21 instructions on x86-64: x86-64 `demo` 3,450,391
+/// instructions with 16, 3,442,825 with 24, 3,442,253 with 32 (`rock`
+/// the same with each).
+const LONG_SPAN: usize = 24;
 
 /// Whether the target has SIMD for the branch-free loops. Targets without
 /// (the microcontrollers) always take the plain loop: there the branch-free
@@ -337,6 +340,9 @@ pub(crate) fn span_gouraud<
     let [mut z, r, g, b] = start;
     let (mut r, mut g, mut b) = (r << 8, g << 8, b << 8);
     let (gr, gg, gb) = (step[1] << 8, step[2] << 8, step[3] << 8);
+    // Every fragment counted as written, those that fail taken off on a
+    // path marked rare, as in `gouraud_loop`.
+    n += color.len() as u32;
     for (c, d) in color.iter_mut().zip(depth.iter_mut()) {
         let zz = depth16(z);
         if dt.pass(zz, *d) {
@@ -344,7 +350,9 @@ pub(crate) fn span_gouraud<
                 *d = zz;
             }
             *c = rgb::<C>((r >> 24) as u8, (g >> 24) as u8, (b >> 24) as u8);
-            n += 1;
+        } else {
+            cold();
+            n -= 1;
         }
         z = z.wrapping_add(gz);
         r = r.wrapping_add(gr);
@@ -1061,6 +1069,106 @@ mod tests {
             let color = [next(256) as u8, next(256) as u8, next(256) as u8];
             ScreenVertex::new(v[k].x, v[k].y, z, 0, color)
         })
+    }
+
+    /// The offset set-up of 64-bit hosts against the general one: the
+    /// same planes wherever it applies, and `None` exactly where its
+    /// bounds say (twice-areas of 2^26 and more or a multiple of 2^19,
+    /// gradients beyond 2^36). On triangles small and large, slivers
+    /// whose gradients reach far beyond its bound and others near it, and
+    /// twice-areas that are multiples of 2^19, where a numerator can be an
+    /// exact tie (which the floor of `offset` would round the other way
+    /// for a negative one).
+    #[cfg(target_pointer_width = "64")]
+    #[test]
+    fn offset_setup_matches_the_general_one() {
+        let mut next = crate::testing::rng();
+        let (mut applied, mut near, mut ties, mut beyond) = (0u32, 0u32, 0u32, 0u32);
+        for k in 0..300_000u64 {
+            let r = [24, 600, 2_100, 40_000, 1 << 19, 1 << 22][k as usize % 6];
+            let mut p =
+                || SubPoint::new(next(r) as i32 - r as i32 / 2, next(r) as i32 - r as i32 / 2);
+            let mut v = [p(), p(), p()];
+            match k % 4 {
+                1 => {
+                    // A sliver: the third vertex a few sub-pixels beside
+                    // the first edge's midpoint.
+                    let t = 1 + next(8) as i32;
+                    v[2] = SubPoint::new((v[0].x + v[1].x) / 2 + t, (v[0].y + v[1].y) / 2);
+                }
+                2 => {
+                    // Twice the area a multiple of 2^19: edge vectors
+                    // (2^10 a, b) and (c, 2^9 d) less b c, with b c a
+                    // multiple of 2^19 (or 0).
+                    let o = v[0];
+                    let (a, d) = (1 + next(4) as i32, 1 + next(4) as i32);
+                    let b = [0, 1, -1, 3][next(4) as usize];
+                    let c = if b == 0 { next(64) as i32 - 32 } else { 0 };
+                    let s = if next(2) == 0 { 1 } else { -1 };
+                    v[1] = SubPoint::new(o.x + s * (a << 10), o.y + b);
+                    v[2] = SubPoint::new(o.x + c, o.y + s * (d << 9));
+                }
+                _ => {}
+            }
+            let area2 = crate::raster::signed_area2(&v);
+            if area2 == 0 {
+                continue;
+            }
+            let sv = random_vertices(&v, &mut next);
+            let corners = Corners([&sv[0], &sv[1], &sv[2]]);
+            let f = Basis::with_small(&v, false);
+            // The largest gradient's magnitude, of depth or colour.
+            let mut most = 0u64;
+            for a in 0..4 {
+                let (values, frac) = corners.values(a);
+                let (gx, gy) = f.gradients(values, frac);
+                most = most.max(gx.unsigned_abs()).max(gy.unsigned_abs());
+            }
+            let d = area2.unsigned_abs();
+            ties += d.is_multiple_of(1 << 19) as u32;
+            near += (most >> 35 == 1) as u32;
+            for gouraud in [false, true] {
+                let general = TriangleSetup::with_basis(&f, &corners, gouraud);
+                let offset = TriangleSetup::offset(&v, &corners, gouraud);
+                // Depth's gradients alone where flat.
+                let most = if gouraud {
+                    most
+                } else {
+                    let (gx, gy) = f.gradients(corners.values(0).0, Z_FRAC);
+                    gx.unsigned_abs().max(gy.unsigned_abs())
+                };
+                // What `offset` takes: q + 2^36 below 2^37 for every
+                // gradient q (a positive one of 2^36 fails).
+                let takes = d < 1 << 26 && !d.is_multiple_of(1 << 19) && {
+                    let mut all = true;
+                    for a in 0..if gouraud { 4 } else { 1 } {
+                        let (values, frac) = corners.values(a);
+                        let (gx, gy) = f.gradients(values, frac);
+                        all &= (-(1 << 36)..1 << 36).contains(&gx)
+                            && (-(1 << 36)..1 << 36).contains(&gy);
+                    }
+                    all
+                };
+                assert_eq!(offset.is_some(), takes, "{v:?} {sv:?} {most}");
+                beyond += (d < 1 << 26 && !d.is_multiple_of(1 << 19) && !takes) as u32;
+                let Some(offset) = offset else { continue };
+                applied += 1;
+                assert!(!general.wide, "{v:?}");
+                assert_eq!(offset.zstep, general.zstep, "{v:?}");
+                for (a, b) in offset.planes.iter().zip(&general.planes) {
+                    assert_eq!((a.gx, a.gy, a.k), (b.gx, b.gy, b.k), "{v:?} {sv:?}");
+                }
+                // And `new`, which takes it.
+                let new = TriangleSetup::new(&corners, gouraud);
+                for (a, b) in new.planes.iter().zip(&general.planes) {
+                    assert_eq!((a.gx, a.gy, a.k), (b.gx, b.gy, b.k), "{v:?} {sv:?}");
+                }
+            }
+        }
+        assert!(
+            applied > 300_000 && near > 1_000 && ties > 10_000 && beyond > 1_000,
+            "{applied} {near} {ties} {beyond}"
+        );
     }
 
     /// The general set-up with its colour planes out of line (32-bit
