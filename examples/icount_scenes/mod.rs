@@ -59,8 +59,41 @@ pub const WIDTH: u32 = 320;
 /// Frame height.
 pub const HEIGHT: u32 = 240;
 
-/// The renderer of every scene: 32x32 tiles of `Rgb565` (4,112 bytes).
-pub type BenchRenderer = Renderer<Rgb565, 32, 32>;
+/// The renderer of every scene: 32x32 tiles of `Rgb565` (4,112 bytes),
+/// with the paths of [`BenchFeatures`].
+pub type BenchRenderer = Renderer<Rgb565, 32, 32, BenchFeatures>;
+
+/// Whether the build holds `demo-textured-lit` and no other scene.
+const TEXTURED_ALONE: bool = {
+    let mut alone = SceneId::DemoTexturedLit.built();
+    let mut i = 0;
+    while i < SceneId::ALL.len() {
+        let s = SceneId::ALL[i];
+        alone &= s as usize == SceneId::DemoTexturedLit as usize || !s.built();
+        i += 1;
+    }
+    alone
+};
+
+/// Every path of the renderer ([`All`](microraster::render::All)'s), but in
+/// a build of the textured frame alone, which leaves out what that frame
+/// never takes, as a firmware drawing only textured models would: the
+/// Hilbert rasterizer, lines, blending, the depth tests other than the
+/// default, `u32` indices and the flat and Gouraud span loops. Its code
+/// (the other depth tests' copies of the shader span loops above all) no
+/// longer fits the LM3S6965's 256 KiB of flash beside the knot's 88,000
+/// bytes of mesh data; the frame's work is the same, as the image is.
+pub struct BenchFeatures;
+
+impl microraster::Features for BenchFeatures {
+    const HILBERT: bool = !TEXTURED_ALONE;
+    const LINES: bool = !TEXTURED_ALONE;
+    const BLEND: bool = !TEXTURED_ALONE;
+    const DEPTH_TESTS: bool = !TEXTURED_ALONE;
+    const U32_INDICES: bool = !TEXTURED_ALONE;
+    const FLAT: bool = !TEXTURED_ALONE;
+    const GOURAUD: bool = !TEXTURED_ALONE;
+}
 /// The workspace of every scene: 2,048 vertices, 4,096 bin entries, all 80
 /// tiles in one pass (33,088 bytes).
 pub type BenchWorkspace = Workspace<2048, 4096, 80>;
