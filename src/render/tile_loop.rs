@@ -2,7 +2,7 @@
 
 use super::cursor::{DrawCursor, TileList};
 use super::dispatch::{ShaderPass, Shaders};
-use super::fill::{fill, fill_shaded, Target};
+use super::fill::{drawn, fill, fill_shaded, Target};
 use super::state::{FrameState, SetupCache};
 use super::Features;
 use crate::raster::line::{draw_line, draw_point, DepthMode, LinePoint};
@@ -470,27 +470,6 @@ where
         };
         fill_shaded(&mut self.to, &tri, draw.texture, &pass)
     }
-}
-
-/// The first `count` spans of `found`, about to be drawn, with their rows
-/// noted in `rows` (see [`Target::rows`]); `None` when there is none: the
-/// tile loop's common path's copy of `fill`'s own.
-#[inline(always)]
-fn drawn<'f>(found: &'f [Span], count: usize, rows: &mut (i32, i32)) -> Option<&'f [Span]> {
-    // The last span first, by `count - 1`: one unsigned compare tells
-    // `1..=found.len()` (ARMv6-M built the range test's constant in two
-    // instructions), and leaves the others unchecked.
-    let last = found.get(count.wrapping_sub(1))?;
-    let found = found.get(..count)?;
-    let first = found.first()?;
-    // Stored only when they grow, which few pairs of a tile make them.
-    if first.j < rows.0 {
-        rows.0 = first.j;
-    }
-    if last.j > rows.1 {
-        rows.1 = last.j;
-    }
-    Some(found)
 }
 
 /// The output of a transparent triangle: blended by `blend`, never
