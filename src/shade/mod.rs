@@ -39,6 +39,8 @@
 //! results are exactly those of the plain per-pixel test.
 
 mod convert;
+#[cfg(target_pointer_width = "64")]
+mod offset;
 pub(crate) mod perspective;
 mod plane;
 mod setup;
