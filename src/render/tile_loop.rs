@@ -54,16 +54,6 @@ where
     // triangle), 4 bytes each on the stack.
     let mut later: heapless::Vec<(u16, u16), MAX_TRANSPARENT> = heapless::Vec::new();
     let mut n = 0;
-    // The current draw's common path, per draw rather than per pair (a
-    // bin's entries come in draw order): its triangles (empty unless the
-    // draw is plain with `u16` indices), its first triangle, its vertices
-    // and its span loop.
-    let (mut fast, mut first, mut verts, mut shade) = (
-        cur.fast,
-        cur.first,
-        cur.verts,
-        shaders.fill[cur.gouraud as usize],
-    );
     let mut list = list;
     if cfg!(microraster_size) {
         // Built for size (the build script's `microraster_size`): every
@@ -72,48 +62,56 @@ where
         for t in list {
             n += job.general_one::<P>(&mut cur, t, &mut later);
         }
-        if P::BLEND {
-            n += job.draw_later::<P>(&mut later);
-        }
-        job.to.finish();
-        return n;
-    }
-    let mut next = list.next();
-    while let Some(t) = next {
-        // One bounds check finds the common pair: a triangle of the
-        // current draw, which is plain. Any other (the next draw's, a rare
-        // path's, `u32` indices) takes the general path, which moves the
-        // cursor, draws the rest of that draw's run of pairs if the draw is
-        // not plain, and gives back the entry after them.
-        let Some(&[i0, i1, i2]) = fast.get(t.wrapping_sub(first)) else {
-            let (m, after) = job.general::<P>(&mut cur, t, &mut list, &mut later);
-            n += m;
-            next = after;
-            (fast, first, verts) = (cur.fast, cur.first, cur.verts);
-            shade = shaders.fill[cur.gouraud as usize];
-            continue;
-        };
-        let sv = [
-            &verts[i0 as usize],
-            &verts[i1 as usize],
-            &verts[i2 as usize],
-        ];
-        // The outcodes tested in the vertices' whole first words (their
-        // low byte): one `tst` rather than a byte extension and a compare.
-        let any = sv[0].xy_words().0 | sv[1].xy_words().0 | sv[2].xy_words().0;
-        if any & MUST_CLIP as i32 != 0 {
-            let idx = [i0 as u32, i1 as u32, i2 as u32];
-            n += job.clipped(&cur, idx, any as u8, sv[0].color());
-        } else {
-            // `fill`, with the tile's rasterizer, the draw's span loop and
-            // the depth test from locals.
-            let to = &mut job.to;
-            let count = find(&sv, to.rect, &mut to.found);
-            if let Some(found) = drawn(&to.found, count, &mut to.rows) {
-                n += shade(to.tile, to.rect, &sv, found, test);
+    } else {
+        // The current draw's common path, per draw rather than per pair (a
+        // bin's entries come in draw order): its triangles (empty unless
+        // the draw is plain with `u16` indices), its first triangle, its
+        // vertices and its span loop.
+        let (mut fast, mut first, mut verts, mut shade) = (
+            cur.fast,
+            cur.first,
+            cur.verts,
+            shaders.fill[cur.gouraud as usize],
+        );
+        let mut next = list.next();
+        while let Some(t) = next {
+            // One bounds check finds the common pair: a triangle of the
+            // current draw, which is plain. Any other (the next draw's, a
+            // rare path's, `u32` indices) takes the general path, which
+            // moves the cursor, draws the rest of that draw's run of pairs
+            // if the draw is not plain, and gives back the entry after
+            // them.
+            let Some(&[i0, i1, i2]) = fast.get(t.wrapping_sub(first)) else {
+                let (m, after) = job.general::<P>(&mut cur, t, &mut list, &mut later);
+                n += m;
+                next = after;
+                (fast, first, verts) = (cur.fast, cur.first, cur.verts);
+                shade = shaders.fill[cur.gouraud as usize];
+                continue;
+            };
+            let sv = [
+                &verts[i0 as usize],
+                &verts[i1 as usize],
+                &verts[i2 as usize],
+            ];
+            // The outcodes tested in the vertices' whole first words (their
+            // low byte): one `tst` rather than a byte extension and a
+            // compare.
+            let any = sv[0].xy_words().0 | sv[1].xy_words().0 | sv[2].xy_words().0;
+            if any & MUST_CLIP as i32 != 0 {
+                let idx = [i0 as u32, i1 as u32, i2 as u32];
+                n += job.clipped(&cur, idx, any as u8, sv[0].color());
+            } else {
+                // `fill`, with the tile's rasterizer, the draw's span loop
+                // and the depth test from locals.
+                let to = &mut job.to;
+                let count = find(&sv, to.rect, &mut to.found);
+                if let Some(found) = drawn(&to.found, count, &mut to.rows) {
+                    n += shade(to.tile, to.rect, &sv, found, test);
+                }
             }
+            next = list.next();
         }
-        next = list.next();
     }
     if P::BLEND {
         n += job.draw_later::<P>(&mut later);
