@@ -290,24 +290,31 @@ where
                 n += self.shaded(cur, [i0, i1, i2], any, pass);
                 setup = frame.setup(cur.draw, self.cache);
             } else if let Some(setup) = setup {
-                let vertex = |i: u32| {
-                    shader.vertex(&VertexInput {
+                // `fill_shaded`, with the varyings and `w` only for a pair
+                // whose walk found spans (363 of this frame's 2,597 pairs
+                // have none).
+                let to = &mut self.to;
+                let count = (pass.find)(&sv, to.rect, &mut to.found);
+                if let Some(found) = drawn(&to.found, count, &mut to.rows) {
+                    let vertex = |i: u32| {
+                        shader.vertex(&VertexInput {
+                            draw: cur.draw,
+                            index: i as usize,
+                            mesh,
+                        })
+                    };
+                    let tri = ShaderTriangle {
                         draw: cur.draw,
-                        index: i as usize,
-                        mesh,
-                    })
-                };
-                let tri = ShaderTriangle {
-                    draw: cur.draw,
-                    corners: Corners(sv),
-                    w: [
-                        setup.clip_w(mesh, i0 as usize),
-                        setup.clip_w(mesh, i1 as usize),
-                        setup.clip_w(mesh, i2 as usize),
-                    ],
-                    var: [vertex(i0), vertex(i1), vertex(i2)],
-                };
-                n += fill_shaded(&mut self.to, &tri, texture, &pass);
+                        corners: Corners(sv),
+                        w: [
+                            setup.clip_w(mesh, i0 as usize),
+                            setup.clip_w(mesh, i1 as usize),
+                            setup.clip_w(mesh, i2 as usize),
+                        ],
+                        var: [vertex(i0), vertex(i1), vertex(i2)],
+                    };
+                    n += (pass.shade)(to.tile, to.rect, &tri, found, shader, texture, pass.out);
+                }
             }
             match list.next() {
                 // A shader draw has no common path (`fast` is empty).
