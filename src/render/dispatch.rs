@@ -129,6 +129,20 @@ pub(super) struct ShaderPass<'g, C, G: FragmentShader<C>, const TW: usize, const
     pub(super) out: Output,
 }
 
+// By hand: a derive would ask `C` and `G` to be `Copy`.
+impl<C, G: FragmentShader<C>, const TW: usize, const TH: usize> Clone
+    for ShaderPass<'_, C, G, TW, TH>
+{
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+
+impl<C, G: FragmentShader<C>, const TW: usize, const TH: usize> Copy
+    for ShaderPass<'_, C, G, TW, TH>
+{
+}
+
 impl<'g, C, G: FragmentShader<C>, const TW: usize, const TH: usize> ShaderPass<'g, C, G, TW, TH> {
     /// The pass with its output changed by `f`.
     pub(super) fn with(mut self, f: impl FnOnce(Output) -> Output) -> Self {

@@ -172,22 +172,153 @@ where
     /// Then the pairs that follow in `list`, while they belong to the same
     /// draw and it has no common path (a shader draw's, a blended one's):
     /// one call for the run, not one a pair (x86-64 `demo-textured-lit`
-    /// 7,012,406 -> 6,938,850 instructions). Returns the count of pixels
-    /// shaded and the entry after the run, which the caller draws.
+    /// 7,012,406 -> 6,938,850 instructions), and for an opaque shader
+    /// draw's run the shader picked once ([`shader_run`](Self::shader_run)).
+    /// Returns the count of pixels shaded and the entry after the run,
+    /// which the caller draws.
     #[cold]
     #[inline(never)]
     fn general<P: Features>(
+        &mut self,
+        cur: &mut DrawCursor<'_>,
+        t: usize,
+        list: &mut TileList<'_, '_, P>,
+        later: &mut heapless::Vec<(u16, u16), MAX_TRANSPARENT>,
+    ) -> (u32, Option<usize>) {
+        let n = self.general_one::<P>(cur, t, later);
+        match list.next() {
+            Some(u) if u < cur.end && cur.fast.is_empty() => {
+                let (m, after) = self.general_rest::<P>(cur, u, list, later);
+                (n + m, after)
+            }
+            after => (n, after),
+        }
+    }
+
+    /// The rest of [`general`](Self::general)'s run, from its second pair
+    /// `t`: out of line, so that `general`, which the first pair of every
+    /// draw takes, has the code of one pair only.
+    #[inline(never)]
+    fn general_rest<P: Features>(
         &mut self,
         cur: &mut DrawCursor<'_>,
         mut t: usize,
         list: &mut TileList<'_, '_, P>,
         later: &mut heapless::Vec<(u16, u16), MAX_TRANSPARENT>,
     ) -> (u32, Option<usize>) {
+        // An opaque shader draw without lines: the rest of its run with
+        // the shader picked once, not once a pair.
+        if P::SHADERS
+            && cur.shading == Shading::Shader
+            && !(P::LINES && cur.lines)
+            && !(P::BLEND && cur.blend != Blend::Opaque)
+        {
+            return self.shader_runs::<P>(cur, t, list);
+        }
         let mut n = 0;
         loop {
             n += self.general_one::<P>(cur, t, later);
             match list.next() {
                 Some(u) if u < cur.end && cur.fast.is_empty() => t = u,
+                after => return (n, after),
+            }
+        }
+    }
+
+    /// [`general`](Self::general)'s run of pairs from global triangle `t`
+    /// of the cursor's draw, an opaque [`Shading::Shader`] draw without
+    /// lines: the draw's shader picked once for the run (see
+    /// [`shader_run`](Self::shader_run)). Returns the count of pixels
+    /// shaded and the entry after the run.
+    #[inline(always)]
+    fn shader_runs<P: Features>(
+        &mut self,
+        cur: &DrawCursor<'_>,
+        t: usize,
+        list: &mut TileList<'_, '_, P>,
+    ) -> (u32, Option<usize>) {
+        let index = self.frame.draws[cur.draw].shader as usize;
+        let set = self.to.shaders.set;
+        let run = ShaderRun {
+            job: self,
+            cur,
+            t,
+            list,
+        };
+        // `begin` checked that every shader draw's index is in the set;
+        // were it not, the pair would draw nothing, as `with_shader`'s.
+        match set.visit(index, run) {
+            Some(r) => r,
+            None => (0, list.next()),
+        }
+    }
+
+    /// Draws the pairs of a run of an opaque shader draw without lines,
+    /// from global triangle `t` of the cursor's draw, while the entries of
+    /// `list` belong to that draw, through shader pass `pass`: what
+    /// [`shaded`](Self::shaded) does for each, with the draw's state, its
+    /// set-up and the pass read or built once a run rather than once a
+    /// pair (with `general`'s tests of the draw's kind and the shader's
+    /// `match`: x86-64 `demo-textured-lit` 6,938,805 -> 6,660,917, about
+    /// 107 a pair). A triangle that must be clipped goes to `shaded`.
+    /// Returns the count of pixels shaded and the entry after the run.
+    #[inline(never)]
+    fn shader_run<G: FragmentShader<C>, P: Features>(
+        &mut self,
+        cur: &DrawCursor<'_>,
+        mut t: usize,
+        list: &mut TileList<'_, '_, P>,
+        pass: ShaderPass<'_, C, G, TW, TH>,
+    ) -> (u32, Option<usize>) {
+        let shader = pass.shader;
+        let frame = self.frame;
+        let draw = &frame.draws[cur.draw];
+        let (mesh, texture) = (draw.mesh, draw.texture);
+        // The draw's set-up, looked up once a run (and again after a
+        // clipped triangle, whose path may build it in the cache).
+        let mut setup = frame.setup(cur.draw, self.cache);
+        let mut n = 0;
+        loop {
+            let [i0, i1, i2] = cur.indices(t);
+            let sv = [
+                &cur.verts[i0 as usize],
+                &cur.verts[i1 as usize],
+                &cur.verts[i2 as usize],
+            ];
+            let any = sv[0].outcode() | sv[1].outcode() | sv[2].outcode();
+            if any & MUST_CLIP != 0 {
+                n += self.shaded(cur, [i0, i1, i2], any, pass);
+                setup = frame.setup(cur.draw, self.cache);
+            } else if let Some(setup) = setup {
+                // `fill_shaded`, with the varyings and `w` only for a pair
+                // whose walk found spans (363 of this frame's 2,597 pairs
+                // have none).
+                let to = &mut self.to;
+                let count = (pass.find)(&sv, to.rect, &mut to.found);
+                if let Some(found) = drawn(&to.found, count, &mut to.rows) {
+                    let vertex = |i: u32| {
+                        shader.vertex(&VertexInput {
+                            draw: cur.draw,
+                            index: i as usize,
+                            mesh,
+                        })
+                    };
+                    let tri = ShaderTriangle {
+                        draw: cur.draw,
+                        corners: Corners(sv),
+                        w: [
+                            setup.clip_w(mesh, i0 as usize),
+                            setup.clip_w(mesh, i1 as usize),
+                            setup.clip_w(mesh, i2 as usize),
+                        ],
+                        var: [vertex(i0), vertex(i1), vertex(i2)],
+                    };
+                    n += (pass.shade)(to.tile, to.rect, &tri, found, shader, texture, pass.out);
+                }
+            }
+            match list.next() {
+                // A shader draw has no common path (`fast` is empty).
+                Some(u) if u < cur.end => t = u,
                 after => return (n, after),
             }
         }
@@ -511,6 +642,35 @@ where
             pass = pass.with(no_write(self.blend));
         }
         self.job.shaded(self.cur, self.idx, self.any, pass)
+    }
+}
+
+/// [`TileJob::shader_runs`]' visit of the scene's shaders: draws the run
+/// with the one the draw picks.
+struct ShaderRun<'v, 'c, 'j, 'f, 'l, 'a, C, F, P, const TW: usize, const TH: usize>
+where
+    C: PixelColor + From<Rgb888> + 'static,
+    F: ShaderSet<C>,
+{
+    job: &'v mut TileJob<'j, 'f, C, F, TW, TH>,
+    cur: &'v DrawCursor<'c>,
+    t: usize,
+    list: &'v mut TileList<'l, 'a, P>,
+}
+
+impl<C, F, P, const TW: usize, const TH: usize> VisitShader<C>
+    for ShaderRun<'_, '_, '_, '_, '_, '_, C, F, P, TW, TH>
+where
+    C: PixelColor + From<Rgb888> + Into<Rgb888> + 'static,
+    F: ShaderSet<C>,
+    P: Features,
+{
+    type Output = (u32, Option<usize>);
+    #[inline(always)]
+    fn visit<G: FragmentShader<C>>(self, shader: &G) -> Self::Output {
+        let shade = Shaders::<C, F, TW, TH>::custom::<G, P>();
+        let pass = self.job.to.shaders.pass(shader, shade, Blend::Opaque);
+        self.job.shader_run(self.cur, self.t, self.list, pass)
     }
 }
 
