@@ -31,8 +31,8 @@
 //! narrower than about 1/1,000 pixel can reach that clamp; its at most one
 //! pixel per row keeps a depth within its triangle's range.
 //!
-//! The span loops have no branch where that pays (flat spans, and Gouraud
-//! spans of 8 pixels or more): the depth stored is the min or max of the
+//! The flat span loops of targets with SIMD have no branch for spans of
+//! 8 pixels or more: the depth stored is the min or max of the
 //! new and the old depth (`DepthFn::merge`), the colour a select and the
 //! count a sum, so the compiler can vectorize them. Depth is stepped as
 //! `z << 2` in a `u32`, whose upper half is then the 16-bit depth. The
@@ -157,7 +157,8 @@ impl DepthFn for DepthTest {
 
 /// Where a span lies: screen row `j`, columns `x0..x1`, in a slice of
 /// pixels whose first would be screen column `ox` on row `j` (a tile row
-/// starting at `ox`, or the whole tile: see `render::fill::each_span`).
+/// starting at `ox`, or the whole tile: see `render::fill::each_span`);
+/// for the Gouraud span loop where [`NEGATED_OX`], `ox` negated.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct SpanPos {
     pub ox: i32,
@@ -177,23 +178,26 @@ fn depth16(z: u32) -> u16 {
     ((z as i32) >> 16) as u16
 }
 
-/// Spans shorter than this are shaded by a plain loop that converts the
-/// colour only for fragments that pass; longer ones by a branch-free loop
-/// the compiler can vectorize (out of line, so its vector set-up is paid
-/// per long span, not hoisted into every triangle).
+/// Whether [`span_gouraud`]'s [`SpanPos::ox`] is negated (targets with
+/// SIMD, whose Gouraud loop adds it to both ends of the span, see
+/// `render::fill::each_span`). The offsets are zero-extended there, as
+/// they are never negative within the tile (sign-extended, x86-64 `demo`
+/// 3,369,702 -> 3,376,708 instructions; once the vector loop was gone,
+/// 3,277,579 -> 3,388,717).
+pub(crate) const NEGATED_OX: bool = VECTOR_LOOPS;
+
+/// Flat spans shorter than this are shaded by a plain loop; longer ones,
+/// on targets with SIMD, by a branch-free loop the compiler can vectorize
+/// (out of line, so its vector set-up is paid per long span, not hoisted
+/// into every triangle).
 const SHORT_SPAN: usize = 8;
 
-/// [`span_gouraud`]'s spans this long or longer take its vector loop for
-/// their whole groups of eight (see there). 24 since the plain loop's
-/// written pixel is 21 instructions on x86-64: x86-64 `demo` 3,450,391
-/// instructions with 16, 3,442,825 with 24, 3,442,253 with 32 (`rock`
-/// the same with each).
-const LONG_SPAN: usize = 24;
-
-/// Whether the target has SIMD for the branch-free loops. Targets without
-/// (the microcontrollers) always take the plain loop: there the branch-free
-/// one only adds a load and two stores for every fragment that fails. Both
-/// loops give the same pixels.
+/// Whether the target has SIMD for the flat span's branch-free loop.
+/// Targets without (the microcontrollers) always take the plain loop:
+/// there the branch-free one only adds a load and two stores for every
+/// fragment that fails. Both loops give the same pixels. The Gouraud span
+/// loop of these targets (64-bit hosts) is a plain loop of its own, see
+/// [`span_gouraud`].
 const VECTOR_LOOPS: bool = cfg!(any(
     target_arch = "x86_64",
     target_arch = "x86",
@@ -286,7 +290,14 @@ pub(crate) fn span_gouraud<
     n: u32,
 ) -> u32 {
     let SpanPos { ox, j, x0, x1 } = sp;
-    let (a0, a1) = ((x0 - ox) as usize, (x1 - ox) as usize);
+    let (a0, a1) = if NEGATED_OX {
+        (
+            x0.wrapping_add(ox) as u32 as usize,
+            x1.wrapping_add(ox) as u32 as usize,
+        )
+    } else {
+        ((x0 - ox) as usize, (x1 - ox) as usize)
+    };
     if !VECTOR_LOOPS {
         // `INTERIOR` is the triangle's, tested once ([`SPLIT_INTERIOR`]).
         let [z, r, g, b] = s.start_tested_as(t, x0, j, INTERIOR);
@@ -298,53 +309,39 @@ pub(crate) fn span_gouraud<
         );
         return gouraud_loop::<C, D, WRITE>((dt, table), color, depth, (a0, a1), start, step, n);
     }
-    let [z, r, g, b] = s.start(t, x0, j);
+    // The channels shifted left by 8 already (`SHIFTED_COLOR`): the byte
+    // that `rgb` takes, bits 16 to 23, is then the top byte, taken by one
+    // shift and no mask; the wrapping steps keep exactly the bits that
+    // matter. `INTERIOR` is the triangle's, tested once
+    // ([`SPLIT_INTERIOR`]).
+    let [z, r, g, b] = s.start_shifted(t, x0, j, INTERIOR);
     let z = (z as u32) << (16 - Z_FRAC);
     let [gz, gr, gg, gb] = s.steps();
     // Shifted already ([`TriangleSetup::for_spans`]).
     let gz = gz as u32;
-    // Never taken: the walk keeps only spans of a pixel or more. (The test
-    // does not spare the loop its own test of an empty span, which the
-    // remainder after the vector loop needs; but with it the set-up
-    // inlined above spills less: x86-64 `demo` 4,356,901 -> 4,345,743
-    // instructions, `rock` 3,619,381 -> 3,610,624, `tri100` 13,438,526 ->
-    // 13,419,816; a copy of the plain loop for the short spans, which
-    // would drop that test, measured +38 K on `demo`.)
+    // Never taken: the walk keeps only spans of a pixel or more. (With it
+    // the set-up inlined above spills less: x86-64 `demo` 4,356,901 ->
+    // 4,345,743 instructions, `rock` 3,619,381 -> 3,610,624, `tri100`
+    // 13,438,526 -> 13,419,816; without it, once the vector loop was
+    // gone, `demo` 3,277,579 -> 3,313,931.)
     if a0 >= a1 {
         return n;
     }
     let (color, depth) = (&mut color[a0..a1], &mut depth[a0..a1]);
-    // Only targets with SIMD reach here. The vector loop's set-up costs
-    // about 145 instructions on x86-64, and its remainder, branch-free,
-    // more a pixel than the plain loop (44 against about 29 for a
-    // written pixel): it takes the whole groups of eight of a span of
-    // `LONG_SPAN` or more, the plain loop the rest.
-    let mut start = [z, r as u32, g as u32, b as u32];
-    let step = [gz, gr as u32, gg as u32, gb as u32];
-    let mut n = n;
-    let (color, depth) = if color.len() >= LONG_SPAN {
-        let k = color.len() & !7;
-        let (c0, c1) = color.split_at_mut(k);
-        let (d0, d1) = depth.split_at_mut(k);
-        n += gouraud_run::<C, D, WRITE>(dt, c0, d0, start, step);
-        // The values after `k` wrapping steps, as the loop left them.
-        for (v, s) in start.iter_mut().zip(step) {
-            *v = v.wrapping_add(s.wrapping_mul(k as u32));
-        }
-        (c1, d1)
-    } else {
-        (color, depth)
-    };
-    // The channels shifted left by 8 (wrapping, as `depth16` holds
-    // depth): the byte that `rgb` takes, bits 16 to 23, is then the top
-    // byte, taken by one shift and no mask; the wrapping steps keep
-    // exactly the bits that matter.
-    let [mut z, r, g, b] = start;
-    let (mut r, mut g, mut b) = (r << 8, g << 8, b << 8);
-    let (gr, gg, gb) = (step[1] << 8, step[2] << 8, step[3] << 8);
+    // Only targets with SIMD reach here, but every span takes this plain
+    // loop. A vector loop (`gouraud_run`, branch-free, for the whole
+    // groups of eight of spans of 24 pixels or more, until `ae3b025`) was
+    // a call in the span loop, around which the span starts' and this
+    // loop's registers were spilled; without it x86-64 `demo` 3,369,702
+    // -> 3,277,579 instructions, `rock` -92 K, `tri4`, `tri100` and
+    // `tri1000` -230 K to -320 K, only `tri10000` (spans about a tile
+    // wide) +110 K of 27.5 M. Called only for the long spans, the whole
+    // span in the vector loop, `demo` took 3,354,257.
+    let [mut z, mut r, mut g, mut b] = [z, r as u32, g as u32, b as u32];
+    let [gz, gr, gg, gb] = [gz, gr as u32, gg as u32, gb as u32];
     // Every fragment counted as written, those that fail taken off on a
     // path marked rare, as in `gouraud_loop`.
-    n += color.len() as u32;
+    let mut n = n + color.len() as u32;
     for (c, d) in color.iter_mut().zip(depth.iter_mut()) {
         let zz = depth16(z);
         if dt.pass(zz, *d) {
@@ -365,10 +362,12 @@ pub(crate) fn span_gouraud<
 }
 
 /// Whether the Gouraud span loops of an [`interior`](TriangleSetup::interior)
-/// triangle are a copy of their own, [`span_gouraud`] with `INTERIOR`
-/// (targets without SIMD): the triangle tested once, not at every span
-/// start.
-pub(crate) const SPLIT_INTERIOR: bool = !VECTOR_LOOPS;
+/// triangle are a copy of their own, [`span_gouraud`] with `INTERIOR`:
+/// the triangle tested once, not at every span start. On every target
+/// since x86-64's Gouraud loop lost its vector loop (there `demo`
+/// 3,277,579 -> 3,268,079 instructions, `rock` 2,734,575 -> 2,728,649;
+/// with the vector loop's call in the span loop it had measured +59 K).
+pub(crate) const SPLIT_INTERIOR: bool = true;
 
 /// On ARMv6-M the Gouraud loop holds the channels shifted left by 8
 /// (wrapping, as in `span_gouraud`'s remainder loop): the byte that
@@ -520,46 +519,9 @@ pub(crate) const OPAQUE_TABLE: bool = cfg!(microraster_armv7em);
 #[inline]
 fn cold() {}
 
-/// The branch-free loop of [`span_gouraud`]: `start` and `step` hold
-/// depth (as in [`span_flat`]), red, green and blue.
-#[inline(never)]
-fn gouraud_run<C: Copy + From<Rgb888>, D: DepthFn, const WRITE: bool>(
-    dt: D,
-    color: &mut [C],
-    depth: &mut [u16],
-    start: [u32; 4],
-    step: [u32; 4],
-) -> u32 {
-    let [mut z, mut r, mut g, mut b] = start;
-    let [gz, gr, gg, gb] = step;
-    // As in `flat_run`, a u16 count and no branch in the loop.
-    let mut n = 0u16;
-    for (c, d) in color.iter_mut().zip(depth.iter_mut()) {
-        let zz = depth16(z);
-        let old = *d;
-        let pass = dt.pass(zz, old);
-        if WRITE {
-            *d = dt.merge(zz, old);
-        }
-        // embedded-graphics' arithmetic, which vectorizes (this loop runs
-        // only where the target has SIMD).
-        let shaded = C::from(Rgb888::new(
-            (r >> C_FRAC) as u8,
-            (g >> C_FRAC) as u8,
-            (b >> C_FRAC) as u8,
-        ));
-        *c = if pass { shaded } else { *c };
-        n += pass as u16;
-        z = z.wrapping_add(gz);
-        r = r.wrapping_add(gr);
-        g = g.wrapping_add(gg);
-        b = b.wrapping_add(gb);
-    }
-    n as u32
-}
-
 #[cfg(test)]
 mod tests {
+    use super::plane::Plane;
     use super::setup::*;
     use super::small::*;
     use super::*;
@@ -1364,11 +1326,36 @@ mod tests {
                 let start = setup.start(&corners, x0, j);
                 let reference = reference_start(&v, vals, x0, j);
                 assert_eq!(start, reference, "{v:?} at ({x0}, {j})");
-                // Both forms, whichever this target takes, of both set-ups.
+                // Both forms, whichever this target takes, of both set-ups
+                // (the span loops' set-up with its colour planes shifted
+                // where `SHIFTED_COLOR`, its starts then shifted too).
                 for s in [&setup, &for_spans] {
+                    if SHIFTED_COLOR && core::ptr::eq(s, &for_spans) {
+                        let [z, r, g, b] = reference;
+                        let shifted = [z, r.wrapping_shl(8), g.wrapping_shl(8), b.wrapping_shl(8)];
+                        assert_eq!(s.start_shifted(&corners, x0, j, s.interior()), shifted);
+                        continue;
+                    }
                     assert_eq!(s.start_selects(&corners, x0, j), reference);
                     assert_eq!(s.start_tested(&corners, x0, j), reference);
                 }
+                // The shifted starts, of a set-up shifted as the span
+                // loops' is.
+                let mut shifted = setup.for_gouraud_spans(&corners);
+                if !SHIFTED_COLOR {
+                    for p in &mut shifted.planes[1..] {
+                        *p = Plane {
+                            gx: p.gx.wrapping_shl(8),
+                            gy: p.gy.wrapping_shl(8),
+                            k: p.k.wrapping_shl(8),
+                        };
+                    }
+                }
+                let [z, r, g, b] = reference;
+                assert_eq!(
+                    shifted.start_shifted(&corners, x0, j, shifted.interior()),
+                    [z, r.wrapping_shl(8), g.wrapping_shl(8), b.wrapping_shl(8)]
+                );
                 // Along a span of two pixels or more the step is the exact
                 // x gradient (the old one, saturated to i32, was the same).
                 if x1 - x0 >= 2 {

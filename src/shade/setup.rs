@@ -65,6 +65,17 @@ pub(crate) const SMALL_INLINE: bool = SMALL_SETUP && !cfg!(microraster_narrow_mu
 /// span loop of their own.
 pub(crate) const OFFSET_SETUP: bool = cfg!(target_pointer_width = "64");
 
+/// Whether [`TriangleSetup::for_spans`] holds a Gouraud triangle's colour
+/// planes shifted left by 8 (wrapping), as the span loops of targets with
+/// SIMD step the channels (see `span_gouraud`): a plane's value at a
+/// pixel is then the channel shifted, whose top byte is the byte `rgb`
+/// takes, and its step is the loop's. Once a pair, where each span shifted
+/// its three starts and each pair its three steps (x86-64 `demo`
+/// 3,390,160 -> 3,376,708 instructions; 3,294,874 -> 3,277,579 once the
+/// Gouraud loop had lost its vector loop). Depth cannot be: its range is
+/// too wide (see [`TriangleSetup::start_shifted`] for colour's).
+pub(crate) const SHIFTED_COLOR: bool = super::VECTOR_LOOPS;
+
 /// A triangle ready to shade: its attribute planes (depth, then red,
 /// green and blue for Gouraud shading).
 #[derive(Clone, Copy, Debug)]
@@ -290,7 +301,7 @@ impl TriangleSetup {
     /// 67.86 -> 73.02), though it took the M3's `fill` from 15.06 to
     /// 14.32.
     #[inline(always)]
-    fn for_gouraud_spans(mut self, t: &Corners<'_>) -> Self {
+    pub(super) fn for_gouraud_spans(mut self, t: &Corners<'_>) -> Self {
         #[cfg(microraster_interior)]
         {
             self.interior = ScreenVertex::all_interior(t.0) && !self.wide;
@@ -298,6 +309,15 @@ impl TriangleSetup {
         #[cfg(not(microraster_interior))]
         let _ = t;
         self.zstep = ((self.zstep as u32) << (16 - super::Z_FRAC)) as i32;
+        if SHIFTED_COLOR {
+            for p in &mut self.planes[1..] {
+                *p = Plane {
+                    gx: p.gx.wrapping_shl(8),
+                    gy: p.gy.wrapping_shl(8),
+                    k: p.k.wrapping_shl(8),
+                };
+            }
+        }
         self
     }
 
@@ -386,6 +406,9 @@ impl TriangleSetup {
     /// clamps as selects measured faster (x86-64 `demo` 5,248,309
     /// instructions, 5,264,430 with the tests; `rock` 4,406,488 and
     /// 4,407,977).
+    // The span loops take `start_shifted` (targets with SIMD) or
+    // `start_tested_as`: only the tests call this.
+    #[cfg_attr(not(test), allow(dead_code))]
     #[inline(always)]
     pub(crate) fn start(&self, t: &Corners<'_>, i: i32, j: i32) -> [i32; 4] {
         if super::VECTOR_LOOPS {
@@ -395,7 +418,44 @@ impl TriangleSetup {
         }
     }
 
+    /// [`TriangleSetup::start_selects`] of a set-up whose colour planes
+    /// are shifted left by 8 ([`SHIFTED_COLOR`]), with
+    /// [`interior`](Self::interior) given (the span loops of an interior
+    /// triangle are a copy of their own, see `SPLIT_INTERIOR`): depth as
+    /// there, each channel shifted left by 8 (wrapping), clamped in that
+    /// form.
+    ///
+    /// The clamp of a shifted channel is the channel's clamp shifted: a
+    /// covered pixel's channel lies within 20,481 units of `C_LO..=C_HI`
+    /// (see [`Plane`]), within `12,287..=16,764,929`, inside `0..2^24`,
+    /// where the shift, taken as `u32`, keeps the order.
+    #[inline(always)]
+    pub(super) fn start_shifted(
+        &self,
+        t: &Corners<'_>,
+        i: i32,
+        j: i32,
+        interior: bool,
+    ) -> [i32; 4] {
+        const _: () = assert!(C_LO - 20_481 >= 0 && C_HI + 20_481 < 1 << 24);
+        if interior {
+            return self.values_at(i, j);
+        }
+        let shift = |c: i32| c.wrapping_shl(8);
+        if self.wide {
+            // Clamped already.
+            let [z, r, g, b] = wide_start(t, i, j);
+            return [z, shift(r), shift(g), shift(b)];
+        }
+        let [z, r, g, b] = self.values_at(i, j);
+        let clamp = |c: i32| (c as u32).clamp(shift(C_LO) as u32, shift(C_HI) as u32) as i32;
+        [z.clamp(Z_LO, Z_HI), clamp(r), clamp(g), clamp(b)]
+    }
+
     /// [`TriangleSetup::start`] with the clamps as selects.
+    // The span loops take `start_shifted` (targets with SIMD) or
+    // `start_tested_as`: only the tests call this.
+    #[cfg_attr(not(test), allow(dead_code))]
     #[inline(always)]
     pub(super) fn start_selects(&self, t: &Corners<'_>, i: i32, j: i32) -> [i32; 4] {
         if self.interior() {
@@ -408,6 +468,9 @@ impl TriangleSetup {
     }
 
     /// [`TriangleSetup::start`] with the values tested first.
+    // The span loops take `start_shifted` (targets with SIMD) or
+    // `start_tested_as`: only the tests call this.
+    #[cfg_attr(not(test), allow(dead_code))]
     #[inline(always)]
     pub(super) fn start_tested(&self, t: &Corners<'_>, i: i32, j: i32) -> [i32; 4] {
         self.start_tested_as(t, i, j, self.interior())
