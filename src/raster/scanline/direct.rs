@@ -68,12 +68,23 @@ impl Direct {
         let m = ((p.x + HALF_PIXEL) * dy + t * dx - 1) >> 4;
         debug_assert!(m >= 0);
         let d = dy as u32;
+        // dy > 0 (the caller walks edges downwards); the fallback only
+        // spares the divisions their checks. On a 64-bit host as
+        // `max(d, 1)`, which the compiler knows is not zero: on x86-64 a
+        // compare and an add with carry where `unwrap_or` took a compare,
+        // a move and a select (`demo` 3,390,172 -> 3,371,343
+        // instructions). The Cortex-M3's `demo` took -9.4 K but its `fill`
+        // 14.64 -> 14.67 a pixel, the M4F's `demo` +5.5 K: they keep
+        // `unwrap_or`.
+        let d = if cfg!(target_pointer_width = "64") {
+            NonZeroU32::new(d.max(1)).unwrap_or(NonZeroU32::MIN)
+        } else {
+            NonZeroU32::new(d).unwrap_or(NonZeroU32::MIN)
+        };
         Self {
             m: m as u32,
             s: dx as u32,
-            // dy > 0 (the caller walks edges downwards); the fallback only
-            // spares the divisions their checks.
-            d: NonZeroU32::new(d).unwrap_or(NonZeroU32::MIN),
+            d,
         }
     }
 }
