@@ -212,23 +212,34 @@ pub(super) fn ndotl_narrow(n: [i32; 3], l: [i32; 3]) -> Option<u32> {
 /// The n·l of [`ndotl_narrow`]'s sums, unchecked, for ARMv6-M's common
 /// loop ([`NarrowRows`]), which checks the light once per draw
 /// ([`SPLIT_LIGHT`]) and the normal by one compare ([`split_normal`]):
-/// for `-2^17 <= n[i] < 2^17` and `|l[i]| <= 2^18`. Then `|h[i]| <= 2^9`
-/// and each `|h[i] l[i]| <= 2^27`, `A` within `3 2^27`; `|o[i] l[i]| <
-/// 2^26`, `B` within `3 2^26`; so every sum fits `i32` and the result is
-/// `ndotl_narrow`'s (the same floors).
+/// for `-2^17 <= n[i] < 2^17` and the light `l` split once per draw
+/// ([`split_light`]: `l[i] = h[i] 2^8 + o[i]`, `0 <= o[i] < 2^8`) from
+/// `|l[i]| <= 2^18`, so that the normal is not split per vertex (six
+/// instructions a vertex fewer). Then `|h[i]| <= 2^10`, each `|n[i]
+/// h[i]| <= 2^27` and `A = Σ n[i] h[i]` within `3 2^27`; `|n[i] o[i]| <
+/// 2^25`, `B = Σ n[i] o[i]` within `3 2^25`; so every sum fits `i32`,
+/// `n·l = 2^8 A + B`, and `floor(n·l / 2^24) = floor((A + floor(B /
+/// 2^8)) / 2^16)`: `ndotl_narrow`'s result.
 #[inline(always)]
-fn ndotl_split(n: [i32; 3], l: [i32; 3]) -> u32 {
-    debug_assert!(split_normal(n) && l.iter().all(|&v| v.unsigned_abs() <= SPLIT_LIGHT));
+fn ndotl_split(n: [i32; 3], [h, o]: &[[i32; 3]; 2]) -> u32 {
+    debug_assert!(split_normal(n));
     let (mut a, mut b) = (0i32, 0i32);
     for i in 0..3 {
-        a += (n[i] >> 8) * l[i];
-        b += (n[i] & 0xff) * l[i];
+        a += n[i] * h[i];
+        b += n[i] * o[i];
     }
     ((a + (b >> 8)) >> 16).clamp(0, 256) as u32
 }
 
+/// [`ndotl_split`]'s light: each component of `l` (within
+/// [`SPLIT_LIGHT`]) as `h 2^8 + o`, `0 <= o < 2^8`, the `h` first.
+fn split_light(l: [i32; 3]) -> [[i32; 3]; 2] {
+    debug_assert!(l.iter().all(|&v| v.unsigned_abs() <= SPLIT_LIGHT));
+    [l.map(|v| v >> 8), l.map(|v| v & 0xff)]
+}
+
 /// The largest light component [`ndotl_split`] takes (checked once per
-/// draw by [`NarrowRows::new`]).
+/// draw by [`NarrowRows::takes`]).
 const SPLIT_LIGHT: u32 = 1 << 18;
 
 /// Whether every `n[i]` is in `-2^17..2^17` ([`ndotl_split`]'s normals):
@@ -420,7 +431,8 @@ fn within_any(ndotl: u32, inside: &[[u32; 2]; INSIDE]) -> bool {
 #[cfg_attr(not(any(test, microraster_narrow_multiply)), allow(dead_code))]
 pub(super) struct NarrowRows {
     /// Per row `r`: `h` of `m[0][r]`, `m[1][r]`, `m[2][r]`, then their
-    /// `l`, then the translation `m[3][r]`.
+    /// `l`, then the translation and the rounding, `m[3][r] 2^8 + 2^7`
+    /// (see [`transform`](Self::transform)).
     rows: [[i32; 7]; 4],
     /// The Lambert colour's factors per channel ([`Lambert::folded`]: one
     /// `MULS` a channel fewer), each `a` with 256 more for
@@ -429,29 +441,25 @@ pub(super) struct NarrowRows {
     /// The n·l that may carry the interior bit
     /// ([`Lambert::interior_ndotl`]).
     inside: [u32; 2],
-    /// The light's direction (as [`Lambert`]'s).
-    dir: [i32; 3],
-    /// 0 where every component of the light is within [`SPLIT_LIGHT`],
-    /// else `2^18`: or-ed into [`split_bits`], it sends every vertex of
-    /// such a draw to the 64-bit n·l.
-    fail: u32,
+    /// The light's direction (as [`Lambert`]'s) split for
+    /// [`ndotl_split`] ([`split_light`]): the normal is then not split
+    /// per vertex (ARMv6-M `demo` vertex stage 771,577 -> 759,519).
+    dir: [[i32; 3]; 2],
 }
 
 #[cfg_attr(not(any(test, microraster_narrow_multiply)), allow(dead_code))]
 impl NarrowRows {
-    /// The rows of `m` and the colour constants of light `l` on `base`,
-    /// for a draw Gouraud shaded or not (`gouraud`, as
+    /// The rows of `m` ([`fits`](Self::fits)) and the colour constants of
+    /// light `l` ([`takes`](Self::takes)) on `base`, for a draw Gouraud
+    /// shaded or not (`gouraud`, as
     /// [`LoopConstants::new`]).
     pub(super) fn new(m: &FixedMat4, l: &Lambert, base: [u8; 3], gouraud: bool) -> Self {
+        debug_assert!(Self::takes(l));
         let mut k = Self {
             rows: [[0; 7]; 4],
             channels: [[0; 2]; 3],
             inside: [0; 2],
-            dir: l.dir,
-            fail: match l.dir.iter().all(|&v| v.unsigned_abs() <= SPLIT_LIGHT) {
-                true => 0,
-                false => 1 << 18,
-            },
+            dir: split_light(l.dir),
         };
         k.channels = l.folded(base);
         k.inside = match super::screen::INTERIOR_STARTS {
@@ -470,25 +478,49 @@ impl NarrowRows {
                 e[0] & 0xff,
                 e[1] & 0xff,
                 e[2] & 0xff,
-                m.m[3][r],
+                m.m[3][r] << 8 | 128,
             ];
         }
         k
     }
 
+    /// Whether the light `l` is within [`SPLIT_LIGHT`], as the rows'
+    /// n·l takes it ([`ndotl_split`]): a draw whose light is not (longer
+    /// than 4 in the draw's model space, a model matrix that shrinks the
+    /// mesh fourfold or more) takes the general loop. Tested once a draw,
+    /// where a word or-ed into each normal's test (which sent every vertex
+    /// of such a draw to the 64-bit n·l) took two instructions a vertex:
+    /// ARMv6-M `demo` vertex stage 749,487 -> 747,437.
+    pub(super) fn takes(l: &Lambert) -> bool {
+        l.dir.iter().all(|&v| v.unsigned_abs() <= SPLIT_LIGHT)
+    }
+
+    /// Whether `m`'s translation is small enough for the rows'
+    /// [`transform`](Self::transform), `|m[3][r]| <= 2^20` (every
+    /// normalized matrix's: its elements are at most `2^16`), besides
+    /// [`FixedMat4::narrow`].
+    pub(super) fn fits(m: &FixedMat4) -> bool {
+        m.m[3].iter().all(|v| v.unsigned_abs() <= 1 << 20)
+    }
+
     /// `FixedMat4::transform_point_narrow` of `p`, for the matrix this
-    /// was made of and a point within its narrow extent: the same point.
+    /// was made of ([`fits`](Self::fits)) and a point within its narrow
+    /// extent: the same point.
+    ///
+    /// `(l + 2^15) >> 8` is `(l >> 8) + 2^7` (2^15 a multiple of 2^8),
+    /// and the translation `t`, added after the last shift, is `t 2^8`
+    /// before it: so both are one constant per row, `t 2^8 + 2^7`, added
+    /// to `h` (one instruction a row fewer: ARMv6-M `demo` vertex stage
+    /// 759,519 -> 751,511). With `|h| <= 3 2^29`,
+    /// `|l >> 8| <= 3 2^21` and `|t| <= 2^20` the sum stays below `2^31`
+    /// in magnitude.
     #[inline(always)]
     pub(super) fn transform(&self, p: [i32; 3]) -> [i32; 4] {
         let mut out = [0i32; 4];
         for (o, k) in out.iter_mut().zip(&self.rows) {
             let h = k[0] * p[0] + k[1] * p[1] + k[2] * p[2];
             let l = k[3] * p[0] + k[4] * p[1] + k[5] * p[2];
-            // `(l + 2^15) >> 8` as `(l >> 8) + 128` (2^15 a multiple of
-            // 2^8, and `|l| < 3 2^29`: no overflow either way), an
-            // immediate added to `h`, where the loop kept 2^15 in a stack
-            // slot and loaded it for each row.
-            *o = k[6].wrapping_add((h + 128 + (l >> 8)) >> 8);
+            *o = (h + k[6] + (l >> 8)) >> 8;
         }
         out
     }
@@ -498,8 +530,8 @@ impl NarrowRows {
     #[inline(always)]
     pub(super) fn shade(&self, l: &Lambert, n: Vec3Fx) -> ([u8; 3], bool) {
         let n = [n[0].to_bits(), n[1].to_bits(), n[2].to_bits()];
-        let ndotl = match (split_bits(n) | self.fail) >> 18 == 0 {
-            true => ndotl_split(n, self.dir),
+        let ndotl = match split_normal(n) {
+            true => ndotl_split(n, &self.dir),
             false => l.ndotl_wide(n),
         };
         let mut out = [0u8; 3];
@@ -676,7 +708,7 @@ mod tests {
 
     /// The split n·l of ARMv6-M's loop is the 64-bit one over its whole
     /// range: the ends of the normal's and the light's, and random ones;
-    /// a light beyond its range sends every normal to the 64-bit n·l.
+    /// a light beyond its range is not taken (`NarrowRows::takes`).
     #[test]
     fn split_ndotl_is_the_wide_one() {
         let mut next = crate::testing::rng();
@@ -713,7 +745,8 @@ mod tests {
                         for l in [[l, l, l], [l, -l, l], [-l, l, 1 << 18]] {
                             let n = [a, b, c];
                             assert!(split_normal(n));
-                            assert_eq!(ndotl_split(n, l), wide(n, l), "{n:?} {l:?}");
+                            let s = split_light(l);
+                            assert_eq!(ndotl_split(n, &s), wide(n, l), "{n:?} {l:?}");
                         }
                     }
                 }
@@ -730,25 +763,19 @@ mod tests {
             let mut r = |m: u64| (next(2 * m) as i64 - m as i64) as i32;
             let n = [r(1 << 17), r(1 << 17), r(1 << 17)];
             let l = [r(1 << 18), r(1 << 18), r(1 << 18)];
-            assert_eq!(ndotl_split(n, l), wide(n, l), "{n:?} {l:?}");
+            assert_eq!(ndotl_split(n, &split_light(l)), wide(n, l), "{n:?} {l:?}");
         }
-        let zero = FixedMat4 { m: [[0; 4]; 4] };
-        for dir in [
-            [(1 << 18) + 1, 0, 0],
-            [0, -(1 << 18) - 1, 0],
-            [1 << 18, 1 << 18, -(1 << 18)],
+        for (dir, takes) in [
+            ([(1 << 18) + 1, 0, 0], false),
+            ([0, -(1 << 18) - 1, 0], false),
+            ([1 << 18, 1 << 18, -(1 << 18)], true),
         ] {
             let l = Lambert {
                 dir,
                 color: [255; 3],
                 ambient: [0; 3],
             };
-            let k = NarrowRows::new(&zero, &l, [255; 3], false);
-            for _ in 0..10_000 {
-                let n = [0; 3]
-                    .map(|_| fixed::types::I16F16::from_bits(next(1 << 18) as i32 - (1 << 17)));
-                assert_eq!(k.shade(&l, n).0, l.shade(n, [255; 3]), "{n:?} {dir:?}");
-            }
+            assert_eq!(NarrowRows::takes(&l), takes, "{dir:?}");
         }
     }
 
@@ -882,7 +909,7 @@ mod tests {
                 }
             }
             let extent = 1u32 << (i % 22);
-            if !(m.bounded(extent) && m.narrow(extent)) {
+            if !(m.bounded(extent) && m.narrow(extent) && NarrowRows::fits(&m)) {
                 continue;
             }
             taken += 1;

@@ -146,6 +146,25 @@ impl ScreenVertex {
         Self::with_interior(x, y, z, outcode, color, inside)
     }
 
+    /// The word of x and the outcode of a vertex with outcode 0, written
+    /// alone: ARMv6-M's vertex loop stores it before the colour, so that
+    /// x is not held across it; [`set_lit`](Self::set_lit) then writes
+    /// the rest, as [`new_tested`](Self::new_tested) would.
+    #[inline(always)]
+    pub(crate) fn set_x(&mut self, x: i32) {
+        debug_assert!((COORD_MIN..=COORD_MAX).contains(&x));
+        self.xo = (x as u32) << 8;
+    }
+
+    /// The words of y, depth and the colour of
+    /// [`new_tested`](Self::new_tested), after [`set_x`](Self::set_x).
+    #[inline(always)]
+    pub(crate) fn set_lit(&mut self, y: i32, z: u32, color: [u8; 3], color_inside: bool) {
+        let v = Self::new_tested(0, y, z, 0, color, color_inside);
+        self.yr = v.yr;
+        self.gbz = v.gbz;
+    }
+
     /// [`ScreenVertex::new`] of a clipped polygon's vertex: outcode 0, and
     /// its [`interior`](Self::interior) bit clear, so that the pieces of a
     /// clipped triangle keep their clamps. Clipping is rare (the `demo`

@@ -303,7 +303,7 @@ impl Viewport {
     /// volume (outcode 0) with `2^15 <= w <= one_w` (nearly every vertex:
     /// `w` from half a unit up), inline in ARMv6-M's vertex loop; `None`
     /// for any other vertex, which the loop sends out of line
-    /// ([`project_rest`](Self::project_rest)). Its outcode is then the
+    /// (`vertex::setup`'s `lit_rest`, the whole vertex). Its outcode is then the
     /// constant 0 and its `inside` true, where the loop's one inline path
     /// for every vertex carried both (and the outcode) as values from the
     /// outcode's paths to the packing, and `w`'s reciprocal is
