@@ -185,6 +185,12 @@ where
         list: &mut TileList<'_, '_, P>,
         later: &mut heapless::Vec<(u16, u16), MAX_TRANSPARENT>,
     ) -> (u32, Option<usize>) {
+        if !P::SHADERS {
+            // No shader run to split off: the run in this function, as
+            // one loop (`general_rest`'s copy of it had cost the
+            // ESP32-C3's Gouraud firmware 712 B).
+            return self.general_loop::<P>(cur, t, list, later);
+        }
         let n = self.general_one::<P>(cur, t, later);
         match list.next() {
             Some(u) if u < cur.end && cur.fast.is_empty() => {
@@ -202,7 +208,7 @@ where
     fn general_rest<P: Features>(
         &mut self,
         cur: &mut DrawCursor<'_>,
-        mut t: usize,
+        t: usize,
         list: &mut TileList<'_, '_, P>,
         later: &mut heapless::Vec<(u16, u16), MAX_TRANSPARENT>,
     ) -> (u32, Option<usize>) {
@@ -215,6 +221,21 @@ where
         {
             return self.shader_runs::<P>(cur, t, list);
         }
+        self.general_loop::<P>(cur, t, list, later)
+    }
+
+    /// [`general_one`](Self::general_one) for pair `t` and the pairs that
+    /// follow in `list` while they belong to the same draw and it has no
+    /// common path. Returns the count of pixels shaded and the entry
+    /// after the run.
+    #[inline(always)]
+    fn general_loop<P: Features>(
+        &mut self,
+        cur: &mut DrawCursor<'_>,
+        mut t: usize,
+        list: &mut TileList<'_, '_, P>,
+        later: &mut heapless::Vec<(u16, u16), MAX_TRANSPARENT>,
+    ) -> (u32, Option<usize>) {
         let mut n = 0;
         loop {
             n += self.general_one::<P>(cur, t, later);
