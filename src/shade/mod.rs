@@ -54,6 +54,8 @@ pub(crate) use convert::{rgb, rgb565_bits, rgb_scalar};
 use convert::{rgb16_green_up, GREEN_UP};
 use embedded_graphics::pixelcolor::Rgb888;
 use plane::Basis;
+#[cfg(target_pointer_width = "64")]
+use setup::PACKED;
 pub(crate) use setup::{Corners, TriangleSetup, OFFSET_SETUP, SMALL_INLINE};
 
 /// Fraction bits of interpolated depth.
@@ -308,6 +310,36 @@ pub(crate) fn span_gouraud<
             [gz, gr, gg, gb].map(|v| v as u32),
         );
         return gouraud_loop::<C, D, WRITE>((dt, table), color, depth, (a0, a1), start, step, n);
+    }
+    #[cfg(target_pointer_width = "64")]
+    if PACKED && INTERIOR {
+        // Red/green and depth/blue packed in a `u64` each, the starts
+        // evaluated packed (see `TriangleSetup::packs` for why the lanes
+        // never carry into each other at a covered pixel).
+        let [mut rg, mut zb] = s.start_packed(x0, j);
+        let [grg, gzb] = [s.packed[0][0], s.packed[1][0]];
+        if a0 >= a1 {
+            return n;
+        }
+        let (color, depth) = (&mut color[a0..a1], &mut depth[a0..a1]);
+        let mut n = n + color.len() as u32;
+        for (c, d) in color.iter_mut().zip(depth.iter_mut()) {
+            // `depth16` of the upper lane, the top bytes of the shifted
+            // channels.
+            let zz = (zb >> 48) as u16;
+            if dt.pass(zz, *d) {
+                if WRITE {
+                    *d = zz;
+                }
+                *c = rgb::<C>((rg >> 56) as u8, (rg >> 24) as u8, (zb >> 24) as u8);
+            } else {
+                cold();
+                n -= 1;
+            }
+            rg = rg.wrapping_add(grg);
+            zb = zb.wrapping_add(gzb);
+        }
+        return n;
     }
     // The channels shifted left by 8 already (`SHIFTED_COLOR`): the byte
     // that `rgb` takes, bits 16 to 23, is then the top byte, taken by one
@@ -1356,6 +1388,30 @@ mod tests {
                     shifted.start_shifted(&corners, x0, j, shifted.interior()),
                     [z, r.wrapping_shl(8), g.wrapping_shl(8), b.wrapping_shl(8)]
                 );
+                // The packed starts (`PACKED`), at every covered pixel of
+                // the span as the span loop steps them, against the exact
+                // planes: for an interior triangle, whose starts they are,
+                // the reference itself; for any triangle not wide, the
+                // planes' unclamped values (the lanes carry into each other
+                // at no covered pixel).
+                #[cfg(target_pointer_width = "64")]
+                if setup::PACKED && !for_spans.wide {
+                    let pack = |hi: i32, lo: i32| ((hi as u32 as u64) << 32) | lo as u32 as u64;
+                    let [mut rg, mut zb] = for_spans.start_packed(x0, j);
+                    for x in x0..x1 {
+                        let p = for_spans.planes.map(|p| p.at(x, j));
+                        let zs = 16 - Z_FRAC;
+                        assert_eq!(rg, pack(p[1], p[2]), "{v:?} at ({x}, {j})");
+                        assert_eq!(zb, pack(p[0].wrapping_shl(zs), p[3]), "{v:?} at ({x}, {j})");
+                        if for_spans.interior() {
+                            let [z, r, g, b] = reference_start(&v, vals, x, j);
+                            assert_eq!(rg, pack(r << 8, g << 8));
+                            assert_eq!(zb, pack(z.wrapping_shl(zs), b << 8));
+                        }
+                        rg = rg.wrapping_add(for_spans.packed[0][0]);
+                        zb = zb.wrapping_add(for_spans.packed[1][0]);
+                    }
+                }
                 // Along a span of two pixels or more the step is the exact
                 // x gradient (the old one, saturated to i32, was the same).
                 if x1 - x0 >= 2 {

@@ -62,21 +62,23 @@ impl TriangleSetup {
             c: ((d << OFFSET_BITS) + d / 2) as i64,
         };
         let mut range = 0u64;
-        let z = f.plane(t, 0, &mut range);
+        let z = f.plane(t, 0, &mut range).0;
+        let mut exact = [[0i64; 3]; 2];
         let planes = if gouraud {
-            [
-                z,
-                f.plane(t, 1, &mut range),
-                f.plane(t, 2, &mut range),
-                f.plane(t, 3, &mut range),
-            ]
+            let r = f.plane(t, 1, &mut range).0;
+            let (g, eg) = f.plane(t, 2, &mut range);
+            let (b, eb) = f.plane(t, 3, &mut range);
+            exact = [eg, eb];
+            [z, r, g, b]
         } else {
             [z, Plane::default(), Plane::default(), Plane::default()]
         };
         if range >> (OFFSET_BITS + 1) != 0 {
             return None;
         }
-        Some(Self::finish(planes, false))
+        let mut s = Self::finish(planes, false);
+        s.exact = exact;
+        Some(s)
     }
 }
 
@@ -98,7 +100,13 @@ impl Offset {
     /// The plane of attribute `a` (see [`Corners::values`]), its offset
     /// quotients or-ed into `range`.
     #[inline(always)]
-    fn plane(&self, t: &Corners<'_>, a: usize, range: &mut u64) -> Plane {
+    ///
+    /// Also the plane's `gx`, `gy` and `k` in `i64`, exact where the
+    /// quotients are below 2^37 (the set-up's condition): the offset
+    /// `2^36` taken off each gradient, and `2^32 (ox + oy)` off the
+    /// constant (the offset's `2^36 (ox + oy)` in the products, a multiple
+    /// of 16, passes through the shift as that).
+    fn plane(&self, t: &Corners<'_>, a: usize, range: &mut u64) -> (Plane, [i64; 3]) {
         let (values, frac) = t.values(a);
         let (d1, d2) = (values[1] - values[0], values[2] - values[0]);
         let [x1, y1, x2, y2] = self.e;
@@ -120,10 +128,18 @@ impl Offset {
         // first division and spilled them (x86-64 `demo` 3,483,659 ->
         // 3,450,391 instructions, `rock` 2,892,528 -> 2,866,412).
         core::hint::black_box(());
-        Plane {
-            gx: gx as i32,
-            gy: gy as i32,
-            k: base.wrapping_add(term >> SUBPIXEL_BITS) as i32,
-        }
+        let k = base.wrapping_add(term >> SUBPIXEL_BITS);
+        (
+            Plane {
+                gx: gx as i32,
+                gy: gy as i32,
+                k: k as i32,
+            },
+            [
+                (gx as i64).wrapping_sub(1 << OFFSET_BITS),
+                (gy as i64).wrapping_sub(1 << OFFSET_BITS),
+                k.wrapping_sub((self.o[0] + self.o[1]) << 32),
+            ],
+        )
     }
 }

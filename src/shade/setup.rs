@@ -76,6 +76,13 @@ pub(crate) const OFFSET_SETUP: bool = cfg!(target_pointer_width = "64");
 /// too wide (see [`TriangleSetup::start_shifted`] for colour's).
 pub(crate) const SHIFTED_COLOR: bool = super::VECTOR_LOOPS;
 
+/// Whether an interior triangle's Gouraud span starts are evaluated
+/// packed, red/green and depth/blue in one `u64` each (64-bit hosts with
+/// [`SHIFTED_COLOR`]), from planes packed once a pair
+/// ([`TriangleSetup::packs`]), and its span loop steps them so.
+#[cfg(target_pointer_width = "64")]
+pub(crate) const PACKED: bool = SHIFTED_COLOR && cfg!(target_pointer_width = "64");
+
 /// A triangle ready to shade: its attribute planes (depth, then red,
 /// green and blue for Gouraud shading).
 #[derive(Clone, Copy, Debug)]
@@ -100,6 +107,17 @@ pub(crate) struct TriangleSetup {
     /// field's stores took flash where it is never set.
     #[cfg(microraster_interior)]
     interior: bool,
+    /// On 64-bit hosts, the exact (`i64`, not wrapped) `gx`, `gy` and `k`
+    /// of the green and blue planes, unshifted, for the packed span starts
+    /// ([`TriangleSetup::packed`]); exact for a triangle that is not
+    /// [`wide`](TriangleSetup::wide).
+    #[cfg(target_pointer_width = "64")]
+    pub(super) exact: [[i64; 3]; 2],
+    /// On 64-bit hosts, once [`TriangleSetup::for_gouraud_spans`] made
+    /// them ([`PACKED`]): `gx`, `gy` and `k` of the packed planes
+    /// red/green and depth/blue, see `start_packed`.
+    #[cfg(target_pointer_width = "64")]
+    pub(super) packed: [[u64; 3]; 2],
 }
 
 impl TriangleSetup {
@@ -125,6 +143,10 @@ impl TriangleSetup {
             zstep,
             #[cfg(microraster_interior)]
             interior: false,
+            #[cfg(target_pointer_width = "64")]
+            exact: [[0; 3]; 2],
+            #[cfg(target_pointer_width = "64")]
+            packed: [[0; 3]; 2],
         }
     }
 
@@ -229,17 +251,59 @@ impl TriangleSetup {
         // registers, also where the optimiser would not unroll a loop (the
         // `size` profile, BENCHMARKS.md).
         let z = Self::plane(f, t, 0, &mut range);
-        let planes = if gouraud {
-            [
-                z,
-                Self::plane(f, t, 1, &mut range),
-                Self::plane(f, t, 2, &mut range),
-                Self::plane(f, t, 3, &mut range),
-            ]
-        } else {
-            [z, Plane::default(), Plane::default(), Plane::default()]
-        };
-        Self::finish(planes, range >= 2 * GRADIENT_LIMIT as u64)
+        // 64-bit hosts also keep green's and blue's exact coefficients
+        // (`exact`, for the packed span starts); 32-bit targets take the
+        // planes alone, as before (their code unchanged).
+        #[cfg(target_pointer_width = "64")]
+        {
+            let mut exact = [[0i64; 3]; 2];
+            let planes = if gouraud {
+                let r = Self::plane(f, t, 1, &mut range);
+                let (g, eg) = Self::plane_exact(f, t, 2, &mut range);
+                let (b, eb) = Self::plane_exact(f, t, 3, &mut range);
+                exact = [eg, eb];
+                [z, r, g, b]
+            } else {
+                [z, Plane::default(), Plane::default(), Plane::default()]
+            };
+            let mut s = Self::finish(planes, range >= 2 * GRADIENT_LIMIT as u64);
+            s.exact = exact;
+            s
+        }
+        #[cfg(not(target_pointer_width = "64"))]
+        {
+            let planes = if gouraud {
+                [
+                    z,
+                    Self::plane(f, t, 1, &mut range),
+                    Self::plane(f, t, 2, &mut range),
+                    Self::plane(f, t, 3, &mut range),
+                ]
+            } else {
+                [z, Plane::default(), Plane::default(), Plane::default()]
+            };
+            Self::finish(planes, range >= 2 * GRADIENT_LIMIT as u64)
+        }
+    }
+
+    /// [`TriangleSetup::plane`], with its `gx`, `gy` and `k` in `i64`
+    /// (exact unless the gradients are beyond the limit, see
+    /// [`TriangleSetup::exact`]).
+    #[cfg(target_pointer_width = "64")]
+    #[inline(always)]
+    fn plane_exact(f: &Basis, t: &Corners<'_>, a: usize, range: &mut u64) -> (Plane, [i64; 3]) {
+        let (values, frac) = t.values(a);
+        let g = f.gradients(values, frac);
+        *range |= (g.0 + GRADIENT_LIMIT) as u64 | (g.1 + GRADIENT_LIMIT) as u64;
+        let k = f.constant_wrapping(values[0], frac, g);
+        (
+            Plane {
+                gx: g.0 as i32,
+                gy: g.1 as i32,
+                k: k as i32,
+            },
+            [g.0, g.1, k],
+        )
     }
 
     /// The plane of attribute `a` (see [`Corners::values`]) over the
@@ -318,7 +382,63 @@ impl TriangleSetup {
                 };
             }
         }
+        #[cfg(target_pointer_width = "64")]
+        if PACKED {
+            self.packed = self.packs();
+        }
         self
+    }
+
+    /// The packed planes' `gx`, `gy` and `k` ([`PACKED`]): red/green and
+    /// depth/blue, the first of each pair in the upper 32 bits as the span
+    /// loop holds it (red shifted left by 8, depth by `16 - Z_FRAC`,
+    /// wrapping: only its value modulo 2^32 matters there), the second
+    /// from its exact `i64` coefficients, shifted left by 8.
+    ///
+    /// `u64` arithmetic is exact modulo 2^64, so the packed plane's value
+    /// at pixel `(i, j)` is `(hi << 32) + lo` modulo 2^64, `hi` the upper
+    /// lane's value (modulo 2^32) and `lo` the lower lane's exact value,
+    /// the shifted channel. At a covered pixel of a triangle that is not
+    /// wide that channel is within `12,287..=16,764,929` (see
+    /// `start_shifted`), shifted within `3,145,472..=4,291,821,824`,
+    /// inside `0..2^32`: no carry or borrow reaches the upper lane, which
+    /// then holds exactly `hi` modulo 2^32, the lower lane exactly `lo`.
+    /// The packed starts are taken only for interior triangles (never
+    /// wide), whose starts take no clamp; the steps are the packed `gx`,
+    /// so every covered pixel of a span holds the plane's packed value.
+    #[cfg(target_pointer_width = "64")]
+    #[inline(always)]
+    fn packs(&self) -> [[u64; 3]; 2] {
+        const _: () = assert!(((C_HI as i64 + 20_481) << 8) < 1 << 32 && C_LO >= 20_481);
+        let hi = |v: i32| (v as u32 as u64) << 32;
+        let lo = |v: i64| (v << 8) as u64;
+        let [r, z] = [self.planes[1], self.planes[0]];
+        let zs = 16 - super::Z_FRAC;
+        let [eg, eb] = self.exact;
+        [
+            [
+                hi(r.gx).wrapping_add(lo(eg[0])),
+                hi(r.gy).wrapping_add(lo(eg[1])),
+                hi(r.k).wrapping_add(lo(eg[2])),
+            ],
+            [
+                hi(self.zstep).wrapping_add(lo(eb[0])),
+                hi(z.gy.wrapping_shl(zs)).wrapping_add(lo(eb[1])),
+                hi(z.k.wrapping_shl(zs)).wrapping_add(lo(eb[2])),
+            ],
+        ]
+    }
+
+    /// The packed planes' values at pixel `(i, j)` (see
+    /// [`TriangleSetup::packs`]): red/green and depth/blue.
+    #[cfg(target_pointer_width = "64")]
+    #[inline(always)]
+    pub(super) fn start_packed(&self, i: i32, j: i32) -> [u64; 2] {
+        let at = |[gx, gy, k]: [u64; 3]| {
+            k.wrapping_add(gy.wrapping_mul(j as i64 as u64))
+                .wrapping_add(gx.wrapping_mul(i as i64 as u64))
+        };
+        [at(self.packed[0]), at(self.packed[1])]
     }
 
     /// [`TriangleSetup::for_spans`] of a small triangle, inlined, for the
