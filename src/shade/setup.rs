@@ -293,17 +293,7 @@ impl TriangleSetup {
     #[inline(always)]
     fn plane_exact(f: &Basis, t: &Corners<'_>, a: usize, range: &mut u64) -> (Plane, [i64; 3]) {
         let (values, frac) = t.values(a);
-        let g = f.gradients(values, frac);
-        *range |= (g.0 + GRADIENT_LIMIT) as u64 | (g.1 + GRADIENT_LIMIT) as u64;
-        let k = f.constant_wrapping(values[0], frac, g);
-        (
-            Plane {
-                gx: g.0 as i32,
-                gy: g.1 as i32,
-                k: k as i32,
-            },
-            [g.0, g.1, k],
-        )
+        Self::plane_and_exact(f, values, frac, range)
     }
 
     /// The plane of attribute `a` (see [`Corners::values`]) over the
@@ -318,17 +308,31 @@ impl TriangleSetup {
     /// vertices and `frac` fraction bits.
     #[inline(always)]
     fn plane_of(f: &Basis, values: [i64; 3], frac: u32, range: &mut u64) -> Plane {
+        Self::plane_and_exact(f, values, frac, range).0
+    }
+
+    /// [`TriangleSetup::plane_of`], and its `gx`, `gy` and `k` in `i64`
+    /// (which the callers that do not use them leave uncomputed: it is
+    /// inlined).
+    #[inline(always)]
+    fn plane_and_exact(
+        f: &Basis,
+        values: [i64; 3],
+        frac: u32,
+        range: &mut u64,
+    ) -> (Plane, [i64; 3]) {
         let g = f.gradients(values, frac);
         *range |= (g.0 + GRADIENT_LIMIT) as u64 | (g.1 + GRADIENT_LIMIT) as u64;
         // Wrapping to i32 keeps everything `Plane::at` needs. Within ±LIMIT
         // the constant does not wrap; beyond, its wrapped value is not used
         // (a wide triangle's starts come from `wide_start`).
         let k = f.constant_wrapping(values[0], frac, g);
-        Plane {
+        let plane = Plane {
             gx: g.0 as i32,
             gy: g.1 as i32,
             k: k as i32,
-        }
+        };
+        (plane, [g.0, g.1, k])
     }
 
     /// [`TriangleSetup::new`] for the span loops, Gouraud (`GOURAUD`) or

@@ -121,74 +121,23 @@ impl Packed {
 /// A [`Packed`] word's column.
 const MASK: i32 = (1 << COL_BITS) - 1;
 
-/// Whether [`half_packed`] walks as [`half_packed_narrow`]: on ARMv6-M
+/// A [`Packed`] word `p` one row on, by its step `s` and, when the error
+/// term turns non-negative, its correction `d`.
+#[inline(always)]
+fn next_row(p: i32, s: i32, d: i32) -> i32 {
+    let p = p + s;
+    if p >= 0 {
+        p - d
+    } else {
+        p
+    }
+}
+
+/// Whether [`half_packed`] takes its narrow loop: on ARMv6-M
 /// (and ARMv8-M Baseline, `microraster_narrow_multiply`), and in the unit
 /// tests, which thereby walk as those cores do (the integration tests
 /// walk the other way).
 const NARROW: bool = cfg!(any(microraster_narrow_multiply, test));
-
-/// [`half_packed`] for a core with 8 low registers and no predication
-/// (ARMv6-M): the same spans, from a loop with fewer values live.
-///
-/// A span is written only when it is not empty: the select of the slots
-/// left, which Thumb-2 predicates, takes branches here, and an empty row
-/// (half the rows walked, at a triangle's tips) then skips the stores
-/// and the slot's step (ARMv6-M `demo` 6,381,174 -> 6,315,346
-/// instructions, in [`half_packed`]'s loop).
-///
-/// The rows are counted up to zero from `row - stop`, which LLVM turns
-/// back into the row itself, but with other registers than the loop of
-/// `for j in row..stop` (`demo` 6,318,708 -> 6,296,419): the slots left
-/// stay in a stack slot, read and written by a non-empty row only.
-#[inline(always)]
-#[allow(clippy::too_many_arguments)]
-fn half_packed_narrow<const CLAMP: bool>(
-    out: &mut [Span],
-    n: usize,
-    row: i32,
-    stop: i32,
-    left: &mut Packed,
-    right: &mut Packed,
-    x0: i32,
-    x1: i32,
-) -> usize {
-    let (mut lp, ls, ld) = (left.p, left.s, left.d);
-    let (mut rp, rs, rd) = (right.p, right.s, right.d);
-    let len = out.len();
-    let mut rest = &mut out[n.min(len)..];
-    let mut k = row - stop;
-    while k < 0 {
-        let (c0, c1) = ((lp >> COL_SHIFT) & MASK, (rp >> COL_SHIFT) & MASK);
-        let (c0, c1) = if CLAMP {
-            (c0.max(x0), c1.min(x1))
-        } else {
-            (c0, c1)
-        };
-        if c0 < c1 {
-            let Some((o, r)) = core::mem::take(&mut rest).split_first_mut() else {
-                // No slot left.
-                break;
-            };
-            *o = Span {
-                j: stop + k,
-                x0: c0,
-                x1: c1,
-            };
-            rest = r;
-        }
-        lp += ls;
-        if lp >= 0 {
-            lp -= ld;
-        }
-        rp += rs;
-        if rp >= 0 {
-            rp -= rd;
-        }
-        k += 1;
-    }
-    (left.p, right.p) = (lp, rp);
-    len - rest.len()
-}
 
 /// [`half`](super::half) for [`Packed`] edges: with `CLAMP`, the spans
 /// clipped to columns `x0..x1` (a triangle across its tile's side
@@ -206,13 +155,50 @@ pub(super) fn half_packed<const CLAMP: bool>(
     x0: i32,
     x1: i32,
 ) -> usize {
-    if NARROW {
-        return half_packed_narrow::<CLAMP>(out, n, row, stop, left, right, x0, x1);
-    }
     let (mut lp, ls, ld) = (left.p, left.s, left.d);
     let (mut rp, rs, rd) = (right.p, right.s, right.d);
     let len = out.len();
     let mut rest = &mut out[n.min(len)..];
+    if NARROW {
+        // For a core with 8 low registers and no predication (ARMv6-M):
+        // the same spans, from a loop with fewer values live.
+        //
+        // A span is written only when it is not empty: the select of the
+        // slots left, which Thumb-2 predicates, takes branches here, and an
+        // empty row (half the rows walked, at a triangle's tips) then skips
+        // the stores and the slot's step (ARMv6-M `demo` 6,381,174 ->
+        // 6,315,346 instructions, in the other loop).
+        //
+        // The rows are counted up to zero from `row - stop`, which LLVM turns
+        // back into the row itself, but with other registers than the loop of
+        // `for j in row..stop` (`demo` 6,318,708 -> 6,296,419): the slots left
+        // stay in a stack slot, read and written by a non-empty row only.
+        let mut k = row - stop;
+        while k < 0 {
+            let (c0, c1) = ((lp >> COL_SHIFT) & MASK, (rp >> COL_SHIFT) & MASK);
+            let (c0, c1) = if CLAMP {
+                (c0.max(x0), c1.min(x1))
+            } else {
+                (c0, c1)
+            };
+            if c0 < c1 {
+                let Some((o, r)) = core::mem::take(&mut rest).split_first_mut() else {
+                    // No slot left.
+                    break;
+                };
+                *o = Span {
+                    j: stop + k,
+                    x0: c0,
+                    x1: c1,
+                };
+                rest = r;
+            }
+            (lp, rp) = (next_row(lp, ls, ld), next_row(rp, rs, rd));
+            k += 1;
+        }
+        (left.p, right.p) = (lp, rp);
+        return len - rest.len();
+    }
     for j in row..stop {
         let (c0, c1) = ((lp >> COL_SHIFT) & MASK, (rp >> COL_SHIFT) & MASK);
         let s = if CLAMP {
@@ -234,14 +220,7 @@ pub(super) fn half_packed<const CLAMP: bool>(
         // A select of the two slices, which Thumb-2 predicates (two adds),
         // where `&mut r[k..]` of a 0 or 1 took six instructions.
         rest = if s.x0 < s.x1 { &mut r[1..] } else { r };
-        lp += ls;
-        if lp >= 0 {
-            lp -= ld;
-        }
-        rp += rs;
-        if rp >= 0 {
-            rp -= rd;
-        }
+        (lp, rp) = (next_row(lp, ls, ld), next_row(rp, rs, rd));
     }
     (left.p, right.p) = (lp, rp);
     len - rest.len()
