@@ -41,6 +41,8 @@
 mod convert;
 #[cfg(target_pointer_width = "64")]
 mod offset;
+#[cfg(target_pointer_width = "64")]
+mod packed;
 pub(crate) mod perspective;
 mod plane;
 mod setup;
@@ -53,9 +55,9 @@ pub(crate) use convert::To565;
 pub(crate) use convert::{rgb, rgb565_bits, rgb_scalar};
 use convert::{rgb16_green_up, GREEN_UP};
 use embedded_graphics::pixelcolor::Rgb888;
-use plane::Basis;
 #[cfg(target_pointer_width = "64")]
-use setup::PACKED;
+use packed::PACKED;
+use plane::Basis;
 pub(crate) use setup::{Corners, TriangleSetup, OFFSET_SETUP, SMALL_INLINE};
 
 /// Fraction bits of interpolated depth.
@@ -1399,7 +1401,7 @@ mod tests {
                 // both ends is within it at every pixel between them (every
                 // pixel stepped made the debug lib tests take minutes).
                 #[cfg(target_pointer_width = "64")]
-                if setup::PACKED && !for_spans.wide && x1 > x0 {
+                if packed::PACKED && !for_spans.wide && x1 > x0 {
                     let pack = |hi: i32, lo: i32| ((hi as u32 as u64) << 32) | lo as u32 as u64;
                     let [rg0, zb0] = for_spans.start_packed(x0, j);
                     for x in [x0, x1 - 1] {

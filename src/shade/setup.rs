@@ -76,13 +76,6 @@ pub(crate) const OFFSET_SETUP: bool = cfg!(target_pointer_width = "64");
 /// too wide (see [`TriangleSetup::start_shifted`] for colour's).
 pub(crate) const SHIFTED_COLOR: bool = super::VECTOR_LOOPS;
 
-/// Whether an interior triangle's Gouraud span starts are evaluated
-/// packed, red/green and depth/blue in one `u64` each (64-bit hosts with
-/// [`SHIFTED_COLOR`]), from planes packed once a pair
-/// ([`TriangleSetup::packs`]), and its span loop steps them so.
-#[cfg(target_pointer_width = "64")]
-pub(crate) const PACKED: bool = SHIFTED_COLOR && cfg!(target_pointer_width = "64");
-
 /// A triangle ready to shade: its attribute planes (depth, then red,
 /// green and blue for Gouraud shading).
 #[derive(Clone, Copy, Debug)]
@@ -114,7 +107,7 @@ pub(crate) struct TriangleSetup {
     #[cfg(target_pointer_width = "64")]
     pub(super) exact: [[i64; 3]; 2],
     /// On 64-bit hosts, once [`TriangleSetup::for_gouraud_spans`] made
-    /// them ([`PACKED`]): `gx`, `gy` and `k` of the packed planes
+    /// them ([`PACKED`](super::packed::PACKED)): `gx`, `gy` and `k` of the packed planes
     /// red/green and depth/blue, see `start_packed`.
     #[cfg(target_pointer_width = "64")]
     pub(super) packed: [[u64; 3]; 2],
@@ -286,16 +279,6 @@ impl TriangleSetup {
         }
     }
 
-    /// [`TriangleSetup::plane`], with its `gx`, `gy` and `k` in `i64`
-    /// (exact unless the gradients are beyond the limit, see
-    /// [`TriangleSetup::exact`]).
-    #[cfg(target_pointer_width = "64")]
-    #[inline(always)]
-    fn plane_exact(f: &Basis, t: &Corners<'_>, a: usize, range: &mut u64) -> (Plane, [i64; 3]) {
-        let (values, frac) = t.values(a);
-        Self::plane_and_exact(f, values, frac, range)
-    }
-
     /// The plane of attribute `a` (see [`Corners::values`]) over the
     /// basis `f`, its gradients or-ed into `range` (offset by the limit).
     #[inline(always)]
@@ -315,7 +298,7 @@ impl TriangleSetup {
     /// (which the callers that do not use them leave uncomputed: it is
     /// inlined).
     #[inline(always)]
-    fn plane_and_exact(
+    pub(super) fn plane_and_exact(
         f: &Basis,
         values: [i64; 3],
         frac: u32,
@@ -387,62 +370,10 @@ impl TriangleSetup {
             }
         }
         #[cfg(target_pointer_width = "64")]
-        if PACKED {
+        if super::packed::PACKED {
             self.packed = self.packs();
         }
         self
-    }
-
-    /// The packed planes' `gx`, `gy` and `k` ([`PACKED`]): red/green and
-    /// depth/blue, the first of each pair in the upper 32 bits as the span
-    /// loop holds it (red shifted left by 8, depth by `16 - Z_FRAC`,
-    /// wrapping: only its value modulo 2^32 matters there), the second
-    /// from its exact `i64` coefficients, shifted left by 8.
-    ///
-    /// `u64` arithmetic is exact modulo 2^64, so the packed plane's value
-    /// at pixel `(i, j)` is `(hi << 32) + lo` modulo 2^64, `hi` the upper
-    /// lane's value (modulo 2^32) and `lo` the lower lane's exact value,
-    /// the shifted channel. At a covered pixel of a triangle that is not
-    /// wide that channel is within `12,287..=16,764,929` (see
-    /// `start_shifted`), shifted within `3,145,472..=4,291,821,824`,
-    /// inside `0..2^32`: no carry or borrow reaches the upper lane, which
-    /// then holds exactly `hi` modulo 2^32, the lower lane exactly `lo`.
-    /// The packed starts are taken only for interior triangles (never
-    /// wide), whose starts take no clamp; the steps are the packed `gx`,
-    /// so every covered pixel of a span holds the plane's packed value.
-    #[cfg(target_pointer_width = "64")]
-    #[inline(always)]
-    fn packs(&self) -> [[u64; 3]; 2] {
-        const _: () = assert!(((C_HI as i64 + 20_481) << 8) < 1 << 32 && C_LO >= 20_481);
-        let hi = |v: i32| (v as u32 as u64) << 32;
-        let lo = |v: i64| (v << 8) as u64;
-        let [r, z] = [self.planes[1], self.planes[0]];
-        let zs = 16 - super::Z_FRAC;
-        let [eg, eb] = self.exact;
-        [
-            [
-                hi(r.gx).wrapping_add(lo(eg[0])),
-                hi(r.gy).wrapping_add(lo(eg[1])),
-                hi(r.k).wrapping_add(lo(eg[2])),
-            ],
-            [
-                hi(self.zstep).wrapping_add(lo(eb[0])),
-                hi(z.gy.wrapping_shl(zs)).wrapping_add(lo(eb[1])),
-                hi(z.k.wrapping_shl(zs)).wrapping_add(lo(eb[2])),
-            ],
-        ]
-    }
-
-    /// The packed planes' values at pixel `(i, j)` (see
-    /// [`TriangleSetup::packs`]): red/green and depth/blue.
-    #[cfg(target_pointer_width = "64")]
-    #[inline(always)]
-    pub(super) fn start_packed(&self, i: i32, j: i32) -> [u64; 2] {
-        let at = |[gx, gy, k]: [u64; 3]| {
-            k.wrapping_add(gy.wrapping_mul(j as i64 as u64))
-                .wrapping_add(gx.wrapping_mul(i as i64 as u64))
-        };
-        [at(self.packed[0]), at(self.packed[1])]
     }
 
     /// [`TriangleSetup::for_spans`] of a small triangle, inlined, for the
