@@ -300,12 +300,16 @@ impl Short {
 /// division), but not when an operand is the result of an `xor`, which it
 /// takes for a hash, too wide for the test to pay. The divisions of one
 /// divisor share the `xor`. [`new`](Self::new) (the attribute set-up's
-/// eight divisions) holds `d ^ 2^63` through `black_box` and `2^63`;
+/// eight divisions) holds `d ^ 2^30` through `black_box` and `2^30`;
 /// [`new_long`](Self::new_long) (the vertex stage's three) holds `d` and
 /// an atomic zero ([`ZERO`], a plain load), which measured cheaper there
-/// and dearer in the set-up (register allocation). x86-64 `demo`
+/// and dearer in the set-up (register allocation; again so in the offset
+/// set-up: x86-64 `demo` 3,052,140 -> 3,053,796). x86-64 `demo`
 /// 4,430,827 -> 4,356,901 instructions (the set-up) and 4,331,822 ->
-/// 4,323,714 (the vertex stage).
+/// 4,323,714 (the vertex stage). The mask `2^30` rather than `2^63`: an
+/// immediate operand, where `2^63` took a 64-bit constant built in a
+/// register for the `xor` and for the division's test of a zero divisor
+/// (`demo` 3,052,140 -> 3,045,438, `rock` 2,541,971 -> 2,536,724).
 #[derive(Clone, Copy, Debug)]
 #[cfg_attr(not(target_pointer_width = "64"), allow(dead_code))]
 pub(crate) struct Hardware {
@@ -333,7 +337,7 @@ impl Hardware {
     /// The divisor `d`.
     #[inline(always)]
     pub(crate) fn new(d: NonZeroU64) -> Self {
-        const HASH: u64 = 1 << 63;
+        const HASH: u64 = 1 << 30;
         Self {
             d: core::hint::black_box(d.get() ^ HASH),
             mask: HASH,

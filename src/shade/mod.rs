@@ -314,11 +314,26 @@ pub(crate) fn span_gouraud<
         return gouraud_loop::<C, D, WRITE>((dt, table), color, depth, (a0, a1), start, step, n);
     }
     #[cfg(target_pointer_width = "64")]
-    if PACKED && INTERIOR {
+    if PACKED && (INTERIOR || !s.wide) {
         // Red/green and depth/blue packed in a `u64` each, the starts
         // evaluated packed (see `TriangleSetup::packs` for why the lanes
-        // never carry into each other at a covered pixel).
-        let [mut rg, mut zb] = s.start_packed(x0, j);
+        // never carry into each other at a covered pixel); a triangle
+        // that is not interior has its lanes tested and clamped
+        // (`TriangleSetup::start_packed_clamped`). Every triangle that is
+        // not wide takes this loop: the four-lane loop below is left to
+        // the wide ones, and its clamped starts no longer take registers
+        // from the set-up that both loops share (x86-64 `demo` 3,097,082
+        // -> 3,052,140 instructions, `rock` 2,564,079 -> 2,541,971).
+        // Taken only by the triangles whose vertices' depths are all
+        // interior (the others to the four-lane loop, their planes packed
+        // there), `demo` measured 3,093,276 and `rock` 2,579,820: that
+        // test and the four-lane loop's registers cost more than they
+        // spared.
+        let [mut rg, mut zb] = if INTERIOR {
+            s.start_packed(x0, j)
+        } else {
+            s.start_packed_clamped(t, x0, j)
+        };
         let [grg, gzb] = [s.packed[0][0], s.packed[1][0]];
         if a0 >= a1 {
             return n;
@@ -362,9 +377,11 @@ pub(crate) fn span_gouraud<
         return n;
     }
     let (color, depth) = (&mut color[a0..a1], &mut depth[a0..a1]);
-    // Only targets with SIMD reach here, but every span takes this plain
-    // loop. A vector loop (`gouraud_run`, branch-free, for the whole
-    // groups of eight of spans of 24 pixels or more, until `ae3b025`) was
+    // Only targets with SIMD reach here (on 64-bit hosts, only the spans
+    // of wide triangles: the others take the packed loop above), but
+    // every span takes this plain loop. A vector loop (`gouraud_run`,
+    // branch-free, for the whole groups of eight of spans of 24 pixels
+    // or more, until `ae3b025`) was
     // a call in the span loop, around which the span starts' and this
     // loop's registers were spilled; without it x86-64 `demo` 3,369,702
     // -> 3,277,579 instructions, `rock` -92 K, `tri4`, `tri100` and
@@ -1323,7 +1340,13 @@ mod tests {
                     // Half the channels at 0 or 255, where a start's
                     // rounding can take it outside the range and the clamp
                     // matters.
-                    let z = next(65_536) as u16;
+                    // Depth too, at times at its ends (where the
+                    // packed starts clamp it from its plane).
+                    let z = match next(8) {
+                        0 => 0,
+                        1 => 65_535,
+                        _ => next(65_536) as u16,
+                    };
                     let mut c = || match next(4) {
                         0 => 0,
                         1 => 255,
@@ -1417,6 +1440,25 @@ mod tests {
                             assert_eq!(rg, pack(r << 8, g << 8));
                             assert_eq!(zb, pack(z.wrapping_shl(zs), b << 8));
                         }
+                    }
+                    // The clamped packed starts of any triangle, as the
+                    // span loop of one that is not interior takes them:
+                    // the four-lane loop's starts, packed, at the span's
+                    // start and, stepped, at its last pixel (the lanes
+                    // carry into each other at neither).
+                    let packs = for_spans.packed;
+                    let [rg0, zb0] = for_spans.start_packed_clamped(&corners, x0, j);
+                    let [z, r, g, b] = for_spans.start_shifted(&corners, x0, j, false);
+                    let [gz, gr, gg, gb] = for_spans.steps();
+                    let zs = 16 - Z_FRAC;
+                    for k in [0, x1 - x0 - 1] {
+                        let step = |v: i32, g: i32| v.wrapping_add(g.wrapping_mul(k));
+                        let kk = k as u64;
+                        let rg = rg0.wrapping_add(packs[0][0].wrapping_mul(kk));
+                        let zb = zb0.wrapping_add(packs[1][0].wrapping_mul(kk));
+                        assert_eq!(rg, pack(step(r, gr), step(g, gg)), "{v:?} at ({x0}, {j})");
+                        let z = step(z.wrapping_shl(zs), gz);
+                        assert_eq!(zb, pack(z, step(b, gb)), "{v:?} at ({x0}, {j})");
                     }
                 }
                 // Along a span of two pixels or more the step is the exact

@@ -1,15 +1,18 @@
-//! The packed Gouraud span starts of 64-bit hosts ([`PACKED`]): an
-//! interior triangle's red/green and depth/blue planes, one `u64` each,
-//! made once a pair ([`TriangleSetup::packs`]) from the wrapped `i32`
-//! planes and the set-up's exact `i64` coefficients
-//! ([`TriangleSetup::plane_exact`]), evaluated at a span start
-//! ([`TriangleSetup::start_packed`]) and stepped by two adds a pixel.
+//! The packed Gouraud span starts of 64-bit hosts ([`PACKED`]): a
+//! triangle's red/green and depth/blue planes, one `u64` each, made once
+//! a pair ([`TriangleSetup::packs`]) from the wrapped `i32` planes and the
+//! set-up's exact `i64` coefficients ([`TriangleSetup::plane_exact`]),
+//! evaluated at a span start ([`TriangleSetup::start_packed`]; clamped
+//! for a triangle that is not interior,
+//! [`TriangleSetup::start_packed_clamped`]) and stepped by two adds a
+//! pixel. Every triangle but the wide ones takes them.
 
 use super::plane::{Basis, Plane};
-use super::setup::{Corners, TriangleSetup, C_HI, C_LO, SHIFTED_COLOR};
+use super::setup::{Corners, TriangleSetup, C_HI, C_LO, SHIFTED_COLOR, Z_HI, Z_LO};
+use crate::vertex::ScreenVertex;
 
-/// Whether an interior triangle's Gouraud span starts are evaluated
-/// packed, red/green and depth/blue in one `u64` each (64-bit hosts with
+/// Whether a Gouraud triangle's span starts (a triangle that is not
+/// [`wide`](TriangleSetup::wide)) are evaluated packed, red/green and depth/blue in one `u64` each (64-bit hosts with
 /// [`SHIFTED_COLOR`]), from planes packed once a pair
 /// ([`TriangleSetup::packs`]), and its span loop steps them so.
 pub(crate) const PACKED: bool = SHIFTED_COLOR && cfg!(target_pointer_width = "64");
@@ -43,9 +46,10 @@ impl TriangleSetup {
     /// `start_shifted`), shifted within `3,145,472..=4,291,821,824`,
     /// inside `0..2^32`: no carry or borrow reaches the upper lane, which
     /// then holds exactly `hi` modulo 2^32, the lower lane exactly `lo`.
-    /// The packed starts are taken only for interior triangles (never
-    /// wide), whose starts take no clamp; the steps are the packed `gx`,
-    /// so every covered pixel of a span holds the plane's packed value.
+    /// An interior triangle's starts take no clamp, and the steps are the
+    /// packed `gx`, so every covered pixel of its spans holds the plane's
+    /// packed value; any other triangle that is not wide takes them
+    /// clamped ([`TriangleSetup::start_packed_clamped`]).
     #[inline(always)]
     pub(super) fn packs(&self) -> [[u64; 3]; 2] {
         const _: () = assert!(((C_HI as i64 + 20_481) << 8) < 1 << 32 && C_LO >= 20_481);
@@ -77,5 +81,49 @@ impl TriangleSetup {
                 .wrapping_add(gx.wrapping_mul(i as i64 as u64))
         };
         [at(self.packed[0]), at(self.packed[1])]
+    }
+
+    /// [`TriangleSetup::start_packed`] of a triangle that is not
+    /// [`interior`](TriangleSetup::interior) nor
+    /// [`wide`](TriangleSetup::wide), clamped as [`TriangleSetup::start_shifted`] clamps: the same starts
+    /// as there, packed.
+    ///
+    /// Each colour lane holds its channel shifted, exactly: the lower
+    /// lanes do (see [`TriangleSetup::packs`]), and red's upper lane is
+    /// the shifted channel modulo 2^32, which at a covered pixel lies
+    /// within `3,145,472..=4,291,821,824`, inside `0..2^32`. So each lane
+    /// is tested and clamped as a `u32`. Depth's lane, wrapping, cannot be
+    /// tested so: where every vertex's depth is within `2..=65533` (the
+    /// depth half of [`ScreenVertex::interior`]) no covered pixel's depth
+    /// needs its clamp; any other triangle's depth is clamped from its
+    /// plane, on the rare path. Stepped from the clamped starts, each
+    /// channel stays within `0..256` units at every pixel of the span (the
+    /// four-lane loop relies on it too), its shifted value within
+    /// `0..2^32`: the lower lanes carry into the upper ones at no pixel.
+    #[inline(always)]
+    pub(super) fn start_packed_clamped(&self, t: &Corners<'_>, i: i32, j: i32) -> [u64; 2] {
+        const LO: u32 = (C_LO as u32) << 8;
+        const HI: u32 = (C_HI as u32) << 8;
+        let [rg, zb] = self.start_packed(i, j);
+        let inside = |c: u32| c.wrapping_sub(LO) <= HI - LO;
+        let depth = |v: &ScreenVertex| (v.z() as u32).wrapping_sub(2) <= 65_531;
+        let [u, v, w] = t.0;
+        if inside((rg >> 32) as u32)
+            & inside(rg as u32)
+            & inside(zb as u32)
+            & depth(u)
+            & depth(v)
+            & depth(w)
+        {
+            return [rg, zb];
+        }
+        super::cold();
+        let clamp = |c: u64| (c as u32).clamp(LO, HI) as u64;
+        let z = self.planes[0].at(i, j).clamp(Z_LO, Z_HI);
+        let z = (z as u32) << (16 - super::Z_FRAC);
+        [
+            clamp(rg >> 32) << 32 | clamp(rg),
+            (z as u64) << 32 | clamp(zb),
+        ]
     }
 }
