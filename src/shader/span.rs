@@ -409,6 +409,27 @@ impl<'a, C, V: Varyings> SpanInput<'a, C, V> {
                         _ => self.run_put(interpolate_color, fragment),
                     };
                 }
+                // The same on ARMv6-M, in `i32`: no `USAT` there, so each
+                // channel's clamp is a compare and a branch or two.
+                #[cfg(microraster_narrow_multiply)]
+                if interpolate_color {
+                    let fq = flat && flat_q_loop(V::LEN, interpolate_color);
+                    return match self.opaque_shift_convex32() {
+                        Some((sh, true)) if fq => {
+                            self.run_opaque::<FLAT_Q, true>(interpolate_color, fragment, sh)
+                        }
+                        Some((sh, true)) => {
+                            self.run_opaque::<SHIFTED, true>(interpolate_color, fragment, sh)
+                        }
+                        Some((sh, false)) if fq => {
+                            self.run_opaque::<FLAT_Q, false>(interpolate_color, fragment, sh)
+                        }
+                        Some((sh, false)) => {
+                            self.run_opaque::<SHIFTED, false>(interpolate_color, fragment, sh)
+                        }
+                        None => self.run_put(interpolate_color, fragment),
+                    };
+                }
                 let shift = self.opaque_shift();
                 match shift {
                     Some(sh) if COLOUR_LOOP && V::LEN == 0 && interpolate_color => {

@@ -94,6 +94,34 @@ pub(super) fn span_shift_convex(
         .then(|| ((32 - (q as u32).leading_zeros()).saturating_sub(16), convex))
 }
 
+/// [`span_shift_convex`] in `i32`, with [`span_shift`]'s checked
+/// arithmetic, for cores without a 64-bit product (ARMv6-M), where the
+/// byte clamps that it saves take a compare and a branch each (no
+/// `USAT`). The sums of `B1 + B2 <= Q` are taken in `u32`, where two
+/// values of `0..2^31` cannot overflow.
+#[cfg_attr(not(microraster_narrow_multiply), allow(dead_code))]
+#[inline(always)]
+pub(super) fn span_shift_convex32(
+    planes: [i32; 3],
+    steps: [i32; 3],
+    len: usize,
+) -> Option<(u32, bool)> {
+    let last = i32::try_from(len.saturating_sub(1)).ok()?;
+    let end = |a: i32, g: i32| g.checked_mul(last).and_then(|d| a.checked_add(d));
+    let [q, b1, b2] = planes;
+    let [gq, g1, g2] = steps;
+    let qe = end(q, gq)?;
+    if q < 1 || qe < 1 || q.leading_zeros() != qe.leading_zeros() {
+        return None;
+    }
+    let (b1e, b2e) = (end(b1, g1)?, end(b2, g2)?);
+    let within = |b: i32, q: i32| 0 <= b && b <= q;
+    let sum = |a: i32, b: i32| (a as u32).wrapping_add(b as u32);
+    let convex = sum(b1, b2) <= q as u32 && sum(b1e, b2e) <= qe as u32;
+    (within(b1, q) && within(b2, q) && within(b1e, qe) && within(b2e, qe))
+        .then(|| ((32 - q.leading_zeros()).saturating_sub(16), convex))
+}
+
 /// [`weights`] where its clamps change nothing and `Q`'s normalising
 /// shift `sh` is known: `1 <= Q < 2^31`, `0 <= B1, B2 <= Q`
 /// ([`span_shift`]), so `qn > 0` and each product is at most 2^31.
@@ -257,6 +285,8 @@ mod tests {
             assert_eq!(wide, narrow, "{planes:?} {steps:?} {len}");
             let convex = span_shift_convex(planes, steps, len);
             assert_eq!(convex.map(|c| c.0), wide, "{planes:?} {steps:?} {len}");
+            let convex32 = span_shift_convex32(planes, steps, len);
+            assert_eq!(convex32, convex, "{planes:?} {steps:?} {len}");
             allowed += wide.is_some() as u32;
         }
         assert!(allowed > 10_000, "{allowed} spans allowed");

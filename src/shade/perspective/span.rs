@@ -5,6 +5,8 @@
 
 #[cfg(target_pointer_width = "64")]
 use super::barycentric::span_shift_convex;
+#[cfg(microraster_narrow_multiply)]
+use super::barycentric::span_shift_convex32;
 use super::barycentric::{flat_weights, shifted_weights, span_reciprocal, span_shift};
 use super::*;
 
@@ -218,6 +220,14 @@ impl<C, V: Varyings> SpanInput<'_, C, V> {
     #[inline(always)]
     pub(crate) fn opaque_shift_convex(&self) -> Option<(u32, bool)> {
         span_shift_convex(self.planes, self.steps, self.color.len())
+    }
+
+    /// `opaque_shift_convex` (64-bit hosts) in `i32`
+    /// ([`span_shift_convex32`]), on cores without a 64-bit product.
+    #[cfg(microraster_narrow_multiply)]
+    #[inline(always)]
+    pub(crate) fn opaque_shift_convex32(&self) -> Option<(u32, bool)> {
+        span_shift_convex32(self.planes, self.steps, self.color.len())
     }
 
     /// The span loop of an opaque draw with the default depth test
