@@ -276,13 +276,13 @@ impl<C, V: Varyings> SpanInput<'_, C, V> {
                 let (varyings, color, fine) = if !weighted {
                     (V::zeroed(), [0; 3], None)
                 } else if WEIGHTS == AFFINE {
-                    p.values_fit((b1 >> 12, b2 >> 12), ic, true)
+                    p.values_fit((b1 >> 12, b2 >> 12), ic, true, false)
                 } else if WEIGHTS == SHIFTED {
-                    p.values_fit(shifted_weights(q, b1, b2, sh), ic, false)
+                    p.values_fit(shifted_weights(q, b1, b2, sh), ic, false, CONVEX)
                 } else if WEIGHTS == FLAT_Q {
-                    p.values_fit(flat_weights(b1, b2, sh, r), ic, false)
+                    p.values_fit(flat_weights(b1, b2, sh, r), ic, false, CONVEX)
                 } else {
-                    p.values_fit(weights(q, b1, b2), ic, false)
+                    p.values_fit(weights(q, b1, b2), ic, false, false)
                 };
                 let it = Interpolated {
                     x: x0 + k as i32,
