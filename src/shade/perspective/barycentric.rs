@@ -48,9 +48,8 @@ pub(super) fn span_shift(planes: [i32; 3], steps: [i32; 3], len: usize) -> Optio
 /// the same highest bit exactly when their `and` is above their `xor`),
 /// and `0 <= B <= Q` as one unsigned comparison (`Q` positive). The same
 /// answer as `span_shift` (a unit test holds them together).
-#[cfg_attr(not(target_pointer_width = "64"), allow(dead_code))]
-#[inline(always)]
-pub(super) fn span_shift_wide(planes: [i32; 3], steps: [i32; 3], len: usize) -> Option<u32> {
+#[cfg(test)]
+fn span_shift_wide(planes: [i32; 3], steps: [i32; 3], len: usize) -> Option<u32> {
     let last = i32::try_from(len.saturating_sub(1)).ok()? as i64;
     let [q, b1, b2] = planes.map(i64::from);
     let [gq, g1, g2] = steps.map(i64::from);
@@ -62,6 +61,65 @@ pub(super) fn span_shift_wide(planes: [i32; 3], steps: [i32; 3], len: usize) -> 
     let within = |b: i64, q: i64| b as u64 <= q as u64;
     (within(b1, q) && within(b2, q) && within(b1e, qe) && within(b2e, qe))
         .then(|| (32 - (q as u32).leading_zeros()).saturating_sub(16))
+}
+
+/// [`span_shift`] in `i64` (as `span_shift_wide`, the tests' reference,
+/// takes it: the same answer), and whether `B1 + B2 <= Q` at both ends of
+/// the span (then at every pixel: the planes are linear along it). Where it
+/// holds, the weights of [`shifted_weights`] (and [`flat_weights`]) sum to
+/// at most 2^16: `(B1 >> sh) + (B2 >> sh) <= Q >> sh = qn`, so the two
+/// products by `r = 2^31 / qn` sum to at most `qn · r <= 2^31`, and the
+/// sum of their quotients by 2^15 to at most 2^16. A colour interpolated
+/// with them is then a convex combination of the vertices' (plus the
+/// rounding half), each channel within `0..=255` after its shift: no clamp
+/// ([`Interpolated`](crate::shader::span::Interpolated)'s `convex`).
+#[cfg_attr(not(target_pointer_width = "64"), allow(dead_code))]
+#[inline(always)]
+pub(super) fn span_shift_convex(
+    planes: [i32; 3],
+    steps: [i32; 3],
+    len: usize,
+) -> Option<(u32, bool)> {
+    let last = i32::try_from(len.saturating_sub(1)).ok()? as i64;
+    let [q, b1, b2] = planes.map(i64::from);
+    let [gq, g1, g2] = steps.map(i64::from);
+    let qe = q + gq * last;
+    if q < 1 || qe < 1 || qe > i32::MAX as i64 || (q ^ qe) >= (q & qe) {
+        return None;
+    }
+    let (b1e, b2e) = (b1 + g1 * last, b2 + g2 * last);
+    let within = |b: i64, q: i64| b as u64 <= q as u64;
+    let convex = b1 + b2 <= q && b1e + b2e <= qe;
+    (within(b1, q) && within(b2, q) && within(b1e, qe) && within(b2e, qe))
+        .then(|| ((32 - (q as u32).leading_zeros()).saturating_sub(16), convex))
+}
+
+/// [`span_shift_convex`] in `i32`, with [`span_shift`]'s checked
+/// arithmetic, for cores without a 64-bit product (ARMv6-M), where the
+/// byte clamps that it saves take a compare and a branch each (no
+/// `USAT`). The sums of `B1 + B2 <= Q` are taken in `u32`, where two
+/// values of `0..2^31` cannot overflow.
+#[cfg_attr(not(microraster_narrow_multiply), allow(dead_code))]
+#[inline(always)]
+pub(super) fn span_shift_convex32(
+    planes: [i32; 3],
+    steps: [i32; 3],
+    len: usize,
+) -> Option<(u32, bool)> {
+    let last = i32::try_from(len.saturating_sub(1)).ok()?;
+    let end = |a: i32, g: i32| g.checked_mul(last).and_then(|d| a.checked_add(d));
+    let [q, b1, b2] = planes;
+    let [gq, g1, g2] = steps;
+    let qe = end(q, gq)?;
+    if q < 1 || qe < 1 || q.leading_zeros() != qe.leading_zeros() {
+        return None;
+    }
+    let (b1e, b2e) = (end(b1, g1)?, end(b2, g2)?);
+    let within = |b: i32, q: i32| 0 <= b && b <= q;
+    let sum = |a: i32, b: i32| (a as u32).wrapping_add(b as u32);
+    let convex = sum(b1, b2) <= q as u32 && sum(b1e, b2e) <= qe as u32;
+    (within(b1, q) && within(b2, q) && within(b1e, qe) && within(b2e, qe))
+        .then(|| ((32 - q.leading_zeros()).saturating_sub(16), convex))
 }
 
 /// [`weights`] where its clamps change nothing and `Q`'s normalising
@@ -169,6 +227,37 @@ mod tests {
         assert!(allowed > 5_000, "{allowed} spans allowed");
     }
 
+    /// Where `span_shift_convex` finds `B1 + B2 <= Q` at a span's ends,
+    /// `shifted_weights` sum to at most 2^16 at each of its pixels.
+    #[test]
+    fn convex_weights_sum_to_one_at_most() {
+        let mut next = crate::testing::rng();
+        let mut convex = 0;
+        for n in 0..40_000 {
+            let len = 1 + next(64) as usize;
+            let bits = 1 + next(30);
+            let q = next(1 << bits) as i32 + if n % 5 == 0 { -2 } else { 1 };
+            let b1 = next(q.max(1) as u64 + 2) as i32 - 1;
+            let b2 = next((q.max(1) - b1.max(0)) as u64 + 2) as i32 - 1;
+            let g =
+                |next: &mut dyn FnMut(u64) -> u64| (next(1 << 16) as i32 - (1 << 15)) >> next(12);
+            let steps = [g(&mut next), g(&mut next), g(&mut next)];
+            let Some((sh, true)) = span_shift_convex([q, b1, b2], steps, len) else {
+                continue;
+            };
+            convex += 1;
+            let [mut q, mut b1, mut b2] = [q, b1, b2];
+            for _ in 0..len {
+                let (w1, w2) = shifted_weights(q, b1, b2, sh);
+                assert!(w1 >= 0 && w2 >= 0 && w1 + w2 <= 1 << 16, "{q} {b1} {b2}");
+                q = q.wrapping_add(steps[0]);
+                b1 = b1.wrapping_add(steps[1]);
+                b2 = b2.wrapping_add(steps[2]);
+            }
+        }
+        assert!(convex > 2_000, "{convex} convex spans");
+    }
+
     /// `span_shift_wide` decides as `span_shift`, ends that overflow `i32`
     /// and every edge of its tests included.
     #[test]
@@ -194,6 +283,10 @@ mod tests {
             let wide = span_shift_wide(planes, steps, len);
             let narrow = span_shift(planes, steps, len);
             assert_eq!(wide, narrow, "{planes:?} {steps:?} {len}");
+            let convex = span_shift_convex(planes, steps, len);
+            assert_eq!(convex.map(|c| c.0), wide, "{planes:?} {steps:?} {len}");
+            let convex32 = span_shift_convex32(planes, steps, len);
+            assert_eq!(convex32, convex, "{planes:?} {steps:?} {len}");
             allowed += wide.is_some() as u32;
         }
         assert!(allowed > 10_000, "{allowed} spans allowed");

@@ -91,6 +91,11 @@ pub(crate) struct PerspectiveSetup<V> {
     /// Per channel: `c0 · 2^16 + 2^15` (the rounding bias), `c1 - c0`,
     /// `c2 - c0`, ready for the span loop.
     pub(super) color: [[i32; 3]; 3],
+    /// On a 64-bit host, red and green of `color`'s three rows packed in
+    /// one word each (red in the high half): see
+    /// [`color_convex`](Self::color_convex).
+    #[cfg(target_pointer_width = "64")]
+    color_rg: [u64; 3],
 }
 
 impl<V: Varyings> PerspectiveSetup<V> {
@@ -205,6 +210,8 @@ impl<V: Varyings> PerspectiveSetup<V> {
             fits,
             flat: t.corners.0[0].color(),
             color: Self::colour_differences(t),
+            #[cfg(target_pointer_width = "64")]
+            color_rg: [0; 3],
         }
     }
 
@@ -249,6 +256,18 @@ impl<V: Varyings> PerspectiveSetup<V> {
                 [d(c1, 0), d(c1, 1), d(c1, 2)],
                 [d(c2, 0), d(c2, 1), d(c2, 2)],
             ],
+            #[cfg(target_pointer_width = "64")]
+            color_rg: {
+                // Two's complement halves: the packed sums are exact
+                // modulo 2^64 (see `color_convex`).
+                let pack = |hi: i32, lo: i32| ((hi as i64) << 32).wrapping_add(lo as i64) as u64;
+                let base = |k: usize| ((c0[k] as i32) << 16) + (1 << 15);
+                [
+                    pack(base(0), base(1)),
+                    pack(d(c1, 0), d(c1, 1)),
+                    pack(d(c2, 0), d(c2, 1)),
+                ]
+            },
         };
         #[cfg(not(target_pointer_width = "64"))]
         {
@@ -340,12 +359,12 @@ impl<V: Varyings> PerspectiveSetup<V> {
         (b1, b2): (i32, i32),
         interpolate_color: bool,
         affine: bool,
+        convex: bool,
     ) -> (V, [i32; 3], Option<V>) {
-        let [a0, d1, d2, f0] = [
+        let [a0, d1, d2] = [
             self.var[0].as_slice(),
             self.dvar[0].as_slice(),
             self.dvar[1].as_slice(),
-            self.fine0.as_slice(),
         ];
         let (out, color) = if FIT_PRODUCTS {
             debug_assert!(self.fits());
@@ -360,12 +379,54 @@ impl<V: Varyings> PerspectiveSetup<V> {
         } else {
             self.values_weighted((b1, b2), interpolate_color)
         };
+        // The colour's `color_at` above goes unused there, and is dropped.
+        #[cfg(target_pointer_width = "64")]
+        let color = if convex && interpolate_color {
+            self.color_convex((b1, b2))
+        } else {
+            color
+        };
+        #[cfg(not(target_pointer_width = "64"))]
+        let _ = convex;
+        (out, color, Some(Self::fine(self, (b1, b2))))
+    }
+
+    /// Each varying's fraction to 32 bits at weights `(b1, b2)` (see
+    /// [`values_fit`](Self::values_fit)).
+    #[inline(always)]
+    fn fine(&self, (b1, b2): (i32, i32)) -> V {
+        let [d1, d2, f0] = [
+            self.dvar[0].as_slice(),
+            self.dvar[1].as_slice(),
+            self.fine0.as_slice(),
+        ];
         let mut fine = V::zeroed();
         for (k, f) in fine.as_mut_slice().iter_mut().enumerate() {
             let (d1, d2) = (d1[k].to_bits(), d2[k].to_bits());
             *f = I16F16::from_bits(fine_fit(f0[k].to_bits(), d1, d2, (b1, b2)));
         }
-        (out, color, Some(fine))
+        fine
+    }
+
+    /// [`color_at`](Self::color_at) for weights that sum to at most one
+    /// (`span_shift_convex`), on a 64-bit host: red and green from one
+    /// 64-bit multiply-add pair on `color_rg`. Each channel's value is then
+    /// in `0..2^24`, so the packed sum, exact modulo 2^64 whatever the
+    /// halves' signs on the way, holds both channels in its halves with no
+    /// borrow between them: two products and two sums a pixel fewer.
+    #[cfg(target_pointer_width = "64")]
+    #[inline(always)]
+    fn color_convex(&self, (b1, b2): (i32, i32)) -> [i32; 3] {
+        let [base, d1, d2] = self.color_rg;
+        let rg = base
+            .wrapping_add(d1.wrapping_mul(b1 as u64))
+            .wrapping_add(d2.wrapping_mul(b2 as u64));
+        let [b0, e1, e2] = &self.color;
+        [
+            (rg >> 32) as i32,
+            rg as u32 as i32,
+            b0[2] + e1[2] * b1 + e2[2] * b2,
+        ]
     }
 
     /// The varyings and colour (8.16 per channel) at weights `(b1, b2)`.

@@ -4,7 +4,9 @@
 //! the general loop or in the opaque ones.
 
 #[cfg(target_pointer_width = "64")]
-use super::barycentric::span_shift_wide;
+use super::barycentric::span_shift_convex;
+#[cfg(microraster_narrow_multiply)]
+use super::barycentric::span_shift_convex32;
 use super::barycentric::{flat_weights, shifted_weights, span_reciprocal, span_shift};
 use super::*;
 
@@ -169,6 +171,7 @@ fn colour_span_flat<C, V: Varyings, F: PixelFn<V, C>>(
                 varyings: V::zeroed(),
                 color,
                 fine: None,
+                convex: false,
             };
             match fragment.pixel(&it) {
                 Some(out) => {
@@ -203,18 +206,28 @@ impl<C, V: Varyings> SpanInput<'_, C, V> {
         span_shift(self.planes, self.steps, self.color.len())
     }
 
-    /// [`opaque_shift`](Self::opaque_shift) in `i64` ([`span_shift_wide`],
+    /// [`opaque_shift`](Self::opaque_shift) in `i64` (`span_shift_wide`,
     /// the same answer), on a 64-bit host only, where its sums and products
     /// are single instructions and need no overflow checks: for a shader
     /// with varyings that interpolates the colour (`TexturedLit`). x86-64
     /// `demo-textured-lit` 6,915,378 -> 6,901,401 instructions,
     /// `fill-lit-exact` 116.90 -> 116.69 a fragment; for every shader,
     /// `fill-gouraud-exact` took 77.97 -> 80.66 and `fill-bilinear-exact`
-    /// 167.49 -> 169.27 (their loops' code moved).
+    /// 167.49 -> 169.27 (their loops' code moved). With it, whether the
+    /// weights sum to one at most along the span ([`span_shift_convex`]:
+    /// the colour then needs no clamp).
     #[cfg(target_pointer_width = "64")]
     #[inline(always)]
-    pub(crate) fn opaque_shift_lit(&self) -> Option<u32> {
-        span_shift_wide(self.planes, self.steps, self.color.len())
+    pub(crate) fn opaque_shift_convex(&self) -> Option<(u32, bool)> {
+        span_shift_convex(self.planes, self.steps, self.color.len())
+    }
+
+    /// `opaque_shift_convex` (64-bit hosts) in `i32`
+    /// ([`span_shift_convex32`]), on cores without a 64-bit product.
+    #[cfg(microraster_narrow_multiply)]
+    #[inline(always)]
+    pub(crate) fn opaque_shift_convex32(&self) -> Option<(u32, bool)> {
+        span_shift_convex32(self.planes, self.steps, self.color.len())
     }
 
     /// The span loop of an opaque draw with the default depth test
@@ -227,7 +240,7 @@ impl<C, V: Varyings> SpanInput<'_, C, V> {
     /// itself (spans too short for the test, or that fail it). A shader
     /// that reads neither varyings nor colour runs with `AFFINE`.
     #[inline(always)]
-    pub(crate) fn run_opaque<const WEIGHTS: u8>(
+    pub(crate) fn run_opaque<const WEIGHTS: u8, const CONVEX: bool>(
         self,
         ic: bool,
         mut fragment: impl PixelFn<V, C>,
@@ -263,13 +276,13 @@ impl<C, V: Varyings> SpanInput<'_, C, V> {
                 let (varyings, color, fine) = if !weighted {
                     (V::zeroed(), [0; 3], None)
                 } else if WEIGHTS == AFFINE {
-                    p.values_fit((b1 >> 12, b2 >> 12), ic, true)
+                    p.values_fit((b1 >> 12, b2 >> 12), ic, true, false)
                 } else if WEIGHTS == SHIFTED {
-                    p.values_fit(shifted_weights(q, b1, b2, sh), ic, false)
+                    p.values_fit(shifted_weights(q, b1, b2, sh), ic, false, CONVEX)
                 } else if WEIGHTS == FLAT_Q {
-                    p.values_fit(flat_weights(b1, b2, sh, r), ic, false)
+                    p.values_fit(flat_weights(b1, b2, sh, r), ic, false, CONVEX)
                 } else {
-                    p.values_fit(weights(q, b1, b2), ic, false)
+                    p.values_fit(weights(q, b1, b2), ic, false, false)
                 };
                 let it = Interpolated {
                     x: x0 + k as i32,
@@ -277,6 +290,7 @@ impl<C, V: Varyings> SpanInput<'_, C, V> {
                     varyings,
                     color,
                     fine,
+                    convex: CONVEX,
                 };
                 match fragment.pixel(&it) {
                     Some(out) => {
@@ -385,6 +399,7 @@ impl<C, V: Varyings> SpanInput<'_, C, V> {
                     varyings: V::zeroed(),
                     color,
                     fine: None,
+                    convex: false,
                 };
                 match fragment.pixel(&it) {
                     Some(out) => {
@@ -451,6 +466,7 @@ impl<C, V: Varyings> SpanInput<'_, C, V> {
                         varyings,
                         color,
                         fine: None,
+                        convex: false,
                     };
                     n += put.put(&it, c, d) as u32;
                 }
@@ -511,6 +527,7 @@ impl<C, V: Varyings> SpanInput<'_, C, V> {
                             varyings: var,
                             color: col,
                             fine: None,
+                            convex: false,
                         };
                         n += put.put(&it, c, d) as u32;
                     }
