@@ -348,14 +348,15 @@ fn walk_direct<const CLAMP: bool>(
     // The orientation in `i32`: x differences below 2^14, y differences
     // below 2^15.
     let long_on_left = (b.x - a.x) * (c.y - a.y) > (c.x - a.x) * (b.y - a.y);
-    let long = Direct::new(a, c, row_top);
+    let long = Direct::new::<false>(a, c, row_top);
     // The short edge of the first row, and where its half ends.
     let ((p, q), stop) = if row_top < row_mid {
         ((a, b), row_mid.min(row_end))
     } else {
         ((b, c), row_end)
     };
-    let short = Direct::new(p, q, row_top);
+    // `MAX` on this edge alone: see `Direct::new`.
+    let short = Direct::new::<true>(p, q, row_top);
     let (mut left, mut right) = sides(long_on_left, long, short);
     let len = out.len();
     let rest = half_direct::<CLAMP>(out, row_top, stop, &mut left, &mut right, x0, x1);
@@ -363,7 +364,12 @@ fn walk_direct<const CLAMP: bool>(
         return len - rest.len();
     }
     // The lower half, from `stop == row_mid`.
-    replace_short(long_on_left, Direct::new(b, c, stop), &mut left, &mut right);
+    replace_short(
+        long_on_left,
+        Direct::new::<false>(b, c, stop),
+        &mut left,
+        &mut right,
+    );
     let rest = half_direct::<CLAMP>(rest, stop, row_end, &mut left, &mut right, x0, x1);
     len - rest.len()
 }
