@@ -62,22 +62,13 @@ const DIRECT: bool = cfg!(any(not(microraster_narrow_multiply), test));
 /// Row count above which [`find_spans`] first tests whether the triangle misses
 /// the clip rectangle altogether.
 ///
-/// 20 on the measured 32-bit Arm cores (ARMv7-M: the Cortex-M3 and M4F;
-/// ARMv6-M, with `microraster_narrow_multiply`), where the out-of-line
-/// test costs more than the 17 to 20 rows it could spare a pair in
-/// `demo` (the same code but the compare's constant: M3 `demo`
-/// 3,112,233 -> 3,110,999 instructions, M4F 3,076,199 -> 3,074,991,
-/// ARMv6-M 6,296,430 -> 6,292,947; `rock` and `fill` unchanged on all
-/// three, 24 to 31 within 5 of 20, 12 +5.2 K on the M3).
-const CHECK_ROWS: i32 = if cfg!(any(
-    microraster_armv7m,
-    microraster_armv7em,
-    microraster_narrow_multiply
-)) {
-    20
-} else {
-    16
-};
+/// 20 rather than 16: the test (out of line on 32-bit cores) costs more
+/// than the 17 to 20 rows it could spare a pair in `demo`. The same code
+/// but the compare's constant: `demo` M3 3,112,233 -> 3,110,999
+/// instructions, M4F 3,076,199 -> 3,074,991, ARMv6-M 6,296,430 ->
+/// 6,292,947, x86-64 3,097,082 -> 3,096,242; `rock` and `fill`
+/// unchanged on all four (24 to 31 within 5 of 20; 12 +5.2 K on the M3).
+const CHECK_ROWS: i32 = 20;
 
 /// Whether the triangle `v`, of positive twice signed area when
 /// `positive` (negative otherwise; zero covers nothing, whatever this
