@@ -52,8 +52,11 @@ impl Direct {
     ///
     /// Any row: with `0 <= t < dy < 2^15`, `|dx| < 2^14` and
     /// `0 < p.x + 8 <= 2^14`, both products are below 2^29.
+    ///
+    /// `MAX`: the divisor's fallback written as `max(d, 1)` on the
+    /// Cortex-M3 too (below).
     #[inline(always)]
-    pub(super) fn new(p: SubPoint, q: SubPoint, row: i32) -> Self {
+    pub(super) fn new<const MAX: bool>(p: SubPoint, q: SubPoint, row: i32) -> Self {
         let dx = q.x - p.x;
         let dy = q.y - p.y;
         debug_assert!(dy > 0 && dy < DIRECT_DY);
@@ -75,8 +78,13 @@ impl Direct {
         // a move and a select (`demo` 3,390,172 -> 3,371,343
         // instructions). The Cortex-M3's `demo` took -9.4 K but its `fill`
         // 14.64 -> 14.67 a pixel, the M4F's `demo` +5.5 K: they keep
-        // `unwrap_or`.
-        let d = if cfg!(target_pointer_width = "64") {
+        // `unwrap_or`, but for the M3's upper short edge (`MAX`): the
+        // same instructions a set-up, where the walk's registers fell
+        // better (M3 `demo` 3,119,285 -> 3,112,233, `rock` 2,555,054 ->
+        // 2,550,565, `fill` 14.64 -> 14.63 a pixel; `max` for the long
+        // edge or the lower one too measured +1 K to +34 K, `fill` up to
+        // 14.72).
+        let d = if cfg!(target_pointer_width = "64") || MAX && cfg!(microraster_armv7m) {
             NonZeroU32::new(d.max(1)).unwrap_or(NonZeroU32::MIN)
         } else {
             NonZeroU32::new(d).unwrap_or(NonZeroU32::MIN)
