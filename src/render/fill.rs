@@ -229,12 +229,12 @@ where
     // depth and the count of written fragments are the same. Where
     // `ONE_COLOUR_FLAT`.
     if GOURAUD && ONE_COLOUR_FLAT && one_colour(sv) {
-        // Marked rare on the Cortex-M3, where the register allocator then
-        // favours the Gouraud path (`demo` 3,103,664 -> 3,084,500
-        // instructions, `rock` 2,596,717 -> 2,586,717).
-        if cfg!(microraster_armv7m) {
-            rare();
-        }
+        // Marked rare: the register allocator then favours the Gouraud
+        // path (Cortex-M3 `demo` 3,103,664 -> 3,084,500 instructions,
+        // `rock` 2,596,717 -> 2,586,717; Cortex-M4F `demo` 3,023,505 ->
+        // 3,010,617, `rock` 2,567,590 -> 2,557,810; ARMv6-M `demo`
+        // 6,186,001 -> 6,177,055, `rock` 5,226,041 -> 5,220,805).
+        rare();
         return shade::<C, D, WRITE, false, TW, TH>(tile, rect, sv, found, test);
     }
     let dt = D::new(test);
@@ -367,10 +367,10 @@ where
 /// savings outweigh the test that every Gouraud pair makes in `demo`,
 /// though not in `rock`, whose lit faces are seldom of one colour (155 of
 /// 1,749 pairs, 3.5 % of its pixels, against 346 of 2,234 and 23 % in
-/// `demo`). Cortex-M4F `demo` 3,076,001 -> 3,023,505 instructions, `rock`
-/// 2,552,827 -> 2,567,590; ARMv6-M `demo` 6,296,469 -> 6,186,001, `rock`
-/// 5,213,647 -> 5,226,041; Cortex-M3 (with [`rare`] and the test of
-/// [`one_colour`] in words) `demo` 3,119,285 -> 3,074,218, `rock`
+/// `demo`). With the path marked [`rare`]: Cortex-M4F `demo` 3,076,001 ->
+/// 3,010,617 instructions, `rock` 2,552,827 -> 2,557,810; ARMv6-M `demo`
+/// 6,296,469 -> 6,177,055, `rock` 5,213,647 -> 5,220,805; Cortex-M3 (the
+/// test of [`one_colour`] in words) `demo` 3,119,285 -> 3,074,218, `rock`
 /// 2,555,304 -> 2,571,185. Not on 64-bit hosts (x86-64 `demo` 3,097,082
 /// -> 3,078,652, `rock` 2,564,079 -> 2,591,383).
 const ONE_COLOUR_FLAT: bool = cfg!(any(
@@ -387,8 +387,8 @@ fn rare() {}
 /// Whether the three vertices `sv` have the same colour. On the
 /// Cortex-M3 the words that hold the channels compared whole, the other
 /// bits shifted out (`demo` 3,084,500 -> 3,074,218 instructions, `rock`
-/// 2,586,717 -> 2,571,185; on the Cortex-M4F `demo` 3,023,505 ->
-/// 3,026,189 and `rock` 2,567,590 -> 2,578,496).
+/// 2,586,717 -> 2,571,185; on the Cortex-M4F, before the hint, `demo`
+/// 3,023,505 -> 3,026,189 and `rock` 2,567,590 -> 2,578,496).
 #[inline(always)]
 fn one_colour(sv: &[&ScreenVertex; 3]) -> bool {
     if cfg!(microraster_armv7m) {
