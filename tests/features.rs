@@ -208,3 +208,27 @@ fn a_firmwares_own_set_draws_its_lines_like_the_full_renderer() {
     assert!(all == lines);
     assert!(render::<Triangles, _>(&scene, config).is_err());
 }
+
+/// A Gouraud triangle whose three vertices have one colour draws what a
+/// flat one draws, pixel for pixel, depth included: the Cortex-M builds
+/// send such triangles to the flat span loops (`fill::ONE_COLOUR_FLAT`;
+/// the image hashes of `scripts/icount.sh` compare those builds with the
+/// host), so the two loops must agree on them. Unlit, every triangle of
+/// the demo is of its draw's colour.
+#[test]
+fn one_colour_gouraud_triangles_draw_as_flat_ones() {
+    let assets = DemoAssets::new();
+    let (knot, cube) = (assets.knot(), cube());
+    let config = Config::new(SIZE, Rgb565::new(1, 2, 3));
+    for test in [DepthTest::LessEqual, DepthTest::Less, DepthTest::Always] {
+        let config = config.depth_test(test);
+        let [gouraud, flat] = [Shading::Gouraud, Shading::Flat].map(|shading| {
+            let d = draws(&knot, &cube, 0.4, shading);
+            let scene = Scene::new(camera(SIZE.width, SIZE.height), &d);
+            render::<All, _>(&scene, config).unwrap()
+        });
+        assert!(gouraud.1.pixels_shaded > 3000, "{:?}", gouraud.1);
+        assert!(gouraud.0 == flat.0, "{test:?}: the same image");
+        assert_eq!(gouraud.1.pixels_shaded, flat.1.pixels_shaded);
+    }
+}

@@ -362,9 +362,11 @@ where
 /// Whether [`shade`] sends a Gouraud triangle of one colour to the flat
 /// span loops: on the Cortex-M4F (the build script's
 /// `microraster_armv7em`), ARMv6-M (`microraster_narrow_multiply`) and
-/// the Cortex-M3 (`microraster_armv7m`, but not in builds optimised for
-/// size: the OLED firmware's code stays as it was), where the flat pairs'
-/// savings outweigh the test that every Gouraud pair makes in `demo`,
+/// the Cortex-M3 (`microraster_armv7m`), but not in builds optimised for
+/// size (`microraster_size`: the flat span loops are then not linked into
+/// a firmware that draws Gouraud triangles only, as the OLED firmware;
+/// the Pico firmware, built for speed, takes them: +2,112 B of flash),
+/// where the flat pairs' savings outweigh the test that every Gouraud pair makes in `demo`,
 /// though not in `rock`, whose lit faces are seldom of one colour (155 of
 /// 1,749 pairs, 3.5 % of its pixels, against 346 of 2,234 and 23 % in
 /// `demo`). With the path marked [`rare`]: Cortex-M4F `demo` 3,076,001 ->
@@ -373,10 +375,13 @@ where
 /// test of [`one_colour`] in words) `demo` 3,119,285 -> 3,074,218, `rock`
 /// 2,555,304 -> 2,571,185. Not on 64-bit hosts (x86-64 `demo` 3,097,082
 /// -> 3,078,652, `rock` 2,564,079 -> 2,591,383).
-const ONE_COLOUR_FLAT: bool = cfg!(any(
-    microraster_armv7em,
-    microraster_narrow_multiply,
-    all(microraster_armv7m, not(microraster_size))
+const ONE_COLOUR_FLAT: bool = cfg!(all(
+    not(microraster_size),
+    any(
+        microraster_armv7em,
+        microraster_narrow_multiply,
+        microraster_armv7m
+    )
 ));
 
 /// Marks the path that calls it as rarely taken (see `shade::cold`).
