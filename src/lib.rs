@@ -60,6 +60,7 @@
 
 pub mod clip;
 pub mod cull;
+mod hint;
 pub mod light;
 pub mod math;
 pub mod mesh;

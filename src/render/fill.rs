@@ -234,7 +234,7 @@ where
         // `rock` 2,596,717 -> 2,586,717; Cortex-M4F `demo` 3,023,505 ->
         // 3,010,617, `rock` 2,567,590 -> 2,557,810; ARMv6-M `demo`
         // 6,186,001 -> 6,177,055, `rock` 5,226,041 -> 5,220,805).
-        rare();
+        crate::hint::cold();
         return shade::<C, D, WRITE, false, TW, TH>(tile, rect, sv, found, test);
     }
     let dt = D::new(test);
@@ -369,7 +369,7 @@ where
 /// where the flat pairs' savings outweigh the test that every Gouraud pair makes in `demo`,
 /// though not in `rock`, whose lit faces are seldom of one colour (155 of
 /// 1,749 pairs, 3.5 % of its pixels, against 346 of 2,234 and 23 % in
-/// `demo`). With the path marked [`rare`]: Cortex-M4F `demo` 3,076,001 ->
+/// `demo`). With the path marked cold ([`crate::hint::cold`]): Cortex-M4F `demo` 3,076,001 ->
 /// 3,010,617 instructions, `rock` 2,552,827 -> 2,557,810; ARMv6-M `demo`
 /// 6,296,469 -> 6,177,055, `rock` 5,213,647 -> 5,220,805; Cortex-M3 (the
 /// test of [`one_colour`] in words) `demo` 3,119,285 -> 3,074,218, `rock`
@@ -383,11 +383,6 @@ const ONE_COLOUR_FLAT: bool = cfg!(all(
         microraster_armv7m
     )
 ));
-
-/// Marks the path that calls it as rarely taken (see `shade::cold`).
-#[cold]
-#[inline]
-fn rare() {}
 
 /// Whether the three vertices `sv` have the same colour. On the
 /// Cortex-M3 the words that hold the channels compared whole, the other

@@ -350,7 +350,7 @@ pub(crate) fn span_gouraud<
                 }
                 *c = rgb::<C>((rg >> 56) as u8, (rg >> 24) as u8, (zb >> 24) as u8);
             } else {
-                cold();
+                crate::hint::cold();
                 n -= 1;
             }
             rg = rg.wrapping_add(grg);
@@ -401,7 +401,7 @@ pub(crate) fn span_gouraud<
             }
             *c = rgb::<C>((r >> 24) as u8, (g >> 24) as u8, (b >> 24) as u8);
         } else {
-            cold();
+            crate::hint::cold();
             n -= 1;
         }
         z = z.wrapping_add(gz);
@@ -458,7 +458,7 @@ fn loop_values(start: [u32; 4], step: [u32; 4]) -> ([u32; 4], [u32; 4]) {
 /// ever stop doing that, the pixels stay the same; only the speed moves.
 ///
 /// The count of written fragments is the span's length less those that
-/// fail, on a path marked cold ([`cold`]): about one fragment in twenty
+/// fail, on a path marked cold ([`crate::hint::cold`]): about one fragment in twenty
 /// fails in `demo`. Weighted so, the register allocator keeps the written
 /// path's values, the four steps and the colour table's address, in
 /// registers and the count in memory, 23 instructions a written pixel
@@ -502,7 +502,7 @@ fn gouraud_loop<C: Copy + From<Rgb888> + 'static, D: DepthFn, const WRITE: bool>
                 }
                 rgb16_green_up(table, r, g, b)
             } else {
-                cold();
+                crate::hint::cold();
                 n -= 1;
                 // Stored back as it was (see `STORE_AFTER`).
                 *c
@@ -525,7 +525,7 @@ fn gouraud_loop<C: Copy + From<Rgb888> + 'static, D: DepthFn, const WRITE: bool>
             // 7,801,997 instructions without it, `rock` 6,503,035 ->
             // 6,455,162).
             if !TOP {
-                cold();
+                crate::hint::cold();
             }
             n -= 1;
         }
@@ -561,14 +561,6 @@ const STORE_AFTER: bool = cfg!(microraster_armv7em);
 /// The interior loop, which keeps the address already, and the Cortex-M3,
 /// whose loops keep it too, read the table at its constant address.
 pub(crate) const OPAQUE_TABLE: bool = cfg!(microraster_armv7em);
-
-/// Marks the path that calls it as rarely taken: a call of a `#[cold]`
-/// function gives its branch the weights of an unlikely one (as
-/// `core::hint::cold_path`, stable only from Rust 1.95, does), and then
-/// is inlined: no instruction.
-#[cold]
-#[inline]
-fn cold() {}
 
 #[cfg(test)]
 mod tests {

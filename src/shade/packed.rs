@@ -117,7 +117,7 @@ impl TriangleSetup {
         {
             return [rg, zb];
         }
-        super::cold();
+        crate::hint::cold();
         let clamp = |c: u64| (c as u32).clamp(LO, HI) as u64;
         let z = self.planes[0].at(i, j).clamp(Z_LO, Z_HI);
         let z = (z as u32) << (16 - super::Z_FRAC);

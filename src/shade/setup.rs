@@ -558,7 +558,7 @@ impl TriangleSetup {
             // not on the Thumb-1 targets, where it measured worse (ARMv6-M
             // `demo` 15,674,314 -> 15,741,570).
             #[cfg(not(microraster_narrow_multiply))]
-            super::cold();
+            crate::hint::cold();
             // On this rare path the set-up escapes, so that, as far as the
             // optimiser knows, its planes may change from span to span: it
             // then reads them per span where the set-up left them, rather

@@ -476,7 +476,7 @@ impl SmallBasis {
             // the register allocator favours the two-digit path: ARMv6-M
             // `demo` 7,320,133 -> 7,297,225 instructions, `rock` 6,101,954
             // -> 6,084,454.
-            super::cold();
+            crate::hint::cold();
             let gx = self.div_round32_short(n1, shift);
             let gy = self.div_round32_short(n2, shift);
             (gx, gy, offset_term_split(gx, gy, self.o))

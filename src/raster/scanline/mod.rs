@@ -178,7 +178,7 @@ fn find_spans_with<const DIRECT: bool>(
         // instructions); a 64-bit host inlines the test, and walks large
         // triangles (x86-64 `fill` 9.71 -> 10.03 per pixel with the mark).
         #[cfg(target_pointer_width = "32")]
-        rare();
+        crate::hint::cold();
         if misses(a, b, c, PixelRect::new(clip.x0, row_top, clip.x1, row_end)) {
             return 0;
         }
@@ -380,13 +380,6 @@ fn walk_direct<const CLAMP: bool>(
     let rest = half_direct::<CLAMP>(rest, stop, row_end, &mut left, &mut right, x0, x1);
     len - rest.len()
 }
-
-/// Marks the path that calls it as rarely taken (as `core::hint::cold_path`
-/// does from Rust 1.95): no instruction.
-#[cfg(target_pointer_width = "32")]
-#[cold]
-#[inline]
-fn rare() {}
 
 /// Whether the middle vertex `b` (vertices sorted by y) is right of the
 /// long edge `a -> c`: twice the signed area, `(b - a) x (c - a)`, is
