@@ -469,11 +469,16 @@ impl Mat4 {
 /// there [`Mat4`]'s product skips an affine matrix's known last row,
 /// whose tests cost more than the products they save where an FPU does
 /// them (the Cortex-M4F's `demo` frame took 2,065 instructions more).
-/// The library's own tests take the short cut too, to compare it with the
-/// full product.
+/// Not in builds optimised for size (`microraster_size`: the OLED
+/// firmware's flash took 320 B more). The library's own tests take the
+/// short cut too, to compare it with the full product.
 const SKIP_AFFINE: bool = cfg!(any(
     test,
-    all(target_arch = "arm", not(target_abi = "eabihf"))
+    all(
+        target_arch = "arm",
+        not(target_abi = "eabihf"),
+        not(microraster_size)
+    )
 ));
 
 impl core::ops::Mul for Mat4 {
