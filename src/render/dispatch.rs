@@ -68,7 +68,9 @@ where
                 write: WRITE,
             },
             fill: [
-                if P::FLAT {
+                // Also for Gouraud triangles of one colour, where
+                // `fill::ONE_COLOUR_FLAT`.
+                if P::FLAT || P::GOURAUD && super::fill::ONE_COLOUR_FLAT {
                     shade::<C, D, WRITE, false, TW, TH>
                 } else {
                     shade_nothing::<C, TW, TH>

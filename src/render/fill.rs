@@ -143,7 +143,15 @@ where
     let Some(found) = drawn(&to.found, count, &mut to.rows) else {
         return 0;
     };
-    let shade = to.shaders.fill[gouraud as usize];
+    // A Gouraud triangle of one colour at its three vertices (faces that
+    // the light does not reach: one pair in seven of `demo`, with a
+    // quarter of its pixels) is shaded by the flat span loops, where
+    // `ONE_COLOUR_FLAT`: its colour planes are constant, the colour of
+    // each of its pixels is the vertices' (the same conversion as the
+    // Gouraud loop's table, see `rgb`), and depth and the count of written
+    // fragments are the same.
+    let flat = ONE_COLOUR_FLAT && gouraud && one_colour(&sv);
+    let shade = to.shaders.fill[(gouraud && !flat) as usize];
     shade(to.tile, to.rect, &sv, found, to.shaders.out.test)
 }
 
@@ -221,22 +229,6 @@ pub(super) fn shade<
 where
     C: PixelColor + From<Rgb888> + Into<Rgb888> + 'static,
 {
-    // A Gouraud triangle of one colour at its three vertices (one pair in
-    // seven of `demo`, with a quarter of its pixels: faces that the light
-    // does not reach) is shaded by the flat span loops: its colour planes
-    // are constant, the colour of each of its pixels is the vertices'
-    // (the same conversion as the Gouraud loop's table, see `rgb`), and
-    // depth and the count of written fragments are the same. Where
-    // `ONE_COLOUR_FLAT`.
-    if GOURAUD && ONE_COLOUR_FLAT && one_colour(sv) {
-        // Marked rare: the register allocator then favours the Gouraud
-        // path (Cortex-M3 `demo` 3,103,664 -> 3,084,500 instructions,
-        // `rock` 2,596,717 -> 2,586,717; Cortex-M4F `demo` 3,023,505 ->
-        // 3,010,617, `rock` 2,567,590 -> 2,557,810; ARMv6-M `demo`
-        // 6,186,001 -> 6,177,055, `rock` 5,226,041 -> 5,220,805).
-        crate::hint::cold();
-        return shade::<C, D, WRITE, false, TW, TH>(tile, rect, sv, found, test);
-    }
     let dt = D::new(test);
     let corners = &Corners(*sv);
     // The default depth comparison (known at compile time: no state) with
@@ -359,23 +351,23 @@ where
     spans!(setup, corners)
 }
 
-/// Whether [`shade`] sends a Gouraud triangle of one colour to the flat
+/// Whether [`fill`] sends a Gouraud triangle of one colour to the flat
 /// span loops: on the Cortex-M4F (the build script's
 /// `microraster_armv7em`), ARMv6-M (`microraster_narrow_multiply`) and
 /// the Cortex-M3 (`microraster_armv7m`), but not in builds optimised for
-/// size (`microraster_size`: the flat span loops are then not linked into
-/// a firmware that draws Gouraud triangles only, as the OLED firmware;
-/// the Pico firmware, built for speed, takes them: `rp2040_st7789` +2,224 B of flash),
-/// where the flat pairs' savings outweigh the test that every Gouraud pair makes in `demo`,
-/// though not in `rock`, whose lit faces are seldom of one colour (155 of
-/// 1,749 pairs, 3.5 % of its pixels, against 346 of 2,234 and 23 % in
-/// `demo`). With the path marked cold ([`crate::hint::cold`]): Cortex-M4F `demo` 3,076,001 ->
-/// 3,010,617 instructions, `rock` 2,552,827 -> 2,557,810; ARMv6-M `demo`
-/// 6,296,469 -> 6,177,055, `rock` 5,213,647 -> 5,220,805; Cortex-M3 (the
-/// test of [`one_colour`] in words) `demo` 3,119,285 -> 3,074,218, `rock`
-/// 2,555,304 -> 2,571,185. Not on 64-bit hosts (x86-64 `demo` 3,097,082
-/// -> 3,078,652, `rock` 2,564,079 -> 2,591,383).
-const ONE_COLOUR_FLAT: bool = cfg!(all(
+/// size (`microraster_size`), whose Gouraud-only firmwares (the OLED's)
+/// then link no flat span loop; a Gouraud-only firmware built for speed
+/// links one for it (`rp2040_st7789` +2,224 B of flash). `demo`: Cortex-M3
+/// 3,104,250 -> 3,091,328 instructions, Cortex-M4F 3,074,997 ->
+/// 3,061,846, ARMv6-M 6,282,412 -> 6,250,433; `rock` and `grid4` the same
+/// counts (their pairs take the tile loop's common path, which calls the
+/// span loop directly). The test at the top of [`shade`] instead, for
+/// every pair of every path, gave `demo` -45 K, -65 K and -119 K but cost
+/// `rock` +16 K, +5 K and +7 K and the M3's `grid4` +20 K: a test every
+/// pair makes costs more than it saves where few faces are of one colour.
+/// Not on 64-bit hosts (x86-64 `demo` 3,097,082 -> 3,078,652 but `rock`
+/// 2,564,079 -> 2,591,383, tested in `shade`).
+pub(super) const ONE_COLOUR_FLAT: bool = cfg!(all(
     not(microraster_size),
     any(
         microraster_armv7em,
