@@ -357,7 +357,7 @@ where
 /// the Cortex-M3 (`microraster_armv7m`), but not in builds optimised for
 /// size (`microraster_size`), whose Gouraud-only firmwares (the OLED's)
 /// then link no flat span loop; a Gouraud-only firmware built for speed
-/// links one for it (`rp2040_st7789` +2,224 B of flash). `demo`: Cortex-M3
+/// links one for it (`rp2040_st7789` +2,088 B of flash). `demo`: Cortex-M3
 /// 3,104,250 -> 3,091,328 instructions, Cortex-M4F 3,074,997 ->
 /// 3,061,846, ARMv6-M 6,282,412 -> 6,250,433; `rock` and `grid4` the same
 /// counts (their pairs take the tile loop's common path, which calls the
