@@ -192,22 +192,27 @@ mod tests {
         }
     }
 
+    /// A span's `[Q, B1, B2]` at its first pixel (`Q` small or negative
+    /// one time in five, `B1` and `B2` from -1 up to about `Q`), their
+    /// steps and its length: spans of the usual sizes and the edges.
+    fn random_span(next: &mut impl FnMut(u64) -> u64, n: u32) -> ([i32; 3], [i32; 3], usize) {
+        let len = 1 + next(64) as usize;
+        let bits = 1 + next(30);
+        let q = next(1 << bits) as i32 + if n % 5 == 0 { -2 } else { 1 };
+        let b1 = next(q.max(1) as u64 + 2) as i32 - 1;
+        let b2 = next((q.max(1) - b1.max(0)) as u64 + 2) as i32 - 1;
+        let mut g = || (next(1 << 16) as i32 - (1 << 15)) >> next(12);
+        ([q, b1, b2], [g(), g(), g()], len)
+    }
+
     /// Where `span_shift` allows a span, `shifted_weights` gives the bits
     /// of `weights` at each of its pixels; and it allows the usual spans.
-
     #[test]
     fn shifted_weights_match_where_allowed() {
         let mut next = crate::testing::rng();
         let mut allowed = 0;
         for n in 0..40_000 {
-            let len = 1 + next(64) as usize;
-            let bits = 1 + next(30);
-            let q = next(1 << bits) as i32 + if n % 5 == 0 { -2 } else { 1 };
-            let b1 = next(q.max(1) as u64 + 2) as i32 - 1;
-            let b2 = next((q.max(1) - b1.max(0)) as u64 + 2) as i32 - 1;
-            let g =
-                |next: &mut dyn FnMut(u64) -> u64| (next(1 << 16) as i32 - (1 << 15)) >> next(12);
-            let steps = [g(&mut next), g(&mut next), g(&mut next)];
+            let ([q, b1, b2], steps, len) = random_span(&mut next, n);
             let Some(sh) = span_shift([q, b1, b2], steps, len) else {
                 continue;
             };
@@ -234,14 +239,7 @@ mod tests {
         let mut next = crate::testing::rng();
         let mut convex = 0;
         for n in 0..40_000 {
-            let len = 1 + next(64) as usize;
-            let bits = 1 + next(30);
-            let q = next(1 << bits) as i32 + if n % 5 == 0 { -2 } else { 1 };
-            let b1 = next(q.max(1) as u64 + 2) as i32 - 1;
-            let b2 = next((q.max(1) - b1.max(0)) as u64 + 2) as i32 - 1;
-            let g =
-                |next: &mut dyn FnMut(u64) -> u64| (next(1 << 16) as i32 - (1 << 15)) >> next(12);
-            let steps = [g(&mut next), g(&mut next), g(&mut next)];
+            let ([q, b1, b2], steps, len) = random_span(&mut next, n);
             let Some((sh, true)) = span_shift_convex([q, b1, b2], steps, len) else {
                 continue;
             };
