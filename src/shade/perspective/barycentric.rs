@@ -46,26 +46,9 @@ pub(super) fn span_shift(planes: [i32; 3], steps: [i32; 3], len: usize) -> Optio
 /// fails the same tests that its overflow failed. `Q`'s bit lengths at
 /// both ends are compared as `q ^ qe < q & qe` (two positive numbers have
 /// the same highest bit exactly when their `and` is above their `xor`),
-/// and `0 <= B <= Q` as one unsigned comparison (`Q` positive). The same
-/// answer as `span_shift` (a unit test holds them together).
-#[cfg(test)]
-fn span_shift_wide(planes: [i32; 3], steps: [i32; 3], len: usize) -> Option<u32> {
-    let last = i32::try_from(len.saturating_sub(1)).ok()? as i64;
-    let [q, b1, b2] = planes.map(i64::from);
-    let [gq, g1, g2] = steps.map(i64::from);
-    let qe = q + gq * last;
-    if q < 1 || qe < 1 || qe > i32::MAX as i64 || (q ^ qe) >= (q & qe) {
-        return None;
-    }
-    let (b1e, b2e) = (b1 + g1 * last, b2 + g2 * last);
-    let within = |b: i64, q: i64| b as u64 <= q as u64;
-    (within(b1, q) && within(b2, q) && within(b1e, qe) && within(b2e, qe))
-        .then(|| (32 - (q as u32).leading_zeros()).saturating_sub(16))
-}
-
-/// [`span_shift`] in `i64` (as `span_shift_wide`, the tests' reference,
-/// takes it: the same answer), and whether `B1 + B2 <= Q` at both ends of
-/// the span (then at every pixel: the planes are linear along it). Where it
+/// and `0 <= B <= Q` as one unsigned comparison (`Q` positive): the same
+/// shift as `span_shift` (a unit test holds them together). With it,
+/// whether `B1 + B2 <= Q` at both ends of the span (then at every pixel: the planes are linear along it). Where it
 /// holds, the weights of [`shifted_weights`] (and [`flat_weights`]) sum to
 /// at most 2^16: `(B1 >> sh) + (B2 >> sh) <= Q >> sh = qn`, so the two
 /// products by `r = 2^31 / qn` sum to at most `qn · r <= 2^31`, and the
@@ -198,7 +181,7 @@ mod tests {
     fn random_span(next: &mut impl FnMut(u64) -> u64, n: u32) -> ([i32; 3], [i32; 3], usize) {
         let len = 1 + next(64) as usize;
         let bits = 1 + next(30);
-        let q = next(1 << bits) as i32 + if n % 5 == 0 { -2 } else { 1 };
+        let q = next(1 << bits) as i32 + if n.is_multiple_of(5) { -2 } else { 1 };
         let b1 = next(q.max(1) as u64 + 2) as i32 - 1;
         let b2 = next((q.max(1) - b1.max(0)) as u64 + 2) as i32 - 1;
         let mut g = || (next(1 << 16) as i32 - (1 << 15)) >> next(12);
@@ -256,10 +239,11 @@ mod tests {
         assert!(convex > 2_000, "{convex} convex spans");
     }
 
-    /// `span_shift_wide` decides as `span_shift`, ends that overflow `i32`
-    /// and every edge of its tests included.
+    /// `span_shift_convex` (in `i64`) decides as `span_shift` and
+    /// `span_shift_convex32` (in `i32`), ends that overflow `i32` and every
+    /// edge of their tests included.
     #[test]
-    fn span_shift_wide_matches() {
+    fn span_shift_in_i64_and_i32_match() {
         let mut next = crate::testing::rng();
         let mut allowed = 0;
         for n in 0..400_000 {
@@ -278,11 +262,10 @@ mod tests {
                 _ => (next(1 << 20) as i32 - (1 << 19)) >> next(12),
             };
             let steps = [g(&mut next), g(&mut next), g(&mut next)];
-            let wide = span_shift_wide(planes, steps, len);
+            let convex = span_shift_convex(planes, steps, len);
+            let wide = convex.map(|c| c.0);
             let narrow = span_shift(planes, steps, len);
             assert_eq!(wide, narrow, "{planes:?} {steps:?} {len}");
-            let convex = span_shift_convex(planes, steps, len);
-            assert_eq!(convex.map(|c| c.0), wide, "{planes:?} {steps:?} {len}");
             let convex32 = span_shift_convex32(planes, steps, len);
             assert_eq!(convex32, convex, "{planes:?} {steps:?} {len}");
             allowed += wide.is_some() as u32;

@@ -206,8 +206,8 @@ impl<C, V: Varyings> SpanInput<'_, C, V> {
         span_shift(self.planes, self.steps, self.color.len())
     }
 
-    /// [`opaque_shift`](Self::opaque_shift) in `i64` (`span_shift_wide`,
-    /// the same answer), on a 64-bit host only, where its sums and products
+    /// [`opaque_shift`](Self::opaque_shift) in `i64` (the same answer),
+    /// on a 64-bit host only, where its sums and products
     /// are single instructions and need no overflow checks: for a shader
     /// with varyings that interpolates the colour (`TexturedLit`). x86-64
     /// `demo-textured-lit` 6,915,378 -> 6,901,401 instructions,
