@@ -25,19 +25,8 @@ pub(crate) fn weights(q: i32, b1: i32, b2: i32) -> (i32, i32) {
 /// `planes` (`Q`, `B1`, `B2`) with `steps`.
 #[inline(always)]
 pub(super) fn span_shift(planes: [i32; 3], steps: [i32; 3], len: usize) -> Option<u32> {
-    // In `i32`, checked: a span whose ends overflow takes the other loop.
-    let last = i32::try_from(len.saturating_sub(1)).ok()?;
-    let end = |a: i32, g: i32| g.checked_mul(last).and_then(|d| a.checked_add(d));
-    let [q, b1, b2] = planes;
-    let [gq, g1, g2] = steps;
-    let qe = end(q, gq)?;
-    if q < 1 || qe < 1 || q.leading_zeros() != qe.leading_zeros() {
-        return None;
-    }
-    let (b1e, b2e) = (end(b1, g1)?, end(b2, g2)?);
-    let within = |b: i32, q: i32| 0 <= b && b <= q;
-    (within(b1, q) && within(b2, q) && within(b1e, qe) && within(b2e, qe))
-        .then(|| (32 - q.leading_zeros()).saturating_sub(16))
+    // The convex test's sums are dead code here, left out when inlined.
+    span_shift_convex32(planes, steps, len).map(|(sh, _)| sh)
 }
 
 /// [`span_shift`] in `i64`, on a 64-bit host where its products and sums
@@ -77,12 +66,12 @@ pub(super) fn span_shift_convex(
         .then(|| ((32 - (q as u32).leading_zeros()).saturating_sub(16), convex))
 }
 
-/// [`span_shift_convex`] in `i32`, with [`span_shift`]'s checked
-/// arithmetic, for cores without a 64-bit product (ARMv6-M), where the
-/// byte clamps that it saves take a compare and a branch each (no
-/// `USAT`). The sums of `B1 + B2 <= Q` are taken in `u32`, where two
-/// values of `0..2^31` cannot overflow.
-#[cfg_attr(not(microraster_narrow_multiply), allow(dead_code))]
+/// [`span_shift_convex`] in `i32`, checked (a span whose ends overflow
+/// takes the other loop), for 32-bit cores: [`span_shift`] is its shift,
+/// and cores without a 64-bit product (ARMv6-M), where the byte clamps
+/// that convex spans save take a compare and a branch each (no `USAT`),
+/// take its test too. The sums of `B1 + B2 <= Q` are taken in `u32`,
+/// where two values of `0..2^31` cannot overflow.
 #[inline(always)]
 pub(super) fn span_shift_convex32(
     planes: [i32; 3],
