@@ -51,6 +51,7 @@
 //! [`Shading::Gouraud`]: crate::scene::Shading::Gouraud
 
 mod builtin;
+mod interpolated;
 mod set;
 pub mod span;
 
