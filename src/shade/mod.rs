@@ -48,6 +48,7 @@ mod plane;
 mod setup;
 mod sliver;
 mod small;
+mod start;
 
 #[cfg(microraster_armv7m)]
 pub(crate) use convert::lit565_bits;
