@@ -228,9 +228,9 @@ mod tests {
         assert!(convex > 2_000, "{convex} convex spans");
     }
 
-    /// `span_shift_convex` (in `i64`) decides as `span_shift` and
-    /// `span_shift_convex32` (in `i32`), ends that overflow `i32` and every
-    /// edge of their tests included.
+    /// `span_shift_convex` (in `i64`) decides as `span_shift_convex32`
+    /// (in `i32`, checked; `span_shift` is its shift), ends that overflow
+    /// `i32` and every edge of their tests included.
     #[test]
     fn span_shift_in_i64_and_i32_match() {
         let mut next = crate::testing::rng();
@@ -252,12 +252,9 @@ mod tests {
             };
             let steps = [g(&mut next), g(&mut next), g(&mut next)];
             let convex = span_shift_convex(planes, steps, len);
-            let wide = convex.map(|c| c.0);
-            let narrow = span_shift(planes, steps, len);
-            assert_eq!(wide, narrow, "{planes:?} {steps:?} {len}");
             let convex32 = span_shift_convex32(planes, steps, len);
             assert_eq!(convex32, convex, "{planes:?} {steps:?} {len}");
-            allowed += wide.is_some() as u32;
+            allowed += convex.is_some() as u32;
         }
         assert!(allowed > 10_000, "{allowed} spans allowed");
     }
