@@ -358,7 +358,7 @@ where
 /// size (`microraster_size`), whose Gouraud-only firmwares (the OLED's)
 /// then link no flat span loop; a Gouraud-only firmware built for speed
 /// links one for it (`rp2040_st7789` +2,088 B of flash). `demo`: Cortex-M3
-/// 3,104,250 -> 3,091,328 instructions, Cortex-M4F 3,074,997 ->
+/// 3,104,250 -> 3,091,310 instructions, Cortex-M4F 3,074,997 ->
 /// 3,061,846, ARMv6-M 6,282,412 -> 6,250,433; `rock` and `grid4` the same
 /// counts (their pairs take the tile loop's common path, which calls the
 /// span loop directly). The test at the top of [`shade`] instead, for
@@ -376,25 +376,11 @@ pub(super) const ONE_COLOUR_FLAT: bool = cfg!(all(
     )
 ));
 
-/// Whether the three vertices `sv` have the same colour. On the
-/// Cortex-M3 the words that hold the channels compared whole, the other
-/// bits shifted out (`demo` 3,084,500 -> 3,074,218 instructions, `rock`
-/// 2,586,717 -> 2,571,185; on the Cortex-M4F, before the hint, `demo`
-/// 3,023,505 -> 3,026,189 and `rock` 2,567,590 -> 2,578,496).
+/// Whether the three vertices `sv` have the same colour. (The Cortex-M3's
+/// words compared whole, which paid where every pair made the test,
+/// measured 18 instructions a `demo` frame slower here.)
 #[inline(always)]
 fn one_colour(sv: &[&ScreenVertex; 3]) -> bool {
-    if cfg!(microraster_armv7m) {
-        // Red is the low byte of the word of y.
-        let red = |v: &ScreenVertex| v.xy_words().1 as u32;
-        let green_blue = |v: &ScreenVertex| {
-            let [_, g, b] = v.color();
-            u32::from(g) | u32::from(b) << 8
-        };
-        let (r, gb) = (red(sv[0]), green_blue(sv[0]));
-        let r = (r ^ red(sv[1])) | (r ^ red(sv[2]));
-        let gb = (gb ^ green_blue(sv[1])) | (gb ^ green_blue(sv[2]));
-        return r << 24 | gb << 8 == 0;
-    }
     let key = |v: &ScreenVertex| {
         let [r, g, b] = v.color();
         u32::from(r) | u32::from(g) << 8 | u32::from(b) << 16
