@@ -17,7 +17,8 @@
 //! and `terrain-whole` (the same terrain imported without clusters),
 //! `rock` (a 3,920-triangle mesh of small, uneven triangles) and
 //! `demo-textured-lit` (the demo frame through `TexturedLit`: the checker
-//! texture, nearest, times the Lambert-lit vertex colour).
+//! texture, nearest, times the Lambert-lit vertex colour) and
+//! `knot1k-textured-lit` (the same frame with a 1,024-triangle knot).
 //! `RASTERIZER` is `scanline` (default), `hilbert` or `auto`.
 //! Every frame of a run is identical; each is rendered by the function
 //! `count::frame`, so `valgrind --tool=callgrind
@@ -204,6 +205,10 @@ fn main() {
             scene: TexturedDemoScene::new(),
             ws: Box::default(),
         },
+        "knot1k-textured-lit" => Job::TexturedDemo {
+            scene: TexturedDemoScene::with_knot(64, 8),
+            ws: Box::default(),
+        },
         other if shaded(other).is_some() => {
             let (job, mode) = shaded(other).expect("just checked");
             perspective = mode;
@@ -213,7 +218,7 @@ fn main() {
             eprintln!(
                 "count: unknown scene {other:?} \
                  (demo, demo-flat, fill, tri4, tri32, tri100, tri1000, tri10000, euc, \
-                 fill-SHADER-MODE, terrain, terrain-whole, rock, demo-textured-lit)"
+                 fill-SHADER-MODE, terrain, terrain-whole, rock, demo-textured-lit, knot1k-textured-lit)"
             );
             std::process::exit(2);
         }

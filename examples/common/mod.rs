@@ -46,7 +46,13 @@ pub struct DemoAssets {
 
 impl DemoAssets {
     pub fn new() -> Self {
-        let (nv, nt) = torus_knot_size(KNOT_SEGMENTS, KNOT_SIDES);
+        Self::with_knot(KNOT_SEGMENTS, KNOT_SIDES)
+    }
+
+    /// The demo's knot with `segments` x `sides` quads (the demo's is
+    /// [`KNOT_SEGMENTS`] x [`KNOT_SIDES`]).
+    pub fn with_knot(segments: usize, sides: usize) -> Self {
+        let (nv, nt) = torus_knot_size(segments, sides);
         let mut p = vec![[I16F16::ZERO; 3]; nv];
         let mut n = vec![[I16F16::ZERO; 3]; nv];
         let mut t = vec![[0u16; 3]; nt];
@@ -55,8 +61,8 @@ impl DemoAssets {
             KNOT_Q,
             KNOT_RADIUS,
             KNOT_TUBE,
-            KNOT_SEGMENTS,
-            KNOT_SIDES,
+            segments,
+            sides,
             &mut p,
             &mut n,
             &mut t,
@@ -194,10 +200,16 @@ pub fn checker_texels(size: u32) -> Vec<u16> {
 
 /// Texture coordinates for the demo knot ([`demo_scene::knot_uv`]).
 pub fn knot_uvs(u_repeats: f32, v_repeats: f32) -> Vec<[I16F16; 2]> {
-    let mut out = Vec::with_capacity(KNOT_SEGMENTS * KNOT_SIDES);
-    for i in 0..KNOT_SEGMENTS {
-        for j in 0..KNOT_SIDES {
-            out.push(demo_scene::knot_uv(i, j, u_repeats, v_repeats));
+    knot_uvs_of((KNOT_SEGMENTS, KNOT_SIDES), u_repeats, v_repeats)
+}
+
+/// Texture coordinates for a knot of `(segments, sides)`
+/// ([`demo_scene::knot_uv_of`]).
+pub fn knot_uvs_of(knot: (usize, usize), u_repeats: f32, v_repeats: f32) -> Vec<[I16F16; 2]> {
+    let mut out = Vec::with_capacity(knot.0 * knot.1);
+    for i in 0..knot.0 {
+        for j in 0..knot.1 {
+            out.push(demo_scene::knot_uv_of(i, j, knot, u_repeats, v_repeats));
         }
     }
     out

@@ -38,14 +38,23 @@ pub const KNOT_UV_REPEATS: (f32, f32) = (6.0, 1.0);
 /// shows mirrored in each half. A `const fn`, so that a firmware holds
 /// them in flash, the same values as the host's.
 pub const fn knot_uv(i: usize, j: usize, u_repeats: f32, v_repeats: f32) -> [I16F16; 2] {
+    knot_uv_of(i, j, (KNOT_SEGMENTS, KNOT_SIDES), u_repeats, v_repeats)
+}
+
+/// [`knot_uv`] for a knot of `(segments, sides)` other than the demo's
+/// (the benchmarks' 1,024-triangle textured knot).
+pub const fn knot_uv_of(
+    i: usize,
+    j: usize,
+    (segments, sides): (usize, usize),
+    u_repeats: f32,
+    v_repeats: f32,
+) -> [I16F16; 2] {
     const fn tent(k: usize, n: usize, r: f32) -> I16F16 {
         let k = if k < n - k { k } else { n - k };
         fx(2.0 * (k as f32 / n as f32) * r)
     }
-    [
-        tent(i, KNOT_SEGMENTS, u_repeats),
-        tent(j, KNOT_SIDES, v_repeats),
-    ]
+    [tent(i, segments, u_repeats), tent(j, sides, v_repeats)]
 }
 
 /// The demo's textured and lit look at animation time `t`: [`draws`]

@@ -74,9 +74,19 @@ impl Default for TexturedDemoScene {
 impl TexturedDemoScene {
     /// Generates the knot and its texture coordinates, and the texture.
     pub fn new() -> Self {
-        let assets: &'static common::DemoAssets = Box::leak(Box::new(common::DemoAssets::new()));
+        Self::with_knot(common::KNOT_SEGMENTS, common::KNOT_SIDES)
+    }
+
+    /// The same frame with a knot of `segments` x `sides` quads: 64 x 8
+    /// gives `knot1k-textured-lit`, 1,024 triangles and the cube's 12, the
+    /// size of textured model the issue about textured pixels measures
+    /// (the demo's knot has 4,000).
+    pub fn with_knot(segments: usize, sides: usize) -> Self {
+        let assets: &'static common::DemoAssets =
+            Box::leak(Box::new(common::DemoAssets::with_knot(segments, sides)));
         let (u, v) = common::KNOT_UV_REPEATS;
-        let uvs: &'static [_] = Box::leak(common::knot_uvs(u, v).into_boxed_slice());
+        let uvs: &'static [_] =
+            Box::leak(common::knot_uvs_of((segments, sides), u, v).into_boxed_slice());
         Self {
             knot: assets
                 .knot()
