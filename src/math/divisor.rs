@@ -24,19 +24,29 @@ pub(crate) struct Reciprocal {
 
 #[cfg_attr(target_pointer_width = "64", allow(dead_code))]
 impl Reciprocal {
-    /// The reciprocal of `d`.
+    /// The reciprocal of `d`: the general attribute set-up's, by
+    /// [`max_div_long`] (the same as [`new_long`](Self::new_long)), whose
+    /// divisors (twice the area of a triangle too large for the small
+    /// set-up) are mostly above 2^16, where the reciprocal had been the
+    /// 64-bit division's library call (and four 16-bit digits below):
+    /// Cortex-M3 `fill`, whose quads all take the general set-up,
+    /// 8,989,693 -> 8,854,413 instructions (14.63 -> 14.41 a pixel);
+    /// `demo` 3,091,310 -> 3,091,525, `rock` 2,549,064 -> 2,549,075,
+    /// `grid4` the same; Cortex-M4F `demo` 3,061,846 -> 3,061,859, `rock`
+    /// +1; ARMv6-M (three library divisions below 2^16 where there were
+    /// four) `demo` 6,250,433 -> 6,250,375, `rock` -2. The perspective
+    /// set-up shares it: the M3's `demo-textured-lit` 7,190,948 ->
+    /// 7,178,882, its shader fills 0.15 to 0.23 a fragment fewer. The
+    /// OLED firmware +96 B (43,384 B).
     #[inline(always)]
     pub(crate) fn new(d: NonZeroU64) -> Self {
-        Self {
-            d: d.get(),
-            r: max_div(d),
-        }
+        Self::new_long(d)
     }
 
-    /// The reciprocal of `d`, the same as [`new`](Self::new), with the
-    /// 64-bit division of divisors from 2^16 up done by long division in
-    /// 32-bit steps ([`max_div_long`]): for the vertex stage's `w`, mostly
-    /// of 2^16 to 2^22.
+    /// The reciprocal of `d`, with the 64-bit division of divisors from
+    /// 2^16 up done by long division in 32-bit steps ([`max_div_long`]):
+    /// for the vertex stage's `w`, mostly of 2^16 to 2^22, and the
+    /// attribute set-up's twice the area ([`new`](Self::new)).
     #[inline(always)]
     pub(crate) fn new_long(d: NonZeroU64) -> Self {
         Self {
@@ -70,35 +80,9 @@ impl Reciprocal {
     }
 }
 
-/// `floor((2^64 - 1) / d)`. A divisor below 2^16 (twice the area of a
-/// triangle under 128 pixels: most triangles of a mesh) takes four 32-bit
-/// divisions, one per 16-bit digit of `2^64 - 1` (a single instruction
-/// each on a Cortex-M3/M4), rather than the 64-bit division's library call,
-/// which costs over a hundred instructions there. The quotient is the same.
-#[inline(always)]
-#[cfg_attr(target_pointer_width = "64", allow(dead_code))]
-pub(crate) fn max_div(d: NonZeroU64) -> u64 {
-    match u16::try_from(d.get()) {
-        Ok(small) => {
-            // `small` is d, not zero.
-            let d = core::num::NonZeroU32::new(small as u32).unwrap_or(core::num::NonZeroU32::MIN);
-            let (mut q, mut rem) = (0u64, 0u32);
-            for _ in 0..4 {
-                // rem < d < 2^16, so the partial dividend fits u32 and
-                // its quotient is one 16-bit digit.
-                let part = (rem << 16) | 0xffff;
-                let digit = part / d;
-                rem = part - digit * d.get();
-                q = (q << 16) | digit as u64;
-            }
-            q
-        }
-        Err(_) => u64::MAX / d,
-    }
-}
-
-/// [`max_div`] by long division in 32-bit steps where the 64-bit division
-/// is a library call (about 190 instructions on a Cortex-M3): the upper
+/// `floor((2^64 - 1) / d)` by long division in 32-bit steps where the
+/// 64-bit division is a library call (about 190 instructions on a
+/// Cortex-M3): the upper
 /// word of the quotient is `floor((2^32 - 1) / d)`, the lower one comes
 /// from its remainder in digits of `k` bits, `k` the leading zeros of `d`
 /// (so every partial dividend `rem 2^k + (2^k - 1)`, with `rem < d`, fits
@@ -394,10 +378,9 @@ mod tests {
     use super::*;
 
     #[test]
-    fn max_div_is_the_64_bit_quotient() {
+    fn max_div_long_is_the_64_bit_quotient() {
         for d in (1u64..=70_000).chain([u32::MAX as u64, 1 << 40, u64::MAX]) {
             let nz = NonZeroU64::new(d).unwrap();
-            assert_eq!(max_div(nz), u64::MAX / d, "{d}");
             assert_eq!(max_div_long(nz), u64::MAX / d, "{d}");
         }
         // Every digit width, around each power of two, and at random.
