@@ -579,9 +579,24 @@ const STORE_AFTER: bool = cfg!(any(microraster_armv7em, microraster_armv7m));
 /// now keeps the address in a register across the pair, and reloads a
 /// second step from the stack instead: one instruction fewer a written
 /// pixel (the Cortex-M4F's `demo` 3,158,058 -> 3,154,971 instructions).
-/// The interior loop, which keeps the address already, and the Cortex-M3,
-/// whose loops keep it too, read the table at its constant address.
-pub(crate) const OPAQUE_TABLE: bool = cfg!(microraster_armv7em);
+/// On the Cortex-M3 (`microraster_armv7m`) too, since its Gouraud loop
+/// stores after the depth test's paths meet (`STORE_AFTER`,
+/// `COUNT_AFTER`): `demo` 3,082,151 -> 3,078,465 instructions, `rock`
+/// and `grid4` the same; not in builds optimised for size (the build
+/// script's `microraster_size`: the OLED firmware 43,304 -> 44,020 B).
+/// The interior loop, which keeps the address already, reads the table
+/// at its constant address.
+pub(crate) const OPAQUE_TABLE: bool = cfg!(any(
+    microraster_armv7em,
+    all(microraster_armv7m, not(microraster_size))
+));
+
+/// Whether the table's address is made opaque ([`OPAQUE_TABLE`]) for the
+/// flat span loops too, which never read it: on ARMv7E-M, whose flat loop
+/// the `black_box` left better (the Cortex-M4F's `fill` 14.62 per pixel,
+/// 14.70 without it); not on the Cortex-M3 (`fill` 8,989,683 ->
+/// 8,990,443 instructions with it).
+pub(crate) const OPAQUE_FLAT: bool = cfg!(microraster_armv7em);
 
 #[cfg(test)]
 mod tests {
