@@ -7,7 +7,7 @@ use crate::raster::{hilbert, PixelRect, Rasterizer, Span, SubPoint};
 use crate::shade::perspective::{Output, PerspectiveSetup, ShaderTriangle};
 use crate::shade::{
     span_flat, span_gouraud, Corners, DepthFn, DepthTest, SpanPos, To565, TriangleSetup,
-    NEGATED_OX, OFFSET_SETUP, OPAQUE_TABLE, SMALL_INLINE, SPLIT_INTERIOR,
+    NEGATED_OX, OFFSET_SETUP, OPAQUE_FLAT, OPAQUE_TABLE, SMALL_INLINE, SPLIT_INTERIOR,
 };
 use crate::shader::{FragmentShader, Perspective, ShaderSet, TriangleSpans};
 use crate::texture::Texture;
@@ -306,7 +306,7 @@ where
                     },
                 );
             }
-            let table = if OPAQUE_TABLE {
+            let table = if OPAQUE_TABLE && (GOURAUD || OPAQUE_FLAT) {
                 To565::opaque()
             } else {
                 To565::fixed()

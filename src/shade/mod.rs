@@ -490,8 +490,12 @@ fn gouraud_loop<C: Copy + From<Rgb888> + 'static, D: DepthFn, const WRITE: bool>
         return n;
     }
     let (color, depth) = (&mut color[a0..a1], &mut depth[a0..a1]);
-    // Every fragment counted as written; those that fail are taken off.
-    n += color.len() as u32;
+    // Every fragment counted as written; those that fail are taken off
+    // (wrapping: where `COUNT_AFTER`, before the span's own are added).
+    let len = color.len() as u32;
+    if !COUNT_AFTER {
+        n += len;
+    }
     for (c, d) in color.iter_mut().zip(depth.iter_mut()) {
         // Not unrolled (see above): no instruction, no value.
         core::hint::black_box(());
@@ -504,7 +508,7 @@ fn gouraud_loop<C: Copy + From<Rgb888> + 'static, D: DepthFn, const WRITE: bool>
                 rgb16_green_up(table, r, g, b)
             } else {
                 crate::hint::cold();
-                n -= 1;
+                n = n.wrapping_sub(1);
                 // Stored back as it was (see `STORE_AFTER`).
                 *c
             };
@@ -528,27 +532,43 @@ fn gouraud_loop<C: Copy + From<Rgb888> + 'static, D: DepthFn, const WRITE: bool>
             if !TOP {
                 crate::hint::cold();
             }
-            n -= 1;
+            n = n.wrapping_sub(1);
         }
         z = z.wrapping_add(gz);
         r = r.wrapping_add(gr);
         g = g.wrapping_add(gg);
         b = b.wrapping_add(gb);
     }
-    n
+    if COUNT_AFTER {
+        n.wrapping_add(len)
+    } else {
+        n
+    }
 }
+
+/// Whether [`gouraud_loop`] adds a span's fragments to the count after
+/// its pixels rather than before (those that fail are taken off in the
+/// loop either way, so the sum is the same): on the Cortex-M3 (the build
+/// script's `microraster_armv7m`), with [`STORE_AFTER`]. There the count,
+/// held in a stack slot, is then read and written once a span after the
+/// loop rather than before it, and the span start's registers come out
+/// better: `demo` 3,091,310 -> 3,082,151 instructions with `STORE_AFTER`
+/// (3,135,395 without it). Not on the Cortex-M4F (`demo` 3,061,846 ->
+/// 3,080,948) nor ARMv6-M (6,250,433 -> 6,282,373).
+const COUNT_AFTER: bool = cfg!(microraster_armv7m);
 
 /// Whether [`gouraud_loop`] stores the colour after the depth test's two
 /// paths meet, a fragment that fails storing back the colour it read
-/// (ARMv7E-M, the build script's `microraster_armv7em`): the store is
-/// then in the block that steps the pointer, and folds that step in (a
-/// post-indexed `STRH`), one instruction fewer a written pixel in both
-/// Gouraud loops (the Cortex-M4F's `demo` 3,146,311 -> 3,141,501
-/// instructions, `rock` 2,610,488 -> 2,604,224), for a load on the rare
-/// path of a fragment that fails. Not on the Cortex-M3, whose loops
-/// shrink the same but whose `demo` measured 3,184,820 -> 3,185,229, nor
-/// on ARMv6-M, which has no post-indexed store.
-const STORE_AFTER: bool = cfg!(microraster_armv7em);
+/// (ARMv7E-M and the Cortex-M3, the build script's `microraster_armv7em`
+/// and `microraster_armv7m`): the store is then in the block that steps
+/// the pointer, and folds that step in (a post-indexed `STRH`), one
+/// instruction fewer a written pixel in both Gouraud loops (the
+/// Cortex-M4F's `demo` 3,146,311 -> 3,141,501 instructions, `rock`
+/// 2,610,488 -> 2,604,224), for a load on the rare path of a fragment
+/// that fails. On the Cortex-M3 only with [`COUNT_AFTER`]: alone its
+/// span starts took three instructions more (`demo` 3,091,310 ->
+/// 3,092,626). Not on ARMv6-M, which has no post-indexed store.
+const STORE_AFTER: bool = cfg!(any(microraster_armv7em, microraster_armv7m));
 
 /// Whether the Gouraud loop of a triangle that is not
 /// [`interior`](TriangleSetup::interior) reads the colour table through
@@ -559,9 +579,24 @@ const STORE_AFTER: bool = cfg!(microraster_armv7em);
 /// now keeps the address in a register across the pair, and reloads a
 /// second step from the stack instead: one instruction fewer a written
 /// pixel (the Cortex-M4F's `demo` 3,158,058 -> 3,154,971 instructions).
-/// The interior loop, which keeps the address already, and the Cortex-M3,
-/// whose loops keep it too, read the table at its constant address.
-pub(crate) const OPAQUE_TABLE: bool = cfg!(microraster_armv7em);
+/// On the Cortex-M3 (`microraster_armv7m`) too, since its Gouraud loop
+/// stores after the depth test's paths meet (`STORE_AFTER`,
+/// `COUNT_AFTER`): `demo` 3,082,151 -> 3,078,465 instructions, `rock`
+/// and `grid4` the same; not in builds optimised for size (the build
+/// script's `microraster_size`: the OLED firmware 43,304 -> 44,020 B).
+/// The interior loop, which keeps the address already, reads the table
+/// at its constant address.
+pub(crate) const OPAQUE_TABLE: bool = cfg!(any(
+    microraster_armv7em,
+    all(microraster_armv7m, not(microraster_size))
+));
+
+/// Whether the table's address is made opaque ([`OPAQUE_TABLE`]) for the
+/// flat span loops too, which never read it: on ARMv7E-M, whose flat loop
+/// the `black_box` left better (the Cortex-M4F's `fill` 14.62 per pixel,
+/// 14.70 without it); not on the Cortex-M3 (`fill` 8,989,683 ->
+/// 8,990,443 instructions with it).
+pub(crate) const OPAQUE_FLAT: bool = cfg!(microraster_armv7em);
 
 #[cfg(test)]
 mod tests {
