@@ -385,7 +385,39 @@ impl Viewport {
         fast: bool,
         color: impl FnOnce() -> ([u8; 3], bool),
     ) -> ScreenVertex {
-        let (outcode, p, z) = if LONG_DIVISION || WIDE_DIVISION {
+        let (outcode, p, z) = self.project_any(pos, fast);
+        // Within the coordinate fields: `p` is 0 for a vertex that must be
+        // clipped, otherwise inside the guard band (`|x|, |y| <= K w`), so
+        // within `(K + 1) * 2^15 < 2^18` sub-pixels.
+        let (color, inside) = color();
+        match CHANNELS {
+            true => ScreenVertex::new(p.x, p.y, z as u16, outcode, color),
+            false => ScreenVertex::new_tested(p.x, p.y, z, outcode, color, inside),
+        }
+    }
+
+    /// [`screen_vertex_lit`](Self::screen_vertex_lit) (without
+    /// `CHANNELS`) of a vertex whose colour `word` gives as a
+    /// [`color_word`](super::screen::color_word): the vertex stage's
+    /// Lambert loops.
+    #[inline(always)]
+    pub(crate) fn screen_vertex_word(
+        &self,
+        pos: &[i32; 4],
+        fast: bool,
+        word: impl FnOnce() -> u32,
+    ) -> ScreenVertex {
+        let (outcode, p, z) = self.project_any(pos, fast);
+        ScreenVertex::with_color_word(p.x, p.y, z, outcode, word())
+    }
+
+    /// The outcode and projection of [`screen_vertex_lit`](Self::screen_vertex_lit):
+    /// with `fast`, a vertex inside the view volume inline (where a
+    /// division is an instruction, or by `w`'s [`Recip16`] on ARMv6-M) and
+    /// any other out of line; without, every vertex inline.
+    #[inline(always)]
+    fn project_any(&self, pos: &[i32; 4], fast: bool) -> (u8, SubPoint, u32) {
+        if LONG_DIVISION || WIDE_DIVISION {
             match fast.then(|| self.project_fast_any(pos)).flatten() {
                 Some((p, z)) => (0, p, z),
                 None => self.project_rest(pos[0], pos[1], pos[2], pos[3]),
@@ -398,14 +430,6 @@ impl Viewport {
             }
         } else {
             self.outcode_and_project(pos)
-        };
-        // Within the coordinate fields: `p` is 0 for a vertex that must be
-        // clipped, otherwise inside the guard band (`|x|, |y| <= K w`), so
-        // within `(K + 1) * 2^15 < 2^18` sub-pixels.
-        let (color, inside) = color();
-        match CHANNELS {
-            true => ScreenVertex::new(p.x, p.y, z as u16, outcode, color),
-            false => ScreenVertex::new_tested(p.x, p.y, z, outcode, color, inside),
         }
     }
 
