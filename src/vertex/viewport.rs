@@ -40,6 +40,14 @@ pub struct Viewport {
     /// unsigned compare of `w - 2^15` with this.
     #[cfg(any(test, microraster_narrow_multiply))]
     fast_w: u32,
+    /// Zero, through `black_box`: [`Viewport::project_fast_wide`] divides
+    /// by `2w ^ hash`, which LLVM takes for a hash and so does not guard
+    /// with its test of whether the dividend and the divisor fit 32 bits
+    /// (x86-64: an `or`, a shift and a branch a division, and the
+    /// shorter `div`'s moves; `math::divisor`'s `Hardware` does the
+    /// same). On 64-bit targets only, where that division is.
+    #[cfg(target_pointer_width = "64")]
+    hash: u64,
 }
 
 impl Viewport {
@@ -64,6 +72,8 @@ impl Viewport {
             one_w,
             #[cfg(any(test, microraster_narrow_multiply))]
             fast_w: (one_w + 1).saturating_sub(1 << 15),
+            #[cfg(target_pointer_width = "64")]
+            hash: core::hint::black_box(0),
         }
     }
 
@@ -336,6 +346,16 @@ impl Viewport {
         Some((SubPoint::new(x, y), depth_recip(&f, p[2], wu)))
     }
 
+    /// `hash` (0, where the field is not kept: `project_fast_wide`
+    /// unused).
+    #[inline(always)]
+    fn hash(&self) -> u64 {
+        #[cfg(target_pointer_width = "64")]
+        return self.hash;
+        #[cfg(not(target_pointer_width = "64"))]
+        0
+    }
+
     /// `fast_w` (0 where the field is not kept: `project_recip_fast`
     /// unused).
     #[inline(always)]
@@ -529,8 +549,10 @@ impl Viewport {
         if w < W_MIN {
             return None;
         }
-        // At least 2 W_MIN: not zero (the compiler does not see it).
-        let w2n = NonZeroU64::new((w as u64) << 1)?;
+        // At least 2 W_MIN: not zero (the compiler does not see it). The
+        // `xor` with zero keeps LLVM's 32-bit test off the three
+        // divisions (see `hash`).
+        let w2n = NonZeroU64::new(((w as u64) << 1) ^ self.hash())?;
         let w2 = w2n.get();
         // `v + w`, in `0..=2w` inside the view volume (a negative one
         // wraps above it).
