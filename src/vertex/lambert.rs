@@ -4,6 +4,7 @@
 //! long multiply, [`NarrowRows`] on ARMv6-M, both read through an opaque
 //! reference so that the loop loads each where it uses it.
 
+use super::screen::color_word;
 use crate::math::FixedMat4;
 use crate::mesh::Vec3Fx;
 
@@ -272,14 +273,23 @@ pub(super) const LOOP_CONSTANTS: bool = cfg!(all(
 /// constants made once per draw. One implementation per way of computing
 /// them: [`LoopConstants`] on 32-bit cores with a long multiply,
 /// [`NarrowRows`] with its light on ARMv6-M, the bounded matrix with its
-/// light and colour on 64-bit hosts.
+/// light and colour on 64-bit hosts; and [`ColorTable`] over any of them.
 pub(super) trait LitWork {
     /// The clip coordinates of the position `p` (16.16 bits).
     fn transform(&self, p: [i32; 3]) -> [i32; 4];
-    /// The Lambert colour of the vertex with normal `n`, and whether it
-    /// may carry the interior bit: n·l within the draw's
+    /// n·l of the normal `n` in 1/256 steps, clamped to `0..=256`
+    /// ([`Lambert::ndotl`]'s).
+    fn ndotl(&self, n: Vec3Fx) -> u32;
+    /// The Lambert colour for n·l `ndotl` (`0..=256`) as a
+    /// [`color_word`](super::screen::color_word), with the colour's half
+    /// of the interior bit: n·l within the draw's
     /// [`interior_ndotl`](Lambert::interior_ndotl).
-    fn shade(&self, n: Vec3Fx) -> ([u8; 3], bool);
+    fn word(&self, ndotl: u32) -> u32;
+    /// [`word`](Self::word) of the normal `n`'s n·l.
+    #[inline(always)]
+    fn shade(&self, n: Vec3Fx) -> u32 {
+        self.word(self.ndotl(n))
+    }
 }
 
 impl LitWork for (&NarrowRows, &Lambert) {
@@ -289,8 +299,13 @@ impl LitWork for (&NarrowRows, &Lambert) {
     }
 
     #[inline(always)]
-    fn shade(&self, n: Vec3Fx) -> ([u8; 3], bool) {
-        self.0.shade(self.1, n)
+    fn ndotl(&self, n: Vec3Fx) -> u32 {
+        self.0.ndotl(self.1, n)
+    }
+
+    #[inline(always)]
+    fn word(&self, ndotl: u32) -> u32 {
+        self.0.word(ndotl)
     }
 }
 
@@ -301,11 +316,65 @@ impl LitWork for (&FixedMat4, &Lambert, [u8; 3], [u32; 2]) {
     }
 
     #[inline(always)]
-    fn shade(&self, n: Vec3Fx) -> ([u8; 3], bool) {
-        let ndotl = self.1.ndotl(n);
-        (self.1.shade_ndotl(ndotl, self.2), within(ndotl, self.3))
+    fn ndotl(&self, n: Vec3Fx) -> u32 {
+        self.1.ndotl(n)
+    }
+
+    #[inline(always)]
+    fn word(&self, ndotl: u32) -> u32 {
+        let color = self.1.shade_ndotl(ndotl, self.2);
+        color_word(color, within(ndotl, self.3))
     }
 }
+
+/// A draw's Lambert colour words ([`LitWork::word`]) for every n·l,
+/// `0..=256`, made once per run of vertices, over the loop's own
+/// [`LitWork`] `k` (whose transform and n·l it keeps): per vertex the
+/// colour is then one load by n·l, where it took three channels'
+/// multiply-adds and quotients by 65,280, their packing and the interval
+/// test of the interior bit. Only for runs of at least [`TABLE_MIN`]
+/// vertices, which pay for the table's 257 words; 1,028 bytes of stack,
+/// within the vertex stage's draw set-up's depth.
+pub(super) struct ColorTable<'k, K> {
+    k: &'k K,
+    words: &'k [u32; 257],
+}
+
+impl<'k, K: LitWork> ColorTable<'k, K> {
+    /// The table of `k`'s colours, written into the caller's `words`
+    /// (built and returned by value, the table took a second copy of
+    /// itself on the stack, ARMv6-M's frame 2.4 KB).
+    #[inline(always)]
+    pub(super) fn new(k: &'k K, words: &'k mut [u32; 257]) -> Self {
+        for (n, w) in words.iter_mut().enumerate() {
+            *w = k.word(n as u32);
+        }
+        Self { k, words }
+    }
+}
+
+impl<K: LitWork> LitWork for ColorTable<'_, K> {
+    #[inline(always)]
+    fn transform(&self, p: [i32; 3]) -> [i32; 4] {
+        self.k.transform(p)
+    }
+
+    #[inline(always)]
+    fn ndotl(&self, n: Vec3Fx) -> u32 {
+        self.k.ndotl(n)
+    }
+
+    #[inline(always)]
+    fn word(&self, ndotl: u32) -> u32 {
+        // n·l is at most 256 (the compiler sees the clamp: no check).
+        self.words[ndotl as usize]
+    }
+}
+
+/// The shortest run of vertices that a [`ColorTable`] is made for: its
+/// 257 words cost about as much as the colours of 257 vertices and a
+/// little more (each a store besides).
+pub(super) const TABLE_MIN: usize = 320;
 
 /// The per-draw constants of the vertex stage's common loop (a bounded
 /// matrix, the Lambert fast path, no vertex colours), laid out in the
@@ -383,20 +452,25 @@ impl LitWork for LoopConstants {
         out
     }
 
-    /// [`Lambert::shade`] of normal `n` on the draw's colour: the same
-    /// colour.
+    /// [`Lambert::ndotl`] of normal `n`: the same n·l.
     #[inline(always)]
-    fn shade(&self, n: Vec3Fx) -> ([u8; 3], bool) {
+    fn ndotl(&self, n: Vec3Fx) -> u32 {
         use crate::math::mul_wide;
         let d = mul_wide(n[0].to_bits(), self.dir[0])
             + mul_wide(n[1].to_bits(), self.dir[1])
             + mul_wide(n[2].to_bits(), self.dir[2]);
-        let ndotl = clamp_ndotl_words(d);
+        clamp_ndotl_words(d)
+    }
+
+    /// [`Lambert::shade_ndotl`] of `ndotl` on the draw's colour: the same
+    /// colour.
+    #[inline(always)]
+    fn word(&self, ndotl: u32) -> u32 {
         let mut out = [0u8; 3];
         for (o, &[a, c]) in out.iter_mut().zip(&self.channels) {
             *o = div65280_sat_by(a + c * ndotl, self.magic);
         }
-        (out, within_any(ndotl, &self.inside))
+        color_word(out, within_any(ndotl, &self.inside))
     }
 }
 
@@ -525,21 +599,28 @@ impl NarrowRows {
         out
     }
 
-    /// [`Lambert::shade`] of normal `n` on the draw's colour, `l` the
-    /// light this was made with: the same colour.
+    /// [`Lambert::ndotl`] of normal `n`, `l` the light this was made
+    /// with: the same n·l.
     #[inline(always)]
-    pub(super) fn shade(&self, l: &Lambert, n: Vec3Fx) -> ([u8; 3], bool) {
+    pub(super) fn ndotl(&self, l: &Lambert, n: Vec3Fx) -> u32 {
         let n = [n[0].to_bits(), n[1].to_bits(), n[2].to_bits()];
-        let ndotl = match split_normal(n) {
+        match split_normal(n) {
             true => ndotl_split(n, &self.dir),
             false => l.ndotl_wide(n),
-        };
+        }
+    }
+
+    /// [`Lambert::shade_ndotl`] of `ndotl` on the draw's colour: the same
+    /// colour, as a [`color_word`] with the colour's half of the interior
+    /// bit.
+    #[inline(always)]
+    pub(super) fn word(&self, ndotl: u32) -> u32 {
         let mut out = [0u8; 3];
         for (o, &[a, c]) in out.iter_mut().zip(&self.channels) {
             // Lambert::shade's division on cores without a multiply-high.
             *o = div65280_narrow(a + c * ndotl);
         }
-        (out, within(ndotl, self.inside))
+        color_word(out, within(ndotl, self.inside))
     }
 }
 
@@ -810,14 +891,17 @@ mod tests {
                 let inside = crate::vertex::screen::channels_interior(general);
                 let zero = FixedMat4 { m: [[0; 4]; 4] };
                 for gouraud in [false, true] {
-                    let want = (general, gouraud && inside);
+                    let want = color_word(general, gouraud && inside);
                     let k = LoopConstants::new(&zero, &fast, base, gouraud);
                     assert_eq!(k.shade(n), want, "{n:?} {base:?}");
                     let k = NarrowRows::new(&zero, &fast, base, gouraud);
-                    assert_eq!(k.shade(&fast, n), want, "{n:?} {base:?}");
+                    assert_eq!((&k, &fast).shade(n), want, "{n:?} {base:?}");
                     let b = fast.interior_ndotl(base, gouraud);
                     let k = (&zero, &fast, base, b);
                     assert_eq!(k.shade(n), want, "{n:?} {base:?}");
+                    let mut words = [0; 257];
+                    let t = ColorTable::new(&k, &mut words);
+                    assert_eq!(t.shade(n), want, "{n:?} {base:?}");
                 }
             }
         }

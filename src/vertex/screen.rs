@@ -113,6 +113,16 @@ pub(crate) const fn channels_interior(c: [u8; 3]) -> bool {
     (c[0].wrapping_sub(1) <= 253) & (c[1].wrapping_sub(1) <= 253) & (c[2].wrapping_sub(1) <= 253)
 }
 
+/// A lit colour and whether it may carry the [`interior`](ScreenVertex::interior)
+/// bit as far as the colour goes (`inside`), as one word laid out for
+/// [`ScreenVertex::with_color_word`]: red in bits 0..8, `inside` in bit 8
+/// (where the word of y and red keeps the bit), green in bits 16..24 and
+/// blue in 24..32 (the word of depth, green and blue, shifted down by 16).
+#[inline(always)]
+pub(crate) const fn color_word(color: [u8; 3], inside: bool) -> u32 {
+    color[0] as u32 | (inside as u32) << 8 | (color[1] as u32) << 16 | (color[2] as u32) << 24
+}
+
 impl ScreenVertex {
     /// A vertex at `(x, y)` sub-pixels, depth `z`, with outcode `outcode`
     /// and lit colour `color`, for the vertex stage and the clipper, whose
@@ -148,7 +158,7 @@ impl ScreenVertex {
 
     /// The word of x and the outcode of a vertex with outcode 0, written
     /// alone: ARMv6-M's vertex loop stores it before the colour, so that
-    /// x is not held across it; [`set_lit`](Self::set_lit) then writes
+    /// x is not held across it; [`set_lit_word`](Self::set_lit_word) then writes
     /// the rest, as [`new_tested`](Self::new_tested) would.
     #[inline(always)]
     pub(crate) fn set_x(&mut self, x: i32) {
@@ -156,11 +166,35 @@ impl ScreenVertex {
         self.xo = (x as u32) << 8;
     }
 
-    /// The words of y, depth and the colour of
-    /// [`new_tested`](Self::new_tested), after [`set_x`](Self::set_x).
+    /// [`ScreenVertex::new_tested`] of a vertex whose colour and its
+    /// half of the [`interior`](Self::interior) bit come as one
+    /// [`color_word`]: the vertex stage's Lambert loops, which look the
+    /// word up in a table of the draw's colours by n·l
+    /// (`vertex::lambert`'s `ColorTable`), so that per vertex the colour
+    /// is one load, one mask and one shift into the two words it shares
+    /// with y and depth. The depth is tested here, as in `new_tested`.
     #[inline(always)]
-    pub(crate) fn set_lit(&mut self, y: i32, z: u32, color: [u8; 3], color_inside: bool) {
-        let v = Self::new_tested(0, y, z, 0, color, color_inside);
+    pub(crate) const fn with_color_word(x: i32, y: i32, z: u32, outcode: u8, word: u32) -> Self {
+        debug_assert!(
+            COORD_MIN <= x && x <= COORD_MAX && COORD_MIN <= y && y <= COORD_MAX,
+            "screen vertex outside the coordinate fields"
+        );
+        debug_assert!(z <= 65_535, "screen vertex depth beyond 16 bits");
+        // Red, and the colour's half of the bit where the depth's holds.
+        let keep = 0xff | (depth_interior(z) as u32) << 8;
+        Self {
+            xo: (x as u32) << 8 | outcode as u32,
+            yr: (y as u32) << 9 | (word & keep),
+            gbz: z << 16 | word >> 16,
+        }
+    }
+
+    /// The words of y, depth and the colour of
+    /// [`with_color_word`](Self::with_color_word), after
+    /// [`set_x`](Self::set_x).
+    #[inline(always)]
+    pub(crate) fn set_lit_word(&mut self, y: i32, z: u32, word: u32) {
+        let v = Self::with_color_word(0, y, z, 0, word);
         self.yr = v.yr;
         self.gbz = v.gbz;
     }
@@ -367,6 +401,18 @@ mod tests {
             }
             assert_eq!(w.outcode(), o);
             assert_eq!(clipped.outcode(), 0);
+            // The Lambert loops' colour word packs as `new_tested`.
+            for inside in [false, true] {
+                let word = color_word(c, inside);
+                let want = ScreenVertex::new_tested(x, y, z as u32, o, c, inside);
+                let v = ScreenVertex::with_color_word(x, y, z as u32, o, word);
+                assert_eq!(v, want, "{x} {y} {z} {o} {c:?} {inside}");
+                let mut s = ScreenVertex::default();
+                s.set_x(x);
+                s.set_lit_word(y, z as u32, word);
+                let want = ScreenVertex::new_tested(x, y, z as u32, 0, c, inside);
+                assert_eq!(s, want, "{x} {y} {z} {c:?} {inside}");
+            }
         };
         for i in (0..1u32 << COORD_BITS).step_by(97) {
             let x = COORD_MIN + i as i32;

@@ -5,7 +5,9 @@
 //! [`LightSetup`]), and per vertex the clip-space position and lit colour
 //! ([`DrawSetup::clip_vertex`]).
 
-use super::lambert::{Lambert, LitWork, LoopConstants, NarrowRows, LOOP_CONSTANTS};
+use super::lambert::{
+    ColorTable, Lambert, LitWork, LoopConstants, NarrowRows, LOOP_CONSTANTS, TABLE_MIN,
+};
 use super::{ClipVertex, ScreenVertex, Viewport};
 use crate::light::{LightSetup, Lighting, Material};
 use crate::math::{FixedMat4, Mat4, Vec3};
@@ -431,11 +433,24 @@ fn lit_loop(
     k: &impl LitWork,
     gouraud: bool,
 ) {
+    // A long run's colours from a table of the draw's colours by n·l,
+    // whose words hold the interior bit as the draw has it (none unless
+    // Gouraud shaded): one copy of the loop for every draw.
+    if COLOR_TABLES && out.len() >= TABLE_MIN {
+        let mut words = [0; 257];
+        let table = ColorTable::new(k, &mut words);
+        return lit_loop_one::<true>(out, positions, normals, viewport, &table);
+    }
     match (DUPLICATE, gouraud) {
         (true, false) => lit_loop_one::<false>(out, positions, normals, viewport, k),
         _ => lit_loop_one::<true>(out, positions, normals, viewport, k),
     }
 }
+
+/// Whether [`lit_loop`] looks a long run's colours up in a
+/// [`ColorTable`]: everywhere but in builds optimised for size (a second
+/// copy of the loop).
+const COLOR_TABLES: bool = !cfg!(microraster_size);
 
 /// Whether [`lit_loop`] is made twice, with and without the interior
 /// bit: on 64-bit hosts, where flash does not matter. (On the Cortex-M3
@@ -460,19 +475,29 @@ fn lit_loop_one<const BIT: bool>(
                     // x first, so that it is not held across the colour
                     // (vertex stage 751,511 -> 749,487).
                     o.set_x(s.x);
-                    let (color, inside) = k.shade(*nv);
-                    o.set_lit(s.y, z, color, BIT && inside);
+                    o.set_lit_word(s.y, z, lit_word::<BIT>(k, nv));
                 }
                 None => *o = lit_rest::<BIT>(viewport, pos[0], pos[1], pos[2], pos[3], k, nv),
             }
             continue;
         }
-        *o = viewport.screen_vertex_lit::<false>(&pos, true, || {
-            let (color, inside) = k.shade(*nv);
-            (color, BIT && inside)
-        });
+        *o = viewport.screen_vertex_word(&pos, true, || lit_word::<BIT>(k, nv));
     }
 }
+
+/// The colour word of the normal `nv` by `k`, its interior bit cleared
+/// without `BIT`.
+#[inline(always)]
+fn lit_word<const BIT: bool>(k: &impl LitWork, nv: &Vec3Fx) -> u32 {
+    let word = k.shade(*nv);
+    match BIT {
+        true => word,
+        false => word & !INTERIOR_WORD_BIT,
+    }
+}
+
+/// The interior bit of a [`color_word`](super::screen::color_word).
+const INTERIOR_WORD_BIT: u32 = 1 << 8;
 
 /// ARMv6-M's vertex that [`Viewport::project_recip_fast`] declines (one
 /// outside the view volume, or with `w` beyond its range): the whole
@@ -492,8 +517,5 @@ fn lit_rest<const BIT: bool>(
     k: &impl LitWork,
     nv: &Vec3Fx,
 ) -> ScreenVertex {
-    viewport.screen_vertex_lit::<false>(&[x, y, z, w], false, || {
-        let (color, inside) = k.shade(*nv);
-        (color, BIT && inside)
-    })
+    viewport.screen_vertex_word(&[x, y, z, w], false, || lit_word::<BIT>(k, nv))
 }

@@ -40,6 +40,14 @@ pub struct Viewport {
     /// unsigned compare of `w - 2^15` with this.
     #[cfg(any(test, microraster_narrow_multiply))]
     fast_w: u32,
+    /// Zero, through `black_box`: [`Viewport::project_fast_wide`] divides
+    /// by `2w ^ hash`, which LLVM takes for a hash and so does not guard
+    /// with its test of whether the dividend and the divisor fit 32 bits
+    /// (x86-64: an `or`, a shift and a branch a division, and the
+    /// shorter `div`'s moves; `math::divisor`'s `Hardware` does the
+    /// same). On 64-bit targets only, where that division is.
+    #[cfg(target_pointer_width = "64")]
+    hash: u64,
 }
 
 impl Viewport {
@@ -64,6 +72,8 @@ impl Viewport {
             one_w,
             #[cfg(any(test, microraster_narrow_multiply))]
             fast_w: (one_w + 1).saturating_sub(1 << 15),
+            #[cfg(target_pointer_width = "64")]
+            hash: core::hint::black_box(0),
         }
     }
 
@@ -336,6 +346,16 @@ impl Viewport {
         Some((SubPoint::new(x, y), depth_recip(&f, p[2], wu)))
     }
 
+    /// `hash` (0, where the field is not kept: `project_fast_wide`
+    /// unused).
+    #[inline(always)]
+    fn hash(&self) -> u64 {
+        #[cfg(target_pointer_width = "64")]
+        return self.hash;
+        #[cfg(not(target_pointer_width = "64"))]
+        0
+    }
+
     /// `fast_w` (0 where the field is not kept: `project_recip_fast`
     /// unused).
     #[inline(always)]
@@ -385,7 +405,39 @@ impl Viewport {
         fast: bool,
         color: impl FnOnce() -> ([u8; 3], bool),
     ) -> ScreenVertex {
-        let (outcode, p, z) = if LONG_DIVISION || WIDE_DIVISION {
+        let (outcode, p, z) = self.project_any(pos, fast);
+        // Within the coordinate fields: `p` is 0 for a vertex that must be
+        // clipped, otherwise inside the guard band (`|x|, |y| <= K w`), so
+        // within `(K + 1) * 2^15 < 2^18` sub-pixels.
+        let (color, inside) = color();
+        match CHANNELS {
+            true => ScreenVertex::new(p.x, p.y, z as u16, outcode, color),
+            false => ScreenVertex::new_tested(p.x, p.y, z, outcode, color, inside),
+        }
+    }
+
+    /// [`screen_vertex_lit`](Self::screen_vertex_lit) (without
+    /// `CHANNELS`) of a vertex whose colour `word` gives as a
+    /// [`color_word`](super::screen::color_word): the vertex stage's
+    /// Lambert loops.
+    #[inline(always)]
+    pub(crate) fn screen_vertex_word(
+        &self,
+        pos: &[i32; 4],
+        fast: bool,
+        word: impl FnOnce() -> u32,
+    ) -> ScreenVertex {
+        let (outcode, p, z) = self.project_any(pos, fast);
+        ScreenVertex::with_color_word(p.x, p.y, z, outcode, word())
+    }
+
+    /// The outcode and projection of [`screen_vertex_lit`](Self::screen_vertex_lit):
+    /// with `fast`, a vertex inside the view volume inline (where a
+    /// division is an instruction, or by `w`'s [`Recip16`] on ARMv6-M) and
+    /// any other out of line; without, every vertex inline.
+    #[inline(always)]
+    fn project_any(&self, pos: &[i32; 4], fast: bool) -> (u8, SubPoint, u32) {
+        if LONG_DIVISION || WIDE_DIVISION {
             match fast.then(|| self.project_fast_any(pos)).flatten() {
                 Some((p, z)) => (0, p, z),
                 None => self.project_rest(pos[0], pos[1], pos[2], pos[3]),
@@ -398,14 +450,6 @@ impl Viewport {
             }
         } else {
             self.outcode_and_project(pos)
-        };
-        // Within the coordinate fields: `p` is 0 for a vertex that must be
-        // clipped, otherwise inside the guard band (`|x|, |y| <= K w`), so
-        // within `(K + 1) * 2^15 < 2^18` sub-pixels.
-        let (color, inside) = color();
-        match CHANNELS {
-            true => ScreenVertex::new(p.x, p.y, z as u16, outcode, color),
-            false => ScreenVertex::new_tested(p.x, p.y, z, outcode, color, inside),
         }
     }
 
@@ -505,8 +549,10 @@ impl Viewport {
         if w < W_MIN {
             return None;
         }
-        // At least 2 W_MIN: not zero (the compiler does not see it).
-        let w2n = NonZeroU64::new((w as u64) << 1)?;
+        // At least 2 W_MIN: not zero (the compiler does not see it). The
+        // `xor` with zero keeps LLVM's 32-bit test off the three
+        // divisions (see `hash`).
+        let w2n = NonZeroU64::new(((w as u64) << 1) ^ self.hash())?;
         let w2 = w2n.get();
         // `v + w`, in `0..=2w` inside the view volume (a negative one
         // wraps above it).
