@@ -153,7 +153,10 @@ impl<'p> Pass<'p> {
             return;
         };
         let slot = *tail as usize;
-        if slot % CHUNK != CHUNK - 1 {
+        // The next slot's index tested, not the slot's: it is the tail
+        // stored (the Cortex-M3 had complemented the slot for the test).
+        let next = slot + 1;
+        if next & (CHUNK - 1) != 0 {
             // The tail through the reference taken for the test, not
             // indexed again after the store to the pool (which the
             // compiler could not tell apart from the tables: the
@@ -161,7 +164,7 @@ impl<'p> Pass<'p> {
             // A slot below a chunk's link lies in the pool.
             if let Some(p) = self.pool.get_mut(slot) {
                 *p = t;
-                *tail = slot as u16 + 1;
+                *tail = next as u16;
             }
             return;
         }
@@ -200,11 +203,12 @@ impl<'p> Pass<'p> {
                     return;
                 }
                 let slot = tails[k] as usize;
-                if slot % CHUNK == CHUNK - 1 {
+                let next = slot + 1;
+                if next & (CHUNK - 1) == 0 {
                     break k;
                 }
                 pool[slot] = t;
-                tails[k] = slot as u16 + 1;
+                tails[k] = next as u16;
                 k += 1;
             };
             // A new chunk, or the pass gave up tile `k` (and every later

@@ -107,9 +107,17 @@ pub(super) fn bin_fast<const TW: usize, const TH: usize, const SMALL: bool>(
                 }
             }
         };
-        // Inside the frame: not negative.
-        let (c0, c1) = (r.x0 as usize / TW, (r.x1 as usize - 1) / TW + 1);
-        let (r0, r1) = (r.y0 as usize / TH, (r.y1 as usize - 1) / TH + 1);
+        // Inside the frame: not negative. In `u32` (x86-64 had extended
+        // each coordinate to 64 bits first).
+        let tiles = |a: i32, b: i32, size: usize| {
+            let size = size as u32;
+            (
+                (a as u32 / size) as usize,
+                ((b as u32 - 1) / size + 1) as usize,
+            )
+        };
+        let (c0, c1) = tiles(r.x0, r.x1, TW);
+        let (r0, r1) = tiles(r.y0, r.y1, TH);
         let pairs = (c1 - c0) * (r1 - r0);
         if LOOP_COUNTS_VISIBLE {
             sum += VISIBLE + pairs as u64;
@@ -178,20 +186,33 @@ struct Edges {
     /// the second negated, so that the area is a multiply and a
     /// multiply-accumulate, with the negation on the visible path alone
     /// (Cortex-M3 -1.2 K).
-    dx: (i32, i32),
+    dx: (Word, Word),
     /// Vertex 1's and 2's y less vertex 0's.
-    dy: (i32, i32),
+    dy: (Word, Word),
 }
 
+/// The type of [`Edges`]' differences: `i64` on 64-bit hosts, where the
+/// words are then sign-extended as they are loaded and the area's
+/// products take them as they are (x86-64 had extended each of the four
+/// before its multiplies), `i32` elsewhere.
+#[cfg(target_pointer_width = "64")]
+type Word = i64;
+#[cfg(not(target_pointer_width = "64"))]
+type Word = i32;
+
+// `Word` is `i32` or `i64` by target: a cast that is a no-op on one
+// converts on the other.
+#[allow(clippy::unnecessary_cast)]
 impl Edges {
     #[inline(always)]
     fn of(w: &[(i32, i32); 3]) -> Self {
-        let y0 = w[0].1 >> 9;
+        let [(x0, y0), (x1, y1), (x2, y2)] = w.map(|(x, y)| (x as Word, y as Word));
+        let y0 = y0 >> 9;
         Self {
-            x0: w[0].0,
-            y0,
-            dx: (w[1].0 - w[0].0, w[0].0 - w[2].0),
-            dy: ((w[1].1 >> 9) - y0, (w[2].1 >> 9) - y0),
+            x0: x0 as i32,
+            y0: y0 as i32,
+            dx: (x1 - x0, x0 - x2),
+            dy: ((y1 >> 9) - y0, (y2 >> 9) - y0),
         }
     }
 
@@ -204,7 +225,12 @@ impl Edges {
     fn keeps(&self, cull: CullMode) -> bool {
         let (x1, neg_x2) = self.dx;
         let (y1, y2) = self.dy;
-        let a = crate::math::mul_wide(x1, y2) + crate::math::mul_wide(neg_x2, y1);
+        let a = if cfg!(target_pointer_width = "64") {
+            x1 as i64 * y2 as i64 + neg_x2 as i64 * y1 as i64
+        } else {
+            let m = |a: Word, b: Word| crate::math::mul_wide(a as i32, b as i32);
+            m(x1, y2) + m(neg_x2, y1)
+        };
         crate::render::state::keeps_by(cull, a, 0)
     }
 
@@ -215,7 +241,10 @@ impl Edges {
     #[inline(always)]
     fn centres(&self) -> PixelRect {
         const UP: i32 = HALF_PIXEL - 1;
-        let span = |a: i32, b: i32| (a.min(b).min(0), a.max(b).max(0));
+        let span = |a: Word, b: Word| {
+            let (a, b) = (a as i32, b as i32);
+            (a.min(b).min(0), a.max(b).max(0))
+        };
         let (lx, hx) = span(self.dx.0, -self.dx.1);
         let (ly, hy) = span(self.dy.0, self.dy.1);
         PixelRect::new(
