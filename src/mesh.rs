@@ -506,6 +506,19 @@ impl<'a> Mesh<'a> {
         self.positions
     }
 
+    /// The mesh with its positions cut to the first `n`, for `n` at most
+    /// their count (the renderer passes the count of the draw's slice of
+    /// the vertex buffer, which is the mesh's vertex count): the copy's
+    /// positions then have the length of that slice, so an index of the
+    /// slice needs no bounds check on them.
+    #[inline(always)]
+    pub(crate) fn cut(&self, n: usize) -> Self {
+        Self {
+            positions: &self.positions[..n],
+            ..*self
+        }
+    }
+
     /// The vertex normals, if any.
     pub fn normals(&self) -> Option<&'a [Vec3Fx]> {
         self.normals

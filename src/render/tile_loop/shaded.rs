@@ -90,29 +90,32 @@ where
         let frame = self.frame;
         let draw = &frame.draws[cur.draw];
         // The mesh and the vertices copied, so that their lengths are
-        // read once a run, not again after each pair's calls (with the
-        // test below but the mesh not copied: M3 7,238,609, M4F
-        // 7,178,270).
-        let (mesh, texture) = (*draw.mesh, draw.texture);
-        let mesh = &mesh;
+        // read once a run, not again after each pair's calls (the mesh not
+        // copied: M3 7,238,609, M4F 7,178,270). The cursor's vertices are
+        // the draw's slice of the mesh's vertex count, and the copy's
+        // positions are cut to their length (`Mesh::cut`): LLVM then knows
+        // that an index of the vertices is one of the positions and drops
+        // `clip_w`'s three bounds checks a pair, with no test of the two
+        // counts and no fallback for counts that differ, which never
+        // happens (where the counts were tested, once a run on x86-64 and
+        // ARMv6-M with a cold copy of the loop drawing pair by pair, with
+        // each pair's clip test on the Cortex-M3 and M4F: textured frame
+        // x86-64 6,413,237 -> 6,412,731, M3 7,190,948 -> 7,185,926, M4F
+        // 7,159,111 -> 7,147,533, but ARMv6-M 23,052,879 -> 23,065,447,
+        // its loop's registers moved; the vertices sliced to the
+        // positions' count instead: ARMv6-M 23,078,731).
         let verts = cur.verts;
-        // The cursor's vertices are the draw's slice of `mesh`'s vertex
-        // count, so `same` always holds; tested, it lets LLVM drop
-        // `clip_w`'s three bounds checks a pair on the positions, the
-        // vertices' checks having made them. ARMv7-M and ARMv7E-M test it
-        // with each pair's clip test (M3 textured frame 7,233,979 ->
-        // 7,190,947, M4F 7,171,214 -> 7,159,110; once a run, as the
-        // others: M3 7,199,523, M4F 7,172,046); x86-64 and ARMv6-M once
-        // a run (x86-64 6,439,699 -> 6,413,367, ARMv6-M 23,076,274 ->
-        // 23,052,774; with each pair: 6,428,775 and 23,079,882).
-        let same = verts.len() == mesh.positions().len();
-        let per_pair = cfg!(any(microraster_armv7m, microraster_armv7em));
-        if !per_pair && !same {
-            return self.shaded_each(cur, t, list, pass);
-        }
+        let (mesh, texture) = (draw.mesh.cut(verts.len()), draw.texture);
+        let mesh = &mesh;
         // The draw's set-up, looked up once a run (and again after a
-        // clipped triangle, whose path may build it in the cache).
-        let mut setup = frame.setup(cur.draw, self.cache);
+        // clipped triangle, whose path may build it in the cache), and
+        // copied: LLVM then keeps only what `clip_w` reads of it (the
+        // matrix's `w` column, no copy of the rest) as values of the run,
+        // in registers or on its stack, where each pair reloaded them
+        // from the cache after the pair's calls before (textured frame
+        // x86-64 6,412,731 -> 6,408,329, M3 7,185,926 -> 7,181,556, M4F
+        // 7,147,533 -> 7,145,591, ARMv6-M 23,065,447 -> 22,998,493).
+        let mut setup = frame.setup(cur.draw, self.cache).copied();
         let mut n = 0;
         loop {
             let [i0, i1, i2] = cur.indices(t);
@@ -122,10 +125,10 @@ where
                 &verts[i2 as usize],
             ];
             let any = sv[0].outcode() | sv[1].outcode() | sv[2].outcode();
-            if any & MUST_CLIP != 0 || (per_pair && !same) {
+            if any & MUST_CLIP != 0 {
                 n += self.shaded(cur, [i0, i1, i2], any, pass);
-                setup = frame.setup(cur.draw, self.cache);
-            } else if let Some(setup) = setup {
+                setup = frame.setup(cur.draw, self.cache).copied();
+            } else if let Some(setup) = &setup {
                 // `fill_shaded`, with the varyings and `w` only for a pair
                 // whose walk found spans (363 of this frame's 2,597 pairs
                 // have none).
@@ -159,33 +162,6 @@ where
             }
             match list.next() {
                 // A shader draw has no common path (`fast` is empty).
-                Some(u) if u < cur.end => t = u,
-                after => return (n, after),
-            }
-        }
-    }
-
-    /// [`shader_run`](Self::shader_run)'s pairs each drawn by
-    /// [`shaded`](Self::shaded), for a cursor whose vertices are not the
-    /// mesh's count (which never happens). Returns what `shader_run` does.
-    #[cfg_attr(any(microraster_armv7m, microraster_armv7em), allow(dead_code))]
-    #[cold]
-    #[inline(never)]
-    fn shaded_each<G: FragmentShader<C>, P: Features>(
-        &mut self,
-        cur: &DrawCursor<'_>,
-        mut t: usize,
-        list: &mut TileList<'_, '_, P>,
-        pass: ShaderPass<'_, C, G, TW, TH>,
-    ) -> (u32, Option<usize>) {
-        let mut n = 0;
-        loop {
-            let idx = cur.indices(t);
-            let any = idx
-                .iter()
-                .fold(0, |a, &i| a | cur.verts[i as usize].outcode());
-            n += self.shaded(cur, idx, any, pass);
-            match list.next() {
                 Some(u) if u < cur.end => t = u,
                 after => return (n, after),
             }
