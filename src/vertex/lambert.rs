@@ -281,7 +281,7 @@ pub(super) trait LitWork {
     /// ([`Lambert::ndotl`]'s).
     fn ndotl(&self, n: Vec3Fx) -> u32;
     /// The Lambert colour for n·l `ndotl` (`0..=256`) as a
-    /// [`color_word`](super::screen::color_word), with the colour's half
+    /// [`color_word`], with the colour's half
     /// of the interior bit: n·l within the draw's
     /// [`interior_ndotl`](Lambert::interior_ndotl).
     fn word(&self, ndotl: u32) -> u32;
