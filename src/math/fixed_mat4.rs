@@ -143,4 +143,25 @@ impl FixedMat4 {
         }
         out
     }
+
+    /// [`transform_point_bounded`](Self::transform_point_bounded) as
+    /// 64-bit words (each within `i32`, for a matrix bounded for the
+    /// point): x86-64's vertex loop adds `w` to them in 64 bits, where
+    /// from 32-bit results it sign-extended each again (four `MOVSXD` a
+    /// vertex).
+    #[inline(always)]
+    pub(crate) fn transform_point_bounded_wide(&self, p: [i32; 3]) -> [i64; 4] {
+        let m = &self.m;
+        let mut out = [0i64; 4];
+        for (r, o) in out.iter_mut().enumerate() {
+            // The same sums as `transform_point_bounded`'s.
+            let acc = ((m[3][r] as i64) << 16 | 1 << 15)
+                .wrapping_add(mul_wide(m[0][r], p[0]))
+                .wrapping_add(mul_wide(m[1][r], p[1]))
+                .wrapping_add(mul_wide(m[2][r], p[2]));
+            *o = acc >> 16;
+            debug_assert!(i32::try_from(*o).is_ok(), "bounded transform beyond i32");
+        }
+        out
+    }
 }

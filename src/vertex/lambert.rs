@@ -277,6 +277,12 @@ pub(super) const LOOP_CONSTANTS: bool = cfg!(all(
 pub(super) trait LitWork {
     /// The clip coordinates of the position `p` (16.16 bits).
     fn transform(&self, p: [i32; 3]) -> [i32; 4];
+    /// [`transform`](Self::transform) as 64-bit words, each within `i32`
+    /// (x86-64's loop, see `FixedMat4::transform_point_bounded_wide`).
+    #[inline(always)]
+    fn transform_wide(&self, p: [i32; 3]) -> [i64; 4] {
+        self.transform(p).map(i64::from)
+    }
     /// n·l of the normal `n` in 1/256 steps, clamped to `0..=256`
     /// ([`Lambert::ndotl`]'s).
     fn ndotl(&self, n: Vec3Fx) -> u32;
@@ -313,6 +319,11 @@ impl LitWork for (&FixedMat4, &Lambert, [u8; 3], [u32; 2]) {
     #[inline(always)]
     fn transform(&self, p: [i32; 3]) -> [i32; 4] {
         self.0.transform_point_bounded(p)
+    }
+
+    #[inline(always)]
+    fn transform_wide(&self, p: [i32; 3]) -> [i64; 4] {
+        self.0.transform_point_bounded_wide(p)
     }
 
     #[inline(always)]
@@ -357,6 +368,11 @@ impl<K: LitWork> LitWork for ColorTable<'_, K> {
     #[inline(always)]
     fn transform(&self, p: [i32; 3]) -> [i32; 4] {
         self.k.transform(p)
+    }
+
+    #[inline(always)]
+    fn transform_wide(&self, p: [i32; 3]) -> [i64; 4] {
+        self.k.transform_wide(p)
     }
 
     #[inline(always)]
@@ -966,6 +982,9 @@ mod tests {
                 let ext = extent as i64;
                 let p = [0; 3].map(|_| (next(2 * ext as u64 + 1) as i64 - ext) as i32);
                 assert_eq!(k.transform(p), m.transform_point_bounded(p), "{m:?} {p:?}");
+                // x86-64's 64-bit words (`transform_point_bounded_wide`).
+                let wide = m.transform_point_bounded(p).map(i64::from);
+                assert_eq!(m.transform_point_bounded_wide(p), wide, "{m:?} {p:?}");
             }
         }
         assert!(taken > 5_000, "{taken}");

@@ -468,7 +468,26 @@ fn lit_loop_one<const BIT: bool>(
     k: &impl LitWork,
 ) {
     for (o, (p, nv)) in out.iter_mut().zip(positions.iter().zip(normals)) {
-        let pos = k.transform([p[0].to_bits(), p[1].to_bits(), p[2].to_bits()]);
+        let p = [p[0].to_bits(), p[1].to_bits(), p[2].to_bits()];
+        if WIDE_LOOP {
+            // x86-64: the clip coordinates as 64-bit words (not
+            // sign-extended again for the projection); a vertex inside
+            // the view volume stored here with outcode 0, any other's
+            // outcode and projection out of line, each path storing its
+            // own vertex (merged before one store, the vertex went
+            // through a stack slot: `demo`'s vertex stage 12,000
+            // instructions more). The colour inline for both: given `k`,
+            // the call kept the loop from holding the matrix (reloaded
+            // and sign-extended every vertex: +42,000).
+            let pos = k.transform_wide(p);
+            let word = lit_word::<BIT>(k, nv);
+            match viewport.project_fast_words(&pos) {
+                Some((s, z)) => *o = ScreenVertex::with_color_word(s.x, s.y, z, 0, word),
+                None => word_rest(viewport, pos.map(|v| v as i32), word, o),
+            }
+            continue;
+        }
+        let pos = k.transform(p);
         if crate::math::SPLIT {
             match viewport.project_recip_fast(&pos) {
                 Some((s, z)) => {
@@ -484,6 +503,19 @@ fn lit_loop_one<const BIT: bool>(
         *o = viewport.screen_vertex_word(&pos, true, || lit_word::<BIT>(k, nv));
     }
 }
+
+/// x86-64's vertex that [`Viewport::project_fast_words`] declines, with
+/// its colour word: its outcode and projection out of line, stored into
+/// `o`.
+#[inline(never)]
+#[cold]
+fn word_rest(viewport: &Viewport, pos: [i32; 4], word: u32, o: &mut ScreenVertex) {
+    *o = viewport.screen_vertex_word(&pos, false, || word);
+}
+
+/// Whether [`lit_loop_one`] takes its 64-bit form: on 64-bit hosts,
+/// whose divisions by `2w` are 64-bit ([`Viewport::project_fast_words`]).
+const WIDE_LOOP: bool = cfg!(target_pointer_width = "64");
 
 /// The colour word of the normal `nv` by `k`, its interior bit cleared
 /// without `BIT`.
