@@ -127,21 +127,27 @@ impl FixedMat4 {
     /// the result in range).
     #[inline(always)]
     pub fn transform_point_bounded(&self, p: [i32; 3]) -> [i32; 4] {
-        let m = &self.m;
         let mut out = [0i32; 4];
         for (r, o) in out.iter_mut().enumerate() {
-            // Within the bound nothing wraps; wrapping arithmetic only
-            // spares the checks. The translation and the rounding first:
-            // one constant per row (kept out of the vertex loop) that the
-            // products accumulate onto (`smlal` on ARMv7-M), rather than
-            // a 64-bit add of each after the products.
-            let acc = ((m[3][r] as i64) << 16 | 1 << 15)
-                .wrapping_add(mul_wide(m[0][r], p[0]))
-                .wrapping_add(mul_wide(m[1][r], p[1]))
-                .wrapping_add(mul_wide(m[2][r], p[2]));
-            *o = (acc >> 16) as i32;
+            *o = self.bounded_row(r, p) as i32;
         }
         out
+    }
+
+    /// Row `r` of [`transform_point_bounded`](Self::transform_point_bounded)
+    /// before its narrowing to `i32`. Within the bound nothing wraps;
+    /// wrapping arithmetic only spares the checks. The translation and
+    /// the rounding first: one constant per row (kept out of the vertex
+    /// loop) that the products accumulate onto (`smlal` on ARMv7-M),
+    /// rather than a 64-bit add of each after the products.
+    #[inline(always)]
+    fn bounded_row(&self, r: usize, p: [i32; 3]) -> i64 {
+        let m = &self.m;
+        let acc = ((m[3][r] as i64) << 16 | 1 << 15)
+            .wrapping_add(mul_wide(m[0][r], p[0]))
+            .wrapping_add(mul_wide(m[1][r], p[1]))
+            .wrapping_add(mul_wide(m[2][r], p[2]));
+        acc >> 16
     }
 
     /// [`transform_point_bounded`](Self::transform_point_bounded) as
@@ -151,15 +157,9 @@ impl FixedMat4 {
     /// vertex).
     #[inline(always)]
     pub(crate) fn transform_point_bounded_wide(&self, p: [i32; 3]) -> [i64; 4] {
-        let m = &self.m;
         let mut out = [0i64; 4];
         for (r, o) in out.iter_mut().enumerate() {
-            // The same sums as `transform_point_bounded`'s.
-            let acc = ((m[3][r] as i64) << 16 | 1 << 15)
-                .wrapping_add(mul_wide(m[0][r], p[0]))
-                .wrapping_add(mul_wide(m[1][r], p[1]))
-                .wrapping_add(mul_wide(m[2][r], p[2]));
-            *o = acc >> 16;
+            *o = self.bounded_row(r, p);
             debug_assert!(i32::try_from(*o).is_ok(), "bounded transform beyond i32");
         }
         out
