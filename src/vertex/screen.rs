@@ -120,8 +120,13 @@ pub(crate) const fn channels_interior(c: [u8; 3]) -> bool {
 /// blue in 24..32 (the word of depth, green and blue, shifted down by 16).
 #[inline(always)]
 pub(crate) const fn color_word(color: [u8; 3], inside: bool) -> u32 {
-    color[0] as u32 | (inside as u32) << 8 | (color[1] as u32) << 16 | (color[2] as u32) << 24
+    let inside = if inside { COLOR_WORD_INTERIOR } else { 0 };
+    color[0] as u32 | inside | (color[1] as u32) << 16 | (color[2] as u32) << 24
 }
+
+/// The bit of a [`color_word`] that holds the colour's half of the
+/// [`interior`](ScreenVertex::interior) bit.
+pub(crate) const COLOR_WORD_INTERIOR: u32 = 1 << 8;
 
 impl ScreenVertex {
     /// A vertex at `(x, y)` sub-pixels, depth `z`, with outcode `outcode`
@@ -181,7 +186,12 @@ impl ScreenVertex {
         );
         debug_assert!(z <= 65_535, "screen vertex depth beyond 16 bits");
         // Red, and the colour's half of the bit where the depth's holds.
-        let keep = 0xff | (depth_interior(z) as u32) << 8;
+        let keep = 0xff
+            | if depth_interior(z) {
+                COLOR_WORD_INTERIOR
+            } else {
+                0
+            };
         Self {
             xo: (x as u32) << 8 | outcode as u32,
             yr: (y as u32) << 9 | (word & keep),

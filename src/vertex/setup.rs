@@ -8,6 +8,7 @@
 use super::lambert::{
     ColorTable, Lambert, LitWork, LoopConstants, NarrowRows, LOOP_CONSTANTS, TABLE_MIN,
 };
+use super::screen::COLOR_WORD_INTERIOR;
 use super::{ClipVertex, ScreenVertex, Viewport};
 use crate::light::{LightSetup, Lighting, Material};
 use crate::math::{FixedMat4, Mat4, Vec3};
@@ -524,12 +525,9 @@ fn lit_word<const BIT: bool>(k: &impl LitWork, nv: &Vec3Fx) -> u32 {
     let word = k.shade(*nv);
     match BIT {
         true => word,
-        false => word & !INTERIOR_WORD_BIT,
+        false => word & !COLOR_WORD_INTERIOR,
     }
 }
-
-/// The interior bit of a [`color_word`](super::screen::color_word).
-const INTERIOR_WORD_BIT: u32 = 1 << 8;
 
 /// ARMv6-M's vertex that [`Viewport::project_recip_fast`] declines (one
 /// outside the view volume, or with `w` beyond its range): the whole
