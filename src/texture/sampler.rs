@@ -80,7 +80,7 @@ pub(crate) const fn expanded257() -> [u16; 96] {
 /// expansion's shifts and the product's rounding steps). On ARMv7-M the
 /// same table sits after the colour conversion's (`shade::convert`'s
 /// `TABLES`), read there instead.
-#[cfg(not(microraster_armv7m))]
+#[cfg(not(any(microraster_armv7m, target_pointer_width = "64")))]
 static EXPANDED257: [u16; 96] = expanded257();
 
 /// A lit channel of an `Rgb565` texel: entry `i` of `e257` (an
@@ -88,6 +88,7 @@ static EXPANDED257: [u16; 96] = expanded257();
 /// one) times the light `l`, rounded by `mul255`'s identity (see
 /// `lit565_bits`); 0 for an index beyond the table, which a texel's
 /// channels never give.
+#[cfg(not(target_pointer_width = "64"))]
 #[inline(always)]
 pub(crate) fn lit_channel(e257: &[u16; 96], i: usize, l: u8) -> u8 {
     // At most 65,535 · 255 + 32,896 < 2^24: no overflow.
@@ -103,7 +104,7 @@ pub(crate) fn lit_channel(e257: &[u16; 96], i: usize, l: u8) -> u8 {
 /// the expanded channel times 257 read from [`EXPANDED257`], so a
 /// channel is a load, one multiply-add and a shift, then the table's
 /// conversion to 5 or 6 bits, as `from_rgb888` takes it.
-#[cfg(not(microraster_armv7m))]
+#[cfg(not(any(microraster_armv7m, target_pointer_width = "64")))]
 #[inline(always)]
 fn lit565_bits(raw: u16, light: [u8; 3]) -> u16 {
     let raw = raw as usize;
@@ -113,6 +114,73 @@ fn lit565_bits(raw: u16, light: [u8; 3]) -> u16 {
         m(32 + (raw >> 5 & 0x3F), light[1]),
         m(raw & 0x1F, light[2]),
     )
+}
+
+/// Where an `Rgb565` texel's channel sits in a row of [`LIT565`]: red
+/// at its 5 bits, blue at 32 plus its 5 bits, green at 64 plus its 6
+/// bits, so that a row's index is the channel or'ed with a constant.
+#[cfg(target_pointer_width = "64")]
+const LIT_BLUE: usize = 32;
+/// See [`LIT_BLUE`].
+#[cfg(target_pointer_width = "64")]
+const LIT_GREEN: usize = 64;
+
+/// `lit565_bits`' table on 64-bit hosts: at `l · 128 + slot` (a
+/// channel's slot as [`LIT_BLUE`] says, `l` the light), that channel lit
+/// by `l` as the default rounds it ([`mul255`](crate::shader::mul255) of
+/// its 8-bit expansion), converted to 5 or 6 bits as `Rgb565::from`
+/// rounds it and put in its place in the 16 bits. A lit channel is then
+/// one load, where the product, its rounding and the conversion's load
+/// took about eight instructions (64 KiB, which a host does not miss).
+#[cfg(target_pointer_width = "64")]
+static LIT565: [u16; 256 * 128] = {
+    let e = expanded257();
+    let mut t = [0u16; 256 * 128];
+    let mut l = 0;
+    while l < 256 {
+        let mut c = 0;
+        while c < 64 {
+            // `lit_channel`'s product and rounding, then `Rgb565`'s
+            // rounding of a channel (`round(v · max / 255)` in 8.24).
+            if c < 32 {
+                let v = lit_to(lit_of(e[c], l), 31);
+                t[l * 128 + c] = v << 11;
+                t[l * 128 + LIT_BLUE + c] = v;
+            }
+            t[l * 128 + LIT_GREEN + c] = lit_to(lit_of(e[32 + c], l), 63) << 5;
+            c += 1;
+        }
+        l += 1;
+    }
+    t
+};
+
+/// An expanded channel times 257 (`e`) lit by `l`: `lit_channel`'s
+/// product and rounding.
+#[cfg(target_pointer_width = "64")]
+const fn lit_of(e: u16, l: usize) -> u32 {
+    (e as u32 * l as u32 + 32_896) >> 16
+}
+
+/// 8-bit channel `v` to `0..=max` as `Rgb565::from` rounds it
+/// (`round(v · max / 255)` in 8.24 fixed point).
+#[cfg(target_pointer_width = "64")]
+const fn lit_to(v: u32, max: u32) -> u16 {
+    ((v * ((max << 24) / 255) + (1 << 23)) >> 24) as u16
+}
+
+/// [`FromTexel::from_lit_rgb565`]'s bits for the `Rgb565` targets on a
+/// 64-bit host: three loads from [`LIT565`], or'ed.
+#[cfg(target_pointer_width = "64")]
+#[inline(always)]
+fn lit565_bits(raw: u16, light: [u8; 3]) -> u16 {
+    let raw = raw as usize;
+    let t = &LIT565;
+    // `l << 7` and a slot below 128: within the table, so no check.
+    let at = |l: u8, slot: usize| t[(l as usize) << 7 | slot];
+    at(light[0], raw >> 11)
+        | at(light[1], LIT_GREEN | (raw >> 5 & 0x3F))
+        | at(light[2], LIT_BLUE | (raw & 0x1F))
 }
 
 impl FromTexel for Rgb565 {
