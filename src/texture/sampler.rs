@@ -127,7 +127,7 @@ fn lit565_bits(raw: u16, light: [u8; 3]) -> u16 {
 
 /// Where a 5-bit channel's rows start in [`lit8`]'s table (a 6-bit
 /// one's at 0).
-#[cfg(any(test, not(target_pointer_width = "64")))]
+#[cfg(any(test, all(not(target_pointer_width = "64"), not(microraster_size))))]
 const LIT8_FIVE: usize = 64;
 
 /// The lit channels of 32-bit targets (builds not optimised for size):
@@ -137,7 +137,7 @@ const LIT8_FIVE: usize = 64;
 /// expansion) and converted to its 5 or 6 bits as `Rgb565::from` rounds
 /// it. 24 KiB: the index of a slot below 96 is below `96 · 256`, which
 /// its bits show (`64 | c` has bit 5 clear), so no check.
-#[cfg(any(test, not(target_pointer_width = "64")))]
+#[cfg(any(test, all(not(target_pointer_width = "64"), not(microraster_size))))]
 const fn lit8() -> [u8; 96 * 256] {
     let e = expanded257();
     let mut t = [0u8; 96 * 256];
@@ -163,7 +163,7 @@ static LIT8: [u8; 96 * 256] = lit8();
 
 /// [`FromTexel::from_lit_rgb565`]'s bits for the `Rgb565` targets from
 /// [`lit8`]'s table `t`: three loads, each channel shifted into place.
-#[cfg(any(test, not(target_pointer_width = "64")))]
+#[cfg(any(test, all(not(target_pointer_width = "64"), not(microraster_size))))]
 #[inline(always)]
 fn lit565_from(t: &[u8; 96 * 256], raw: u16, light: [u8; 3]) -> u16 {
     let raw = raw as usize;
@@ -225,12 +225,14 @@ static LIT565: [u16; 256 * 128] = {
 
 /// An expanded channel times 257 (`e`) lit by `l`: `lit_channel`'s
 /// product and rounding (the tables' entries, at compile time).
+#[cfg(any(test, target_pointer_width = "64", not(microraster_size)))]
 const fn lit_of(e: u16, l: usize) -> u32 {
     (e as u32 * l as u32 + 32_896) >> 16
 }
 
 /// 8-bit channel `v` to `0..=max` as `Rgb565::from` rounds it
 /// (`round(v · max / 255)` in 8.24 fixed point).
+#[cfg(any(test, target_pointer_width = "64", not(microraster_size)))]
 const fn lit_to(v: u32, max: u32) -> u16 {
     ((v * ((max << 24) / 255) + (1 << 23)) >> 24) as u16
 }
