@@ -6,7 +6,7 @@
 //! [`Texture::sample`]. Both give the same colour at every coordinate.
 
 use super::{rgb565_to_rgb888, Filter, Texels, Texture, Wrap, HALF, WEIGHT_BITS};
-#[cfg(microraster_armv7m)]
+#[cfg(all(microraster_armv7m, microraster_size))]
 use crate::shade::lit565_bits;
 use embedded_graphics::pixelcolor::raw::RawU16;
 use embedded_graphics::pixelcolor::{
@@ -80,7 +80,10 @@ pub(crate) const fn expanded257() -> [u16; 96] {
 /// expansion's shifts and the product's rounding steps). On ARMv7-M the
 /// same table sits after the colour conversion's (`shade::convert`'s
 /// `TABLES`), read there instead.
-#[cfg(not(microraster_armv7m))]
+#[cfg(all(
+    not(any(microraster_armv7m, target_pointer_width = "64")),
+    microraster_size
+))]
 static EXPANDED257: [u16; 96] = expanded257();
 
 /// A lit channel of an `Rgb565` texel: entry `i` of `e257` (an
@@ -88,6 +91,10 @@ static EXPANDED257: [u16; 96] = expanded257();
 /// one) times the light `l`, rounded by `mul255`'s identity (see
 /// `lit565_bits`); 0 for an index beyond the table, which a texel's
 /// channels never give.
+#[cfg(any(
+    microraster_armv7m,
+    all(not(target_pointer_width = "64"), microraster_size)
+))]
 #[inline(always)]
 pub(crate) fn lit_channel(e257: &[u16; 96], i: usize, l: u8) -> u8 {
     // At most 65,535 · 255 + 32,896 < 2^24: no overflow.
@@ -103,7 +110,10 @@ pub(crate) fn lit_channel(e257: &[u16; 96], i: usize, l: u8) -> u8 {
 /// the expanded channel times 257 read from [`EXPANDED257`], so a
 /// channel is a load, one multiply-add and a shift, then the table's
 /// conversion to 5 or 6 bits, as `from_rgb888` takes it.
-#[cfg(not(microraster_armv7m))]
+#[cfg(all(
+    not(any(microraster_armv7m, target_pointer_width = "64")),
+    microraster_size
+))]
 #[inline(always)]
 fn lit565_bits(raw: u16, light: [u8; 3]) -> u16 {
     let raw = raw as usize;
@@ -113,6 +123,132 @@ fn lit565_bits(raw: u16, light: [u8; 3]) -> u16 {
         m(32 + (raw >> 5 & 0x3F), light[1]),
         m(raw & 0x1F, light[2]),
     )
+}
+
+/// Where a 5-bit channel's rows start in [`lit8`]'s table (a 6-bit
+/// one's at 0).
+#[cfg(any(test, all(not(target_pointer_width = "64"), not(microraster_size))))]
+const LIT8_FIVE: usize = 64;
+
+/// The lit channels of 32-bit targets (builds not optimised for size):
+/// at `slot · 256 + l`, the channel of slot `slot` (a 6-bit channel at
+/// its value, a 5-bit one at [`LIT8_FIVE`] plus its value) lit by `l` as
+/// the default rounds it ([`mul255`](crate::shader::mul255) of its 8-bit
+/// expansion) and converted to its 5 or 6 bits as `Rgb565::from` rounds
+/// it. 24 KiB: the index of a slot below 96 is below `96 · 256`, which
+/// its bits show (`64 | c` has bit 5 clear), so no check.
+#[cfg(any(test, all(not(target_pointer_width = "64"), not(microraster_size))))]
+const fn lit8() -> [u8; 96 * 256] {
+    let e = expanded257();
+    let mut t = [0u8; 96 * 256];
+    let mut l = 0;
+    while l < 256 {
+        let mut c = 0;
+        while c < 64 {
+            if c < 32 {
+                t[(LIT8_FIVE + c) * 256 + l] = lit_to(lit_of(e[c], l), 31) as u8;
+            }
+            t[c * 256 + l] = lit_to(lit_of(e[32 + c], l), 63) as u8;
+            c += 1;
+        }
+        l += 1;
+    }
+    t
+}
+
+/// [`lit8`]: a lit channel in one load (the product, its rounding and
+/// the conversion's load before).
+#[cfg(all(not(target_pointer_width = "64"), not(microraster_size)))]
+static LIT8: [u8; 96 * 256] = lit8();
+
+/// [`FromTexel::from_lit_rgb565`]'s bits for the `Rgb565` targets from
+/// [`lit8`]'s table `t`: three loads, each channel shifted into place.
+#[cfg(any(test, all(not(target_pointer_width = "64"), not(microraster_size))))]
+#[inline(always)]
+fn lit565_from(t: &[u8; 96 * 256], raw: u16, light: [u8; 3]) -> u16 {
+    let raw = raw as usize;
+    let at = |slot: usize, l: u8| t[slot << 8 | l as usize] as u16;
+    (at(LIT8_FIVE | raw >> 11, light[0]) << 11)
+        | (at(raw >> 5 & 0x3F, light[1]) << 5)
+        | at(LIT8_FIVE | (raw & 0x1F), light[2])
+}
+
+/// [`lit565_from`] [`LIT8`]. On the Cortex-M3 a debug build checks it
+/// against the arithmetic of size builds (`shade::lit565_bits`).
+#[cfg(all(not(target_pointer_width = "64"), not(microraster_size)))]
+#[inline(always)]
+fn lit565_bits(raw: u16, light: [u8; 3]) -> u16 {
+    let bits = lit565_from(&LIT8, raw, light);
+    #[cfg(microraster_armv7m)]
+    debug_assert_eq!(bits, crate::shade::lit565_bits(raw, light));
+    bits
+}
+
+/// Where an `Rgb565` texel's channel sits in a row of [`LIT565`]: red
+/// at its 5 bits, blue at 32 plus its 5 bits, green at 64 plus its 6
+/// bits, so that a row's index is the channel or'ed with a constant.
+#[cfg(target_pointer_width = "64")]
+const LIT_BLUE: usize = 32;
+/// See [`LIT_BLUE`].
+#[cfg(target_pointer_width = "64")]
+const LIT_GREEN: usize = 64;
+
+/// `lit565_bits`' table on 64-bit hosts: at `l · 128 + slot` (a
+/// channel's slot as [`LIT_BLUE`] says, `l` the light), that channel lit
+/// by `l` as the default rounds it ([`mul255`](crate::shader::mul255) of
+/// its 8-bit expansion), converted to 5 or 6 bits as `Rgb565::from`
+/// rounds it and put in its place in the 16 bits. A lit channel is then
+/// one load, where the product, its rounding and the conversion's load
+/// took about eight instructions (64 KiB, which a host does not miss).
+#[cfg(target_pointer_width = "64")]
+static LIT565: [u16; 256 * 128] = {
+    let e = expanded257();
+    let mut t = [0u16; 256 * 128];
+    let mut l = 0;
+    while l < 256 {
+        let mut c = 0;
+        while c < 64 {
+            // `lit_channel`'s product and rounding, then `Rgb565`'s
+            // rounding of a channel (`round(v · max / 255)` in 8.24).
+            if c < 32 {
+                let v = lit_to(lit_of(e[c], l), 31);
+                t[l * 128 + c] = v << 11;
+                t[l * 128 + LIT_BLUE + c] = v;
+            }
+            t[l * 128 + LIT_GREEN + c] = lit_to(lit_of(e[32 + c], l), 63) << 5;
+            c += 1;
+        }
+        l += 1;
+    }
+    t
+};
+
+/// An expanded channel times 257 (`e`) lit by `l`: `lit_channel`'s
+/// product and rounding (the tables' entries, at compile time).
+#[cfg(any(test, target_pointer_width = "64", not(microraster_size)))]
+const fn lit_of(e: u16, l: usize) -> u32 {
+    (e as u32 * l as u32 + 32_896) >> 16
+}
+
+/// 8-bit channel `v` to `0..=max` as `Rgb565::from` rounds it
+/// (`round(v · max / 255)` in 8.24 fixed point).
+#[cfg(any(test, target_pointer_width = "64", not(microraster_size)))]
+const fn lit_to(v: u32, max: u32) -> u16 {
+    ((v * ((max << 24) / 255) + (1 << 23)) >> 24) as u16
+}
+
+/// [`FromTexel::from_lit_rgb565`]'s bits for the `Rgb565` targets on a
+/// 64-bit host: three loads from [`LIT565`], or'ed.
+#[cfg(target_pointer_width = "64")]
+#[inline(always)]
+fn lit565_bits(raw: u16, light: [u8; 3]) -> u16 {
+    let raw = raw as usize;
+    let t = &LIT565;
+    // `l << 7` and a slot below 128: within the table, so no check.
+    let at = |l: u8, slot: usize| t[(l as usize) << 7 | slot];
+    at(light[0], raw >> 11)
+        | at(light[1], LIT_GREEN | (raw >> 5 & 0x3F))
+        | at(light[2], LIT_BLUE | (raw & 0x1F))
 }
 
 impl FromTexel for Rgb565 {
@@ -194,6 +330,11 @@ pub struct Pow2Rgb565<'t> {
     /// For [`nearest_fine`](Self::nearest_fine): `32 - log2` of the
     /// width, `32 - log2` of both sides, and `(height - 1) << log2(width)`.
     fine: [u32; 3],
+    /// On 64-bit hosts, the texel count less one: `texels` is cut to the
+    /// count, so an index masked by it needs no check
+    /// ([`nearest_fine`](Self::nearest_fine)).
+    #[cfg(target_pointer_width = "64")]
+    last: usize,
 }
 
 impl<'t> Texture<'t> {
@@ -212,8 +353,19 @@ impl<'t> Texture<'t> {
                 if fast && (self.filter == Filter::Bilinear || self.u.log2 > 0) =>
             {
                 let log2 = [self.u.log2 as u32, self.v.log2 as u32];
+                // Sides of at most 2^15: the count fits `u32`, and
+                // `Texture::new` checked that the texels hold it (were
+                // they short, the general path would take them).
+                #[cfg(target_pointer_width = "64")]
+                let last = ((1u32 << (log2[0] + log2[1])) - 1) as usize;
+                #[cfg(target_pointer_width = "64")]
+                let Some(texels) = texels.get(..=last) else {
+                    return Sampler::General(self);
+                };
                 let p = Pow2Rgb565 {
                     texels,
+                    #[cfg(target_pointer_width = "64")]
+                    last,
                     shift: [self.u.shift as u32, self.v.shift as u32],
                     log2,
                     mask: [self.u.size - 1, self.v.size - 1],
@@ -265,6 +417,15 @@ impl Pow2Rgb565<'_> {
     pub(crate) fn nearest_fine(&self, fu: u32, fv: u32) -> u16 {
         let x = fu >> self.fine[0];
         let y = (fv >> self.fine[1]) & self.fine[2];
+        // Below the count already: on a 64-bit host the mask changes
+        // nothing but shows the index within the texels (cut to the
+        // count), so the read needs no check, and the loops' registers
+        // went further (x86-64 `knot1k-textured-lit` -3.6 %). The
+        // Cortex-M cores lost with it (`demo-textured-lit` M3 +1.4 %,
+        // M4F +0.5 %, ARMv6-M +0.4 %).
+        #[cfg(target_pointer_width = "64")]
+        return self.texels[(y | x) as usize & self.last];
+        #[cfg(not(target_pointer_width = "64"))]
         match self.texels.get((y | x) as usize) {
             Some(&c) => c,
             None => 0,
@@ -403,6 +564,23 @@ mod tests {
     /// [`lit565_bits`] against the default (`Rgb888`, `mul255`, the
     /// table) for every channel value and light, each channel on its own
     /// (they do not mix).
+    /// [`lit8`]'s table, as 32-bit targets read it ([`lit565_from`]),
+    /// against the default, as `lit565_is_the_default`.
+    #[test]
+    fn lit8_is_the_default() {
+        let t = lit8();
+        for l in 0..=255u8 {
+            let light = [l, 255 - l, l ^ 0x5A];
+            for c in 0..64u16 {
+                let raw = (c >> 1) << 11 | c << 5 | (31 - (c >> 1));
+                let [r, g, b] = crate::shader::modulate(rgb565_to_rgb888(raw), light);
+                let want = Rgb565::from(Rgb888::new(r, g, b));
+                let bits = lit565_from(&t, raw, light);
+                assert_eq!(Rgb565::from(RawU16::new(bits)), want, "{raw:04x} {light:?}");
+            }
+        }
+    }
+
     #[test]
     fn lit565_is_the_default() {
         for l in 0..=255u8 {
