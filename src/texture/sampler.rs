@@ -6,7 +6,7 @@
 //! [`Texture::sample`]. Both give the same colour at every coordinate.
 
 use super::{rgb565_to_rgb888, Filter, Texels, Texture, Wrap, HALF, WEIGHT_BITS};
-#[cfg(all(microraster_armv7m, microraster_size))]
+#[cfg(microraster_armv7m)]
 use crate::shade::lit565_bits;
 use embedded_graphics::pixelcolor::raw::RawU16;
 use embedded_graphics::pixelcolor::{
@@ -80,10 +80,7 @@ pub(crate) const fn expanded257() -> [u16; 96] {
 /// expansion's shifts and the product's rounding steps). On ARMv7-M the
 /// same table sits after the colour conversion's (`shade::convert`'s
 /// `TABLES`), read there instead.
-#[cfg(all(
-    not(any(microraster_armv7m, target_pointer_width = "64")),
-    microraster_size
-))]
+#[cfg(not(any(microraster_armv7m, target_pointer_width = "64")))]
 static EXPANDED257: [u16; 96] = expanded257();
 
 /// A lit channel of an `Rgb565` texel: entry `i` of `e257` (an
@@ -91,10 +88,7 @@ static EXPANDED257: [u16; 96] = expanded257();
 /// one) times the light `l`, rounded by `mul255`'s identity (see
 /// `lit565_bits`); 0 for an index beyond the table, which a texel's
 /// channels never give.
-#[cfg(any(
-    microraster_armv7m,
-    all(not(target_pointer_width = "64"), microraster_size)
-))]
+#[cfg(not(target_pointer_width = "64"))]
 #[inline(always)]
 pub(crate) fn lit_channel(e257: &[u16; 96], i: usize, l: u8) -> u8 {
     // At most 65,535 · 255 + 32,896 < 2^24: no overflow.
@@ -110,10 +104,7 @@ pub(crate) fn lit_channel(e257: &[u16; 96], i: usize, l: u8) -> u8 {
 /// the expanded channel times 257 read from [`EXPANDED257`], so a
 /// channel is a load, one multiply-add and a shift, then the table's
 /// conversion to 5 or 6 bits, as `from_rgb888` takes it.
-#[cfg(all(
-    not(any(microraster_armv7m, target_pointer_width = "64")),
-    microraster_size
-))]
+#[cfg(not(any(microraster_armv7m, target_pointer_width = "64")))]
 #[inline(always)]
 fn lit565_bits(raw: u16, light: [u8; 3]) -> u16 {
     let raw = raw as usize;
@@ -123,65 +114,6 @@ fn lit565_bits(raw: u16, light: [u8; 3]) -> u16 {
         m(32 + (raw >> 5 & 0x3F), light[1]),
         m(raw & 0x1F, light[2]),
     )
-}
-
-/// Where a 5-bit channel's rows start in [`lit8`]'s table (a 6-bit
-/// one's at 0).
-#[cfg(any(test, all(not(target_pointer_width = "64"), not(microraster_size))))]
-const LIT8_FIVE: usize = 64;
-
-/// The lit channels of 32-bit targets (builds not optimised for size):
-/// at `slot · 256 + l`, the channel of slot `slot` (a 6-bit channel at
-/// its value, a 5-bit one at [`LIT8_FIVE`] plus its value) lit by `l` as
-/// the default rounds it ([`mul255`](crate::shader::mul255) of its 8-bit
-/// expansion) and converted to its 5 or 6 bits as `Rgb565::from` rounds
-/// it. 24 KiB: the index of a slot below 96 is below `96 · 256`, which
-/// its bits show (`64 | c` has bit 5 clear), so no check.
-#[cfg(any(test, all(not(target_pointer_width = "64"), not(microraster_size))))]
-const fn lit8() -> [u8; 96 * 256] {
-    let e = expanded257();
-    let mut t = [0u8; 96 * 256];
-    let mut l = 0;
-    while l < 256 {
-        let mut c = 0;
-        while c < 64 {
-            if c < 32 {
-                t[(LIT8_FIVE + c) * 256 + l] = lit_to(lit_of(e[c], l), 31) as u8;
-            }
-            t[c * 256 + l] = lit_to(lit_of(e[32 + c], l), 63) as u8;
-            c += 1;
-        }
-        l += 1;
-    }
-    t
-}
-
-/// [`lit8`]: a lit channel in one load (the product, its rounding and
-/// the conversion's load before).
-#[cfg(all(not(target_pointer_width = "64"), not(microraster_size)))]
-static LIT8: [u8; 96 * 256] = lit8();
-
-/// [`FromTexel::from_lit_rgb565`]'s bits for the `Rgb565` targets from
-/// [`lit8`]'s table `t`: three loads, each channel shifted into place.
-#[cfg(any(test, all(not(target_pointer_width = "64"), not(microraster_size))))]
-#[inline(always)]
-fn lit565_from(t: &[u8; 96 * 256], raw: u16, light: [u8; 3]) -> u16 {
-    let raw = raw as usize;
-    let at = |slot: usize, l: u8| t[slot << 8 | l as usize] as u16;
-    (at(LIT8_FIVE | raw >> 11, light[0]) << 11)
-        | (at(raw >> 5 & 0x3F, light[1]) << 5)
-        | at(LIT8_FIVE | (raw & 0x1F), light[2])
-}
-
-/// [`lit565_from`] [`LIT8`]. On the Cortex-M3 a debug build checks it
-/// against the arithmetic of size builds (`shade::lit565_bits`).
-#[cfg(all(not(target_pointer_width = "64"), not(microraster_size)))]
-#[inline(always)]
-fn lit565_bits(raw: u16, light: [u8; 3]) -> u16 {
-    let bits = lit565_from(&LIT8, raw, light);
-    #[cfg(microraster_armv7m)]
-    debug_assert_eq!(bits, crate::shade::lit565_bits(raw, light));
-    bits
 }
 
 /// Where an `Rgb565` texel's channel sits in a row of [`LIT565`]: red
@@ -224,15 +156,15 @@ static LIT565: [u16; 256 * 128] = {
 };
 
 /// An expanded channel times 257 (`e`) lit by `l`: `lit_channel`'s
-/// product and rounding (the tables' entries, at compile time).
-#[cfg(any(test, target_pointer_width = "64", not(microraster_size)))]
+/// product and rounding.
+#[cfg(target_pointer_width = "64")]
 const fn lit_of(e: u16, l: usize) -> u32 {
     (e as u32 * l as u32 + 32_896) >> 16
 }
 
 /// 8-bit channel `v` to `0..=max` as `Rgb565::from` rounds it
 /// (`round(v · max / 255)` in 8.24 fixed point).
-#[cfg(any(test, target_pointer_width = "64", not(microraster_size)))]
+#[cfg(target_pointer_width = "64")]
 const fn lit_to(v: u32, max: u32) -> u16 {
     ((v * ((max << 24) / 255) + (1 << 23)) >> 24) as u16
 }
@@ -564,23 +496,6 @@ mod tests {
     /// [`lit565_bits`] against the default (`Rgb888`, `mul255`, the
     /// table) for every channel value and light, each channel on its own
     /// (they do not mix).
-    /// [`lit8`]'s table, as 32-bit targets read it ([`lit565_from`]),
-    /// against the default, as `lit565_is_the_default`.
-    #[test]
-    fn lit8_is_the_default() {
-        let t = lit8();
-        for l in 0..=255u8 {
-            let light = [l, 255 - l, l ^ 0x5A];
-            for c in 0..64u16 {
-                let raw = (c >> 1) << 11 | c << 5 | (31 - (c >> 1));
-                let [r, g, b] = crate::shader::modulate(rgb565_to_rgb888(raw), light);
-                let want = Rgb565::from(Rgb888::new(r, g, b));
-                let bits = lit565_from(&t, raw, light);
-                assert_eq!(Rgb565::from(RawU16::new(bits)), want, "{raw:04x} {light:?}");
-            }
-        }
-    }
-
     #[test]
     fn lit565_is_the_default() {
         for l in 0..=255u8 {
