@@ -291,21 +291,10 @@ pub(crate) fn rgb16_green_up<C: From<Rgb888> + 'static>(table: To565, r: u32, g:
             // step more in a register (3 instructions fewer a written
             // pixel, `demo` 3,293,360 -> 3,251,382 instructions, `rock`
             // 2,748,045 -> 2,710,189); the Cortex-M3's code is the same.
-            // The Cortex-M4F (`microraster_armv7em`) now keeps the first
-            // only: `demo` 3,024,023 -> 3,015,727 instructions (3,023,430
-            // without either), in the all-scenes build `rock` 2,524,002
-            // -> 2,517,010 and `grid4` 867,734 -> 864,298. Its pixel
-            // loops are the same instructions; the code around them
-            // moved. (LLVM schedules a core with a floating-point unit
-            // for latency, the soft-float ones for register pressure:
-            // the M4F's code differs from the M3's most where many
-            // values are live.)
             let c = to5_in(t, r) << 11;
             core::hint::black_box(());
             let c = c | green_placed(t, g9);
-            if !cfg!(microraster_armv7em) {
-                core::hint::black_box(());
-            }
+            core::hint::black_box(());
             c | to5_in(t, b)
         })
         .unwrap_or_else(|| C::from(Rgb888::new(r, g9 as u8, b)))

@@ -32,11 +32,12 @@ pub(super) const SMALL_SETUP: bool = cfg!(not(target_pointer_width = "64"));
 /// floating-point unit for latency, the soft-float ones for register
 /// pressure) otherwise starts the three channels' products and
 /// divisions together, and spills what they hold: `demo` 3,015,727 ->
-/// 3,010,132 instructions, `rock` 2,506,296 (2,516,224 before the
-/// Gouraud loop's barrier, `shade::convert`), in the all-scenes build
-/// `demo` 3,023,584 -> 3,017,989, `rock` 2,517,010 -> 2,514,074, `grid4`
-/// 864,298 -> 861,024. One barrier alone, or two, measured 3,031,094 to
-/// 3,069,541; one before the depth plane too, 3,019,237.
+/// 3,010,132 instructions, in the all-scenes build `demo` 3,023,584 ->
+/// 3,017,989, `rock` 2,517,010 -> 2,514,074, `grid4` 864,298 -> 861,024
+/// (measured with one of `rgb16_green_up`'s two barriers left out, which
+/// [`super::FIXED_GOURAUD`] later made the same code). One barrier alone,
+/// or two, measured 3,031,094 to 3,069,541; one before the depth plane
+/// too, 3,019,237.
 const PLANE_BARRIERS: bool = cfg!(microraster_armv7em);
 
 /// What the `i32` set-up of a [`Small`] triangle shares
