@@ -304,6 +304,8 @@ pub(crate) fn span_gouraud<
         ((x0 - ox) as usize, (x1 - ox) as usize)
     };
     if !VECTOR_LOOPS {
+        // At its constant address where `FIXED_GOURAUD`.
+        let table = if FIXED_GOURAUD { To565::fixed() } else { table };
         // `INTERIOR` is the triangle's, tested once ([`SPLIT_INTERIOR`]).
         let [z, r, g, b] = s.start_tested_as(t, x0, j, INTERIOR);
         let [gz, gr, gg, gb] = s.steps();
@@ -585,7 +587,8 @@ const STORE_AFTER: bool = cfg!(any(microraster_armv7em, microraster_armv7m));
 /// and `grid4` the same; not in builds optimised for size (the build
 /// script's `microraster_size`: the OLED firmware 43,304 -> 44,020 B).
 /// The interior loop, which keeps the address already, reads the table
-/// at its constant address.
+/// at its constant address. (The Cortex-M4F's Gouraud loops now read it
+/// at its constant address in either case: [`FIXED_GOURAUD`].)
 pub(crate) const OPAQUE_TABLE: bool = cfg!(any(
     microraster_armv7em,
     all(microraster_armv7m, not(microraster_size))
@@ -597,6 +600,23 @@ pub(crate) const OPAQUE_TABLE: bool = cfg!(any(
 /// 14.70 without it); not on the Cortex-M3 (`fill` 8,989,683 ->
 /// 8,990,443 instructions with it).
 pub(crate) const OPAQUE_FLAT: bool = cfg!(microraster_armv7em);
+
+/// Whether [`span_gouraud`] reads the colour table at its constant address
+/// whatever the caller passes (the address made opaque where
+/// [`OPAQUE_TABLE`]): on ARMv7E-M (the build script's
+/// `microraster_armv7em`), whose flat span loops keep the opaque address
+/// ([`OPAQUE_FLAT`]). The Cortex-M4F's code around the Gouraud loop of the
+/// triangles that are not interior spills less so, although that loop
+/// rebuilds the address (`MOVW`, `MOVT`) at each written pixel again
+/// (LLVM schedules a core with a floating-point unit for latency: its
+/// registers fall differently from the Cortex-M3's). `demo` 3,010,132 ->
+/// 3,003,718 instructions, `rock` 2,506,296 -> 2,496,993; in the
+/// all-scenes build `demo` 3,017,989 -> 3,011,575, `rock` 2,514,074 ->
+/// 2,504,771, `grid4` 861,024 -> 858,285, `fill` and `demo-flat` the
+/// same. (`OPAQUE_TABLE` off for the M4F, its flat loops' table fixed
+/// too: `demo` 2,999,703 but `demo-flat` 2,536,732 -> 2,553,160, `fill`
+/// 14.39 -> 14.47 a pixel.)
+const FIXED_GOURAUD: bool = cfg!(microraster_armv7em);
 
 #[cfg(test)]
 mod tests {

@@ -25,6 +25,21 @@ pub(super) const SMALL_EDGE: i64 = 1 << 10;
 /// Whether the target sets small triangles up in 32-bit divisions.
 pub(super) const SMALL_SETUP: bool = cfg!(not(target_pointer_width = "64"));
 
+/// Whether [`TriangleSetup::small`] reads each colour channel's vertex
+/// values after an empty `black_box` (inline assembly of no instruction):
+/// on ARMv7E-M (the build script's `microraster_armv7em`). The
+/// Cortex-M4F's instruction scheduler (LLVM schedules a core with a
+/// floating-point unit for latency, the soft-float ones for register
+/// pressure) otherwise starts the three channels' products and
+/// divisions together, and spills what they hold: `demo` 3,015,727 ->
+/// 3,010,132 instructions, in the all-scenes build `demo` 3,023,584 ->
+/// 3,017,989, `rock` 2,517,010 -> 2,514,074, `grid4` 864,298 -> 861,024
+/// (measured with one of `rgb16_green_up`'s two barriers left out, which
+/// [`super::FIXED_GOURAUD`] later made the same code). One barrier alone,
+/// or two, measured 3,031,094 to 3,069,541; one before the depth plane
+/// too, 3,019,237.
+const PLANE_BARRIERS: bool = cfg!(microraster_armv7em);
+
 /// What the `i32` set-up of a [`Small`] triangle shares
 /// ([`TriangleSetup::small`]): the edge vectors `x1, y1, x2, y2` from
 /// vertex 0 (not negated as [`Basis`]'s: the divisor keeps its sign), the
@@ -369,12 +384,20 @@ impl TriangleSetup {
         };
         let z = Self::plane_small_of(f, z[0], zfrac, n1, n2);
         let planes = if gouraud {
-            [
-                z,
-                Self::plane_small(f, t, 1),
-                Self::plane_small(f, t, 2),
-                Self::plane_small(f, t, 3),
-            ]
+            // Each channel's plane after a compiler barrier where
+            // `PLANE_BARRIERS`.
+            let part = || {
+                if PLANE_BARRIERS {
+                    core::hint::black_box(());
+                }
+            };
+            part();
+            let r = Self::plane_small(f, t, 1);
+            part();
+            let g = Self::plane_small(f, t, 2);
+            part();
+            let b = Self::plane_small(f, t, 3);
+            [z, r, g, b]
         } else {
             [z, Plane::default(), Plane::default(), Plane::default()]
         };
