@@ -5,9 +5,8 @@
 //! [`LightSetup`]), and per vertex the clip-space position and lit colour
 //! ([`DrawSetup::clip_vertex`]).
 
-use super::lambert::{
-    ColorTable, Lambert, LitWork, LoopConstants, NarrowRows, LOOP_CONSTANTS, TABLE_MIN,
-};
+use super::lambert::Lambert;
+use super::lit_work::{ColorTable, LitWork, LoopConstants, NarrowRows, LOOP_CONSTANTS, TABLE_MIN};
 use super::screen::COLOR_WORD_INTERIOR;
 use super::{ClipVertex, ScreenVertex, Viewport};
 use crate::light::{LightSetup, Lighting, Material};
