@@ -181,7 +181,8 @@ pub(super) struct LoopConstants {
     /// [`FixedMat4::transform_point_bounded`]), then `m[0][r]`, `m[1][r]`
     /// and `m[2][r]`.
     rows: [[i32; 5]; 4],
-    /// The light's direction (as [`Lambert`]'s).
+    /// The light's direction (as [`Lambert`]'s), times 2^8 where n·l is
+    /// the upper word of its sum ([`HIGH_NDOTL`]).
     dir: [i32; 3],
     /// The Lambert colour's factors per channel ([`Lambert::folded`]).
     channels: [[u32; 2]; 3],
@@ -210,6 +211,12 @@ impl LoopConstants {
             magic: DIV65280,
             inside: [[0; 2]; INSIDE],
         };
+        if HIGH_NDOTL {
+            debug_assert!(Self::takes(l));
+            for d in k.dir.iter_mut() {
+                *d <<= 8;
+            }
+        }
         for (r, row) in k.rows.iter_mut().enumerate() {
             let t = (m.m[3][r] as i64) << 16 | 1 << 15;
             *row = [t as i32, (t >> 32) as i32, m.m[0][r], m.m[1][r], m.m[2][r]];
@@ -220,7 +227,27 @@ impl LoopConstants {
         }
         k
     }
+
+    /// Whether the light `l` is within [`HIGH_LIGHT`] where n·l is the
+    /// upper word of the sum ([`HIGH_NDOTL`]); a draw whose light is not
+    /// (longer than 64 in the draw's model space) takes the general loop.
+    pub(super) fn takes(l: &Lambert) -> bool {
+        !HIGH_NDOTL || l.dir.iter().all(|&v| v.unsigned_abs() <= HIGH_LIGHT)
+    }
 }
+
+/// Whether [`LoopConstants`] hold the light's direction times 2^8, so
+/// that n·l in 1/256 steps, `floor(Σ n[i] l[i] / 2^24)`, is the upper
+/// word of `Σ n[i] (l[i] 2^8)` (exact: each product below `2^61` in
+/// magnitude for `|l[i]| <= 2^22`, [`HIGH_LIGHT`]), clamped to `0..=256`
+/// as a word: on ARMv7-M, where the clamp from both words
+/// ([`clamp_ndotl_words`]) took six instructions, this one five (M3
+/// `demo` vertex stage 275,829 -> 274,119, M4F 255,409 -> 251,703).
+const HIGH_NDOTL: bool = cfg!(any(test, target_arch = "arm"));
+
+/// The largest light component [`LoopConstants`] take where n·l is an
+/// upper word ([`HIGH_NDOTL`]).
+const HIGH_LIGHT: u32 = 1 << 22;
 
 #[cfg_attr(not(any(test, target_pointer_width = "32")), allow(dead_code))]
 impl LitWork for LoopConstants {
@@ -246,7 +273,15 @@ impl LitWork for LoopConstants {
         let d = mul_wide(n[0].to_bits(), self.dir[0])
             + mul_wide(n[1].to_bits(), self.dir[1])
             + mul_wide(n[2].to_bits(), self.dir[2]);
-        clamp_ndotl_words(d)
+        match HIGH_NDOTL {
+            true => {
+                // Written as `clamp(0, 256)`, the Cortex-M3 took eight
+                // instructions (two compares, two conditional moves).
+                let h = (d >> 32) as i32;
+                ((h & !(h >> 31)) as u32).min(256)
+            }
+            false => clamp_ndotl_words(d),
+        }
     }
 
     /// [`Lambert::shade_ndotl`] of `ndotl` on the draw's colour: the same
@@ -446,6 +481,59 @@ mod tests {
                     assert_eq!(t.shade(n), want, "{n:?} {base:?}");
                 }
             }
+        }
+    }
+
+    /// The n·l of 32-bit cores' constants, the upper word of the sum with
+    /// the light times 2^8, is the 64-bit clamp for any normal and any
+    /// light they take (the extremes, and random ones); a longer light is
+    /// not taken.
+    #[test]
+    fn loop_constants_ndotl_is_the_wide_one() {
+        let mut next = crate::testing::rng();
+        let wide = |n: [i32; 3], l: [i32; 3]| {
+            let d: i64 = (0..3).map(|i| n[i] as i64 * l[i] as i64).sum();
+            (d >> 24).clamp(0, 256) as u32
+        };
+        let zero = FixedMat4 { m: [[0; 4]; 4] };
+        let m = HIGH_LIGHT as i32;
+        let ends = [
+            i32::MIN,
+            -m,
+            -m + 1,
+            -(1 << 16),
+            -1,
+            0,
+            1,
+            1 << 16,
+            m - 1,
+            m,
+            i32::MAX,
+        ];
+        let check = |n: [i32; 3], dir: [i32; 3]| {
+            let l = Lambert { dir, ..NO_LIGHT };
+            let takes = dir.iter().all(|&v| v.unsigned_abs() <= HIGH_LIGHT);
+            assert_eq!(LoopConstants::takes(&l), takes, "{dir:?}");
+            if takes {
+                let k = LoopConstants::new(&zero, &l, [0; 3], true);
+                let nf = n.map(fixed::types::I16F16::from_bits);
+                assert_eq!(k.ndotl(nf), wide(n, dir), "{n:?} {dir:?}");
+            }
+        };
+        for &a in &ends {
+            for &b in &ends {
+                for &c in &ends {
+                    check([a, b, c], [c, a, b]);
+                    check([a, b, c], [m, -m, m]);
+                    check([m, -m, m], [a, b, c]);
+                }
+            }
+        }
+        for _ in 0..200_000 {
+            let mut r = |s: u32| (next(1 << 32) as u32 as i32) >> next(s as u64 + 1);
+            let n = [r(31), r(31), r(31)];
+            let dir = [r(31), r(31), r(31)].map(|v| v >> 9);
+            check(n, dir);
         }
     }
 

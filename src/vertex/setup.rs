@@ -254,7 +254,11 @@ impl DrawSetup {
         };
         let common = match (&self.lambert, quick, mesh.colors(), mesh.normals()) {
             // On ARMv6-M, with a light its split n·l takes.
-            (Some(l), true, None, Some(normals)) if !crate::math::SPLIT || NarrowRows::takes(l) => {
+            // On ARMv7-M, with a light whose n·l is an upper word.
+            (Some(l), true, None, Some(normals))
+                if (!crate::math::SPLIT || NarrowRows::takes(l))
+                    && (!LOOP_CONSTANTS || LoopConstants::takes(l)) =>
+            {
                 normals.get(run).map(|s| (l, s))
             }
             _ => None,
