@@ -93,7 +93,7 @@ impl FixedMat4 {
     /// sum) is added after the shift; the result is the bounded one's,
     /// which fits `i32`.
     /// Only the tests call it: the reference that the vertex loop's split
-    /// rows (`NarrowRows` in `vertex::setup`) are checked against.
+    /// rows (`NarrowRows` in `vertex::lit_work`) are checked against.
     #[cfg(test)]
     pub(crate) fn transform_point_narrow(&self, p: [i32; 3]) -> [i32; 4] {
         let m = &self.m;

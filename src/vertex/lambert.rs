@@ -1,12 +1,10 @@
-//! The vertex stage's Lambert fast path (one directional light on a plain
-//! material: n·l and the lit colour in integers) and the per-draw
-//! constants of its common loop: [`LoopConstants`] on 32-bit cores with a
-//! long multiply, [`NarrowRows`] on ARMv6-M, both read through an opaque
-//! reference so that the loop loads each where it uses it.
-
-use super::screen::color_word;
-use crate::math::FixedMat4;
-use crate::mesh::Vec3Fx;
+//! The vertex stage's Lambert fast path: one directional light on a plain
+//! material, n·l and the lit colour in integers ([`Lambert`]), the n·l
+//! interval of the colour's half of the interior bit
+//! ([`Lambert::interior_ndotl`]), and the arithmetic the vertex loop's
+//! per-draw work builds on (n·l from 32-bit products on ARMv6-M, the
+//! quotients by 65,280). The loop's per-draw constants and colour table
+//! are in [`lit_work`](super::lit_work).
 
 /// One directional light in model space (see
 /// [`LightSetup::single_directional`](crate::light::LightSetup::single_directional)).
@@ -28,7 +26,7 @@ impl Lambert {
 
     /// n·l in 1/256 steps, clamped to `0..=256` ([`shade`](Self::shade)'s).
     #[inline(always)]
-    fn ndotl(&self, n: crate::mesh::Vec3Fx) -> u32 {
+    pub(super) fn ndotl(&self, n: crate::mesh::Vec3Fx) -> u32 {
         let n = [n[0].to_bits(), n[1].to_bits(), n[2].to_bits()];
         // ARMv6-M builds each 64-bit product from four 16-bit ones: a
         // normal within ±1 takes n·l from six 32-bit products instead.
@@ -40,7 +38,7 @@ impl Lambert {
 
     /// [`ndotl`](Self::ndotl) of the normal's bits `n` by 64-bit products.
     #[inline(always)]
-    fn ndotl_wide(&self, n: [i32; 3]) -> u32 {
+    pub(super) fn ndotl_wide(&self, n: [i32; 3]) -> u32 {
         use crate::math::mul_wide;
         let d =
             mul_wide(n[0], self.dir[0]) + mul_wide(n[1], self.dir[1]) + mul_wide(n[2], self.dir[2]);
@@ -61,7 +59,7 @@ impl Lambert {
     /// `base[c] (ambient[c] 256 + color[c] n·l) + 32,640` is one
     /// multiply-add (the same value: every term is below `2^26`). Once per
     /// draw, for the common loop's constants.
-    fn folded(&self, base: [u8; 3]) -> [[u32; 2]; 3] {
+    pub(super) fn folded(&self, base: [u8; 3]) -> [[u32; 2]; 3] {
         let mut out = [[0; 2]; 3];
         for (c, ch) in out.iter_mut().enumerate() {
             let b = base[c] as u32;
@@ -96,7 +94,7 @@ impl Lambert {
     /// on `base`: each channel `floor((base (256 ambient + color n·l) +
     /// 32,640) / 65,280)`, at most 255.
     #[inline(always)]
-    fn shade_ndotl(&self, ndotl: u32, base: [u8; 3]) -> [u8; 3] {
+    pub(super) fn shade_ndotl(&self, ndotl: u32, base: [u8; 3]) -> [u8; 3] {
         let mut out = [0u8; 3];
         for c in 0..3 {
             // At most 2^17.
@@ -126,7 +124,7 @@ impl Lambert {
 /// on the stack across it); searches rather than a division per channel
 /// and end, which took the Cortex-M3's firmware 120 bytes more.
 #[inline(never)]
-fn interior_ndotl(channels: &[[u32; 2]; 3], gouraud: bool) -> [u32; 2] {
+pub(super) fn interior_ndotl(channels: &[[u32; 2]; 3], gouraud: bool) -> [u32; 2] {
     // Where no vertex carries the bit (a size build's flash).
     if !super::screen::INTERIOR_STARTS {
         return [257, 0];
@@ -179,7 +177,7 @@ pub(super) fn div65280_sat(x: u32) -> u8 {
 
 /// [`div65280_sat`]'s multiplier: `floor(x / 65,280) = floor(x
 /// 0x8080_8081 / 2^47)`.
-const DIV65280: u32 = 0x8080_8081;
+pub(super) const DIV65280: u32 = 0x8080_8081;
 
 /// [`div65280_sat`] with its multiplier `magic` ([`DIV65280`]) passed in,
 /// for the common loop, which reads it from its constants.
@@ -211,7 +209,7 @@ pub(super) fn ndotl_narrow(n: [i32; 3], l: [i32; 3]) -> Option<u32> {
 }
 
 /// The n·l of [`ndotl_narrow`]'s sums, unchecked, for ARMv6-M's common
-/// loop ([`NarrowRows`]), which checks the light once per draw
+/// loop ([`NarrowRows`](super::lit_work::NarrowRows)), which checks the light once per draw
 /// ([`SPLIT_LIGHT`]) and the normal by one compare ([`split_normal`]):
 /// for `-2^17 <= n[i] < 2^17` and the light `l` split once per draw
 /// ([`split_light`]: `l[i] = h[i] 2^8 + o[i]`, `0 <= o[i] < 2^8`) from
@@ -222,7 +220,7 @@ pub(super) fn ndotl_narrow(n: [i32; 3], l: [i32; 3]) -> Option<u32> {
 /// `n·l = 2^8 A + B`, and `floor(n·l / 2^24) = floor((A + floor(B /
 /// 2^8)) / 2^16)`: `ndotl_narrow`'s result.
 #[inline(always)]
-fn ndotl_split(n: [i32; 3], [h, o]: &[[i32; 3]; 2]) -> u32 {
+pub(super) fn ndotl_split(n: [i32; 3], [h, o]: &[[i32; 3]; 2]) -> u32 {
     debug_assert!(split_normal(n));
     let (mut a, mut b) = (0i32, 0i32);
     for i in 0..3 {
@@ -234,14 +232,14 @@ fn ndotl_split(n: [i32; 3], [h, o]: &[[i32; 3]; 2]) -> u32 {
 
 /// [`ndotl_split`]'s light: each component of `l` (within
 /// [`SPLIT_LIGHT`]) as `h 2^8 + o`, `0 <= o < 2^8`, the `h` first.
-fn split_light(l: [i32; 3]) -> [[i32; 3]; 2] {
+pub(super) fn split_light(l: [i32; 3]) -> [[i32; 3]; 2] {
     debug_assert!(l.iter().all(|&v| v.unsigned_abs() <= SPLIT_LIGHT));
     [l.map(|v| v >> 8), l.map(|v| v & 0xff)]
 }
 
 /// The largest light component [`ndotl_split`] takes (checked once per
-/// draw by [`NarrowRows::takes`]).
-const SPLIT_LIGHT: u32 = 1 << 18;
+/// draw by [`NarrowRows::takes`](super::lit_work::NarrowRows::takes)).
+pub(super) const SPLIT_LIGHT: u32 = 1 << 18;
 
 /// Whether every `n[i]` is in `-2^17..2^17` ([`ndotl_split`]'s normals):
 /// each `n[i] + 2^17` below `2^18` as a word, so all three are when
@@ -249,7 +247,7 @@ const SPLIT_LIGHT: u32 = 1 << 18;
 /// `ndotl_narrow`'s test of the normal and of the light took about 27 a
 /// vertex).
 #[inline(always)]
-fn split_normal(n: [i32; 3]) -> bool {
+pub(super) fn split_normal(n: [i32; 3]) -> bool {
     split_bits(n) >> 18 == 0
 }
 
@@ -260,396 +258,16 @@ fn split_bits(n: [i32; 3]) -> u32 {
     (n[0].wrapping_add(k) | n[1].wrapping_add(k) | n[2].wrapping_add(k)) as u32
 }
 
-/// Whether the vertex stage's common loop reads its per-draw constants
-/// from a [`LoopConstants`]: on 32-bit cores with a 32 x 32 -> 64-bit
-/// multiply (the Cortex-M3 and M4, RISC-V `rv32im`).
-pub(super) const LOOP_CONSTANTS: bool = cfg!(all(
-    target_pointer_width = "32",
-    not(microraster_narrow_multiply)
-));
-
-/// The per-vertex work of the vertex stage's common lit loop: a
-/// position's clip coordinates and a normal's Lambert colour, from
-/// constants made once per draw. One implementation per way of computing
-/// them: [`LoopConstants`] on 32-bit cores with a long multiply,
-/// [`NarrowRows`] with its light on ARMv6-M, the bounded matrix with its
-/// light and colour on 64-bit hosts; and [`ColorTable`] over any of them.
-pub(super) trait LitWork {
-    /// The clip coordinates of the position `p` (16.16 bits).
-    fn transform(&self, p: [i32; 3]) -> [i32; 4];
-    /// [`transform`](Self::transform) as 64-bit words, each within `i32`
-    /// (x86-64's loop, see `FixedMat4::transform_point_bounded_wide`).
-    #[inline(always)]
-    fn transform_wide(&self, p: [i32; 3]) -> [i64; 4] {
-        self.transform(p).map(i64::from)
-    }
-    /// n·l of the normal `n` in 1/256 steps, clamped to `0..=256`
-    /// ([`Lambert::ndotl`]'s).
-    fn ndotl(&self, n: Vec3Fx) -> u32;
-    /// The Lambert colour for n·l `ndotl` (`0..=256`) as a
-    /// [`color_word`], with the colour's half
-    /// of the interior bit: n·l within the draw's
-    /// [`interior_ndotl`](Lambert::interior_ndotl).
-    fn word(&self, ndotl: u32) -> u32;
-    /// [`word`](Self::word) of the normal `n`'s n·l.
-    #[inline(always)]
-    fn shade(&self, n: Vec3Fx) -> u32 {
-        self.word(self.ndotl(n))
-    }
-}
-
-impl LitWork for (&NarrowRows, &Lambert) {
-    #[inline(always)]
-    fn transform(&self, p: [i32; 3]) -> [i32; 4] {
-        self.0.transform(p)
-    }
-
-    #[inline(always)]
-    fn ndotl(&self, n: Vec3Fx) -> u32 {
-        self.0.ndotl(self.1, n)
-    }
-
-    #[inline(always)]
-    fn word(&self, ndotl: u32) -> u32 {
-        self.0.word(ndotl)
-    }
-}
-
-impl LitWork for (&FixedMat4, &Lambert, [u8; 3], [u32; 2]) {
-    #[inline(always)]
-    fn transform(&self, p: [i32; 3]) -> [i32; 4] {
-        self.0.transform_point_bounded(p)
-    }
-
-    #[inline(always)]
-    fn transform_wide(&self, p: [i32; 3]) -> [i64; 4] {
-        self.0.transform_point_bounded_wide(p)
-    }
-
-    #[inline(always)]
-    fn ndotl(&self, n: Vec3Fx) -> u32 {
-        self.1.ndotl(n)
-    }
-
-    #[inline(always)]
-    fn word(&self, ndotl: u32) -> u32 {
-        let color = self.1.shade_ndotl(ndotl, self.2);
-        color_word(color, within(ndotl, self.3))
-    }
-}
-
-/// A draw's Lambert colour words ([`LitWork::word`]) for every n·l,
-/// `0..=256`, made once per run of vertices, over the loop's own
-/// [`LitWork`] `k` (whose transform and n·l it keeps): per vertex the
-/// colour is then one load by n·l, where it took three channels'
-/// multiply-adds and quotients by 65,280, their packing and the interval
-/// test of the interior bit. Only for runs of at least [`TABLE_MIN`]
-/// vertices, which pay for the table's 257 words; 1,028 bytes of stack,
-/// within the vertex stage's draw set-up's depth.
-pub(super) struct ColorTable<'k, K> {
-    k: &'k K,
-    words: &'k [u32; 257],
-}
-
-impl<'k, K: LitWork> ColorTable<'k, K> {
-    /// The table of `k`'s colours, written into the caller's `words`
-    /// (built and returned by value, the table took a second copy of
-    /// itself on the stack, ARMv6-M's frame 2.4 KB).
-    #[inline(always)]
-    pub(super) fn new(k: &'k K, words: &'k mut [u32; 257]) -> Self {
-        for (n, w) in words.iter_mut().enumerate() {
-            *w = k.word(n as u32);
-        }
-        Self { k, words }
-    }
-}
-
-impl<K: LitWork> LitWork for ColorTable<'_, K> {
-    #[inline(always)]
-    fn transform(&self, p: [i32; 3]) -> [i32; 4] {
-        self.k.transform(p)
-    }
-
-    #[inline(always)]
-    fn transform_wide(&self, p: [i32; 3]) -> [i64; 4] {
-        self.k.transform_wide(p)
-    }
-
-    #[inline(always)]
-    fn ndotl(&self, n: Vec3Fx) -> u32 {
-        self.k.ndotl(n)
-    }
-
-    #[inline(always)]
-    fn word(&self, ndotl: u32) -> u32 {
-        // n·l is at most 256 (the compiler sees the clamp: no check).
-        self.words[ndotl as usize]
-    }
-}
-
-/// The shortest run of vertices that a [`ColorTable`] is made for: its
-/// 257 words cost about as much as the colours of 257 vertices and a
-/// little more (each a store besides).
-pub(super) const TABLE_MIN: usize = 320;
-
-/// The per-draw constants of the vertex stage's common loop (a bounded
-/// matrix, the Lambert fast path, no vertex colours), laid out in the
-/// order the loop reads them and read through a reference the compiler
-/// cannot see into (`black_box`). The loop has more constants (28) than
-/// a Cortex-M3 has registers: held as values, the allocator spilled them
-/// to slots of their own and reloaded each with one `LDR` a vertex; read
-/// from here, neighbours load together (`LDRD`), the translation's two
-/// words straight into a row's accumulator, and the Lambert colour's
-/// constants are folded per draw (two per channel where there were
-/// three and a multiply more).
-#[derive(Clone, Copy, Debug)]
-#[cfg_attr(not(any(test, target_pointer_width = "32")), allow(dead_code))]
-pub(super) struct LoopConstants {
-    /// Per row `r` of the matrix: the low and high words of `m[3][r] 2^16 +
-    /// 2^15` (translation and rounding, as in
-    /// [`FixedMat4::transform_point_bounded`]), then `m[0][r]`, `m[1][r]`
-    /// and `m[2][r]`.
-    rows: [[i32; 5]; 4],
-    /// The light's direction (as [`Lambert`]'s).
-    dir: [i32; 3],
-    /// The Lambert colour's factors per channel ([`Lambert::folded`]).
-    channels: [[u32; 2]; 3],
-    /// [`div65280_sat`]'s multiplier, loaded with the channels' factors
-    /// (as a literal the Cortex-M3 rebuilt it, two instructions a vertex).
-    magic: u32,
-    /// The n·l that may carry the interior bit
-    /// ([`Lambert::interior_ndotl`]); none where no vertex carries it
-    /// ([`INSIDE`]).
-    inside: [[u32; 2]; INSIDE],
-}
-
-#[cfg_attr(not(any(test, target_pointer_width = "32")), allow(dead_code))]
-impl LoopConstants {
-    /// The constants of a draw with matrix `m`, light `l` and colour
-    /// `base`, Gouraud shaded or not (`gouraud`: whether its vertices
-    /// carry the interior bit).
-    pub(super) fn new(m: &FixedMat4, l: &Lambert, base: [u8; 3], gouraud: bool) -> Self {
-        // Loops rather than `map`s, here and below: the size profile
-        // (the OLED firmware's) keeps a `map` as a loop through a
-        // temporary array and a `memcpy`.
-        let mut k = Self {
-            rows: [[0; 5]; 4],
-            dir: l.dir,
-            channels: [[0; 2]; 3],
-            magic: DIV65280,
-            inside: [[0; 2]; INSIDE],
-        };
-        for (r, row) in k.rows.iter_mut().enumerate() {
-            let t = (m.m[3][r] as i64) << 16 | 1 << 15;
-            *row = [t as i32, (t >> 32) as i32, m.m[0][r], m.m[1][r], m.m[2][r]];
-        }
-        k.channels = l.folded(base);
-        for b in k.inside.iter_mut() {
-            *b = interior_ndotl(&k.channels, gouraud);
-        }
-        k
-    }
-}
-
-#[cfg_attr(not(any(test, target_pointer_width = "32")), allow(dead_code))]
-impl LitWork for LoopConstants {
-    /// [`FixedMat4::transform_point_bounded`] of `p`: the same sums.
-    #[inline(always)]
-    fn transform(&self, p: [i32; 3]) -> [i32; 4] {
-        use crate::math::mul_wide;
-        let mut out = [0i32; 4];
-        for (o, k) in out.iter_mut().zip(&self.rows) {
-            let acc = ((k[1] as i64) << 32 | k[0] as u32 as i64)
-                .wrapping_add(mul_wide(k[2], p[0]))
-                .wrapping_add(mul_wide(k[3], p[1]))
-                .wrapping_add(mul_wide(k[4], p[2]));
-            *o = (acc >> 16) as i32;
-        }
-        out
-    }
-
-    /// [`Lambert::ndotl`] of normal `n`: the same n·l.
-    #[inline(always)]
-    fn ndotl(&self, n: Vec3Fx) -> u32 {
-        use crate::math::mul_wide;
-        let d = mul_wide(n[0].to_bits(), self.dir[0])
-            + mul_wide(n[1].to_bits(), self.dir[1])
-            + mul_wide(n[2].to_bits(), self.dir[2]);
-        clamp_ndotl_words(d)
-    }
-
-    /// [`Lambert::shade_ndotl`] of `ndotl` on the draw's colour: the same
-    /// colour.
-    #[inline(always)]
-    fn word(&self, ndotl: u32) -> u32 {
-        let mut out = [0u8; 3];
-        for (o, &[a, c]) in out.iter_mut().zip(&self.channels) {
-            *o = div65280_sat_by(a + c * ndotl, self.magic);
-        }
-        color_word(out, within_any(ndotl, &self.inside))
-    }
-}
-
-/// How many n·l intervals of the interior bit a loop's constants hold:
-/// one where vertices carry the bit ([`INTERIOR_STARTS`](super::screen::INTERIOR_STARTS)), none
-/// elsewhere. (An interval held and never read moved the Cortex-M4F's
-/// loop constants and its register allocation: `demo` 8,000
-/// instructions more.)
-const INSIDE: usize = super::screen::INTERIOR_STARTS as usize;
-
-/// [`within`] the interval of `inside`, if any (without one, never).
-#[inline(always)]
-fn within_any(ndotl: u32, inside: &[[u32; 2]; INSIDE]) -> bool {
-    inside.first().is_some_and(|&b| within(ndotl, b))
-}
-
-/// The rows of a [`narrow`](FixedMat4::narrow) matrix for ARMv6-M's
-/// common vertex loop, its elements split rather than the point:
-/// `FixedMat4::transform_point_narrow` (now the tests' reference) split each coordinate `p[i] =
-/// a[i] 2^8 + b[i]` per vertex (six values besides the point, more than
-/// Thumb-1's eight low registers held with the matrix: spilled, and each
-/// element copied before its `MULS`). Here each element `m = h 2^8 + l`
-/// (`0 <= l < 2^8`, `|h| <= 2^8` for `|m| <= 2^16`) is split once per
-/// draw, and a row's `Σ m[i] p[i] = 2^8 H + L` for `H = Σ h[i] p[i]` and
-/// `L = Σ l[i] p[i]`: with `|p[i]| <= 2^21` each product is below `2^29`
-/// in magnitude and each sum below `3 2^29`, exact in `i32`; then the
-/// rounding is `transform_point_narrow`'s, `floor((H + floor((L + 2^15) /
-/// 2^8)) / 2^8)`, and the same result. Read through an opaque reference
-/// (as [`LoopConstants`]), each element is loaded into the register its
-/// `MULS` overwrites.
-#[derive(Clone, Copy, Debug)]
-#[cfg_attr(not(any(test, microraster_narrow_multiply)), allow(dead_code))]
-pub(super) struct NarrowRows {
-    /// Per row `r`: `h` of `m[0][r]`, `m[1][r]`, `m[2][r]`, then their
-    /// `l`, then the translation and the rounding, `m[3][r] 2^8 + 2^7`
-    /// (see [`transform`](Self::transform)).
-    rows: [[i32; 7]; 4],
-    /// The Lambert colour's factors per channel ([`Lambert::folded`]: one
-    /// `MULS` a channel fewer), each `a` with 256 more for
-    /// [`div65280_narrow`].
-    channels: [[u32; 2]; 3],
-    /// The n·l that may carry the interior bit
-    /// ([`Lambert::interior_ndotl`]).
-    inside: [u32; 2],
-    /// The light's direction (as [`Lambert`]'s) split for
-    /// [`ndotl_split`] ([`split_light`]): the normal is then not split
-    /// per vertex (ARMv6-M `demo` vertex stage 771,577 -> 759,519).
-    dir: [[i32; 3]; 2],
-}
-
-#[cfg_attr(not(any(test, microraster_narrow_multiply)), allow(dead_code))]
-impl NarrowRows {
-    /// The rows of `m` ([`fits`](Self::fits)) and the colour constants of
-    /// light `l` ([`takes`](Self::takes)) on `base`, for a draw Gouraud
-    /// shaded or not (`gouraud`, as
-    /// [`LoopConstants::new`]).
-    pub(super) fn new(m: &FixedMat4, l: &Lambert, base: [u8; 3], gouraud: bool) -> Self {
-        debug_assert!(Self::takes(l));
-        let mut k = Self {
-            rows: [[0; 7]; 4],
-            channels: [[0; 2]; 3],
-            inside: [0; 2],
-            dir: split_light(l.dir),
-        };
-        k.channels = l.folded(base);
-        k.inside = match super::screen::INTERIOR_STARTS {
-            true => interior_ndotl(&k.channels, gouraud),
-            false => [257, 0],
-        };
-        for ch in k.channels.iter_mut() {
-            ch[0] += 256;
-        }
-        for (r, row) in k.rows.iter_mut().enumerate() {
-            let e = [m.m[0][r], m.m[1][r], m.m[2][r]];
-            *row = [
-                e[0] >> 8,
-                e[1] >> 8,
-                e[2] >> 8,
-                e[0] & 0xff,
-                e[1] & 0xff,
-                e[2] & 0xff,
-                m.m[3][r] << 8 | 128,
-            ];
-        }
-        k
-    }
-
-    /// Whether the light `l` is within [`SPLIT_LIGHT`], as the rows'
-    /// n·l takes it ([`ndotl_split`]): a draw whose light is not (longer
-    /// than 4 in the draw's model space, a model matrix that shrinks the
-    /// mesh fourfold or more) takes the general loop. Tested once a draw,
-    /// where a word or-ed into each normal's test (which sent every vertex
-    /// of such a draw to the 64-bit n·l) took two instructions a vertex:
-    /// ARMv6-M `demo` vertex stage 749,487 -> 747,437.
-    pub(super) fn takes(l: &Lambert) -> bool {
-        l.dir.iter().all(|&v| v.unsigned_abs() <= SPLIT_LIGHT)
-    }
-
-    /// Whether `m`'s translation is small enough for the rows'
-    /// [`transform`](Self::transform), `|m[3][r]| <= 2^20` (every
-    /// normalized matrix's: its elements are at most `2^16`), besides
-    /// [`FixedMat4::narrow`].
-    pub(super) fn fits(m: &FixedMat4) -> bool {
-        m.m[3].iter().all(|v| v.unsigned_abs() <= 1 << 20)
-    }
-
-    /// `FixedMat4::transform_point_narrow` of `p`, for the matrix this
-    /// was made of ([`fits`](Self::fits)) and a point within its narrow
-    /// extent: the same point.
-    ///
-    /// `(l + 2^15) >> 8` is `(l >> 8) + 2^7` (2^15 a multiple of 2^8),
-    /// and the translation `t`, added after the last shift, is `t 2^8`
-    /// before it: so both are one constant per row, `t 2^8 + 2^7`, added
-    /// to `h` (one instruction a row fewer: ARMv6-M `demo` vertex stage
-    /// 759,519 -> 751,511). With `|h| <= 3 2^29`,
-    /// `|l >> 8| <= 3 2^21` and `|t| <= 2^20` the sum stays below `2^31`
-    /// in magnitude.
-    #[inline(always)]
-    pub(super) fn transform(&self, p: [i32; 3]) -> [i32; 4] {
-        let mut out = [0i32; 4];
-        for (o, k) in out.iter_mut().zip(&self.rows) {
-            let h = k[0] * p[0] + k[1] * p[1] + k[2] * p[2];
-            let l = k[3] * p[0] + k[4] * p[1] + k[5] * p[2];
-            *o = (h + k[6] + (l >> 8)) >> 8;
-        }
-        out
-    }
-
-    /// [`Lambert::ndotl`] of normal `n`, `l` the light this was made
-    /// with: the same n·l.
-    #[inline(always)]
-    pub(super) fn ndotl(&self, l: &Lambert, n: Vec3Fx) -> u32 {
-        let n = [n[0].to_bits(), n[1].to_bits(), n[2].to_bits()];
-        match split_normal(n) {
-            true => ndotl_split(n, &self.dir),
-            false => l.ndotl_wide(n),
-        }
-    }
-
-    /// [`Lambert::shade_ndotl`] of `ndotl` on the draw's colour: the same
-    /// colour, as a [`color_word`] with the colour's half of the interior
-    /// bit.
-    #[inline(always)]
-    pub(super) fn word(&self, ndotl: u32) -> u32 {
-        let mut out = [0u8; 3];
-        for (o, &[a, c]) in out.iter_mut().zip(&self.channels) {
-            // Lambert::shade's division on cores without a multiply-high.
-            *o = div65280_narrow(a + c * ndotl);
-        }
-        color_word(out, within(ndotl, self.inside))
-    }
-}
-
 /// `min(floor((x - 256) / 65,280), 255)` for `256 <= x < 2^32`, by one
 /// 32-bit multiply, for ARMv6-M's loop (whose channel constants hold the
-/// 256: [`NarrowRows`]): with `y = floor((x - 256) / 256)`, `x >> 8` is
+/// 256: [`NarrowRows`](super::lit_work::NarrowRows)): with `y = floor((x - 256) / 256)`, `x >> 8` is
 /// `y + 1`, and `z = min(y + 1, 65,280)` gives `floor((z - 1) / 255) = min(
 /// floor(y / 255), 255) = min(floor((x - 256) / 65,280), 255)`, which is
 /// `(z 257) >> 16` for every `z` in `1..=65,280` (the tests try them
 /// all; the product is below `2^24`). `div255` and its clamp took about
 /// 19 instructions a channel.
 #[inline(always)]
-fn div65280_narrow(x: u32) -> u8 {
+pub(super) fn div65280_narrow(x: u32) -> u8 {
     debug_assert!(x >= 256);
     let z = (x >> 8).min(65_280);
     ((z * 257) >> 16) as u8
@@ -667,10 +285,11 @@ pub(super) fn clamp_ndotl_words(d: i64) -> u32 {
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::*;
     use crate::light::{LightSetup, Material};
     use crate::math::{Mat4, Vec3};
+    use crate::mesh::Vec3Fx;
     use crate::vertex::MAX_LIGHTS;
 
     /// n·l's clamp from the upper word is the 64-bit clamp.
@@ -804,8 +423,7 @@ mod tests {
     }
 
     /// The split n·l of ARMv6-M's loop is the 64-bit one over its whole
-    /// range: the ends of the normal's and the light's, and random ones;
-    /// a light beyond its range is not taken (`NarrowRows::takes`).
+    /// range: the ends of the normal's and the light's, and random ones.
     #[test]
     fn split_ndotl_is_the_wide_one() {
         let mut next = crate::testing::rng();
@@ -862,65 +480,55 @@ mod tests {
             let l = [r(1 << 18), r(1 << 18), r(1 << 18)];
             assert_eq!(ndotl_split(n, &split_light(l)), wide(n, l), "{n:?} {l:?}");
         }
-        for (dir, takes) in [
-            ([(1 << 18) + 1, 0, 0], false),
-            ([0, -(1 << 18) - 1, 0], false),
-            ([1 << 18, 1 << 18, -(1 << 18)], true),
-        ] {
-            let l = Lambert {
-                dir,
-                color: [255; 3],
-                ambient: [0; 3],
-            };
-            assert_eq!(NarrowRows::takes(&l), takes, "{dir:?}");
-        }
     }
 
     /// The fast path of one directional light gives the general
     /// lighting's colours, for any normal, colour and light.
     #[test]
     fn lambert_fast_path_matches_the_light_setup() {
-        use crate::light::{DirectionalLight, Lighting};
-        use embedded_graphics::pixelcolor::Rgb888;
         let mut next = crate::testing::rng();
         for _ in 0..200 {
-            let mut f = || next(2001) as f32 / 1000.0 - 1.0;
-            let dir = Vec3::new(f(), f(), f() + 0.01);
-            let model = Mat4::rotation_y(f() * 3.0) * Mat4::rotation_x(f() * 3.0);
-            let mut c = || Rgb888::new(next(256) as u8, next(256) as u8, next(256) as u8);
-            let one = [DirectionalLight::new(dir, c())];
-            let lighting = Lighting::new(c()).directional(&one);
-            let setup: LightSetup<MAX_LIGHTS> =
-                LightSetup::new(&lighting, &model, Vec3::new(0.0, 0.0, 5.0)).unwrap();
-            let (dir, color, ambient) = setup.single_directional().unwrap();
-            let fast = Lambert {
-                dir,
-                color: color.map(u32::from),
-                ambient: ambient.map(u32::from),
-            };
+            let (setup, fast) = random_light(&mut next);
             for _ in 0..500 {
-                let n = [0; 3]
-                    .map(|_| fixed::types::I16F16::from_bits(next(1 << 18) as i32 - (1 << 17)));
-                let base = [next(256) as u8, next(256) as u8, next(256) as u8];
+                let (n, base) = random_normal_and_color(&mut next);
                 let general = setup.shade(&Material::new(), base, [0; 3], n.map(|v| v.to_bits()));
                 assert_eq!(fast.shade(n, base), general, "{n:?} {base:?}");
-                let inside = crate::vertex::screen::channels_interior(general);
-                let zero = FixedMat4 { m: [[0; 4]; 4] };
-                for gouraud in [false, true] {
-                    let want = color_word(general, gouraud && inside);
-                    let k = LoopConstants::new(&zero, &fast, base, gouraud);
-                    assert_eq!(k.shade(n), want, "{n:?} {base:?}");
-                    let k = NarrowRows::new(&zero, &fast, base, gouraud);
-                    assert_eq!((&k, &fast).shade(n), want, "{n:?} {base:?}");
-                    let b = fast.interior_ndotl(base, gouraud);
-                    let k = (&zero, &fast, base, b);
-                    assert_eq!(k.shade(n), want, "{n:?} {base:?}");
-                    let mut words = [0; 257];
-                    let t = ColorTable::new(&k, &mut words);
-                    assert_eq!(t.shade(n), want, "{n:?} {base:?}");
-                }
             }
         }
+    }
+
+    /// A random directional light and ambient colour, as the general
+    /// lighting sets them up for a random model matrix, and its fast path
+    /// (for the tests of the loop's [`LitWork`](super::super::lit_work::LitWork)
+    /// too).
+    pub(in crate::vertex) fn random_light(
+        next: &mut impl FnMut(u64) -> u64,
+    ) -> (LightSetup<MAX_LIGHTS>, Lambert) {
+        use crate::light::{DirectionalLight, Lighting};
+        use embedded_graphics::pixelcolor::Rgb888;
+        let mut f = || next(2001) as f32 / 1000.0 - 1.0;
+        let dir = Vec3::new(f(), f(), f() + 0.01);
+        let model = Mat4::rotation_y(f() * 3.0) * Mat4::rotation_x(f() * 3.0);
+        let mut c = || Rgb888::new(next(256) as u8, next(256) as u8, next(256) as u8);
+        let one = [DirectionalLight::new(dir, c())];
+        let lighting = Lighting::new(c()).directional(&one);
+        let setup: LightSetup<MAX_LIGHTS> =
+            LightSetup::new(&lighting, &model, Vec3::new(0.0, 0.0, 5.0)).unwrap();
+        let (dir, color, ambient) = setup.single_directional().unwrap();
+        let fast = Lambert {
+            dir,
+            color: color.map(u32::from),
+            ambient: ambient.map(u32::from),
+        };
+        (setup, fast)
+    }
+
+    /// A random normal, each component within `±2`, and a random colour.
+    pub(in crate::vertex) fn random_normal_and_color(
+        next: &mut impl FnMut(u64) -> u64,
+    ) -> (Vec3Fx, [u8; 3]) {
+        let n = [0; 3].map(|_| fixed::types::I16F16::from_bits(next(1 << 18) as i32 - (1 << 17)));
+        (n, [next(256) as u8, next(256) as u8, next(256) as u8])
     }
 
     /// The n·l interval of the interior bit holds exactly the n·l whose
@@ -949,86 +557,5 @@ mod tests {
                 }
             }
         }
-    }
-
-    /// A light that adds nothing, for the transform tests.
-    const NO_LIGHT: Lambert = Lambert {
-        dir: [0; 3],
-        color: [0; 3],
-        ambient: [0; 3],
-    };
-
-    /// The common loop's rows are the bounded transform: random matrices
-    /// of every magnitude (the translation up to the `i32` extremes), and
-    /// points within an extent they are bounded for.
-    #[test]
-    fn loop_constants_transform_as_the_bounded_matrix() {
-        let mut next = crate::testing::rng();
-        let mut taken = 0;
-        let none = NO_LIGHT;
-        for _ in 0..50_000 {
-            let span = (1i64 << next(32)) - 1;
-            let mut e = || (next(2 * span as u64 + 1) as i64 - span) as i32;
-            let m = FixedMat4 {
-                m: [[0; 4]; 4].map(|c| c.map(|_| e())),
-            };
-            let extent = 1u32 << next(23);
-            if !m.bounded(extent) {
-                continue;
-            }
-            taken += 1;
-            let k = LoopConstants::new(&m, &none, [0; 3], true);
-            for _ in 0..20 {
-                let ext = extent as i64;
-                let p = [0; 3].map(|_| (next(2 * ext as u64 + 1) as i64 - ext) as i32);
-                assert_eq!(k.transform(p), m.transform_point_bounded(p), "{m:?} {p:?}");
-                // x86-64's 64-bit words (`transform_point_bounded_wide`).
-                let wide = m.transform_point_bounded(p).map(i64::from);
-                assert_eq!(m.transform_point_bounded_wide(p), wide, "{m:?} {p:?}");
-            }
-        }
-        assert!(taken > 5_000, "{taken}");
-    }
-
-    /// ARMv6-M's split rows are the narrow transform, hence the bounded
-    /// one: random narrow matrices (elements up to `±2^16`, translations
-    /// of any size) and points up to the narrow extent `2^21`, the
-    /// extremes included.
-    #[test]
-    fn narrow_rows_transform_as_the_bounded_matrix() {
-        let mut next = crate::testing::rng();
-        let mut taken = 0;
-        let none = NO_LIGHT;
-        for i in 0..50_000 {
-            let mut e = |span: i64| (next(2 * span as u64 + 1) as i64 - span) as i32;
-            let mut m = FixedMat4 { m: [[0; 4]; 4] };
-            for c in 0..4 {
-                for r in 0..4 {
-                    m.m[c][r] = match (c, i % 7) {
-                        (3, _) => e((1 << (i % 31)) - 1),
-                        (_, 0) => [-(1 << 16), 1 << 16][(r + c) % 2],
-                        _ => e(1 << 16),
-                    };
-                }
-            }
-            let extent = 1u32 << (i % 22);
-            if !(m.bounded(extent) && m.narrow(extent) && NarrowRows::fits(&m)) {
-                continue;
-            }
-            taken += 1;
-            let k = NarrowRows::new(&m, &none, [0; 3], true);
-            let ext = extent as i64;
-            for j in 0..20 {
-                let mut c = || match (j + i) % 5 {
-                    0 => extent as i32,
-                    1 => -(extent as i32),
-                    _ => (next(2 * ext as u64 + 1) as i64 - ext) as i32,
-                };
-                let p = [c(), c(), c()];
-                assert_eq!(k.transform(p), m.transform_point_bounded(p), "{m:?} {p:?}");
-                assert_eq!(k.transform(p), m.transform_point_narrow(p), "{m:?} {p:?}");
-            }
-        }
-        assert!(taken > 5_000, "{taken}");
     }
 }

@@ -175,7 +175,7 @@ impl ScreenVertex {
     /// half of the [`interior`](Self::interior) bit come as one
     /// [`color_word`]: the vertex stage's Lambert loops, which look the
     /// word up in a table of the draw's colours by n·l
-    /// (`vertex::lambert`'s `ColorTable`), so that per vertex the colour
+    /// (`vertex::lit_work`'s `ColorTable`), so that per vertex the colour
     /// is one load, one mask and one shift into the two words it shares
     /// with y and depth. The depth is tested here, as in `new_tested`.
     #[inline(always)]

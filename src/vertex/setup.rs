@@ -5,9 +5,8 @@
 //! [`LightSetup`]), and per vertex the clip-space position and lit colour
 //! ([`DrawSetup::clip_vertex`]).
 
-use super::lambert::{
-    ColorTable, Lambert, LitWork, LoopConstants, NarrowRows, LOOP_CONSTANTS, TABLE_MIN,
-};
+use super::lambert::Lambert;
+use super::lit_work::{ColorTable, LitWork, LoopConstants, NarrowRows, LOOP_CONSTANTS, TABLE_MIN};
 use super::screen::COLOR_WORD_INTERIOR;
 use super::{ClipVertex, ScreenVertex, Viewport};
 use crate::light::{LightSetup, Lighting, Material};
@@ -255,7 +254,11 @@ impl DrawSetup {
         };
         let common = match (&self.lambert, quick, mesh.colors(), mesh.normals()) {
             // On ARMv6-M, with a light its split n·l takes.
-            (Some(l), true, None, Some(normals)) if !crate::math::SPLIT || NarrowRows::takes(l) => {
+            // On ARMv7-M, with a light whose n·l is an upper word.
+            (Some(l), true, None, Some(normals))
+                if (!crate::math::SPLIT || NarrowRows::takes(l))
+                    && (!LOOP_CONSTANTS || LoopConstants::takes(l)) =>
+            {
                 normals.get(run).map(|s| (l, s))
             }
             _ => None,
