@@ -39,6 +39,11 @@ where
     // Per tile, in locals: the pair's path reads them without going
     // through `shaders`.
     let (find, test) = (shaders.find, shaders.out.test);
+    // Whether the tile's rasterizer is the scanline walk (see
+    // `WALK_INLINE`): its function compared by address, so that any other
+    // (or a copy the linker did not merge) keeps the call.
+    let scan = WALK_INLINE
+        && find as usize == super::fill::finder::<P>(crate::raster::Rasterizer::Scanline) as usize;
     let job = &mut TileJob {
         frame,
         cache,
@@ -107,7 +112,13 @@ where
                 // `fill`, with the tile's rasterizer, the draw's span loop
                 // and the depth test from locals.
                 let to = &mut job.to;
-                let count = find(&sv, to.rect, &mut to.found);
+                let count = if WALK_INLINE && scan {
+                    // The walk of `fill`'s `find_spans`, inline.
+                    let v = [sv[0].xy(), sv[1].xy(), sv[2].xy()];
+                    crate::raster::scanline::find_spans_inline(&v, *to.rect, &mut to.found)
+                } else {
+                    find(&sv, to.rect, &mut to.found)
+                };
                 if let Some(found) = drawn(&to.found, count, &mut to.rows) {
                     n += shade(to.tile, to.rect, &sv, found, test);
                 }
@@ -444,3 +455,20 @@ fn no_write(blend: Blend) -> impl FnOnce(Output) -> Output {
 /// bytes each on the stack); a tile with more sorts them in batches of
 /// this many, in submission order between batches.
 pub const MAX_TRANSPARENT: usize = 128;
+
+/// Whether the common path of the tile loop walks a triangle's rows
+/// itself, the scanline walk inlined (`scanline::find_spans_inline`),
+/// where the tile's rasterizer is the scanline one: on 64-bit hosts, whose
+/// tile loop then keeps its values in registers and stack slots across
+/// the walk, and the walk its own, without the call, the out-of-line
+/// walk's saved registers and its reloads of the vertices' words (about
+/// 15 instructions a pair). The test of a tall triangle stays out of
+/// line (`misses_apart`): inline, or marked cold, the tile loop's
+/// registers fell worse for the large triangles (`fill` up to 9.20 a
+/// pixel, `tri10000` +63 K). x86-64 `demo` 2,920,341 -> 2,879,993
+/// instructions (raster 2,277,553 -> 2,237,217), `rock` 2,418,526 ->
+/// 2,388,313, `demo-flat` 2,531,604 -> 2,491,256, `tri4` -147 K, `tri100`
+/// -73 K, `tri10000` -13 K, `fill` 5,414,298 -> 5,412,342 (8.81 a pixel);
+/// the shader draws, which take the call, +340 (`demo-textured-lit`,
+/// `knot1k-textured-lit`).
+const WALK_INLINE: bool = cfg!(target_pointer_width = "64");
