@@ -200,7 +200,9 @@ pub(super) const LOOP_COUNTS_VISIBLE: bool = !crate::math::SPLIT;
 /// the pairs stay below 2^40, and the count below 2^16. On ARMv6-M
 /// (`SPLIT`), whose 64-bit add costs it registers, the visible triangles
 /// are counted by `classify` and the pairs alone apart
-/// ([`LOOP_COUNTS_VISIBLE`]).
+/// ([`LOOP_COUNTS_VISIBLE`]). (On x86-64 the count as the low 20 bits and
+/// the pairs above, so that a one-tile triangle's add took an immediate:
+/// `demo` +8.0 K, the search loop's registers moved.)
 const VISIBLE: u64 = 1 << 42;
 
 /// A binning loop's counts added to `tally` once, at its end: the visible
@@ -281,22 +283,42 @@ fn push_row_major(
     k: u16,
 ) {
     if SINGLE_PUSH && (c1 - c0) * (r1 - r0) == 1 {
-        // Most visible triangles lie in one tile: one push, without the
-        // row loop's set-up. At most 2^24 tiles: no overflow; a tile
-        // before the pass wraps to an index it does not hold.
-        bins.push((r0 * cols + c0).wrapping_sub(t0), k);
+        push_one(bins, (c0, r0), cols, t0, k);
     } else {
-        // Each row's tiles in the pass's numbering, from `t0`: those
-        // before the pass are negative, and the pass holds none of them
-        // (it gives up tiles from its end). At most 2^24 tiles: no
-        // overflow.
-        let mut lo = (r0 * cols + c0) as isize - t0 as isize;
-        let mut hi = lo + (c1 - c0) as isize;
-        for _ in r0..r1 {
-            bins.push_run(lo.max(0) as usize..hi.max(0) as usize, k);
-            lo += cols as isize;
-            hi += cols as isize;
-        }
+        push_rows(bins, (c0, c1), (r0, r1), cols, t0, k);
+    }
+}
+
+/// [`push_row_major`] of a triangle within the one tile of column `c0`
+/// and row `r0` (about two in three of `demo`'s visible triangles): one
+/// push, without the row loop's set-up.
+#[inline(always)]
+fn push_one(bins: &mut Pass<'_>, (c0, r0): (usize, usize), cols: usize, t0: usize, k: u16) {
+    // At most 2^24 tiles: no overflow; a tile before the pass wraps to
+    // an index it does not hold.
+    bins.push((r0 * cols + c0).wrapping_sub(t0), k);
+}
+
+/// [`push_row_major`] through the row loop: each row's tiles by one
+/// [`Pass::push_run`].
+#[inline(always)]
+fn push_rows(
+    bins: &mut Pass<'_>,
+    (c0, c1): (usize, usize),
+    (r0, r1): (usize, usize),
+    cols: usize,
+    t0: usize,
+    k: u16,
+) {
+    // Each row's tiles in the pass's numbering, from `t0`: those before
+    // the pass are negative, and the pass holds none of them (it gives
+    // up tiles from its end). At most 2^24 tiles: no overflow.
+    let mut lo = (r0 * cols + c0) as isize - t0 as isize;
+    let mut hi = lo + (c1 - c0) as isize;
+    for _ in r0..r1 {
+        bins.push_run(lo.max(0) as usize..hi.max(0) as usize, k);
+        lo += cols as isize;
+        hi += cols as isize;
     }
 }
 
