@@ -288,15 +288,24 @@ impl Edges {
 /// [`FrameState::classify`] of triangle `idx` of the draw `ctx`, out of
 /// line: for [`bin_fast`]'s triangles with an outcode bit set.
 ///
-/// Cold on ARMv6-M and 64-bit hosts, where its branch's weight moved the
-/// search loop's registers and blocks for the better (binning on the
-/// `demo` frame: ARMv6-M 531,813 -> 524,538 instructions, x86-64 391,087
-/// -> 383,293); not on the Cortex-M3 and M4F (the M4F's binning 345,991
-/// -> 364,150: its loop then copied two registers round each triangle).
+/// Cold on ARMv6-M, 64-bit hosts and the Cortex-M3 (ARMv7-M), where its
+/// branch's weight moved the search loop's registers and blocks for the
+/// better (binning on the `demo` frame: ARMv6-M 531,813 -> 524,538
+/// instructions, x86-64 391,087 -> 383,293, the M3 340,103 -> 338,226,
+/// its `rock` -1.5 K, `grid4` -0.8 K); not on the M4F (ARMv7E-M: its
+/// binning 345,991 -> 364,150, its loop then copied two registers round
+/// each triangle).
 ///
 /// [`FrameState::classify`]: crate::render::state::FrameState::classify
 #[inline(never)]
-#[cfg_attr(any(microraster_narrow_multiply, target_pointer_width = "64"), cold)]
+#[cfg_attr(
+    any(
+        microraster_narrow_multiply,
+        target_pointer_width = "64",
+        microraster_armv7m
+    ),
+    cold
+)]
 fn classify_apart(
     ctx: &BinDraw<'_, '_>,
     idx: [u32; 3],
