@@ -316,7 +316,16 @@ fn push_rows(
     let mut lo = (r0 * cols + c0) as isize - t0 as isize;
     let mut hi = lo + (c1 - c0) as isize;
     for _ in r0..r1 {
-        bins.push_run(lo.max(0) as usize..hi.max(0) as usize, k);
+        // On 64-bit hosts a row within the pass (`lo`, and so `hi`, not
+        // negative: every row of the first pass) by one test rather than
+        // two clamps (x86-64 `demo` binning 365,971 -> 362,752, `rock`
+        // -2.3 K); on the Cortex-M3 and ARMv6-M it cost +0.4 K and
+        // +1.7 K (their clamps are one instruction each), the M4F -0.2 K.
+        if cfg!(target_pointer_width = "64") && lo >= 0 {
+            bins.push_run(lo as usize..hi as usize, k);
+        } else {
+            bins.push_run(lo.max(0) as usize..hi.max(0) as usize, k);
+        }
         lo += cols as isize;
         hi += cols as isize;
     }
