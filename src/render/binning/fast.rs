@@ -164,7 +164,7 @@ pub(super) fn bin_fast<const TW: usize, const TH: usize, const SMALL: bool>(
 /// Whether [`bin_fast`] counts a visible triangle's first pair from the
 /// visible count once at its end rather than a saturating add each
 /// (where [`ONE_TILE_FIRST`] and the visible triangles are counted in
-/// `tally`, not the loop's sum: ARMv6-M), so that a one-tile triangle
+/// `tally`, not the loop's sum: ARMv6-M and 64-bit hosts), so that a one-tile triangle
 /// adds nothing (binning on the `demo` frame 503,361 -> 499,579
 /// instructions, `rock` -1.1 K, `grid4` -6.2 K; the frames' pair counts
 /// the same).
@@ -200,13 +200,16 @@ fn centres(v: &[SubPoint; 3]) -> PixelRect {
 /// counts its pairs, by its first and last tiles' equality, and pushes it
 /// at once ([`push_one`]; the rest through [`push_rows`]): on ARMv6-M
 /// (binning on the `demo` frame 518,011 -> 503,361 instructions, `rock`
-/// 455,437 -> 439,816). Not on the other cores, whose search loop then
-/// held its values in other registers and copied them (binning on
-/// `demo`: the Cortex-M3 +19.8 K, the M4F +31.5 K), nor with the two
-/// paths joined after the push rather than by `continue` (+1.8 K to
+/// 455,437 -> 439,816) and on 64-bit hosts, with the visible triangles
+/// counted apart ([`LOOP_COUNTS_VISIBLE`], [`ONE_TILE_PAIRS`]). Not where
+/// the loop's 64-bit sum counts them, whose search loop then held its
+/// values in other registers and copied them (binning on `demo`: the
+/// Cortex-M3 +19.8 K, the M4F +31.5 K, x86-64 +13.4 K), nor with the
+/// two paths joined after the push rather than by `continue` (+1.8 K to
 /// +8.5 K on each target): there one [`push_row_major`] tests the pairs'
 /// product.
-const ONE_TILE_FIRST: bool = SINGLE_PUSH && crate::math::SPLIT;
+const ONE_TILE_FIRST: bool =
+    SINGLE_PUSH && (crate::math::SPLIT || cfg!(target_pointer_width = "64"));
 
 /// Whether [`bin_fast`] culls and bounds a triangle from its vertices'
 /// words ([`ScreenVertex::xy_words`](crate::vertex::ScreenVertex::xy_words), [`Edges`]) rather than from their

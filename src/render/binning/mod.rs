@@ -188,10 +188,17 @@ const FAST: bool = !cfg!(microraster_size);
 /// Whether the binning loop counts the visible triangles (with their
 /// pairs, in one 64-bit sum), rather than [`FrameState::classify`] (a
 /// memory increment for each): not on ARMv6-M, where the sum measured
-/// slower (binning +12.5 K instructions on the `demo` frame).
+/// slower (binning +12.5 K instructions on the `demo` frame), nor on
+/// 64-bit hosts, whose `bin_fast` then pushes a one-tile triangle first
+/// and counts its pair with the visible count, as ARMv6-M does (x86-64
+/// `demo` binning 362,752 -> 355,968, `rock` -5.1 K, `tri4` -66 K,
+/// `demo-textured-lit` -6.8 K, `tri100` +2.3 K). (The Cortex-M4F the
+/// same way: `demo` -2.3 K, `rock` -2.2 K, `grid4` -3.0 K, but
+/// `demo-textured-lit` +21.7 K; the M3 `demo` +22 K.)
 ///
 /// [`FrameState::classify`]: super::state::FrameState::classify
-pub(super) const LOOP_COUNTS_VISIBLE: bool = !crate::math::SPLIT;
+pub(super) const LOOP_COUNTS_VISIBLE: bool =
+    !crate::math::SPLIT && !cfg!(target_pointer_width = "64");
 
 /// The binning loops count the visible triangles and their pairs in one
 /// sum, `VISIBLE` a triangle above the pairs: one 64-bit add a triangle
@@ -200,9 +207,10 @@ pub(super) const LOOP_COUNTS_VISIBLE: bool = !crate::math::SPLIT;
 /// the pairs stay below 2^40, and the count below 2^16. On ARMv6-M
 /// (`SPLIT`), whose 64-bit add costs it registers, the visible triangles
 /// are counted by `classify` and the pairs alone apart
-/// ([`LOOP_COUNTS_VISIBLE`]). (On x86-64 the count as the low 20 bits and
-/// the pairs above, so that a one-tile triangle's add took an immediate:
-/// `demo` +8.0 K, the search loop's registers moved.)
+/// ([`LOOP_COUNTS_VISIBLE`]); so are 64-bit hosts'. (x86-64's sum with
+/// the count as the low 20 bits and the pairs above, so that a one-tile
+/// triangle's add took an immediate: `demo` +8.0 K, the search loop's
+/// registers moved.)
 const VISIBLE: u64 = 1 << 42;
 
 /// A binning loop's counts added to `tally` once, at its end: the visible
