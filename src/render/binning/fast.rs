@@ -5,7 +5,10 @@
 //! and the out-of-line classification of the triangles it cannot take
 //! ([`classify_apart`]).
 
-use super::{close_tally, push_row_major, BinDraw, Fate, Tally, LOOP_COUNTS_VISIBLE, VISIBLE};
+use super::{
+    close_tally, push_one, push_row_major, push_rows, BinDraw, Fate, Tally, LOOP_COUNTS_VISIBLE,
+    SINGLE_PUSH, VISIBLE,
+};
 use crate::raster::{first_centre_at_or_after, PixelRect, SubPoint, HALF_PIXEL, SUBPIXEL_BITS};
 use crate::render::bin::Pass;
 use crate::render::state::{keeps_banded, SetupCache};
@@ -44,6 +47,8 @@ pub(super) fn bin_fast<const TW: usize, const TH: usize, const SMALL: bool>(
     // The visible triangles and their pairs ([`VISIBLE`]).
     let mut tt = *t;
     let (mut sum, mut pairs_sum) = (0u64, tally.pairs);
+    // Where the visible count is `tally`'s ([`ONE_TILE_PAIRS`]).
+    let visible_before = tally.fates[Fate::Visible as usize];
     let mut rest = tris.iter();
     'done: loop {
         // The next visible triangle: its number and its pixels.
@@ -111,24 +116,59 @@ pub(super) fn bin_fast<const TW: usize, const TH: usize, const SMALL: bool>(
         // each coordinate to 64 bits first).
         let tiles = |a: i32, b: i32, size: usize| {
             let size = size as u32;
-            (
-                (a as u32 / size) as usize,
-                ((b as u32 - 1) / size + 1) as usize,
-            )
+            ((a as u32 / size) as usize, ((b as u32 - 1) / size) as usize)
         };
-        let (c0, c1) = tiles(r.x0, r.x1, TW);
-        let (r0, r1) = tiles(r.y0, r.y1, TH);
+        let (c0, cl) = tiles(r.x0, r.x1, TW);
+        let (r0, rl) = tiles(r.y0, r.y1, TH);
+        if ONE_TILE_FIRST && c0 == cl && r0 == rl {
+            // One tile (about two in three visible triangles): one pair,
+            // tested by the first and last tiles' equality, not their
+            // product.
+            if LOOP_COUNTS_VISIBLE {
+                sum += VISIBLE + 1;
+            } else if !ONE_TILE_PAIRS {
+                pairs_sum = pairs_sum.saturating_add(1);
+            }
+            push_one(bins, (c0, r0), cols, ctx.t0, k as u16);
+            continue;
+        }
+        let (c1, r1) = (cl + 1, rl + 1);
         let pairs = (c1 - c0) * (r1 - r0);
         if LOOP_COUNTS_VISIBLE {
             sum += VISIBLE + pairs as u64;
+        } else if ONE_TILE_PAIRS {
+            // The first pair is counted with the triangle, at the end.
+            // A visible rectangle holds a pixel (`classify`'s and the
+            // search's are not empty): at least one pair.
+            pairs_sum = pairs_sum.saturating_add(pairs as u32 - 1);
         } else {
             pairs_sum = pairs_sum.saturating_add(pairs as u32);
         }
-        push_row_major(bins, (c0, c1), (r0, r1), cols, ctx.t0, k as u16);
+        if ONE_TILE_FIRST {
+            push_rows(bins, (c0, c1), (r0, r1), cols, ctx.t0, k as u16);
+        } else {
+            push_row_major(bins, (c0, c1), (r0, r1), cols, ctx.t0, k as u16);
+        }
+    }
+    if ONE_TILE_PAIRS {
+        // Every visible triangle of the loop (counted by it or by
+        // `classify`) has a first pair. Saturating sums of counts that
+        // are not negative: the same total either way.
+        let visible = tally.fates[Fate::Visible as usize] - visible_before;
+        pairs_sum = pairs_sum.saturating_add(visible);
     }
     *t = tt;
     close_tally(tally, sum, pairs_sum);
 }
+
+/// Whether [`bin_fast`] counts a visible triangle's first pair from the
+/// visible count once at its end rather than a saturating add each
+/// (where [`ONE_TILE_FIRST`] and the visible triangles are counted in
+/// `tally`, not the loop's sum: ARMv6-M and 64-bit hosts), so that a one-tile triangle
+/// adds nothing (binning on the `demo` frame 503,361 -> 499,579
+/// instructions, `rock` -1.1 K, `grid4` -6.2 K; the frames' pair counts
+/// the same).
+const ONE_TILE_PAIRS: bool = ONE_TILE_FIRST && !LOOP_COUNTS_VISIBLE;
 
 /// The pixels whose centres a filled triangle with vertices `v` may
 /// cover ([`reach`] with margin 0): `first_centre_at_or_after(x)` as
@@ -155,6 +195,21 @@ fn centres(v: &[SubPoint; 3]) -> PixelRect {
     debug_assert!(y1 == first_centre_at_or_after(v[0].y.max(v[1].y).max(v[2].y)));
     PixelRect::new(x0, y0, x1, y1)
 }
+
+/// Whether [`bin_fast`] tests for a triangle within one tile before it
+/// counts its pairs, by its first and last tiles' equality, and pushes it
+/// at once ([`push_one`]; the rest through [`push_rows`]): on ARMv6-M
+/// (binning on the `demo` frame 518,011 -> 503,361 instructions, `rock`
+/// 455,437 -> 439,816) and on 64-bit hosts, with the visible triangles
+/// counted apart ([`LOOP_COUNTS_VISIBLE`], [`ONE_TILE_PAIRS`]). Not where
+/// the loop's 64-bit sum counts them, whose search loop then held its
+/// values in other registers and copied them (binning on `demo`: the
+/// Cortex-M3 +19.8 K, the M4F +31.5 K, x86-64 +13.4 K), nor with the
+/// two paths joined after the push rather than by `continue` (+1.8 K to
+/// +8.5 K on each target): there one [`push_row_major`] tests the pairs'
+/// product.
+const ONE_TILE_FIRST: bool =
+    SINGLE_PUSH && (crate::math::SPLIT || cfg!(target_pointer_width = "64"));
 
 /// Whether [`bin_fast`] culls and bounds a triangle from its vertices'
 /// words ([`ScreenVertex::xy_words`](crate::vertex::ScreenVertex::xy_words), [`Edges`]) rather than from their
@@ -259,15 +314,24 @@ impl Edges {
 /// [`FrameState::classify`] of triangle `idx` of the draw `ctx`, out of
 /// line: for [`bin_fast`]'s triangles with an outcode bit set.
 ///
-/// Cold on ARMv6-M and 64-bit hosts, where its branch's weight moved the
-/// search loop's registers and blocks for the better (binning on the
-/// `demo` frame: ARMv6-M 531,813 -> 524,538 instructions, x86-64 391,087
-/// -> 383,293); not on the Cortex-M3 and M4F (the M4F's binning 345,991
-/// -> 364,150: its loop then copied two registers round each triangle).
+/// Cold on ARMv6-M, 64-bit hosts and the Cortex-M3 (ARMv7-M), where its
+/// branch's weight moved the search loop's registers and blocks for the
+/// better (binning on the `demo` frame: ARMv6-M 531,813 -> 524,538
+/// instructions, x86-64 391,087 -> 383,293, the M3 340,103 -> 338,226,
+/// its `rock` -1.5 K, `grid4` -0.8 K); not on the M4F (ARMv7E-M: its
+/// binning 345,991 -> 364,150, its loop then copied two registers round
+/// each triangle).
 ///
 /// [`FrameState::classify`]: crate::render::state::FrameState::classify
 #[inline(never)]
-#[cfg_attr(any(microraster_narrow_multiply, target_pointer_width = "64"), cold)]
+#[cfg_attr(
+    any(
+        microraster_narrow_multiply,
+        target_pointer_width = "64",
+        microraster_armv7m
+    ),
+    cold
+)]
 fn classify_apart(
     ctx: &BinDraw<'_, '_>,
     idx: [u32; 3],

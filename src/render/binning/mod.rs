@@ -188,10 +188,17 @@ const FAST: bool = !cfg!(microraster_size);
 /// Whether the binning loop counts the visible triangles (with their
 /// pairs, in one 64-bit sum), rather than [`FrameState::classify`] (a
 /// memory increment for each): not on ARMv6-M, where the sum measured
-/// slower (binning +12.5 K instructions on the `demo` frame).
+/// slower (binning +12.5 K instructions on the `demo` frame), nor on
+/// 64-bit hosts, whose `bin_fast` then pushes a one-tile triangle first
+/// and counts its pair with the visible count, as ARMv6-M does (x86-64
+/// `demo` binning 362,752 -> 355,968, `rock` -5.1 K, `tri4` -66 K,
+/// `demo-textured-lit` -6.8 K, `tri100` +2.3 K). (The Cortex-M4F the
+/// same way: `demo` -2.3 K, `rock` -2.2 K, `grid4` -3.0 K, but
+/// `demo-textured-lit` +21.7 K; the M3 `demo` +22 K.)
 ///
 /// [`FrameState::classify`]: super::state::FrameState::classify
-pub(super) const LOOP_COUNTS_VISIBLE: bool = !crate::math::SPLIT;
+pub(super) const LOOP_COUNTS_VISIBLE: bool =
+    !crate::math::SPLIT && !cfg!(target_pointer_width = "64");
 
 /// The binning loops count the visible triangles and their pairs in one
 /// sum, `VISIBLE` a triangle above the pairs: one 64-bit add a triangle
@@ -200,7 +207,10 @@ pub(super) const LOOP_COUNTS_VISIBLE: bool = !crate::math::SPLIT;
 /// the pairs stay below 2^40, and the count below 2^16. On ARMv6-M
 /// (`SPLIT`), whose 64-bit add costs it registers, the visible triangles
 /// are counted by `classify` and the pairs alone apart
-/// ([`LOOP_COUNTS_VISIBLE`]).
+/// ([`LOOP_COUNTS_VISIBLE`]); so are 64-bit hosts'. (x86-64's sum with
+/// the count as the low 20 bits and the pairs above, so that a one-tile
+/// triangle's add took an immediate: `demo` +8.0 K, the search loop's
+/// registers moved.)
 const VISIBLE: u64 = 1 << 42;
 
 /// A binning loop's counts added to `tally` once, at its end: the visible
@@ -281,24 +291,71 @@ fn push_row_major(
     k: u16,
 ) {
     if SINGLE_PUSH && (c1 - c0) * (r1 - r0) == 1 {
-        // Most visible triangles lie in one tile: one push, without the
-        // row loop's set-up. At most 2^24 tiles: no overflow; a tile
-        // before the pass wraps to an index it does not hold.
-        bins.push((r0 * cols + c0).wrapping_sub(t0), k);
+        push_one(bins, (c0, r0), cols, t0, k);
     } else {
-        // Each row's tiles in the pass's numbering, from `t0`: those
-        // before the pass are negative, and the pass holds none of them
-        // (it gives up tiles from its end). At most 2^24 tiles: no
-        // overflow.
-        let mut lo = (r0 * cols + c0) as isize - t0 as isize;
-        let mut hi = lo + (c1 - c0) as isize;
-        for _ in r0..r1 {
+        push_rows(bins, (c0, c1), (r0, r1), cols, t0, k);
+    }
+}
+
+/// [`push_row_major`] of a triangle within the one tile of column `c0`
+/// and row `r0` (about two in three of `demo`'s visible triangles): one
+/// push, without the row loop's set-up.
+#[inline(always)]
+fn push_one(bins: &mut Pass<'_>, (c0, r0): (usize, usize), cols: usize, t0: usize, k: u16) {
+    // At most 2^24 tiles: no overflow; a tile before the pass wraps to
+    // an index it does not hold.
+    bins.push((r0 * cols + c0).wrapping_sub(t0), k);
+}
+
+/// [`push_row_major`] through the row loop: each row's tiles by one
+/// [`Pass::push_run`].
+#[inline(always)]
+fn push_rows(
+    bins: &mut Pass<'_>,
+    (c0, c1): (usize, usize),
+    (r0, r1): (usize, usize),
+    cols: usize,
+    t0: usize,
+    k: u16,
+) {
+    // Each row's tiles in the pass's numbering, from `t0`: those before
+    // the pass are negative, and the pass holds none of them (it gives
+    // up tiles from its end). At most 2^24 tiles: no overflow.
+    let mut lo = (r0 * cols + c0) as isize - t0 as isize;
+    let mut hi = lo + (c1 - c0) as isize;
+    if ROWS_BY_TILE {
+        // `lo` of the row after the last.
+        let end = lo + ((r1 - r0) * cols) as isize;
+        while lo != end {
             bins.push_run(lo.max(0) as usize..hi.max(0) as usize, k);
             lo += cols as isize;
             hi += cols as isize;
         }
+        return;
+    }
+    for _ in r0..r1 {
+        // On 64-bit hosts a row within the pass (`lo`, and so `hi`, not
+        // negative: every row of the first pass) by one test rather than
+        // two clamps (x86-64 `demo` binning 365,971 -> 362,752, `rock`
+        // -2.3 K); on the Cortex-M3 and ARMv6-M it cost +0.4 K and
+        // +1.7 K (their clamps are one instruction each), the M4F -0.2 K.
+        if cfg!(target_pointer_width = "64") && lo >= 0 {
+            bins.push_run(lo as usize..hi as usize, k);
+        } else {
+            bins.push_run(lo.max(0) as usize..hi.max(0) as usize, k);
+        }
+        lo += cols as isize;
+        hi += cols as isize;
     }
 }
+
+/// Whether [`push_rows`] counts its rows by the first tile's index
+/// itself, not by a row number of its own (which the Cortex-M3 kept on
+/// the stack, loaded and stored each row): on the Cortex-M3 (`demo`
+/// binning 338,226 -> 334,595, `rock` -2.7 K, `grid4` -1.2 K), not in
+/// its builds optimised for size (their loop as it was); the M4F
+/// +14.8 K, ARMv6-M +8.2 K, x86-64 +5.1 K.
+const ROWS_BY_TILE: bool = cfg!(microraster_armv7m) && !cfg!(microraster_size);
 
 /// What [`bin_triangles`] needs of the draw it bins.
 pub(super) struct BinDraw<'a, 'f> {
