@@ -486,13 +486,22 @@ pub(super) mod tests {
     /// lighting's colours, for any normal, colour and light.
     #[test]
     fn lambert_fast_path_matches_the_light_setup() {
+        each_lit_case(|fast, n, base, general| {
+            assert_eq!(fast.shade(n, base), general, "{n:?} {base:?}");
+        });
+    }
+
+    /// `f` of 200 random directional lights, 500 random normals and
+    /// colours each, and the general lighting's colour of each: the
+    /// cases the fast path's tests share.
+    pub(in crate::vertex) fn each_lit_case(mut f: impl FnMut(&Lambert, Vec3Fx, [u8; 3], [u8; 3])) {
         let mut next = crate::testing::rng();
         for _ in 0..200 {
             let (setup, fast) = random_light(&mut next);
             for _ in 0..500 {
                 let (n, base) = random_normal_and_color(&mut next);
                 let general = setup.shade(&Material::new(), base, [0; 3], n.map(|v| v.to_bits()));
-                assert_eq!(fast.shade(n, base), general, "{n:?} {base:?}");
+                f(&fast, n, base, general);
             }
         }
     }
@@ -501,9 +510,7 @@ pub(super) mod tests {
     /// lighting sets them up for a random model matrix, and its fast path
     /// (for the tests of the loop's [`LitWork`](super::super::lit_work::LitWork)
     /// too).
-    pub(in crate::vertex) fn random_light(
-        next: &mut impl FnMut(u64) -> u64,
-    ) -> (LightSetup<MAX_LIGHTS>, Lambert) {
+    fn random_light(next: &mut impl FnMut(u64) -> u64) -> (LightSetup<MAX_LIGHTS>, Lambert) {
         use crate::light::{DirectionalLight, Lighting};
         use embedded_graphics::pixelcolor::Rgb888;
         let mut f = || next(2001) as f32 / 1000.0 - 1.0;
@@ -524,9 +531,7 @@ pub(super) mod tests {
     }
 
     /// A random normal, each component within `±2`, and a random colour.
-    pub(in crate::vertex) fn random_normal_and_color(
-        next: &mut impl FnMut(u64) -> u64,
-    ) -> (Vec3Fx, [u8; 3]) {
+    fn random_normal_and_color(next: &mut impl FnMut(u64) -> u64) -> (Vec3Fx, [u8; 3]) {
         let n = [0; 3].map(|_| fixed::types::I16F16::from_bits(next(1 << 18) as i32 - (1 << 17)));
         (n, [next(256) as u8, next(256) as u8, next(256) as u8])
     }

@@ -449,8 +449,7 @@ impl NarrowRows {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::light::Material;
-    use crate::vertex::lambert::tests::{random_light, random_normal_and_color};
+    use crate::vertex::lambert::tests::each_lit_case;
 
     /// Every way of the loop's per-draw work gives the Lambert colour as
     /// a colour word, with its half of the interior bit where the draw is
@@ -459,29 +458,23 @@ mod tests {
     /// them.
     #[test]
     fn lit_work_gives_the_lambert_color_words() {
-        let mut next = crate::testing::rng();
-        for _ in 0..200 {
-            let (setup, fast) = random_light(&mut next);
-            for _ in 0..500 {
-                let (n, base) = random_normal_and_color(&mut next);
-                let general = setup.shade(&Material::new(), base, [0; 3], n.map(|v| v.to_bits()));
-                let inside = crate::vertex::screen::channels_interior(general);
-                let zero = FixedMat4 { m: [[0; 4]; 4] };
-                for gouraud in [false, true] {
-                    let want = color_word(general, gouraud && inside);
-                    let k = LoopConstants::new(&zero, &fast, base, gouraud);
-                    assert_eq!(k.shade(n), want, "{n:?} {base:?}");
-                    let k = NarrowRows::new(&zero, &fast, base, gouraud);
-                    assert_eq!((&k, &fast).shade(n), want, "{n:?} {base:?}");
-                    let b = fast.interior_ndotl(base, gouraud);
-                    let k = (&zero, &fast, base, b);
-                    assert_eq!(k.shade(n), want, "{n:?} {base:?}");
-                    let mut words = [0; 257];
-                    let t = ColorTable::new(&k, &mut words);
-                    assert_eq!(t.shade(n), want, "{n:?} {base:?}");
-                }
+        each_lit_case(|fast, n, base, general| {
+            let inside = crate::vertex::screen::channels_interior(general);
+            let zero = FixedMat4 { m: [[0; 4]; 4] };
+            for gouraud in [false, true] {
+                let want = color_word(general, gouraud && inside);
+                let k = LoopConstants::new(&zero, fast, base, gouraud);
+                assert_eq!(k.shade(n), want, "{n:?} {base:?}");
+                let k = NarrowRows::new(&zero, fast, base, gouraud);
+                assert_eq!((&k, fast).shade(n), want, "{n:?} {base:?}");
+                let b = fast.interior_ndotl(base, gouraud);
+                let k = (&zero, fast, base, b);
+                assert_eq!(k.shade(n), want, "{n:?} {base:?}");
+                let mut words = [0; 257];
+                let t = ColorTable::new(&k, &mut words);
+                assert_eq!(t.shade(n), want, "{n:?} {base:?}");
             }
-        }
+        });
     }
 
     /// The n·l of 32-bit cores' constants, the upper word of the sum with
