@@ -200,16 +200,17 @@ fn centres(v: &[SubPoint; 3]) -> PixelRect {
 /// counts its pairs, by its first and last tiles' equality, and pushes it
 /// at once ([`push_one`]; the rest through [`push_rows`]): on ARMv6-M
 /// (binning on the `demo` frame 518,011 -> 503,361 instructions, `rock`
-/// 455,437 -> 439,816) and on 64-bit hosts, with the visible triangles
-/// counted apart ([`LOOP_COUNTS_VISIBLE`], [`ONE_TILE_PAIRS`]). Not where
+/// 455,437 -> 439,816), on 64-bit hosts and on the Cortex-M4F (ARMv7E-M:
+/// see [`LOOP_COUNTS_VISIBLE`]), with the visible triangles counted
+/// apart ([`LOOP_COUNTS_VISIBLE`], [`ONE_TILE_PAIRS`]). Not where
 /// the loop's 64-bit sum counts them, whose search loop then held its
 /// values in other registers and copied them (binning on `demo`: the
 /// Cortex-M3 +19.8 K, the M4F +31.5 K, x86-64 +13.4 K), nor with the
 /// two paths joined after the push rather than by `continue` (+1.8 K to
 /// +8.5 K on each target): there one [`push_row_major`] tests the pairs'
 /// product.
-const ONE_TILE_FIRST: bool =
-    SINGLE_PUSH && (crate::math::SPLIT || cfg!(target_pointer_width = "64"));
+const ONE_TILE_FIRST: bool = SINGLE_PUSH
+    && (crate::math::SPLIT || cfg!(target_pointer_width = "64") || cfg!(microraster_armv7em));
 
 /// Whether [`bin_fast`] culls and bounds a triangle from its vertices'
 /// words ([`ScreenVertex::xy_words`](crate::vertex::ScreenVertex::xy_words), [`Edges`]) rather than from their
@@ -318,9 +319,11 @@ impl Edges {
 /// branch's weight moved the search loop's registers and blocks for the
 /// better (binning on the `demo` frame: ARMv6-M 531,813 -> 524,538
 /// instructions, x86-64 391,087 -> 383,293, the M3 340,103 -> 338,226,
-/// its `rock` -1.5 K, `grid4` -0.8 K); not on the M4F (ARMv7E-M: its
-/// binning 345,991 -> 364,150, its loop then copied two registers round
-/// each triangle).
+/// its `rock` -1.5 K, `grid4` -0.8 K), and on the M4F (ARMv7E-M) with
+/// its one-tile triangles first ([`ONE_TILE_FIRST`]; see
+/// [`LOOP_COUNTS_VISIBLE`]). (Cold on the M4F with the loop's 64-bit sum:
+/// its binning 345,991 -> 364,150, its loop then copied two registers
+/// round each triangle.)
 ///
 /// [`FrameState::classify`]: crate::render::state::FrameState::classify
 #[inline(never)]
@@ -328,7 +331,8 @@ impl Edges {
     any(
         microraster_narrow_multiply,
         target_pointer_width = "64",
-        microraster_armv7m
+        microraster_armv7m,
+        microraster_armv7em
     ),
     cold
 )]

@@ -192,13 +192,17 @@ const FAST: bool = !cfg!(microraster_size);
 /// 64-bit hosts, whose `bin_fast` then pushes a one-tile triangle first
 /// and counts its pair with the visible count, as ARMv6-M does (x86-64
 /// `demo` binning 362,752 -> 355,968, `rock` -5.1 K, `tri4` -66 K,
-/// `demo-textured-lit` -6.8 K, `tri100` +2.3 K). (The Cortex-M4F the
-/// same way: `demo` -2.3 K, `rock` -2.2 K, `grid4` -3.0 K, but
-/// `demo-textured-lit` +21.7 K; the M3 `demo` +22 K.)
+/// `demo-textured-lit` -6.8 K, `tri100` +2.3 K). Nor on the Cortex-M4F
+/// (ARMv7E-M, the build script's `microraster_armv7em`), the same way
+/// with `fast`'s `classify_apart` cold: binning on the `demo` frame
+/// 344,127 -> 338,865 instructions, `rock` -4.6 K, `grid4` -4.5 K,
+/// `demo-textured-lit` -8.7 K (without the cold hint `demo` -2.3 K but
+/// `demo-textured-lit` +21.7 K: that loop copied two registers round
+/// each triangle). (The M3 the same way: `demo` +22 K.)
 ///
 /// [`FrameState::classify`]: super::state::FrameState::classify
 pub(super) const LOOP_COUNTS_VISIBLE: bool =
-    !crate::math::SPLIT && !cfg!(target_pointer_width = "64");
+    !crate::math::SPLIT && !cfg!(target_pointer_width = "64") && !cfg!(microraster_armv7em);
 
 /// The binning loops count the visible triangles and their pairs in one
 /// sum, `VISIBLE` a triangle above the pairs: one 64-bit add a triangle
