@@ -47,7 +47,8 @@ pub(super) fn bin_fast<const TW: usize, const TH: usize, const SMALL: bool>(
     // The visible triangles and their pairs ([`VISIBLE`]).
     let mut tt = *t;
     let (mut sum, mut pairs_sum) = (0u64, tally.pairs);
-    // Where the visible count is `tally`'s ([`ONE_TILE_PAIRS`]).
+    // The visible count before the loop, for the first pairs
+    // ([`ONE_TILE_FIRST`]).
     let visible_before = tally.fates[Fate::Visible as usize];
     let mut rest = tris.iter();
     'done: loop {
@@ -123,12 +124,7 @@ pub(super) fn bin_fast<const TW: usize, const TH: usize, const SMALL: bool>(
         if ONE_TILE_FIRST && c0 == cl && r0 == rl {
             // One tile (about two in three visible triangles): one pair,
             // tested by the first and last tiles' equality, not their
-            // product.
-            if LOOP_COUNTS_VISIBLE {
-                sum += VISIBLE + 1;
-            } else if !ONE_TILE_PAIRS {
-                pairs_sum = pairs_sum.saturating_add(1);
-            }
+            // product, and counted with the visible count at the end.
             push_one(bins, (c0, r0), cols, ctx.t0, k as u16);
             continue;
         }
@@ -136,7 +132,7 @@ pub(super) fn bin_fast<const TW: usize, const TH: usize, const SMALL: bool>(
         let pairs = (c1 - c0) * (r1 - r0);
         if LOOP_COUNTS_VISIBLE {
             sum += VISIBLE + pairs as u64;
-        } else if ONE_TILE_PAIRS {
+        } else if ONE_TILE_FIRST {
             // The first pair is counted with the triangle, at the end.
             // A visible rectangle holds a pixel (`classify`'s and the
             // search's are not empty): at least one pair.
@@ -150,7 +146,7 @@ pub(super) fn bin_fast<const TW: usize, const TH: usize, const SMALL: bool>(
             push_row_major(bins, (c0, c1), (r0, r1), cols, ctx.t0, k as u16);
         }
     }
-    if ONE_TILE_PAIRS {
+    if ONE_TILE_FIRST {
         // Every visible triangle of the loop (counted by it or by
         // `classify`) has a first pair. Saturating sums of counts that
         // are not negative: the same total either way.
@@ -160,15 +156,6 @@ pub(super) fn bin_fast<const TW: usize, const TH: usize, const SMALL: bool>(
     *t = tt;
     close_tally(tally, sum, pairs_sum);
 }
-
-/// Whether [`bin_fast`] counts a visible triangle's first pair from the
-/// visible count once at its end rather than a saturating add each
-/// (where [`ONE_TILE_FIRST`] and the visible triangles are counted in
-/// `tally`, not the loop's sum: ARMv6-M and 64-bit hosts), so that a one-tile triangle
-/// adds nothing (binning on the `demo` frame 503,361 -> 499,579
-/// instructions, `rock` -1.1 K, `grid4` -6.2 K; the frames' pair counts
-/// the same).
-const ONE_TILE_PAIRS: bool = ONE_TILE_FIRST && !LOOP_COUNTS_VISIBLE;
 
 /// The pixels whose centres a filled triangle with vertices `v` may
 /// cover ([`reach`] with margin 0): `first_centre_at_or_after(x)` as
@@ -202,7 +189,7 @@ fn centres(v: &[SubPoint; 3]) -> PixelRect {
 /// (binning on the `demo` frame 518,011 -> 503,361 instructions, `rock`
 /// 455,437 -> 439,816), on 64-bit hosts and on the Cortex-M4F (ARMv7E-M:
 /// see [`LOOP_COUNTS_VISIBLE`]), with the visible triangles counted
-/// apart ([`LOOP_COUNTS_VISIBLE`], [`ONE_TILE_PAIRS`]). Not where
+/// apart ([`LOOP_COUNTS_VISIBLE`]). Not where
 /// the loop's 64-bit sum counts them, whose search loop then held its
 /// values in other registers and copied them (binning on `demo`: the
 /// Cortex-M3 +19.8 K, the M4F +31.5 K, x86-64 +13.4 K), nor with the
@@ -211,6 +198,14 @@ fn centres(v: &[SubPoint; 3]) -> PixelRect {
 /// product.
 const ONE_TILE_FIRST: bool = SINGLE_PUSH
     && (crate::math::SPLIT || cfg!(target_pointer_width = "64") || cfg!(microraster_armv7em));
+
+// Where one-tile triangles come first, the visible triangles are counted
+// in `tally`, not the loop's sum, and each one's first pair once at the
+// loop's end from that count, so that a one-tile triangle adds nothing
+// (ARMv6-M's binning on the `demo` frame 503,361 -> 499,579
+// instructions, `rock` -1.1 K, `grid4` -6.2 K; the frames' pair counts
+// the same): [`bin_fast`] relies on it.
+const _: () = assert!(!(ONE_TILE_FIRST && LOOP_COUNTS_VISIBLE));
 
 /// Whether [`bin_fast`] culls and bounds a triangle from its vertices'
 /// words ([`ScreenVertex::xy_words`](crate::vertex::ScreenVertex::xy_words), [`Edges`]) rather than from their
