@@ -236,6 +236,15 @@ impl LoopConstants {
     }
 }
 
+/// Whether the common lit loop of this target takes the light `l`: its
+/// per-draw work bounds the light on ARMv6-M ([`NarrowRows::takes`]: the
+/// split n·l) and where n·l is an upper word ([`LoopConstants::takes`]).
+/// A draw whose light it does not take goes through the general loop.
+#[inline(always)]
+pub(super) fn loop_takes(l: &Lambert) -> bool {
+    (!crate::math::SPLIT || NarrowRows::takes(l)) && (!LOOP_CONSTANTS || LoopConstants::takes(l))
+}
+
 /// Whether [`LoopConstants`] hold the light's direction times 2^8, so
 /// that n·l in 1/256 steps, `floor(Σ n[i] l[i] / 2^24)`, is the upper
 /// word of `Σ n[i] (l[i] 2^8)` (exact: each product below `2^61` in

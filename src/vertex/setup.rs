@@ -6,7 +6,9 @@
 //! ([`DrawSetup::clip_vertex`]).
 
 use super::lambert::Lambert;
-use super::lit_work::{ColorTable, LitWork, LoopConstants, NarrowRows, LOOP_CONSTANTS, TABLE_MIN};
+use super::lit_work::{
+    loop_takes, ColorTable, LitWork, LoopConstants, NarrowRows, LOOP_CONSTANTS, TABLE_MIN,
+};
 use super::screen::COLOR_WORD_INTERIOR;
 use super::{ClipVertex, ScreenVertex, Viewport};
 use crate::light::{LightSetup, Lighting, Material};
@@ -253,12 +255,8 @@ impl DrawSetup {
             false => self.bounded,
         };
         let common = match (&self.lambert, quick, mesh.colors(), mesh.normals()) {
-            // On ARMv6-M, with a light its split n·l takes.
-            // On ARMv7-M, with a light whose n·l is an upper word.
-            (Some(l), true, None, Some(normals))
-                if (!crate::math::SPLIT || NarrowRows::takes(l))
-                    && (!LOOP_CONSTANTS || LoopConstants::takes(l)) =>
-            {
+            // With a light the target's loop work takes.
+            (Some(l), true, None, Some(normals)) if loop_takes(l) => {
                 normals.get(run).map(|s| (l, s))
             }
             _ => None,
