@@ -7,7 +7,8 @@ use crate::raster::{hilbert, PixelRect, Rasterizer, Span, SubPoint};
 use crate::shade::perspective::{Output, PerspectiveSetup, ShaderTriangle};
 use crate::shade::{
     span_flat, span_gouraud, Corners, DepthFn, DepthTest, SpanPos, To565, TriangleSetup,
-    NEGATED_OX, OFFSET_SETUP, OPAQUE_FLAT, OPAQUE_TABLE, SMALL_INLINE, SPLIT_INTERIOR,
+    FIXED_GOURAUD, NEGATED_OX, OFFSET_SETUP, OPAQUE_FLAT, OPAQUE_TABLE, SMALL_INLINE,
+    SPLIT_INTERIOR,
 };
 use crate::shader::{FragmentShader, Perspective, ShaderSet, TriangleSpans};
 use crate::texture::Texture;
@@ -306,7 +307,10 @@ where
                     },
                 );
             }
-            let table = if OPAQUE_TABLE && (GOURAUD || OPAQUE_FLAT) {
+            // Gouraud loops that read the table at its constant address
+            // (`FIXED_GOURAUD`, the M4F) would throw an opaque copy away:
+            // M4F `demo` -4.4 K, `rock` -1.8 K.
+            let table = if OPAQUE_TABLE && (GOURAUD && !FIXED_GOURAUD || !GOURAUD && OPAQUE_FLAT) {
                 To565::opaque()
             } else {
                 To565::fixed()

@@ -616,7 +616,7 @@ pub(crate) const OPAQUE_FLAT: bool = cfg!(microraster_armv7em);
 /// same. (`OPAQUE_TABLE` off for the M4F, its flat loops' table fixed
 /// too: `demo` 2,999,703 but `demo-flat` 2,536,732 -> 2,553,160, `fill`
 /// 14.39 -> 14.47 a pixel.)
-const FIXED_GOURAUD: bool = cfg!(microraster_armv7em);
+pub(crate) const FIXED_GOURAUD: bool = cfg!(microraster_armv7em);
 
 #[cfg(test)]
 mod tests {
