@@ -51,9 +51,18 @@ impl TriangleSetup {
         if (d >> 26 != 0) | (d & ((1 << 19) - 1) == 0) {
             return None;
         }
-        let s = if area2 < 0 { -1 } else { 1 };
+        // Negated on the sign's own path (the optimiser branches on the
+        // sign for the divisor anyway), where the products by the sign
+        // `±1` took four multiplies on the common one: x86-64 `demo`
+        // 2,870,002 -> 2,855,742 instructions, `rock` 2,380,899 ->
+        // 2,370,417, `tri4` -52 K, `tri100` -22 K.
+        let e = if area2 < 0 {
+            [-x1, -y1, -x2, -y2]
+        } else {
+            [x1, y1, x2, y2]
+        };
         let f = Offset {
-            e: [s * x1, s * y1, s * x2, s * y2],
+            e,
             o: [
                 HALF_PIXEL as i64 - v[0].x as i64,
                 HALF_PIXEL as i64 - v[0].y as i64,

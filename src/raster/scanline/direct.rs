@@ -97,13 +97,22 @@ impl Direct {
     }
 }
 
+/// Which sides [`half_direct`] clamps a span to, with `CLAMP`: the left
+/// (`x0`), the right (`x1`) or both.
+pub(super) const LEFT: u8 = 1;
+/// See [`LEFT`].
+pub(super) const RIGHT: u8 = 2;
+/// See [`LEFT`].
+pub(super) const BOTH: u8 = LEFT | RIGHT;
+
 /// [`half`](super::half) for [`Direct`] edges: records the non-empty
 /// spans of rows `row..stop` in `out` from its start, and returns the
 /// slots left. With `CLAMP`, the spans clipped to columns `x0..x1` (a
-/// triangle across its tile's side columns), without (a triangle within
+/// triangle across its tile's side columns) on the `SIDES` side or
+/// sides ([`LEFT`], [`RIGHT`], [`BOTH`]), without (a triangle within
 /// them; `x0` and `x1` unused).
 #[inline(always)]
-pub(super) fn half_direct<'a, const CLAMP: bool>(
+pub(super) fn half_direct<'a, const CLAMP: bool, const SIDES: u8>(
     out: &'a mut [Span],
     row: i32,
     stop: i32,
@@ -119,7 +128,11 @@ pub(super) fn half_direct<'a, const CLAMP: bool>(
         // Below 2^29 / 16: the casts keep the value.
         let (c0, c1) = ((lm / ld) as i32, (rm / rd) as i32);
         let (x0, x1) = if CLAMP {
-            (c0.max(x0), c1.min(x1))
+            match SIDES {
+                LEFT => (c0.max(x0), c1),
+                RIGHT => (c0, c1.min(x1)),
+                _ => (c0.max(x0), c1.min(x1)),
+            }
         } else {
             (c0, c1)
         };
