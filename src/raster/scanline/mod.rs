@@ -31,7 +31,7 @@
 //! triangle within `0..DIRECT_COLS` columns is walked as `Direct`
 //! edges instead: the numerator of each edge's column is kept and
 //! divided at every row, so an edge's set-up is two multiplies and no
-//! division or sign test. It takes fewer instructions (BENCHMARKS.md,
+//! division or sign test. It takes fewer instructions (docs/rounds.md,
 //! "The round of `289aa7d`"), though a division takes more cycles than
 //! the stepper's three: 2 to 12 on the M3, about 10 to 25 on x86-64.
 //!
