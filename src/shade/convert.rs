@@ -248,20 +248,6 @@ fn from_bits<C: 'static>(bits: impl FnOnce() -> u16) -> Option<C> {
     }
 }
 
-/// [`rgb`] where the target has SIMD for the span loops
-/// ([`super::VECTOR_LOOPS`]), `C::from` elsewhere: for the loops that
-/// vectorize embedded-graphics' arithmetic there, or measured faster with
-/// it (x86-64's `fill-gouraud-exact`: 91.2 instructions per fragment with
-/// the tables, 87.2 without).
-#[inline(always)]
-pub(crate) fn rgb_scalar<C: From<Rgb888> + 'static>(r: u8, g: u8, b: u8) -> C {
-    if super::VECTOR_LOOPS {
-        C::from(Rgb888::new(r, g, b))
-    } else {
-        rgb(r, g, b)
-    }
-}
-
 /// How far [`rgb16_green_up`] takes green up: 256 in its integer part,
 /// the offset of the 6-bit half of `TO565`.
 pub(crate) const GREEN_UP: u32 = 256 << 16;

@@ -475,16 +475,11 @@ impl<C: From<Rgb888> + 'static> PixelFn<[I16F16; 0], C> for Gouraud {
     #[inline(always)]
     fn pixel(&mut self, p: &Interpolated<[I16F16; 0]>) -> Option<C> {
         let [r, g, b] = p.rgb();
-        // On a 64-bit host through the conversion's tables too
-        // (`shade::rgb`) rather than `rgb_scalar`'s arithmetic, which an
-        // earlier loop had measured faster: x86-64 `fill-gouraud-exact`
-        // 62.97 -> 50.88 instructions a fragment. Elsewhere `rgb_scalar`
-        // is those tables.
-        Some(if cfg!(target_pointer_width = "64") {
-            crate::shade::rgb(r, g, b)
-        } else {
-            crate::shade::rgb_scalar(r, g, b)
-        })
+        // Through the conversion's tables on every target: on x86-64
+        // they beat embedded-graphics' arithmetic, which an earlier loop
+        // had measured faster (`fill-gouraud-exact` 62.97 -> 50.88
+        // instructions a fragment).
+        Some(crate::shade::rgb(r, g, b))
     }
 }
 
