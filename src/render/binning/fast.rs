@@ -66,7 +66,10 @@ pub(super) fn bin_fast<const TW: usize, const TH: usize, const SMALL: bool>(
                 &verts[idx[1] as usize],
                 &verts[idx[2] as usize],
             ];
-            if sv[0].outcode() | sv[1].outcode() | sv[2].outcode() != 0 {
+            // ARMv6-M's small frames test the outcodes with the area
+            // (see [`wrapping_area2`]).
+            let joint = SMALL && !WORDS;
+            if !joint && sv[0].outcode() | sv[1].outcode() | sv[2].outcode() != 0 {
                 break Err((k, idx));
             }
             let r = if WORDS {
@@ -81,6 +84,18 @@ pub(super) fn bin_fast<const TW: usize, const TH: usize, const SMALL: bool>(
                     continue;
                 }
                 e.centres()
+            } else if joint {
+                let v = [sv[0].xy(), sv[1].xy(), sv[2].xy()];
+                let oc = sv[0].outcode() | sv[1].outcode() | sv[2].outcode();
+                let keep = crate::render::state::keeps_by(cull, wrapping_area2(&v) as i64, 0);
+                if (oc != 0) | !keep {
+                    if oc != 0 {
+                        break Err((k, idx));
+                    }
+                    continue;
+                }
+                debug_assert_eq!(keep, keeps_banded(cull, &v, small));
+                centres(&v)
             } else {
                 let v = [sv[0].xy(), sv[1].xy(), sv[2].xy()];
                 if !keeps_banded(cull, &v, small) {
@@ -155,6 +170,24 @@ pub(super) fn bin_fast<const TW: usize, const TH: usize, const SMALL: bool>(
     }
     *t = tt;
     close_tally(tally, sum, pairs_sum);
+}
+
+/// Twice the signed area of the triangle `v` in wrapping `i32` products:
+/// [`keeps_banded`]'s area for a small frame's vertices inside it (within
+/// `0..=2^15` sub-pixels, where nothing wraps).
+///
+/// On ARMv6-M's small frames ([`bin_fast`] with `SMALL`) the search
+/// computes it before the outcodes are known, on vertices that may lie
+/// outside (whose area it then ignores), and takes the outcodes' and the
+/// cull test's exit in one branch: the triangle's values were then held
+/// in fewer registers (binning on the `demo` frame 499,579 -> 494,887
+/// instructions, `grid4` -4.5 K, `rock` -0.2 K; the same search on the
+/// Thumb-2 cores' words cost the Cortex-M3 +37 K and the M4F +16 K).
+#[inline(always)]
+fn wrapping_area2(v: &[SubPoint; 3]) -> i32 {
+    let (x1, y1) = (v[1].x.wrapping_sub(v[0].x), v[1].y.wrapping_sub(v[0].y));
+    let (x2, y2) = (v[2].x.wrapping_sub(v[0].x), v[2].y.wrapping_sub(v[0].y));
+    x1.wrapping_mul(y2).wrapping_sub(x2.wrapping_mul(y1))
 }
 
 /// The pixels whose centres a filled triangle with vertices `v` may
