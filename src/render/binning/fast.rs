@@ -310,6 +310,9 @@ struct Edges {
     dx: (Word, Word),
     /// Vertex 1's and 2's y less vertex 0's.
     dy: (Word, Word),
+    /// Vertex 1's and 2's x words, for the pixels on 64-bit hosts
+    /// ([`centres`](Self::centres)).
+    x12: (i32, i32),
 }
 
 /// The type of [`Edges`]' differences: `i64` on 64-bit hosts, where the
@@ -334,6 +337,7 @@ impl Edges {
             y0: y0 as i32,
             dx: (x1 - x0, x0 - x2),
             dy: ((y1 >> 9) - y0, (y2 >> 9) - y0),
+            x12: (x1 as i32, x2 as i32),
         }
     }
 
@@ -366,7 +370,17 @@ impl Edges {
             let (a, b) = (a as i32, b as i32);
             (a.min(b).min(0), a.max(b).max(0))
         };
-        let (lx, hx) = span(self.dx.0, -self.dx.1);
+        // On 64-bit hosts from the x words themselves, so that the area's
+        // two-operand products may overwrite the x differences rather
+        // than copy them (binning on the `demo` frame 345,097 -> 342,353
+        // instructions, `rock` -1.4 K, `tri4` -22 K).
+        let (lx, hx) = if cfg!(target_pointer_width = "64") {
+            let (x1, x2) = self.x12;
+            let x0 = self.x0;
+            (x0.min(x1).min(x2) - x0, x0.max(x1).max(x2) - x0)
+        } else {
+            span(self.dx.0, -self.dx.1)
+        };
         let (ly, hy) = span(self.dy.0, self.dy.1);
         PixelRect::new(
             (self.x0 + lx + (UP << 8)) >> (SUBPIXEL_BITS + 8),
