@@ -168,19 +168,20 @@ impl<'p> Pass<'p> {
             }
             return;
         }
-        self.push_new(k, t);
+        self.push_new(k, slot as u16, t);
     }
 
     /// Appends triangle `t` to the bin of tile `k`, whose chunk is full
-    /// (or which has none), in a new chunk ([`grow`](Self::grow)); `false`
+    /// (or which has none; its tail is `tail`), in a new chunk
+    /// ([`grow`](Self::grow)); `false`
     /// when the pass gave up tile `k`. Out of line in builds optimised
     /// for size (the OLED firmware 120 B smaller); elsewhere inlined: a
     /// tile's chunk fills every `CHUNK - 1` entries, and the call cost
     /// the Cortex-M3's `demo` frame 4,000 instructions of binning.
     #[cfg_attr(microraster_size, cold, inline(never))]
     #[cfg_attr(not(microraster_size), inline(always))]
-    fn push_new(&mut self, k: usize, t: u16) -> bool {
-        let Some(slot) = self.grow(k) else {
+    fn push_new(&mut self, k: usize, tail: u16, t: u16) -> bool {
+        let Some(slot) = self.grow(k, tail) else {
             return false;
         };
         self.pool[slot] = t;
@@ -198,14 +199,14 @@ impl<'p> Pass<'p> {
         loop {
             let end = ks.end.min(self.tails.len());
             let (pool, tails) = (&mut *self.pool, &mut *self.tails);
-            let full = loop {
+            let (full, tail) = loop {
                 if k >= end {
                     return;
                 }
                 let slot = tails[k] as usize;
                 let next = slot + 1;
                 if next & (CHUNK - 1) == 0 {
-                    break k;
+                    break (k, slot as u16);
                 }
                 pool[slot] = t;
                 tails[k] = next as u16;
@@ -213,7 +214,7 @@ impl<'p> Pass<'p> {
             };
             // A new chunk, or the pass gave up tile `k` (and every later
             // one: tiles go from the end).
-            if !self.push_new(full, t) {
+            if !self.push_new(full, tail, t) {
                 return;
             }
             k = full + 1;
@@ -221,7 +222,9 @@ impl<'p> Pass<'p> {
     }
 
     /// Links a new chunk to tile `k`, whose chunk is full (or which has
-    /// none), and returns the chunk's first slot. When the pool is
+    /// none), and returns the chunk's first slot. `tail` is the tile's
+    /// tail, which the caller has just read: passed rather than read
+    /// again with its bounds check. When the pool is
     /// exhausted, the pass gives up its last tile, whose chunks go back to
     /// the pool, until a chunk is found; `None` when tile `k` itself had to
     /// go.
@@ -234,15 +237,16 @@ impl<'p> Pass<'p> {
     /// loads).
     #[cold]
     #[inline(never)]
-    fn grow(&mut self, k: usize) -> Option<usize> {
+    fn grow(&mut self, k: usize, tail: u16) -> Option<usize> {
         if !cfg!(microraster_size) && self.fresh < self.chunks {
             // `k` is held, and a tail lies in the pool: neither `get`
-            // fails (and none would take a chunk).
+            // fails (and none would take a chunk). Its tail is the
+            // caller's, which has just read it.
             let c = self.fresh;
-            let at = match self.tails.get(k) {
-                Some(&EMPTY) => self.heads.get_mut(k),
-                Some(&tail) => self.pool.get_mut(tail as usize),
-                None => None,
+            debug_assert_eq!(self.tails.get(k), Some(&tail));
+            let at = match tail {
+                EMPTY => self.heads.get_mut(k),
+                _ => self.pool.get_mut(tail as usize),
             };
             *at? = c;
             self.fresh += 1;

@@ -50,14 +50,25 @@ pub(super) fn bin_fast<const TW: usize, const TH: usize, const SMALL: bool>(
     // The visible count before the loop, for the first pairs
     // ([`ONE_TILE_FIRST`]).
     let visible_before = tally.fates[Fate::Visible as usize];
+    // The visible triangles the search finds, where counted apart
+    // ([`LOCAL_COUNT`]).
+    let mut found_visible = 0u32;
     let mut rest = tris.iter();
     'done: loop {
         // The next visible triangle: its number and its pixels.
         // A triangle with an outcode bit set leaves the search (`Err`),
         // so that the search's values need not survive a call.
         let found = loop {
-            let Some(&idx) = rest.next() else {
+            let Some(tri) = rest.next() else {
                 break 'done;
+            };
+            // The indices read one by one ([`INDEX_BY_REF`]) or copied.
+            let copied;
+            let idx: &[u16; 3] = if INDEX_BY_REF {
+                tri
+            } else {
+                copied = *tri;
+                &copied
             };
             let k = tt;
             tt += 1;
@@ -66,8 +77,11 @@ pub(super) fn bin_fast<const TW: usize, const TH: usize, const SMALL: bool>(
                 &verts[idx[1] as usize],
                 &verts[idx[2] as usize],
             ];
-            if sv[0].outcode() | sv[1].outcode() | sv[2].outcode() != 0 {
-                break Err((k, idx));
+            // ARMv6-M's small frames test the outcodes with the area
+            // (see [`wrapping_area2`]).
+            let joint = SMALL && !WORDS;
+            if !joint && sv[0].outcode() | sv[1].outcode() | sv[2].outcode() != 0 {
+                break Err((k, *idx));
             }
             let r = if WORDS {
                 let w = [sv[0].xy_words(), sv[1].xy_words(), sv[2].xy_words()];
@@ -81,6 +95,18 @@ pub(super) fn bin_fast<const TW: usize, const TH: usize, const SMALL: bool>(
                     continue;
                 }
                 e.centres()
+            } else if joint {
+                let v = [sv[0].xy(), sv[1].xy(), sv[2].xy()];
+                let oc = sv[0].outcode() | sv[1].outcode() | sv[2].outcode();
+                let keep = crate::render::state::keeps_by(cull, wrapping_area2(&v) as i64, 0);
+                if (oc != 0) | !keep {
+                    if oc != 0 {
+                        break Err((k, *idx));
+                    }
+                    continue;
+                }
+                debug_assert_eq!(keep, keeps_banded(cull, &v, small));
+                centres(&v)
             } else {
                 let v = [sv[0].xy(), sv[1].xy(), sv[2].xy()];
                 if !keeps_banded(cull, &v, small) {
@@ -99,7 +125,11 @@ pub(super) fn bin_fast<const TW: usize, const TH: usize, const SMALL: bool>(
                 continue;
             }
             if !LOOP_COUNTS_VISIBLE {
-                tally.fates[Fate::Visible as usize] += 1;
+                if LOCAL_COUNT {
+                    found_visible += 1;
+                } else {
+                    tally.fates[Fate::Visible as usize] += 1;
+                }
             }
             break Ok((k, r));
         };
@@ -146,6 +176,8 @@ pub(super) fn bin_fast<const TW: usize, const TH: usize, const SMALL: bool>(
             push_row_major(bins, (c0, c1), (r0, r1), cols, ctx.t0, k as u16);
         }
     }
+    // At most one a triangle, 2^16 a frame: no overflow.
+    tally.fates[Fate::Visible as usize] += found_visible;
     if ONE_TILE_FIRST {
         // Every visible triangle of the loop (counted by it or by
         // `classify`) has a first pair. Saturating sums of counts that
@@ -155,6 +187,44 @@ pub(super) fn bin_fast<const TW: usize, const TH: usize, const SMALL: bool>(
     }
     *t = tt;
     close_tally(tally, sum, pairs_sum);
+}
+
+/// Whether [`bin_fast`]'s search reads a triangle's three indices one by
+/// one through its reference (the exit to [`classify_apart`] copying
+/// them), rather than as one copied `[u16; 3]`, which x86-64 loaded as a
+/// 32-bit word and a half-word and took apart again: on 64-bit hosts
+/// (binning on the `demo` frame 355,968 -> 346,631 instructions, `rock`
+/// 310,532 -> 301,650, `tri4` -22.5 K, `tri100` -4.9 K) and ARMv6-M,
+/// where the search's registers moved for the better (494,887 ->
+/// 483,068, `rock` -12.9 K, `grid4` -3.2 K); not on the Cortex-M3 (+1.9
+/// K) and M4F (+0.6 K).
+const INDEX_BY_REF: bool = crate::math::SPLIT || cfg!(target_pointer_width = "64");
+
+/// Whether [`bin_fast`] counts the visible triangles its search finds in
+/// a local, added to the tally at the loop's end, rather than in the
+/// tally itself (a load of its address, a load, an add and a store): on
+/// ARMv6-M (binning on the `demo` frame 483,068 -> 475,207 instructions,
+/// `rock` 425,756 -> 416,944, but `grid4` 127,116 -> 129,381); not on
+/// x86-64 (`demo` +10.1 K, `tri4` +33 K) nor the Thumb-2 cores (the
+/// Cortex-M4F's search then copied its registers round each triangle).
+const LOCAL_COUNT: bool = crate::math::SPLIT;
+
+/// Twice the signed area of the triangle `v` in wrapping `i32` products:
+/// [`keeps_banded`]'s area for a small frame's vertices inside it (within
+/// `0..=2^15` sub-pixels, where nothing wraps).
+///
+/// On ARMv6-M's small frames ([`bin_fast`] with `SMALL`) the search
+/// computes it before the outcodes are known, on vertices that may lie
+/// outside (whose area it then ignores), and takes the outcodes' and the
+/// cull test's exit in one branch: the triangle's values were then held
+/// in fewer registers (binning on the `demo` frame 499,579 -> 494,887
+/// instructions, `grid4` -4.5 K, `rock` -0.2 K; the same search on the
+/// Thumb-2 cores' words cost the Cortex-M3 +37 K and the M4F +16 K).
+#[inline(always)]
+fn wrapping_area2(v: &[SubPoint; 3]) -> i32 {
+    let (x1, y1) = (v[1].x.wrapping_sub(v[0].x), v[1].y.wrapping_sub(v[0].y));
+    let (x2, y2) = (v[2].x.wrapping_sub(v[0].x), v[2].y.wrapping_sub(v[0].y));
+    x1.wrapping_mul(y2).wrapping_sub(x2.wrapping_mul(y1))
 }
 
 /// The pixels whose centres a filled triangle with vertices `v` may
@@ -240,6 +310,9 @@ struct Edges {
     dx: (Word, Word),
     /// Vertex 1's and 2's y less vertex 0's.
     dy: (Word, Word),
+    /// Vertex 1's and 2's x words, for the pixels on 64-bit hosts
+    /// ([`centres`](Self::centres)).
+    x12: (i32, i32),
 }
 
 /// The type of [`Edges`]' differences: `i64` on 64-bit hosts, where the
@@ -264,6 +337,7 @@ impl Edges {
             y0: y0 as i32,
             dx: (x1 - x0, x0 - x2),
             dy: ((y1 >> 9) - y0, (y2 >> 9) - y0),
+            x12: (x1 as i32, x2 as i32),
         }
     }
 
@@ -296,7 +370,17 @@ impl Edges {
             let (a, b) = (a as i32, b as i32);
             (a.min(b).min(0), a.max(b).max(0))
         };
-        let (lx, hx) = span(self.dx.0, -self.dx.1);
+        // On 64-bit hosts from the x words themselves, so that the area's
+        // two-operand products may overwrite the x differences rather
+        // than copy them (binning on the `demo` frame 345,097 -> 342,353
+        // instructions, `rock` -1.4 K, `tri4` -22 K).
+        let (lx, hx) = if cfg!(target_pointer_width = "64") {
+            let (x1, x2) = self.x12;
+            let x0 = self.x0;
+            (x0.min(x1).min(x2) - x0, x0.max(x1).max(x2) - x0)
+        } else {
+            span(self.dx.0, -self.dx.1)
+        };
         let (ly, hy) = span(self.dy.0, self.dy.1);
         PixelRect::new(
             (self.x0 + lx + (UP << 8)) >> (SUBPIXEL_BITS + 8),
