@@ -533,7 +533,12 @@ pub(crate) fn check_lighting(
     if count > max {
         return Err(LightError::TooManyLights { count, max });
     }
-    identity_checks(lighting.directional, eye)?;
+    // Builds optimised for size keep the one set-up (`identity_checks`
+    // was 156 bytes of the OLED firmware).
+    match cfg!(microraster_size) {
+        true => directional_lights(lighting.directional, &Mat4::IDENTITY, eye, true).map(|_| ())?,
+        false => identity_checks(lighting.directional, eye)?,
+    }
     let scale = ModelScale(&Mat4::IDENTITY);
     for (i, l) in lighting.point.iter().enumerate() {
         // In the identity's model space a finite position stays finite.
