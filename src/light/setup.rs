@@ -409,8 +409,7 @@ fn directional_by(
         direction.y.to_bits() << 1,
         direction.z.to_bits() << 1,
     );
-    const INF: u32 = 0xff00_0000;
-    if x >= INF || y >= INF || z >= INF || (x | y | z) == 0 {
+    if x >= INF_BITS || y >= INF_BITS || z >= INF_BITS || (x | y | z) == 0 {
         return Err(LightError::BadDirection { light: i });
     }
     let local = inverse
@@ -490,6 +489,34 @@ fn model_checks_by<'m>(
     }
 }
 
+/// The errors of [`directional_lights`] with the identity model matrix,
+/// without its arithmetic: the identity's [`Mat4::inverse3`] is itself
+/// (moderate, its `apply` of a finite vector finite: the vector, up to the
+/// signs of zeros), so the model checks fail exactly for an eye that is
+/// not finite or does not fit raw 16.16, and a light's direction exactly
+/// where its bits do ([`directional_by`]'s test; a finite non-zero
+/// vector always normalizes). The inverse, two products by it and a
+/// normalization were some 5,000 instructions a frame on the Cortex-M3,
+/// for directions that were never used.
+fn identity_checks(lights: &[super::DirectionalLight], eye: Vec3) -> Result<(), LightError> {
+    if !(eye.is_finite() && fits_raw(eye)) {
+        return Err(LightError::BadMatrix);
+    }
+    for (i, l) in lights.iter().enumerate() {
+        let d = l.direction;
+        // `directional_by`'s test of the bits.
+        let (x, y, z) = (d.x.to_bits() << 1, d.y.to_bits() << 1, d.z.to_bits() << 1);
+        if x >= INF_BITS || y >= INF_BITS || z >= INF_BITS || (x | y | z) == 0 {
+            return Err(LightError::BadDirection { light: i });
+        }
+    }
+    Ok(())
+}
+
+/// A finite `f32`'s bits shifted left by one (the sign shifted out) are
+/// below this; an infinite or NaN one's are not.
+const INF_BITS: u32 = 0xff00_0000;
+
 /// Checks `lighting` as [`LightSetup::new`] with at most `max` lights, an
 /// identity model matrix and the eye `eye` does, with the same errors, but
 /// converts nothing: the check of a frame's lights in a renderer that does
@@ -506,7 +533,13 @@ pub(crate) fn check_lighting(
     if count > max {
         return Err(LightError::TooManyLights { count, max });
     }
-    let (scale, _) = directional_lights(lighting.directional, &Mat4::IDENTITY, eye, true)?;
+    // Builds optimised for size keep the one set-up (`identity_checks`
+    // was 156 bytes of the OLED firmware).
+    match cfg!(microraster_size) {
+        true => directional_lights(lighting.directional, &Mat4::IDENTITY, eye, true).map(|_| ())?,
+        false => identity_checks(lighting.directional, eye)?,
+    }
+    let scale = ModelScale(&Mat4::IDENTITY);
     for (i, l) in lighting.point.iter().enumerate() {
         // In the identity's model space a finite position stays finite.
         if !l.position.is_finite() {

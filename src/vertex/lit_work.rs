@@ -172,18 +172,23 @@ pub(super) const TABLE_MIN: usize = 320;
 /// from here, neighbours load together (`LDRD`), the translation's two
 /// words straight into a row's accumulator, and the Lambert colour's
 /// constants are folded per draw (two per channel where there were
-/// three and a multiply more).
+/// three and a multiply more). In this order (`repr(C)`), the light's
+/// direction first: the table loop loads it with one `LDM` from the
+/// struct's address itself, where at the end (where the compiler had put
+/// it) it took an `ADD` for the address each vertex (Cortex-M3 `demo`
+/// vertex stage 273,361 -> 271,356).
 #[derive(Clone, Copy, Debug)]
+#[repr(C)]
 #[cfg_attr(not(any(test, target_pointer_width = "32")), allow(dead_code))]
 pub(super) struct LoopConstants {
+    /// The light's direction (as [`Lambert`]'s), times 2^8 where n·l is
+    /// the upper word of its sum ([`HIGH_NDOTL`]).
+    dir: [i32; 3],
     /// Per row `r` of the matrix: the low and high words of `m[3][r] 2^16 +
     /// 2^15` (translation and rounding, as in
     /// [`FixedMat4::transform_point_bounded`]), then `m[0][r]`, `m[1][r]`
     /// and `m[2][r]`.
     rows: [[i32; 5]; 4],
-    /// The light's direction (as [`Lambert`]'s), times 2^8 where n·l is
-    /// the upper word of its sum ([`HIGH_NDOTL`]).
-    dir: [i32; 3],
     /// The Lambert colour's factors per channel ([`Lambert::folded`]).
     channels: [[u32; 2]; 3],
     /// [`div65280_sat`](super::lambert::div65280_sat)'s multiplier, loaded with the channels' factors

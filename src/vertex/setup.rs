@@ -146,21 +146,28 @@ impl DrawSetup {
         });
         // The renderer checked the lights themselves (with an identity
         // model matrix): what is left to fail is this draw's matrix.
+        // One directional light without fog on a white, matte material
+        // (the fast path's case) takes the fast path's set-up alone, with
+        // the same errors and light: the general set-up, its eight light
+        // slots and the eye converted for highlights, is not made.
+        let plain = white && dark;
         let lit = match lighting {
-            Some(l) if GENERAL => match LightSetup::new_in(&mut s.light, l, m, eye) {
-                Ok(light) => {
-                    s.lambert = match white && dark {
-                        true => light.single_directional().map(Lambert::new),
-                        false => None,
-                    };
-                    if s.lambert.is_none() {
-                        s.general = Some(|l, m, b, p, n| l.shade(m, b, p, n));
+            Some(l) if GENERAL && !(plain && Self::single_light(l)) => {
+                match LightSetup::new_in(&mut s.light, l, m, eye) {
+                    Ok(light) => {
+                        s.lambert = match white && dark {
+                            true => light.single_directional().map(Lambert::new),
+                            false => None,
+                        };
+                        if s.lambert.is_none() {
+                            s.general = Some(|l, m, b, p, n| l.shade(m, b, p, n));
+                        }
+                        Ok(())
                     }
-                    Ok(())
+                    Err(_) => Err(VertexError::BadMatrix),
                 }
-                Err(_) => Err(VertexError::BadMatrix),
-            },
-            Some(l) => Self::one_light(l, m, eye, white && dark).map(|lambert| s.lambert = lambert),
+            }
+            Some(l) => Self::one_light(l, m, eye, plain).map(|lambert| s.lambert = lambert),
             None => Ok(()),
         };
         // Unlit vertices (no normals) need no lighting at all.
@@ -180,6 +187,15 @@ impl DrawSetup {
                 Err(failed.unwrap_or(VertexError::BadMatrix))
             }
         }
+    }
+
+    /// Whether `lighting` is one directional light and nothing else (no
+    /// point light, no fog): with a white, matte material, the case of
+    /// [`LightSetup::single_directional`].
+    fn single_light(lighting: &Lighting<'_>) -> bool {
+        lighting.directional.len() == 1
+            && lighting.point.is_empty()
+            && lighting.fog == crate::light::Fog::None
     }
 
     /// The fast path's set-up without the general lighting's code: for

@@ -427,6 +427,16 @@ impl Viewport {
         fast: bool,
         word: impl FnOnce() -> u32,
     ) -> ScreenVertex {
+        if LONG_DIVISION && fast {
+            let (xo, y, z) = match self.project_fast(pos) {
+                Some((p, z)) => (ScreenVertex::xo_word(p.x, 0), p.y, z),
+                None => {
+                    let (outcode, p, z) = self.project_rest(pos[0], pos[1], pos[2], pos[3]);
+                    (ScreenVertex::xo_word(p.x, outcode), p.y, z)
+                }
+            };
+            return ScreenVertex::with_xo_color_word(xo, y, z, word());
+        }
         let (outcode, p, z) = self.project_any(pos, fast);
         ScreenVertex::with_color_word(p.x, p.y, z, outcode, word())
     }
