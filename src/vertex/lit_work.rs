@@ -269,13 +269,31 @@ impl LitWork for LoopConstants {
     #[inline(always)]
     fn transform(&self, p: [i32; 3]) -> [i32; 4] {
         use crate::math::mul_wide;
-        let mut out = [0i32; 4];
-        for (o, k) in out.iter_mut().zip(&self.rows) {
+        let row = |k: &[i32; 5]| {
             let acc = ((k[1] as i64) << 32 | k[0] as u32 as i64)
                 .wrapping_add(mul_wide(k[2], p[0]))
                 .wrapping_add(mul_wide(k[3], p[1]))
                 .wrapping_add(mul_wide(k[4], p[2]));
-            *o = (acc >> 16) as i32;
+            (acc >> 16) as i32
+        };
+        if PAIRED_ROWS {
+            // z and w first, through an opaque pair (a store and a load
+            // of two words): the scheduler cannot carry their sums into
+            // x's and y's. In this form only (see `PAIRED_ROWS`).
+            let first = core::hint::black_box([row(&self.rows[2]), row(&self.rows[3])]);
+            let mut out = [0i32; 4];
+            out[2] = first[0];
+            out[3] = first[1];
+            // By index, as measured (the form matters here).
+            #[allow(clippy::needless_range_loop)]
+            for r in 0..2 {
+                out[r] = row(&self.rows[r]);
+            }
+            return out;
+        }
+        let mut out = [0i32; 4];
+        for (o, k) in out.iter_mut().zip(&self.rows) {
+            *o = row(k);
         }
         out
     }
@@ -316,6 +334,20 @@ impl LitWork for LoopConstants {
 /// loop constants and its register allocation: `demo` 8,000
 /// instructions more.)
 const INSIDE: usize = super::screen::INTERIOR_STARTS as usize;
+
+/// Whether [`LoopConstants::transform`] makes the rows in two pairs, z
+/// and w first, passed through `black_box` before x and y: on ARMv7E-M,
+/// whose scheduler otherwise sums the four rows at once (eight
+/// accumulator registers) and spills a row's constant and the loop's
+/// offset to the stack each vertex (the Cortex-M3 sums them one by one).
+/// M4F vertex stage `demo` 246,429 -> 244,405 instructions, `rock`
+/// 233,007 -> 231,045 (four-scene build). Fragile: z and w are the only
+/// pair that paid (x and y first 252,825, x and z 248,897, y and z
+/// 254,897, x and w 250,439, y and w 248,439), and only as written (x and
+/// y returned in one array expression, 258,993); neither a barrier
+/// between rows (`black_box(())`: the sums sank below it, 291,353) nor a
+/// row order alone paid (every order 246,439 or more).
+const PAIRED_ROWS: bool = cfg!(microraster_armv7em);
 
 /// [`within`] the interval of `inside`, if any (without one, never).
 #[inline(always)]
