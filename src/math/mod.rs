@@ -340,7 +340,13 @@ impl Mat4 {
         let k = f32::from_bits(((127 - e) as u32) << 23);
         // Rows of the 3x3 part, scaled (only the nine elements it uses).
         let m = &self.m;
-        let row = |r: usize| Vec3::new(m[0][r] * k, m[1][r] * k, m[2][r] * k);
+        let row = |r: usize| {
+            Vec3::new(
+                times_pow2(m[0][r], k),
+                times_pow2(m[1][r], k),
+                times_pow2(m[2][r], k),
+            )
+        };
         let (r0, r1, r2) = (row(0), row(1), row(2));
         // Columns of the inverse are cross products of rows / det.
         let c = [r1.cross(r2), r2.cross(r0), r0.cross(r1)];
@@ -536,6 +542,26 @@ impl core::ops::Mul for Mat4 {
     }
 }
 
+/// `x * k` for `k` a positive normal power of two (an [`Inverse3`]'s
+/// scale), the same bits: where `f32` arithmetic is in software
+/// ([`SKIP_AFFINE`]), a zero is itself and a normal `x` whose product is
+/// normal has `k`'s exponent added to its own (exact), without the
+/// soft-float multiply (some 45 instructions on the Cortex-M3, twelve a
+/// draw's light set-up); any other `x` is multiplied.
+#[inline]
+fn times_pow2(x: f32, k: f32) -> f32 {
+    let (b, kb) = (x.to_bits(), k.to_bits());
+    let field = (b >> 23) & 0xff;
+    let sum = field as i32 + (kb >> 23) as i32 - 127;
+    match SKIP_AFFINE {
+        true if b << 1 == 0 => x,
+        true if field != 0 && field != 255 && (1..=254).contains(&sum) => {
+            f32::from_bits(b.wrapping_add(kb.wrapping_sub(127 << 23)))
+        }
+        _ => x * k,
+    }
+}
+
 /// The inverse of a [`Mat4`]'s 3x3 part, made once for several vectors
 /// ([`Mat4::inverse3`]); [`apply`](Self::apply) gives
 /// [`Mat4::inverse_transform_vector`]'s result, the same bits.
@@ -599,9 +625,9 @@ impl Inverse3 {
         let ([c0, c1, c2], inv, k) = (self.c, self.inv, self.k);
         // The inverse of the scaled matrix is k times the inverse.
         let out = Vec3::new(
-            (c0.x * v.x + c1.x * v.y + c2.x * v.z) * inv * k,
-            (c0.y * v.x + c1.y * v.y + c2.y * v.z) * inv * k,
-            (c0.z * v.x + c1.z * v.y + c2.z * v.z) * inv * k,
+            times_pow2((c0.x * v.x + c1.x * v.y + c2.x * v.z) * inv, k),
+            times_pow2((c0.y * v.x + c1.y * v.y + c2.y * v.z) * inv, k),
+            times_pow2((c0.z * v.x + c1.z * v.y + c2.z * v.z) * inv, k),
         );
         out.is_finite().then_some(out)
     }
@@ -773,6 +799,25 @@ mod tests {
         assert!(held > 50_000, "{held}");
     }
 
+    /// [`times_pow2`] is the product, bit for bit (NaNs as NaNs), for
+    /// every scale an [`Inverse3`] takes and random or special values.
+    #[test]
+    fn times_pow2_is_the_product() {
+        let mut next = crate::testing::rng();
+        for i in 0..400_000u32 {
+            let k = f32::from_bits((1 + i % 254) << 23);
+            let x = match i % 2 {
+                0 => odd_f32(&mut next),
+                _ => f32::from_bits(next(1 << 32) as u32),
+            };
+            let (got, want) = (times_pow2(x, k), x * k);
+            assert!(
+                got.to_bits() == want.to_bits() || (got.is_nan() && want.is_nan()),
+                "{x:?} {k:?}"
+            );
+        }
+    }
+
     /// A vector fails to normalize exactly when it is not finite or is
     /// zero (the light set-up tests a direction so).
     #[test]
@@ -807,9 +852,9 @@ mod tests {
         }
         let inv = 1.0 / det;
         let out = Vec3::new(
-            (c0.x * v.x + c1.x * v.y + c2.x * v.z) * inv * k,
-            (c0.y * v.x + c1.y * v.y + c2.y * v.z) * inv * k,
-            (c0.z * v.x + c1.z * v.y + c2.z * v.z) * inv * k,
+            times_pow2((c0.x * v.x + c1.x * v.y + c2.x * v.z) * inv, k),
+            times_pow2((c0.y * v.x + c1.y * v.y + c2.y * v.z) * inv, k),
+            times_pow2((c0.z * v.x + c1.z * v.y + c2.z * v.z) * inv, k),
         );
         out.is_finite().then_some(out)
     }
