@@ -340,7 +340,13 @@ impl Mat4 {
         let k = f32::from_bits(((127 - e) as u32) << 23);
         // Rows of the 3x3 part, scaled (only the nine elements it uses).
         let m = &self.m;
-        let row = |r: usize| Vec3::new(m[0][r] * k, m[1][r] * k, m[2][r] * k);
+        let row = |r: usize| {
+            Vec3::new(
+                times_pow2(m[0][r], k),
+                times_pow2(m[1][r], k),
+                times_pow2(m[2][r], k),
+            )
+        };
         let (r0, r1, r2) = (row(0), row(1), row(2));
         // Columns of the inverse are cross products of rows / det.
         let c = [r1.cross(r2), r2.cross(r0), r0.cross(r1)];
@@ -536,6 +542,33 @@ impl core::ops::Mul for Mat4 {
     }
 }
 
+/// `x * k` for `k` a positive normal power of two (an [`Inverse3`]'s
+/// scale), the same bits: where `f32` arithmetic is in software
+/// ([`SKIP_AFFINE`]), a zero is itself and a normal `x` whose product is
+/// normal has `k`'s exponent added to its own (exact), without the
+/// soft-float multiply (some 45 instructions on the Cortex-M3, twelve a
+/// draw's light set-up); any other `x` is multiplied.
+#[inline]
+fn times_pow2(x: f32, k: f32) -> f32 {
+    if !SKIP_AFFINE {
+        return x * k;
+    }
+    // The bits through `black_box`: LLVM turned the zero test into a
+    // soft-float compare (a library call each, as in `Mat4`'s product).
+    // (Not where the product is kept: the Cortex-M4F's `demo` took 76
+    // instructions more through it.)
+    let (b, kb) = (core::hint::black_box(x.to_bits()), k.to_bits());
+    let field = (b >> 23) & 0xff;
+    let sum = field as i32 + (kb >> 23) as i32 - 127;
+    match b << 1 == 0 {
+        true => x,
+        false if field != 0 && field != 255 && (1..=254).contains(&sum) => {
+            f32::from_bits(b.wrapping_add(kb.wrapping_sub(127 << 23)))
+        }
+        false => x * k,
+    }
+}
+
 /// The inverse of a [`Mat4`]'s 3x3 part, made once for several vectors
 /// ([`Mat4::inverse3`]); [`apply`](Self::apply) gives
 /// [`Mat4::inverse_transform_vector`]'s result, the same bits.
@@ -559,14 +592,49 @@ impl Inverse3 {
         (self.k.to_bits() >> 23).wrapping_sub(127 - 61) <= 121
     }
 
+    /// Whether `apply(v - t)` is known, from the exponents alone, to be
+    /// `Some` with every coordinate at most 2^44 in magnitude (so that
+    /// 2^16 times it is at most 2^60: what the light set-up's raw 16.16
+    /// takes). `false` says nothing: the caller computes it. A few dozen
+    /// integer instructions where the product and its tests were about
+    /// 1,600 soft-float ones on the Cortex-M3, per draw, for an eye whose
+    /// model-space value the one-light set-up never uses.
+    ///
+    /// Every finite `x` (zero and subnormals too) is below `2^(f - 126)`,
+    /// `f` its exponent field; with `|c| < 2^a` for the adjugate's
+    /// elements and `|v|, |t| < 2^(b - 1)`, each rounded step of `apply`
+    /// stays within: `|v - t| <= 2^b`, each product `<= 2^(a + b)`, the
+    /// sum of three `<= 2^(a + b + 2)`, times `inv < 2^i` `<= 2^(a + b +
+    /// 2 + i)`, times `k = 2^kk` (exact, or smaller where it underflows)
+    /// `<= 2^(a + b + 2 + i + kk)`. Finite where each bound is at most
+    /// 2^127. Where a value is not finite (its field 255: `inv` is
+    /// infinite for a determinant below about 2^-128), the bounds do not
+    /// hold, and the test fails.
+    pub(crate) fn moves_within_2_44(&self, v: Vec3, t: Vec3) -> bool {
+        let field = |x: f32| ((x.to_bits() >> 23) & 0xff) as i32;
+        let top = |v: Vec3| field(v.x).max(field(v.y)).max(field(v.z));
+        let (fc, fv) = (
+            top(self.c[0]).max(top(self.c[1])).max(top(self.c[2])),
+            top(v).max(top(t)),
+        );
+        let fi = field(self.inv);
+        if fc.max(fv).max(fi) == 255 {
+            return false;
+        }
+        let (a, b, i) = (fc - 126, fv - 125, fi - 126);
+        let kk = field(self.k) - 127;
+        let sum = a + b + 2;
+        sum <= 127 && sum + i <= 127 && sum + i + kk <= 44
+    }
+
     /// `M⁻¹ v`; `None` when a coordinate is not finite.
     pub(crate) fn apply(&self, v: Vec3) -> Option<Vec3> {
         let ([c0, c1, c2], inv, k) = (self.c, self.inv, self.k);
         // The inverse of the scaled matrix is k times the inverse.
         let out = Vec3::new(
-            (c0.x * v.x + c1.x * v.y + c2.x * v.z) * inv * k,
-            (c0.y * v.x + c1.y * v.y + c2.y * v.z) * inv * k,
-            (c0.z * v.x + c1.z * v.y + c2.z * v.z) * inv * k,
+            times_pow2((c0.x * v.x + c1.x * v.y + c2.x * v.z) * inv, k),
+            times_pow2((c0.y * v.x + c1.y * v.y + c2.y * v.z) * inv, k),
+            times_pow2((c0.z * v.x + c1.z * v.y + c2.z * v.z) * inv, k),
         );
         out.is_finite().then_some(out)
     }
@@ -699,6 +767,64 @@ mod tests {
         }
     }
 
+    /// Where [`Inverse3::moves_within_2_44`] holds, `apply(v - t)` is
+    /// finite and within 2^44: random matrices, eyes and translations of
+    /// any size, and moderate ones (where the bound mostly holds).
+    #[test]
+    fn bounded_move_is_finite_and_within_2_44() {
+        let mut next = crate::testing::rng();
+        let mut held = 0;
+        for i in 0..300_000 {
+            let mut f = || match i % 3 {
+                0 => odd_f32(&mut next),
+                // Within 2^±20 or so, any sign: the bound's usual case.
+                _ => {
+                    let e = next(41) as i32 - 20;
+                    let m = 1.0 + next(1 << 23) as f32 / (1 << 23) as f32;
+                    let v = m * f32::from_bits(((127 + e) as u32) << 23);
+                    [v, -v][next(2) as usize]
+                }
+            };
+            let m = Mat4 {
+                m: [[0.0; 4]; 4].map(|c| c.map(|_| f())),
+            };
+            let (v, t) = (Vec3::new(f(), f(), f()), Vec3::new(f(), f(), f()));
+            let Some(inverse) = m.inverse3() else {
+                continue;
+            };
+            if inverse.moves_within_2_44(v, t) {
+                held += 1;
+                let out = inverse.apply(v - t);
+                let fits = out.is_some_and(|o| {
+                    [o.x, o.y, o.z]
+                        .iter()
+                        .all(|c| c.abs() <= (1u64 << 44) as f32)
+                });
+                assert!(fits, "{m:?} {v:?} {t:?}");
+            }
+        }
+        assert!(held > 50_000, "{held}");
+    }
+
+    /// [`times_pow2`] is the product, bit for bit (NaNs as NaNs), for
+    /// every scale an [`Inverse3`] takes and random or special values.
+    #[test]
+    fn times_pow2_is_the_product() {
+        let mut next = crate::testing::rng();
+        for i in 0..400_000u32 {
+            let k = f32::from_bits((1 + i % 254) << 23);
+            let x = match i % 2 {
+                0 => odd_f32(&mut next),
+                _ => f32::from_bits(next(1 << 32) as u32),
+            };
+            let (got, want) = (times_pow2(x, k), x * k);
+            assert!(
+                got.to_bits() == want.to_bits() || (got.is_nan() && want.is_nan()),
+                "{x:?} {k:?}"
+            );
+        }
+    }
+
     /// A vector fails to normalize exactly when it is not finite or is
     /// zero (the light set-up tests a direction so).
     #[test]
@@ -733,9 +859,9 @@ mod tests {
         }
         let inv = 1.0 / det;
         let out = Vec3::new(
-            (c0.x * v.x + c1.x * v.y + c2.x * v.z) * inv * k,
-            (c0.y * v.x + c1.y * v.y + c2.y * v.z) * inv * k,
-            (c0.z * v.x + c1.z * v.y + c2.z * v.z) * inv * k,
+            times_pow2((c0.x * v.x + c1.x * v.y + c2.x * v.z) * inv, k),
+            times_pow2((c0.y * v.x + c1.y * v.y + c2.y * v.z) * inv, k),
+            times_pow2((c0.z * v.x + c1.z * v.y + c2.z * v.z) * inv, k),
         );
         out.is_finite().then_some(out)
     }
