@@ -512,16 +512,9 @@ fn model_checks_by<'m>(
 /// Whether [`model_checks_by`] bounds the model-space eye from the
 /// exponents before making it: where `f32` arithmetic is in software (the
 /// eye's product and tests were some 1,600 instructions a draw on the
-/// Cortex-M3), but not in builds optimised for size (flash). The library's
-/// own tests take it too.
-const BOUND_EYE: bool = cfg!(any(
-    test,
-    all(
-        target_arch = "arm",
-        not(target_abi = "eabihf"),
-        not(microraster_size)
-    )
-));
+/// Cortex-M3), not in builds optimised for size (flash), and in the
+/// library's own tests ([`SOFT_FLOAT`](crate::math::SOFT_FLOAT)).
+const BOUND_EYE: bool = crate::math::SOFT_FLOAT;
 
 /// The errors of [`directional_lights`] with the identity model matrix,
 /// without its arithmetic: the identity's [`Mat4::inverse3`] is itself

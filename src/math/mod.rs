@@ -473,14 +473,14 @@ impl Mat4 {
     }
 }
 
-/// Whether `f32` arithmetic is in software (ARM cores without an FPU):
-/// there [`Mat4`]'s product skips an affine matrix's known last row,
-/// whose tests cost more than the products they save where an FPU does
-/// them (the Cortex-M4F's `demo` frame took 2,065 instructions more).
+/// Whether `f32` arithmetic is in software (ARM cores without an FPU),
+/// where the library takes short cuts around it: there [`Mat4`]'s product
+/// skips an affine matrix's known last row, whose tests cost more than
+/// the products they save where an FPU does them (the Cortex-M4F's `demo` frame took 2,065 instructions more).
 /// Not in builds optimised for size (`microraster_size`: the OLED
 /// firmware's flash took 320 B more). The library's own tests take the
 /// short cut too, to compare it with the full product.
-const SKIP_AFFINE: bool = cfg!(any(
+pub(crate) const SOFT_FLOAT: bool = cfg!(any(
     test,
     all(
         target_arch = "arm",
@@ -495,7 +495,7 @@ impl core::ops::Mul for Mat4 {
     /// model-view-projection), and on a core without an FPU each inlined
     /// copy is 1.3 KB of soft-float calls.
     ///
-    /// There (`SKIP_AFFINE`), when `rhs` is affine (its last row
+    /// There (`SOFT_FLOAT`), when `rhs` is affine (its last row
     /// exactly `(0, 0, 0, 1)`: a model or view matrix) and `self` finite,
     /// the last row's products are known: `a * 0.0` is a zero of `a`'s
     /// sign and `a * 1.0` is `a`, so the last term is added without its
@@ -508,7 +508,7 @@ impl core::ops::Mul for Mat4 {
     #[inline(never)]
     fn mul(self, rhs: Mat4) -> Mat4 {
         let bits = |v: f32| v.to_bits();
-        let affine = SKIP_AFFINE
+        let affine = SOFT_FLOAT
             && (bits(rhs.m[0][3]) | bits(rhs.m[1][3]) | bits(rhs.m[2][3])) == 0
             && bits(rhs.m[3][3]) == bits(1.0)
             && self
@@ -544,13 +544,13 @@ impl core::ops::Mul for Mat4 {
 
 /// `x * k` for `k` a positive normal power of two (an [`Inverse3`]'s
 /// scale), the same bits: where `f32` arithmetic is in software
-/// ([`SKIP_AFFINE`]), a zero is itself and a normal `x` whose product is
+/// ([`SOFT_FLOAT`]), a zero is itself and a normal `x` whose product is
 /// normal has `k`'s exponent added to its own (exact), without the
 /// soft-float multiply (some 45 instructions on the Cortex-M3, twelve a
 /// draw's light set-up); any other `x` is multiplied.
 #[inline]
 fn times_pow2(x: f32, k: f32) -> f32 {
-    if !SKIP_AFFINE {
+    if !SOFT_FLOAT {
         return x * k;
     }
     // The bits through `black_box`: LLVM turned the zero test into a
@@ -723,7 +723,7 @@ mod tests {
     }
 
     /// The product of an affine right-hand side (its short cut, taken
-    /// on soft-float cores and in these tests: [`SKIP_AFFINE`]) gives
+    /// on soft-float cores and in these tests: [`SOFT_FLOAT`]) gives
     /// the full product's bits, zeros' signs included, for any left-hand
     /// side (NaNs compared as NaNs).
     #[test]
