@@ -476,10 +476,11 @@ impl Mat4 {
 /// Whether `f32` arithmetic is in software (ARM cores without an FPU),
 /// where the library takes short cuts around it: there [`Mat4`]'s product
 /// skips an affine matrix's known last row, whose tests cost more than
-/// the products they save where an FPU does them (the Cortex-M4F's `demo` frame took 2,065 instructions more).
-/// Not in builds optimised for size (`microraster_size`: the OLED
-/// firmware's flash took 320 B more). The library's own tests take the
-/// short cut too, to compare it with the full product.
+/// the products they save where an FPU does them (the Cortex-M4F's
+/// `demo` frame took 2,065 instructions more). Not in builds optimised
+/// for size (`microraster_size`: the OLED firmware's flash took 320 B
+/// more). The library's own tests take the short cut too, to compare it
+/// with the full product.
 pub(crate) const SOFT_FLOAT: bool = cfg!(any(
     test,
     all(
