@@ -243,8 +243,7 @@ impl Core {
         let inverse = model.inverse3();
         let (model_scale, eye) = model_space(model, eye, inverse.as_ref())?;
         let eye = to_raw(eye).ok_or(LightError::BadMatrix)?;
-        let m = &model.m;
-        let t = Vec3::new(m[3][0], m[3][1], m[3][2]);
+        let t = translation(model);
         let to_model = |p: Vec3| inverse.as_ref().and_then(|i| i.apply(p - t));
 
         let coarse = lighting.directional.len() == 1 && lighting.point.is_empty();
@@ -337,9 +336,7 @@ fn model_space<'m>(
     inverse: Option<&Inverse3>,
 ) -> Result<(ModelScale<'m>, Vec3), LightError> {
     let (scale, inverse) = model_scale(model, eye, inverse)?;
-    let m = &model.m;
-    let t = Vec3::new(m[3][0], m[3][1], m[3][2]);
-    match inverse.apply(eye - t) {
+    match inverse.apply(eye - translation(model)) {
         Some(eye) => Ok((scale, eye)),
         None => Err(LightError::BadMatrix),
     }
@@ -410,17 +407,7 @@ fn directional_by(
     inverse: Option<&Inverse3>,
     coarse: bool,
 ) -> Result<[i32; 3], LightError> {
-    // Where `direction.normalize()` is `None`: not finite, or zero (a
-    // finite non-zero vector always normalizes, scaled first if its
-    // squared length leaves f32). Tested so rather than normalized, a
-    // square root and three divisions the Cortex-M3 spent per draw, and
-    // by the bits (the sign shifted out), without soft-float compares.
-    let (x, y, z) = (
-        direction.x.to_bits() << 1,
-        direction.y.to_bits() << 1,
-        direction.z.to_bits() << 1,
-    );
-    if x >= INF_BITS || y >= INF_BITS || z >= INF_BITS || (x | y | z) == 0 {
+    if !normalizes(direction) {
         return Err(LightError::BadDirection { light: i });
     }
     let local = inverse
@@ -497,8 +484,7 @@ fn model_checks_by<'m>(
         // The eye in model space is only tested here: where its bound
         // (from the exponents) fits, it is not made.
         let (scale, inverse) = model_scale(model, eye, inverse)?;
-        let m = &model.m;
-        if inverse.moves_within_2_44(eye, Vec3::new(m[3][0], m[3][1], m[3][2])) {
+        if inverse.moves_within_2_44(eye, translation(model)) {
             return Ok(scale);
         }
     }
@@ -521,7 +507,7 @@ const BOUND_EYE: bool = crate::math::SOFT_FLOAT;
 /// (moderate, its `apply` of a finite vector finite: the vector, up to the
 /// signs of zeros), so the model checks fail exactly for an eye that is
 /// not finite or does not fit raw 16.16, and a light's direction exactly
-/// where its bits do ([`directional_by`]'s test; a finite non-zero
+/// where [`normalizes`] fails (as in [`directional_by`]; a finite non-zero
 /// vector always normalizes). The inverse, two products by it and a
 /// normalization were some 5,000 instructions a frame on the Cortex-M3,
 /// for directions that were never used.
@@ -530,19 +516,31 @@ fn identity_checks(lights: &[super::DirectionalLight], eye: Vec3) -> Result<(), 
         return Err(LightError::BadMatrix);
     }
     for (i, l) in lights.iter().enumerate() {
-        let d = l.direction;
-        // `directional_by`'s test of the bits.
-        let (x, y, z) = (d.x.to_bits() << 1, d.y.to_bits() << 1, d.z.to_bits() << 1);
-        if x >= INF_BITS || y >= INF_BITS || z >= INF_BITS || (x | y | z) == 0 {
+        if !normalizes(l.direction) {
             return Err(LightError::BadDirection { light: i });
         }
     }
     Ok(())
 }
 
-/// A finite `f32`'s bits shifted left by one (the sign shifted out) are
-/// below this; an infinite or NaN one's are not.
-const INF_BITS: u32 = 0xff00_0000;
+/// Whether `d.normalize()` is `Some`: `d` finite and not zero (a finite
+/// non-zero vector always normalizes, scaled first if its squared length
+/// leaves f32). Tested so rather than normalized, a square root and three
+/// divisions the Cortex-M3 spent per draw, and by the bits (the sign
+/// shifted out: a finite `f32`'s are below `0xff00_0000`, an infinite or
+/// NaN one's are not), without soft-float compares.
+#[inline(always)]
+fn normalizes(d: Vec3) -> bool {
+    const INF_BITS: u32 = 0xff00_0000;
+    let (x, y, z) = (d.x.to_bits() << 1, d.y.to_bits() << 1, d.z.to_bits() << 1);
+    x < INF_BITS && y < INF_BITS && z < INF_BITS && (x | y | z) != 0
+}
+
+/// The translation of the model matrix `m` (its last column).
+#[inline(always)]
+fn translation(m: &Mat4) -> Vec3 {
+    Vec3::new(m.m[3][0], m.m[3][1], m.m[3][2])
+}
 
 /// Checks `lighting` as [`LightSetup::new`] with at most `max` lights, an
 /// identity model matrix and the eye `eye` does, with the same errors, but
