@@ -351,8 +351,20 @@ pub(super) fn scale_q32(wmin: u32, w: u32) -> i64 {
 #[cfg_attr(not(any(test, microraster_narrow_multiply)), allow(dead_code))]
 #[inline(always)]
 pub(super) fn scale_q_digits(wmin: u32, w: core::num::NonZeroU32) -> u32 {
-    let f = Recip16::new(w);
-    let k = crate::math::leading_zeros(w).min(12);
+    // Below 2^23 (nearly every `w`) the reciprocal by a table look-up of
+    // `w`'s top byte rather than a search of its leading zeros, and below
+    // 2^20 the digit's 12 bits without them.
+    let v = w.get();
+    let f = if v < 1 << 23 {
+        Recip16::new_w23(w)
+    } else {
+        Recip16::new(w)
+    };
+    let k = if v < 1 << 20 {
+        12
+    } else {
+        crate::math::leading_zeros(w).min(12)
+    };
     let (mut q, mut r, mut left) = (0u32, wmin, 28u32);
     while left > 0 {
         let s = k.min(left);
