@@ -39,7 +39,7 @@ pub use fixed_mat4::FixedMat4;
 #[cfg(test)]
 pub(crate) use recip16::leading_zeros_search;
 #[cfg_attr(not(microraster_narrow_multiply), allow(unused_imports))]
-pub(crate) use recip16::{leading_zeros, Recip16};
+pub(crate) use recip16::{leading_zeros, recip31, Recip16};
 pub use trig::{sin_cos, sqrt, tan};
 pub(crate) use wide::{mul_wide, SPLIT};
 

@@ -255,7 +255,7 @@ const RECIP_SEED: [u16; 256] = {
 /// below it by less than 3.1 (the tests check every `D`). Every product
 /// is of 16-bit factors.
 #[inline(always)]
-fn recip31(d: u32) -> u32 {
+pub(crate) fn recip31(d: u32) -> u32 {
     newton31(seed31(d), d)
 }
 

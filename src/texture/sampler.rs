@@ -369,14 +369,20 @@ impl Pow2Rgb565<'_> {
     /// [`nearest_fine`](Self::nearest_fine)'s texel: the texels, the
     /// width, the height and the texel count less one (sides of at most
     /// 2^15); `None` if the slice were shorter than the count, which
-    /// `Texture::new` rules out.
+    /// `Texture::new` rules out. On ARMv6-M (no 32x32 to 64-bit
+    /// multiply, by which the loop takes the top bits) the shifts of
+    /// `nearest_fine` (`fine[0]`, `fine[1]`) in place of the width and
+    /// height.
     #[inline(always)]
     pub(crate) fn fine_parts(&self) -> Option<(&[u16], [u32; 3])> {
         let count = 1u32 << (self.log2[0] + self.log2[1]);
-        (self.texels.len() >= count as usize).then_some((
-            self.texels,
-            [1 << self.log2[0], 1 << self.log2[1], count - 1],
-        ))
+        let sides = if cfg!(microraster_narrow_multiply) {
+            [self.fine[0], self.fine[1]]
+        } else {
+            [1 << self.log2[0], 1 << self.log2[1]]
+        };
+        (self.texels.len() >= count as usize)
+            .then_some((self.texels, [sides[0], sides[1], count - 1]))
     }
 
     /// [`bilinear_reusing`](Self::bilinear_reusing) from the coordinates'

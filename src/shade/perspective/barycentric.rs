@@ -2,6 +2,8 @@
 //! `b2 = B2 / Q` in 0.16 fixed point with one 32-bit reciprocal, and the
 //! span-wide shortcut when the whole span allows it.
 
+use super::lerp::NARROW_MULTIPLY;
+
 /// The perspective-correct weights `(B1 / Q, B2 / Q)` in 0.16 fixed
 /// point, with one 32-bit division: `Q` is shifted to 16 significant bits
 /// (`B1`, `B2` with it), so the reciprocal `2^31 / Q` has 16 as well and
@@ -12,9 +14,13 @@
 #[inline(always)]
 pub(crate) fn weights(q: i32, b1: i32, b2: i32) -> (i32, i32) {
     let q = q.max(1) as u32;
-    let sh = (32 - q.leading_zeros()).saturating_sub(16);
+    let sh = if NARROW_MULTIPLY {
+        shift16(q)
+    } else {
+        (32 - q.leading_zeros()).saturating_sub(16)
+    };
     let qn = q >> sh;
-    let r = (1u32 << 31) / qn;
+    let r = reciprocal(qn);
     let n1 = ((b1.max(0) as u32) >> sh).min(qn);
     let n2 = ((b2.max(0) as u32) >> sh).min(qn);
     // n <= qn, so n * r <= 2^31.
@@ -78,20 +84,76 @@ pub(super) fn span_shift_convex32(
     steps: [i32; 3],
     len: usize,
 ) -> Option<(u32, bool)> {
+    span_shift_convex32_in::<NARROW_MULTIPLY>(planes, steps, len)
+}
+
+/// [`span_shift_convex32`], with `NARROW` the ARMv6-M form (the tests
+/// run both): the products' overflow test by [`checked_mul_short`],
+/// where `checked_mul` took a 64-bit library product (about 40
+/// instructions), and `Q`'s bit lengths compared as
+/// [`span_shift_convex`] does and its shift by [`shift16`], where
+/// `leading_zeros` is a library call (about 36).
+#[inline(always)]
+pub(super) fn span_shift_convex32_in<const NARROW: bool>(
+    planes: [i32; 3],
+    steps: [i32; 3],
+    len: usize,
+) -> Option<(u32, bool)> {
     let last = i32::try_from(len.saturating_sub(1)).ok()?;
-    let end = |a: i32, g: i32| g.checked_mul(last).and_then(|d| a.checked_add(d));
+    let end = |a: i32, g: i32| {
+        if NARROW {
+            checked_mul_short(g, last)
+        } else {
+            g.checked_mul(last)
+        }
+        .and_then(|d| a.checked_add(d))
+    };
     let [q, b1, b2] = planes;
     let [gq, g1, g2] = steps;
     let qe = end(q, gq)?;
-    if q < 1 || qe < 1 || q.leading_zeros() != qe.leading_zeros() {
+    if q < 1 || qe < 1 {
+        return None;
+    }
+    let same_length = if NARROW {
+        (q ^ qe) < (q & qe)
+    } else {
+        q.leading_zeros() == qe.leading_zeros()
+    };
+    if !same_length {
         return None;
     }
     let (b1e, b2e) = (end(b1, g1)?, end(b2, g2)?);
     let within = |b: i32, q: i32| 0 <= b && b <= q;
     let sum = |a: i32, b: i32| (a as u32).wrapping_add(b as u32);
     let convex = sum(b1, b2) <= q as u32 && sum(b1e, b2e) <= qe as u32;
+    let shift = || {
+        if NARROW {
+            shift16(q as u32)
+        } else {
+            (32 - q.leading_zeros()).saturating_sub(16)
+        }
+    };
     (within(b1, q) && within(b2, q) && within(b1e, qe) && within(b2e, qe))
-        .then(|| ((32 - q.leading_zeros()).saturating_sub(16), convex))
+        .then(|| (shift(), convex))
+}
+
+/// `g.checked_mul(last)` for `last >= 0` in 32-bit products, on ARMv6-M
+/// (whose `checked_mul` is a 64-bit library product): for `last <
+/// 2^16` (a span's length, always), with `g = gh 2^16 + gl` (`0 <= gl <
+/// 2^16`), `g last = (gh last + floor(gl last / 2^16)) 2^16 + (gl last
+/// mod 2^16)`, where `gl last < 2^32` and the high part `h` stays inside
+/// `i32` (`|gh| <= 2^15`); the product fits `i32` exactly when `-2^15 <=
+/// h < 2^15`. Longer `last` as `checked_mul`. (Not `mul_wide` and a
+/// range test: its closure was left out of line, a call per span end.)
+#[inline(always)]
+fn checked_mul_short(g: i32, last: i32) -> Option<i32> {
+    if last >> 16 != 0 {
+        return g.checked_mul(last);
+    }
+    let (gh, gl) = (g >> 16, (g & 0xFFFF) as u32);
+    let lo = gl * last as u32;
+    let h = gh * last + (lo >> 16) as i32;
+    ((-(1 << 15)..1 << 15).contains(&h)).then_some((h << 16) | (lo & 0xFFFF) as i32)
 }
 
 /// [`weights`] where its clamps change nothing and `Q`'s normalising
@@ -100,7 +162,7 @@ pub(super) fn span_shift_convex32(
 #[inline(always)]
 pub(super) fn shifted_weights(q: i32, b1: i32, b2: i32, sh: u32) -> (i32, i32) {
     let qn = (q as u32) >> sh;
-    let r = (1u32 << 31) / qn;
+    let r = reciprocal(qn);
     let w1 = (((b1 as u32) >> sh) * r) >> 15;
     let w2 = (((b2 as u32) >> sh) * r) >> 15;
     (w1 as i32, w2 as i32)
@@ -113,7 +175,58 @@ pub(super) fn shifted_weights(q: i32, b1: i32, b2: i32, sh: u32) -> (i32, i32) {
 /// [`span_shift`] allowed the span; the `max` only keeps this total.
 #[inline(always)]
 pub(super) fn span_reciprocal(q: i32, sh: u32) -> u32 {
-    (1u32 << 31) / ((q as u32) >> sh).max(1)
+    reciprocal(((q as u32) >> sh).max(1))
+}
+
+/// `2^31 / qn`, floored, for `qn >= 1`: a division, or on ARMv6-M
+/// [`reciprocal_narrow`].
+#[inline(always)]
+fn reciprocal(qn: u32) -> u32 {
+    if NARROW_MULTIPLY {
+        reciprocal_narrow(qn)
+    } else {
+        (1u32 << 31) / qn
+    }
+}
+
+/// [`reciprocal`] on ARMv6-M, which has no divider (its library division
+/// takes about 150 instructions in the QEMU firmware): for `qn` of 16
+/// bits (`2^15 <= qn < 2^16`, every pixel whose `Q` is at least `2^15`),
+/// the area set-up's 16-bit reciprocal from below (`recip31`: a table
+/// look-up and one Newton step in 32-bit products, at most 3.1 below
+/// `2^31 / qn`), then corrected up while the remainder `2^31 - r qn`
+/// (at most `4 qn`, no wrap as `r qn <= 2^31`) holds another `qn`: the
+/// floored quotient exactly. Other `qn` divide.
+#[cfg_attr(not(any(test, microraster_narrow_multiply)), allow(dead_code))]
+#[inline(always)]
+pub(super) fn reciprocal_narrow(qn: u32) -> u32 {
+    if qn >> 15 != 1 {
+        return (1u32 << 31) / qn;
+    }
+    let mut r = crate::math::recip31(qn);
+    let mut rem = (1u32 << 31) - r * qn;
+    while rem >= qn {
+        r += 1;
+        rem -= qn;
+    }
+    r
+}
+
+/// `(32 - q.leading_zeros()).saturating_sub(16)`, [`weights`]' shift, on
+/// ARMv6-M (no `CLZ`: `leading_zeros` is a library call of about 36
+/// instructions there): the bit length of `q >> 16` by four compares
+/// and shifts (after them `x` is 0 or 1).
+#[cfg_attr(not(any(test, microraster_narrow_multiply)), allow(dead_code))]
+#[inline(always)]
+pub(super) fn shift16(q: u32) -> u32 {
+    let (mut x, mut n) = (q >> 16, 0);
+    for s in [8, 4, 2, 1] {
+        if x >> s != 0 {
+            x >>= s;
+            n += s;
+        }
+    }
+    n + x
 }
 
 /// [`shifted_weights`] with its reciprocal `r` from [`span_reciprocal`]
@@ -254,6 +367,8 @@ mod tests {
             let convex = span_shift_convex(planes, steps, len);
             let convex32 = span_shift_convex32(planes, steps, len);
             assert_eq!(convex32, convex, "{planes:?} {steps:?} {len}");
+            let narrow = span_shift_convex32_in::<true>(planes, steps, len);
+            assert_eq!(narrow, convex, "{planes:?} {steps:?} {len}");
             allowed += convex.is_some() as u32;
         }
         assert!(allowed > 10_000, "{allowed} spans allowed");
@@ -291,6 +406,72 @@ mod tests {
             }
         }
         assert!(allowed > 5_000, "{allowed} spans allowed");
+    }
+
+    /// ARMv6-M's reciprocal is the division for every `qn` of 16 bits
+    /// and below.
+    #[test]
+    fn narrow_reciprocal_is_the_quotient() {
+        for qn in 1u32..1 << 16 {
+            assert_eq!(reciprocal_narrow(qn), (1u32 << 31) / qn, "{qn}");
+        }
+    }
+
+    /// `checked_mul_short` is `checked_mul` for every step and length,
+    /// the ends of both ranges included.
+    #[test]
+    fn short_checked_product_matches() {
+        let mut next = crate::testing::rng();
+        let edges = [
+            i32::MIN,
+            i32::MIN + 1,
+            -65_537,
+            -65_536,
+            -1,
+            0,
+            1,
+            65_535,
+            i32::MAX,
+        ];
+        for _ in 0..400_000 {
+            let g = match next(3) {
+                0 => edges[next(edges.len() as u64) as usize],
+                1 => next(1 << 32) as u32 as i32,
+                _ => (next(1 << 32) as u32 as i32) >> next(32),
+            };
+            let last = match next(3) {
+                0 => [0, 1, 65_535, 65_536, i32::MAX][next(5) as usize],
+                1 => next(1 << 16) as i32,
+                _ => next(1 << 31) as i32 >> next(31),
+            };
+            assert_eq!(
+                checked_mul_short(g, last),
+                g.checked_mul(last),
+                "{g} {last}"
+            );
+        }
+    }
+
+    /// ARMv6-M's shift of `weights` is the one from the leading zeros.
+    #[test]
+    fn narrow_shift_matches() {
+        let mut next = crate::testing::rng();
+        let check = |q: u32| {
+            assert_eq!(
+                shift16(q),
+                (32 - q.leading_zeros()).saturating_sub(16),
+                "{q}"
+            );
+        };
+        for k in 0..32 {
+            for q in [(1u32 << k) - 1, 1 << k, (1 << k) + 1] {
+                check(q);
+            }
+        }
+        check(u32::MAX);
+        for _ in 0..100_000 {
+            check(next(1 << 32) as u32 >> next(32));
+        }
     }
 
     /// The 32-bit form of ARMv6-M gives the bits of the `i64` formula,

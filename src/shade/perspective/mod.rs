@@ -684,6 +684,64 @@ mod tests {
         assert!(checked > 500_000, "{checked} gradients");
     }
 
+    /// ARMv6-M's `small_planes_split` (split products, the area's
+    /// reciprocal) gives `small_planes_wide`'s planes, or declines as it
+    /// does, for every small triangle, slivers and far vertices included.
+    #[test]
+    fn split_small_planes_match() {
+        let (mut declined, mut checked) = (0u32, 0u32);
+        each_small_case(100_000, |v, f, small, q| {
+            match (
+                small_planes_split(f, small, q),
+                small_planes_wide(f, small, q),
+            ) {
+                (Some(a), Some(b)) => {
+                    for (a, b) in a.iter().zip(&b) {
+                        assert_eq!((a.gx, a.gy, a.k), (b.gx, b.gy, b.k), "{v:?} {q:?}");
+                    }
+                    checked += 1;
+                }
+                (None, None) => declined += 1,
+                (a, b) => panic!("{v:?} {q:?}: {a:?} {b:?}"),
+            }
+        });
+        assert!(declined > 0 && checked > 50_000, "{declined} {checked}");
+    }
+
+    /// `small_gradient_digits` gives `small_gradient`'s quotient (or
+    /// `None`) for numerators across their range, up to the largest, and
+    /// areas across theirs.
+    #[test]
+    fn gradient_digits_match() {
+        let mut next = crate::testing::rng();
+        let top = (1i64 << 39) - (1 << 29);
+        for _ in 0..400_000 {
+            let area = match next(3) {
+                0 => 1 + next(64) as u32,
+                1 => (1 << 21) - 1 - next(64) as u32,
+                _ => 1 + next((1 << 21) - 1) as u32,
+            };
+            let small = Small {
+                area: core::num::NonZeroU32::new(area).unwrap(),
+                half: area / 2,
+            };
+            let n = match next(4) {
+                0 => top - next(1 << 20) as i64,
+                1 => (next(1 << 40) as i64).min(top),
+                2 => next(1 << 20) as i64,
+                _ => (((area as i64) << 27) - 2 + next(4) as i64).min(top),
+            };
+            let n = if next(2) == 0 { -n } else { n };
+            let (h, l) = ((n >> 16) as i32, (n & 0xFFFF) as i32);
+            let r = crate::math::Recip16::new_small(small.area);
+            assert_eq!(
+                small_gradient_digits(&r, small.half, (h, l)),
+                small_gradient(&small, n),
+                "{n} / {area}"
+            );
+        }
+    }
+
     /// `small_planes_of` gives the planes of `WidePlane::new` (gradients and
     /// constants) for small triangles, slivers and far vertices included,
     /// whenever it gives any, and then none of them was clamped.
@@ -736,6 +794,11 @@ mod tests {
             let expected = (wmin << 28) / w;
             assert_eq!(scale_q32(wmin as u32, w as u32), expected, "{wmin} / {w}");
             assert_eq!(scale_q(wmin, w), expected, "{wmin} / {w}");
+            if wmin < w {
+                let nz = core::num::NonZeroU32::new(w as u32).unwrap();
+                let q = scale_q_digits(wmin as u32, nz) as i64;
+                assert_eq!(q, expected, "{wmin} / {w}");
+            }
         }
     }
 }

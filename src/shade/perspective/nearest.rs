@@ -5,6 +5,7 @@
 //! constant-`Q` weights (the same bits as the general loop's).
 
 use super::barycentric::{flat_weights, shifted_weights, span_reciprocal};
+use super::lerp::NARROW_MULTIPLY;
 use super::span::{AFFINE, FLAT_Q};
 use super::{depth16, SpanInput, Z_FRAC};
 use crate::shader::span::TriangleSpans;
@@ -15,7 +16,8 @@ impl<C> TriangleSpans<'_, C, [I16F16; 2]> {
     /// What [`SpanInput::run_nearest`] reads that is the same for every
     /// span of the triangle in the tile, for a repeated power-of-two
     /// `Rgb565` texture (`texels` and `parts`, the width, height and texel
-    /// count less one, from `Pow2Rgb565::fine_parts`): gathered once per
+    /// count less one, from `Pow2Rgb565::fine_parts`; on ARMv6-M the
+    /// shifts of `fu` and `fv` in place of the width and height): gathered once per
     /// triangle and tile rather than copied into each span's record (about
     /// 30 instructions a span on the Cortex-M3). `None` if the texels are
     /// short of the count (never, by `Texture::new`).
@@ -169,6 +171,15 @@ fn nearest_span<C: FromTexel, const WEIGHTS: u8>(
     let Some(texels) = s.c.texels.get(..=m) else {
         return 0;
     };
+    // On ARMv6-M `WIDTH` and `HEIGHT` hold `Pow2Rgb565::fine_parts`'
+    // shifts (see the index below), masked so that the shifts by them
+    // need no mask of their own, and the row's bits come from `last`.
+    let (su, sv, row) = if NARROW_MULTIPLY {
+        let (su, sv) = (k[at::WIDTH] & 31, k[at::HEIGHT] & 31);
+        (su, sv, last & !(u32::MAX >> su))
+    } else {
+        (0, 0, 0)
+    };
     let len = color.len() as u32;
     // The pixels that fail, counted in memory: the common path holds no
     // count (a register fewer; it had been spilled around every pixel
@@ -192,13 +203,20 @@ fn nearest_span<C: FromTexel, const WEIGHTS: u8>(
             let fv = k[at::F0V]
                 .wrapping_add(k[at::D1V].wrapping_mul(w1))
                 .wrapping_add(k[at::D2V].wrapping_mul(w2));
-            let (w, h) = (k[at::WIDTH], k[at::HEIGHT]);
             // `Pow2Rgb565::nearest_fine`'s index: the row `y < h` (the
             // top `log2(h)` bits of `fv`) times the width, plus `x < w`
             // (those of `fu`); one multiply-add where the row had taken a
             // mask and an `or`, without the row mask's constant. Below the
-            // count already: the mask by `m` changes nothing.
-            let at = top_bits(fv, h) * w + top_bits(fu, w);
+            // count already: the mask by `m` changes nothing. On ARMv6-M,
+            // whose 64-bit products (`top_bits`) are library calls of
+            // about 40 instructions each, `nearest_fine`'s shifts and
+            // mask instead (the same index).
+            let at = if NARROW_MULTIPLY {
+                ((fv >> sv) & row) | (fu >> su)
+            } else {
+                let (w, h) = (k[at::WIDTH], k[at::HEIGHT]);
+                top_bits(fv, h) * w + top_bits(fu, w)
+            };
             *c = C::from_rgb565(texels[at as usize & m]);
             *d = zz;
         } else {

@@ -4,7 +4,9 @@
 //! 32-bit one of small triangles on 32-bit targets, and the vertices'
 //! scaled `1 / w` ([`scale_q`]).
 
+use super::lerp::NARROW_MULTIPLY;
 use super::{Q_MAX, Q_ONE};
+use crate::math::{mul_wide, Recip16};
 use crate::raster::SUBPIXEL_BITS;
 use crate::shade::small::Small;
 use crate::shade::{Basis, GRADIENT_LIMIT};
@@ -140,6 +142,19 @@ pub(super) fn small_planes(f: &Basis, q: [i64; 3]) -> Option<[WidePlane; 3]> {
 #[cfg_attr(target_pointer_width = "64", allow(dead_code))]
 #[inline(always)]
 pub(super) fn small_planes_of(f: &Basis, s: &Small, q: [i64; 3]) -> Option<[WidePlane; 3]> {
+    if NARROW_MULTIPLY {
+        small_planes_split(f, s, q)
+    } else {
+        small_planes_wide(f, s, q)
+    }
+}
+
+/// [`small_planes_of`] where the core has a 32x32 to 64-bit multiply and
+/// a divider: 64-bit numerators, two 32-bit divisions a gradient
+/// ([`small_gradient`]).
+#[cfg_attr(target_pointer_width = "64", allow(dead_code))]
+#[inline(always)]
+pub(super) fn small_planes_wide(f: &Basis, s: &Small, q: [i64; 3]) -> Option<[WidePlane; 3]> {
     debug_assert!(q.iter().all(|v| (0..=Q_ONE).contains(v)));
     let [x1, y1, x2, y2] = [f.x1 as i32, f.y1 as i32, f.x2 as i32, f.y2 as i32];
     let [q0, q1, q2] = [q[0] as i32, q[1] as i32, q[2] as i32];
@@ -161,6 +176,85 @@ pub(super) fn small_planes_of(f: &Basis, s: &Small, q: [i64; 3]) -> Option<[Wide
         }
     };
     Some([plane(qx, qy, q[0]), plane(b1x, b1y, 0), plane(b2x, b2y, 0)])
+}
+
+/// [`small_planes_of`] on ARMv6-M, which has neither a 32x32 to 64-bit
+/// multiply (each `i64` product is a library call of about 40
+/// instructions) nor a divider (each 32-bit division one of about 150
+/// in the QEMU firmware): the same planes, with each numerator's
+/// products split at bit 16 of the value ([`split_mul`]: 32-bit
+/// products by an edge vector below 2^10) and each gradient from three
+/// digits of the area's 16-bit reciprocal ([`small_gradient_digits`]),
+/// made once for the six. The constants' products by the offsets in
+/// halves too ([`mul_wide`]). Before, `demo-textured-lit` took 12
+/// divisions and 16 64-bit products here per triangle and tile.
+#[cfg_attr(not(any(test, microraster_narrow_multiply)), allow(dead_code))]
+#[inline(always)]
+pub(super) fn small_planes_split(f: &Basis, s: &Small, q: [i64; 3]) -> Option<[WidePlane; 3]> {
+    debug_assert!(q.iter().all(|v| (0..=Q_ONE).contains(v)));
+    let [x1, y1, x2, y2] = [f.x1 as i32, f.y1 as i32, f.x2 as i32, f.y2 as i32];
+    let [q0, q1, q2] = [q[0] as i32, q[1] as i32, q[2] as i32];
+    let (d1, d2) = (q1 - q0, q2 - q0);
+    let r = Recip16::new_small(s.area);
+    let g = |n: (i32, i32)| small_gradient_digits(&r, s.half, n);
+    let diff = |a: (i32, i32), b: (i32, i32)| (a.0 - b.0, a.1 - b.1);
+    let neg = |a: (i32, i32)| (-a.0, -a.1);
+    let qx = g(diff(split_mul(d1, y2), split_mul(d2, y1)))?;
+    let qy = g(diff(split_mul(d2, x1), split_mul(d1, x2)))?;
+    let b1x = g(split_mul(q1, y2))?;
+    let b1y = g(neg(split_mul(q1, x2)))?;
+    let b2x = g(neg(split_mul(q2, y1)))?;
+    let b2y = g(split_mul(q2, x1))?;
+    // |g| < 2^31 and |o| < 2^19: no overflow; each product exact.
+    let (ox, oy) = (f.ox as i32, f.oy as i32);
+    let plane = |gx: i32, gy: i32, v0: i64| WidePlane {
+        gx: gx as i64,
+        gy: gy as i64,
+        k: v0 + ((mul_wide(gx, ox) + mul_wide(gy, oy)) >> SUBPIXEL_BITS),
+    };
+    Some([plane(qx, qy, q[0]), plane(b1x, b1y, 0), plane(b2x, b2y, 0)])
+}
+
+/// `a e` as `(h, l)` with `a e = h 2^16 + l`, for `|a| <= 2^28` (a
+/// perspective value or a difference of two) and an edge vector `|e| <
+/// 2^10`: `h = (a >> 16) e` (below 2^23 in magnitude) and `l = (a mod
+/// 2^16) e` (below 2^26), two 32-bit products. A sum or difference of
+/// two such stays far inside `i32` in each half.
+#[cfg_attr(not(any(test, microraster_narrow_multiply)), allow(dead_code))]
+#[inline(always)]
+pub(super) fn split_mul(a: i32, e: i32) -> (i32, i32) {
+    ((a >> 16) * e, (a & 0xFFFF) * e)
+}
+
+/// [`small_gradient`] for the numerator `n = h 2^16 + l` (from
+/// [`split_mul`]) by the area's reciprocal `r` ([`Recip16`], `r.d` the
+/// area, below 2^21) and `half` (half the area): the same quotient or
+/// `None`, by long division without a divider.
+///
+/// `a = |n| 2^4 + half < 2^43`. Its quotient is below 2^31 exactly when
+/// `a`'s bits from 31 up, `t < 2^12`, are below `d`; then three digits of
+/// 11, 10 and 10 bits bring the rest down, each by
+/// [`Recip16::estimate`] and left uncorrected (the digit exact or one
+/// less, its remainder in `0..2d`): the dividends `t 2^11 + a_{20..31}`
+/// (below `d 2^11`) and `r' 2^10 + a_{10..20}`, `r' 2^10 + a_{0..10}`
+/// (below `2d 2^10 = d 2^11`, and below 2^32 as `d < 2^21`) are within
+/// its range `d (2^12 + 1)`. By construction `a = (q1 2^20 + q2 2^10 +
+/// q3) d + r3` with `r3` in `0..2d`, so the quotient is that sum plus
+/// `[r3 >= d]`.
+#[cfg_attr(not(any(test, microraster_narrow_multiply)), allow(dead_code))]
+#[inline(always)]
+pub(super) fn small_gradient_digits(r: &Recip16, half: u32, (h, l): (i32, i32)) -> Option<i32> {
+    let n = ((h as i64) << 16) + l as i64;
+    let a = (n.unsigned_abs() << SUBPIXEL_BITS) + half as u64;
+    let t = (a >> 31) as u32;
+    if t >= r.d {
+        return None;
+    }
+    let (q1, r1) = r.estimate((t << 11) | ((a >> 20) as u32 & 0x7FF));
+    let (q2, r2) = r.estimate((r1 << 10) | ((a >> 10) as u32 & 0x3FF));
+    let (q3, r3) = r.estimate((r2 << 10) | (a as u32 & 0x3FF));
+    let q = ((q1 << 20) + (q2 << 10) + q3 + (r3 >= r.d) as u32) as i32;
+    Some(if n < 0 { -q } else { q })
 }
 
 /// `f.gradients(values, 0)` for a perspective plane (`Q`, `B1` or `B2`:
@@ -241,5 +335,43 @@ pub(super) fn scale_q32(wmin: u32, w: u32) -> i64 {
     }
     // 1 <= wmin < w < 2^31: the quotient is below 2^28.
     let w = core::num::NonZeroU32::new(w).unwrap_or(core::num::NonZeroU32::MAX);
+    if NARROW_MULTIPLY {
+        return scale_q_digits(wmin, w) as i64;
+    }
     crate::math::shift_in_zeros(0, wmin, w, 28).0 as i64
+}
+
+/// [`scale_q32`]'s long division on ARMv6-M, which has no divider: its
+/// digits by `w`'s 16-bit reciprocal ([`Recip16::digit`]: two 32-bit
+/// products and a correction each, where the library division takes
+/// about 150 instructions), of `k = min(leading zeros of w, 12)` bits,
+/// so that each partial dividend `r 2^k < w 2^k` is below 2^32 and
+/// within the digit's range `2^(t + 13)` (`2^t <= w`): three digits for
+/// the usual `w` of 2^16 to 2^21. For `1 <= wmin < w < 2^31`.
+#[cfg_attr(not(any(test, microraster_narrow_multiply)), allow(dead_code))]
+#[inline(always)]
+pub(super) fn scale_q_digits(wmin: u32, w: core::num::NonZeroU32) -> u32 {
+    // Below 2^23 (nearly every `w`) the reciprocal by a table look-up of
+    // `w`'s top byte rather than a search of its leading zeros, and below
+    // 2^20 the digit's 12 bits without them.
+    let v = w.get();
+    let f = if v < 1 << 23 {
+        Recip16::new_w23(w)
+    } else {
+        Recip16::new(w)
+    };
+    let k = if v < 1 << 20 {
+        12
+    } else {
+        crate::math::leading_zeros(w).min(12)
+    };
+    let (mut q, mut r, mut left) = (0u32, wmin, 28u32);
+    while left > 0 {
+        let s = k.min(left);
+        let (digit, rest) = f.digit(r << s);
+        q = (q << s) | digit;
+        r = rest;
+        left -= s;
+    }
+    q
 }
