@@ -522,7 +522,12 @@ impl Viewport {
     pub(crate) fn project_fast(&self, p: &[i32; 4]) -> Option<(SubPoint, u32)> {
         let w = p[3] as u32;
         // W_MIN <= w < short_w, as one unsigned compare (short_w > W_MIN).
-        if w.wrapping_sub(W_MIN as u32) >= self.short_w - W_MIN as u32 {
+        // The bound masked to 23 bits, which leaves it as it is (`short_w
+        // <= 2^23`) but shows the compiler that `w < 2^24`, so that `2w`
+        // is not 0 (once per loop: the bound is the loop's; it tested `2w`
+        // every vertex).
+        let bound = (self.short_w - W_MIN as u32) & ((1 << DIGITS_W_BITS) - 1);
+        if w.wrapping_sub(W_MIN as u32) >= bound {
             return None;
         }
         // Neither is 0 (the compiler does not see it through the compare,
