@@ -18,7 +18,8 @@
 //! once and looked up per vertex by n·l. The table pays from about as
 //! many vertices as it has words: it is made for runs of at least
 //! [`TABLE_MIN`] vertices (not in size builds, where it would be a second
-//! copy of the loop). It costs 1,028 bytes of stack in the draw's
+//! copy of the loop). It costs 1,028 bytes of stack (2,048 on ARMv7-M,
+//! indexed by n·l saturated to 9 bits: `SAT_INDEX`) in the draw's
 //! frame, which on ARMv6-M lies on the 48 KiB frame's deepest path (the
 //! vertex stage): the table is written into the caller's array, never
 //! returned by value.
@@ -66,6 +67,15 @@ pub(super) trait LitWork {
     #[inline(always)]
     fn shade(&self, n: Vec3Fx) -> u32 {
         self.word(self.ndotl(n))
+    }
+    /// The index of the normal `n` in a [`ColorTable`] of
+    /// [`TABLE_WORDS`] words: its [`ndotl`](Self::ndotl), or where the
+    /// table is longer ([`SAT_INDEX`]) and the work allows it n·l
+    /// saturated to the table instead of clamped to 256 (whose words from
+    /// 256 on are all n·l 256's).
+    #[inline(always)]
+    fn table_index(&self, n: Vec3Fx) -> usize {
+        self.ndotl(n) as usize
     }
 }
 
@@ -115,22 +125,46 @@ impl LitWork for (&FixedMat4, &Lambert, [u8; 3], [u32; 2]) {
 /// colour is then one load by n·l, where it took three channels'
 /// multiply-adds and quotients by 65,280, their packing and the interval
 /// test of the interior bit. Only for runs of at least [`TABLE_MIN`]
-/// vertices, which pay for the table's 257 words; 1,028 bytes of stack,
-/// within the vertex stage's draw set-up's depth.
+/// vertices, which pay for the table's 257 words; 1,028 bytes of stack
+/// (2,048 where [`SAT_INDEX`]), within the vertex stage's draw set-up's
+/// depth.
 pub(super) struct ColorTable<'k, K> {
     k: &'k K,
-    words: &'k [u32; 257],
+    words: &'k [u32; TABLE_WORDS],
 }
+
+/// The words of a [`ColorTable`]: n·l's 257, or where the loop indexes
+/// the table by n·l saturated to 9 bits ([`SAT_INDEX`]) 512, the last
+/// 255 n·l 256's.
+pub(super) const TABLE_WORDS: usize = if SAT_INDEX { 512 } else { 257 };
+
+/// Whether a [`ColorTable`] over [`LoopConstants`] is indexed by the upper
+/// word of n·l's sum saturated to `0..=511` (one `USAT` on ARMv7-M) rather
+/// than clamped to `0..=256` (five instructions: a compare, an `IT`, a
+/// conditional move and a `BIC`), for 255 words more on the stack (1,020
+/// bytes) and their stores per table: on the Arm cores with a long
+/// multiply (not ARMv6-M, whose frame RAM is short and which indexes by
+/// its own n·l), and in the tests. `demo` vertex stage: Cortex-M3 261,421
+/// -> 253,940, M4F 243,158 -> 239,553 (`rock` frame M3 2,473,638 ->
+/// 2,466,309, M4F 2,477,546 -> 2,474,017); the M3's peak stack 14,588 ->
+/// 15,604 bytes (the table is then on the deepest path).
+pub(super) const SAT_INDEX: bool = cfg!(any(
+    test,
+    all(target_arch = "arm", not(microraster_narrow_multiply))
+));
 
 impl<'k, K: LitWork> ColorTable<'k, K> {
     /// The table of `k`'s colours, written into the caller's `words`
     /// (built and returned by value, the table took a second copy of
     /// itself on the stack, ARMv6-M's frame 2.4 KB).
     #[inline(always)]
-    pub(super) fn new(k: &'k K, words: &'k mut [u32; 257]) -> Self {
-        for (n, w) in words.iter_mut().enumerate() {
+    pub(super) fn new(k: &'k K, words: &'k mut [u32; TABLE_WORDS]) -> Self {
+        let (lit, rest) = words.split_at_mut(257);
+        for (n, w) in lit.iter_mut().enumerate() {
             *w = k.word(n as u32);
         }
+        // n·l beyond 256 is 256 (`SAT_INDEX`'s tail).
+        rest.fill(lit[256]);
         Self { k, words }
     }
 }
@@ -155,6 +189,12 @@ impl<K: LitWork> LitWork for ColorTable<'_, K> {
     fn word(&self, ndotl: u32) -> u32 {
         // n·l is at most 256 (the compiler sees the clamp: no check).
         self.words[ndotl as usize]
+    }
+
+    #[inline(always)]
+    fn shade(&self, n: Vec3Fx) -> u32 {
+        // Within the table (the compiler sees the clamp: no check).
+        self.words[self.k.table_index(n)]
     }
 }
 
@@ -314,6 +354,23 @@ impl LitWork for LoopConstants {
             }
             false => clamp_ndotl_words(d),
         }
+    }
+
+    /// n·l's upper word saturated to `0..=511` where [`SAT_INDEX`] (and
+    /// n·l is that word, [`HIGH_NDOTL`]): one `USAT`.
+    #[inline(always)]
+    fn table_index(&self, n: Vec3Fx) -> usize {
+        if !(SAT_INDEX && HIGH_NDOTL) {
+            return self.ndotl(n) as usize;
+        }
+        use crate::math::mul_wide;
+        let d = mul_wide(n[0].to_bits(), self.dir[0])
+            + mul_wide(n[1].to_bits(), self.dir[1])
+            + mul_wide(n[2].to_bits(), self.dir[2]);
+        let h = (d >> 32) as i32;
+        // Not `clamp(0, 511)`: in the loop that took seven instructions
+        // (an unsigned minimum, then a sign test), this form one `USAT`.
+        (h.max(0) as u32).min(TABLE_WORDS as u32 - 1) as usize
     }
 
     /// [`Lambert::shade_ndotl`] of `ndotl` on the draw's colour: the same
@@ -516,7 +573,10 @@ mod tests {
                 let b = fast.interior_ndotl(base, gouraud);
                 let k = (&zero, fast, base, b);
                 assert_eq!(k.shade(n), want, "{n:?} {base:?}");
-                let mut words = [0; 257];
+                let mut words = [0; TABLE_WORDS];
+                let t = ColorTable::new(&k, &mut words);
+                assert_eq!(t.shade(n), want, "{n:?} {base:?}");
+                let k = LoopConstants::new(&zero, fast, base, gouraud);
                 let t = ColorTable::new(&k, &mut words);
                 assert_eq!(t.shade(n), want, "{n:?} {base:?}");
             }

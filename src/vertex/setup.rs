@@ -8,6 +8,7 @@
 use super::lambert::Lambert;
 use super::lit_work::{
     loop_takes, ColorTable, LitWork, LoopConstants, NarrowRows, LOOP_CONSTANTS, TABLE_MIN,
+    TABLE_WORDS,
 };
 use super::screen::COLOR_WORD_INTERIOR;
 use super::{ClipVertex, ScreenVertex, Viewport};
@@ -455,7 +456,7 @@ fn lit_loop(
     // whose words hold the interior bit as the draw has it (none unless
     // Gouraud shaded): one copy of the loop for every draw.
     if COLOR_TABLES && out.len() >= TABLE_MIN {
-        let mut words = [0; 257];
+        let mut words = [0; TABLE_WORDS];
         let table = ColorTable::new(k, &mut words);
         return lit_loop_one::<true>(out, positions, normals, viewport, &table);
     }

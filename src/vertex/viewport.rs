@@ -22,7 +22,8 @@ pub struct Viewport {
     half_h: i64,
     /// [`Viewport::project_inside`] divides by a `w` below this in 32 bits
     /// ([`Viewport::project_digits`]): below `2^23`, and such that `(4 w h
-    /// + w / 2) < 2^32` for either half side `h`.
+    /// + w / 2) < 2^32` for either half side `h` and `515 w < 2^32`
+    /// ([`depth_by_2w`]'s dividends, [`FAST_W`]).
     short_w: u32,
     /// [`Viewport::project_recip`] takes x's and y's remainders' quotient
     /// in one digit for a `w` up to this (0 for none): with both half
@@ -57,7 +58,7 @@ impl Viewport {
         debug_assert!((1..=MAX_VIEWPORT).contains(&width) && (1..=MAX_VIEWPORT).contains(&height));
         let (half_w, half_h) = (width * SUBPIXEL as u32 / 2, height * SUBPIXEL as u32 / 2);
         // w (4 h + 1) <= 2^32 - 1 bounds 4 w h + w / 2.
-        let short_w = (u32::MAX / (4 * half_w.max(half_h) + 1) + 1).min(1 << DIGITS_W_BITS);
+        let short_w = (u32::MAX / (4 * half_w.max(half_h) + 1) + 1).min(FAST_W);
         #[cfg(any(test, microraster_narrow_multiply))]
         let one_w = match half_w.max(half_h) < 1 << 12 {
             // Below RECIP_W too: `project_inside` then tests one bound.
@@ -522,14 +523,16 @@ impl Viewport {
     pub(crate) fn project_fast(&self, p: &[i32; 4]) -> Option<(SubPoint, u32)> {
         let w = p[3] as u32;
         // W_MIN <= w < short_w, as one unsigned compare (short_w > W_MIN).
-        if w.wrapping_sub(W_MIN as u32) >= self.short_w - W_MIN as u32 {
+        // The bound masked to 23 bits, which leaves it as it is (`short_w
+        // <= 2^23`) but shows the compiler that `w < 2^24`, so that `2w`
+        // is not 0 (once per loop: the bound is the loop's; it tested `2w`
+        // every vertex).
+        let bound = (self.short_w - W_MIN as u32) & ((1 << DIGITS_W_BITS) - 1);
+        if w.wrapping_sub(W_MIN as u32) >= bound {
             return None;
         }
-        // Neither is 0 (the compiler does not see it through the compare,
-        // and would test each before its divisions).
-        let (Some(wn), Some(w2n)) = (NonZeroU32::new(w), NonZeroU32::new(w << 1)) else {
-            return None;
-        };
+        // Not 0 (the compiler sees it through the bound, see above).
+        let w2n = NonZeroU32::new(w << 1)?;
         let w2 = w2n.get();
         let c = [p[0], p[1], p[2]].map(|v| (v as u32).wrapping_add(w));
         if c[0] > w2 || c[1] > w2 || c[2] > w2 {
@@ -541,7 +544,8 @@ impl Viewport {
         let odd = |v: i32| w.wrapping_add((v >> 31) as u32);
         let x = (c[0] * tw + odd(p[0])) / w2n;
         let y = th - (c[1] * th + odd(p[1])) / w2n;
-        let z = depth_digits(c[2], wn);
+        // 3w - c = 2w - z: one subtraction (from `c`, `3w` took one more).
+        let z = depth_by_2w(c[2], w2.wrapping_sub(p[2] as u32), w2n);
         Some((SubPoint::new(x as i32, y as i32), z))
     }
 
@@ -620,6 +624,32 @@ fn depth_digits(c: u32, w: NonZeroU32) -> u32 {
     let d0 = ((r1 << 8) + (2 * w.get() - c)) / w;
     depth_of_digits(d1, d0)
 }
+
+/// Depth `floor((c 65535 + w) / (2w))` (at most 65,535) of `c = z + w`
+/// in `0..=2w`, given `e = 3w - c` and `w2 = 2w`, for `w <` [`FAST_W`],
+/// by two 32-bit divisions by `2w`
+/// ([`Viewport::project_fast`]'s divisor for x and y): with `c 2^8 = d1
+/// 2w + r1` (`r1 < 2w`), `c 65535 + w = d1 2^8 2w + (r1 2^8 + w - c)`,
+/// and `w - c >= -w`, so the depth is `d1 2^8 + floor((r1 2^8 + 3w - c)
+/// / (2w)) - 1`, whose dividend is at least `w` and below `515 w <= 2^32`
+/// (`c 2^8 <= w 2^9` too); and not negative (where `r1 2^8 + w < c`,
+/// `c > w` and `d1 >= 128`). [`depth_digits`]' quotients by `w` took a
+/// halving more: one instruction a vertex on the Cortex-M3 and M4F.
+#[inline(always)]
+fn depth_by_2w(c: u32, e: u32, w2: NonZeroU32) -> u32 {
+    let w = w2.get() / 2;
+    debug_assert!(w < FAST_W && w2.get() == 2 * w && c <= 2 * w && e == 3 * w - c);
+    let c8 = c << 8;
+    let (d1, r1) = (c8 / w2, c8 % w2);
+    let d0 = ((r1 << 8) + e) / w2;
+    let z = (d1 << 8) + d0 - 1;
+    debug_assert!(z <= 65_535);
+    z
+}
+
+/// The bound of `short_w`: [`depth_by_2w`] takes `w` below it, `515 w <
+/// 2^32` (below `2^23`, `DIGITS_W_BITS`).
+const FAST_W: u32 = u32::MAX / 515;
 
 /// Depth from the two digits of [`depth_digits`] (and of
 /// [`Viewport::project_recip`]'s), `d1 2^8 + d0 = floor((c 65535 + w) /
@@ -770,6 +800,7 @@ mod tests {
                     1 => vp.short_w as i64 - 3 + next(6) as i64,
                     2 => (next(1 << 32) as u32 as i32) as i64,
                     3 => 1 << DIGITS_W_BITS,
+                    4 => FAST_W as i64 - 3 + next(6) as i64,
                     _ => W_MIN + (next(1 << 28) >> next(24)) as i64,
                 } as i32;
                 let mut c = || match next(8) {
