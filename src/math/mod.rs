@@ -393,8 +393,18 @@ impl Mat4 {
     pub fn normalized(&self) -> Option<Self> {
         let big = self.normal_scale()?;
         let mut out = *self;
-        for v in out.m.iter_mut().flatten() {
-            *v /= big;
+        if SOFT_FLOAT {
+            // Sixteen soft-float divisions (about 100 instructions each on
+            // the Cortex-M3) by one divisor: through its integer
+            // reciprocal instead, the same bits.
+            let d = ScaleDivisor::new(big);
+            for v in out.m.iter_mut().flatten() {
+                *v = d.div(*v);
+            }
+        } else {
+            for v in out.m.iter_mut().flatten() {
+                *v /= big;
+            }
         }
         Some(out)
     }
@@ -567,6 +577,88 @@ fn times_pow2(x: f32, k: f32) -> f32 {
             f32::from_bits(b.wrapping_add(kb.wrapping_sub(127 << 23)))
         }
         false => x * k,
+    }
+}
+
+/// Division of `f32`s by one positive normal `f32`, correctly rounded
+/// (the same bits as `/`), through an integer reciprocal of the
+/// divisor's significand: [`Mat4::normalized`]'s sixteen divisions by its
+/// largest element where `f32` arithmetic is in software.
+///
+/// With `a` and `b` the dividend's and the divisor's significands (24
+/// bits, `2^23 <= a, b < 2^24`) and `a' = a` or `2 a` (whichever makes
+/// `a' >= b`), the quotient's significand rounded to 24 bits is that of
+/// `q = floor(a' 2^24 / b)`, which has 25 bits, rounded by its last: a
+/// quotient is never exactly halfway between two 24-bit values (then
+/// `a' 2^25 = (2 Q + 1) b` for an integer `Q >= 2^23`, and the odd part
+/// of the left side, that of `a`, below 2^24, would be a multiple of
+/// `2 Q + 1 > 2^24`), so the bit below the last says which way it
+/// rounds. `q` comes from `r = floor((2^64 - 1) / (2^9 b))`, within 2
+/// under `2^55 / b` and below 2^32: `floor(a' r / 2^31)` (`a' < 2^25`)
+/// falls short of `a' 2^24 / b` by less than 2^-5, so it is `q` or
+/// `q - 1`, which the remainder (below `2 b`, exact in wrapping `u32`
+/// arithmetic) tells apart.
+#[derive(Clone, Copy, Debug)]
+struct ScaleDivisor {
+    /// The divisor.
+    d: f32,
+    /// Its significand `b`, the implicit bit included.
+    b: u32,
+    /// Its exponent field.
+    field: i32,
+    /// `floor((2^64 - 1) / (2^9 b))`.
+    r: u32,
+}
+
+impl ScaleDivisor {
+    /// The divisor `d`, positive and normal.
+    #[inline(always)]
+    fn new(d: f32) -> Self {
+        let bits = d.to_bits();
+        let b = (bits & 0x7f_ffff) | 0x80_0000;
+        // `b` is not zero.
+        let nz = core::num::NonZeroU64::new(u64::from(b)).unwrap_or(core::num::NonZeroU64::MIN);
+        Self {
+            d,
+            b,
+            field: ((bits >> 23) & 0xff) as i32,
+            r: (divisor::max_div_long(nz) >> 9) as u32,
+        }
+    }
+
+    /// `v / d`, the same bits. A zero is itself (`d` is positive); a
+    /// subnormal, infinite or NaN `v`, or a quotient outside the normal
+    /// range, is divided.
+    #[inline(always)]
+    fn div(&self, v: f32) -> f32 {
+        // The bits through `black_box`: LLVM turned the zero test into a
+        // soft-float compare (a library call each, as in `Mat4`'s
+        // product).
+        let x = core::hint::black_box(v.to_bits());
+        if x << 1 == 0 {
+            return v;
+        }
+        let fv = ((x >> 23) & 0xff) as i32;
+        let a = (x & 0x7f_ffff) | 0x80_0000;
+        let below = u32::from(a < self.b);
+        let a = a << below;
+        // The quotient's exponent field, before a carry of its rounding.
+        let field = fv - self.field + 127 - below as i32;
+        if fv == 0 || fv == 255 || !(1..=254).contains(&field) {
+            return v / self.d;
+        }
+        let product = if wide::SPLIT {
+            wide::mul_split_u(a, self.r)
+        } else {
+            u64::from(a) * u64::from(self.r)
+        };
+        let est = (product >> 31) as u32;
+        let rem = (a << 24).wrapping_sub(est.wrapping_mul(self.b));
+        let q = est + u32::from(rem >= self.b);
+        // The significand rounded, its implicit bit added to the field
+        // (and a carry to 2^24 makes the next power of two).
+        let sig = (q + 1) >> 1;
+        f32::from_bits((x & 0x8000_0000) | ((((field - 1) as u32) << 23) + sig))
     }
 }
 
@@ -865,6 +957,40 @@ mod tests {
             times_pow2((c0.z * v.x + c1.z * v.y + c2.z * v.z) * inv, k),
         );
         out.is_finite().then_some(out)
+    }
+
+    /// The integer division by a shared divisor gives `/`'s bits: random
+    /// divisors and dividends of any bits, quotients near 1 (both
+    /// significands close) and the divisors of the extreme significands.
+    #[test]
+    fn scale_divisor_is_division() {
+        let mut next = crate::testing::rng();
+        let same = |d: f32, v: f32| {
+            let (got, want) = (ScaleDivisor::new(d).div(v), v / d);
+            assert!(
+                got.to_bits() == want.to_bits() || (got.is_nan() && want.is_nan()),
+                "{v:e} / {d:e}: {got:e}, not {want:e}"
+            );
+        };
+        for _ in 0..300_000 {
+            let d = f32::from_bits(next(0x7f00_0000) as u32 + 0x80_0000);
+            same(d, f32::from_bits(next(1 << 32) as u32));
+            // The same exponent, nearby significands, either sign.
+            let near = (d.to_bits() as i64 + next(64) as i64 - 32) as u32;
+            same(d, f32::from_bits(near | (next(2) as u32) << 31));
+            same(d, odd_f32(&mut next));
+        }
+        for d in [
+            1.0f32,
+            f32::from_bits(0x3fff_ffff),
+            1.5,
+            f32::from_bits(27 << 23),
+        ] {
+            for k in 0..100_000u32 {
+                same(d, f32::from_bits(0x3f00_0000 + k * 167));
+                same(d, f32::from_bits(0x3f80_0000 - k));
+            }
+        }
     }
 
     /// The inverse made once gives the reference's bits, and the largest
