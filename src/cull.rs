@@ -41,6 +41,11 @@
 //! Cortex-M3, a library call on a Cortex-M0+) and is exact in `i64`. Clusters take the box test only: it is tighter than the sphere
 //! around the box and, in integers, barely dearer than it.
 
+#[cfg(any(
+    test,
+    all(target_arch = "arm", not(target_abi = "eabihf"), not(microraster_size))
+))]
+use crate::math::times_pow2;
 use crate::math::Mat4;
 use crate::mesh::{Mesh, Vec3Fx};
 use crate::scene::Draw;
@@ -221,6 +226,10 @@ impl Plane {
     /// The planes `r3 + r` and `r3 - r`, in integers, with the margin for
     /// `fixed` (the vertex stage's error of a plane's value, in clip
     /// units) and a mesh whose largest coordinate is `e` (in units).
+    #[cfg(not(any(
+        test,
+        all(target_arch = "arm", not(target_abi = "eabihf"), not(microraster_size))
+    )))]
     fn pair(r3: [f32; 4], r: [f32; 4], fixed: f32, e: f32) -> [Self; 2] {
         // Each sum rounds by at most 2^-24 of its operands' size (more than
         // of its own, when they cancel); at a point within the mesh's
@@ -234,6 +243,32 @@ impl Plane {
             Self::new([0, 1, 2, 3].map(|k| r3[k] + r[k]), slack),
             Self::new([0, 1, 2, 3].map(|k| r3[k] - r[k]), slack),
         ]
+    }
+
+    /// [`pair`](Self::pair) where `f32` is in software ([`SOFT_FLOAT`](crate::math::SOFT_FLOAT)'s
+    /// condition, as a cfg: with an FPU the code is the one above, not
+    /// merely the same in effect, since the Cortex-M4F's frame moved by
+    /// thousands of instructions elsewhere when it was not), the same
+    /// bits. Each size `|r3[k]| + |r[k]|` is one of the planes' sums in
+    /// magnitude: the sum where the two have the same sign (it is theirs
+    /// times `|r3[k]| + |r[k]|`, and rounding to nearest is symmetric),
+    /// the difference where they differ (zeros of either sign included):
+    /// four library calls a pair fewer. The power of two is an exponent's
+    /// sum ([`times_pow2`]).
+    #[cfg(any(
+        test,
+        all(target_arch = "arm", not(target_abi = "eabihf"), not(microraster_size))
+    ))]
+    fn pair(r3: [f32; 4], r: [f32; 4], fixed: f32, e: f32) -> [Self; 2] {
+        let sum = [0, 1, 2, 3].map(|k| r3[k] + r[k]);
+        let diff = [0, 1, 2, 3].map(|k| r3[k] - r[k]);
+        let size = [0, 1, 2, 3].map(|k| {
+            let same = (r3[k].to_bits() ^ r[k].to_bits()) >> 31 == 0;
+            f32::from_bits(if same { sum[k] } else { diff[k] }.to_bits() & 0x7fff_ffff)
+        });
+        let slack =
+            fixed + times_pow2(e * (size[0] + size[1] + size[2]) + size[3], 1.0 / 524_288.0);
+        [Self::new(sum, slack), Self::new(diff, slack)]
     }
 
     /// The plane `p` in integers, with `slack` the bound of its error (in

@@ -560,7 +560,7 @@ impl core::ops::Mul for Mat4 {
 /// soft-float multiply (some 45 instructions on the Cortex-M3, twelve a
 /// draw's light set-up); any other `x` is multiplied.
 #[inline]
-fn times_pow2(x: f32, k: f32) -> f32 {
+pub(crate) fn times_pow2(x: f32, k: f32) -> f32 {
     if !SOFT_FLOAT {
         return x * k;
     }
