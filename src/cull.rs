@@ -475,18 +475,12 @@ mod tests {
                     margin: 1 << 61,
                 };
             }
-            let exp = ((big.to_bits() >> 23) & 0xff) as i32 - 127;
-            let s = if big == 0.0 {
-                0
-            } else {
-                (26 - exp).clamp(-101, 60)
-            };
-            let n = [0, 1, 2].map(|k| scaled(p[k], s) as i32);
-            let d2 = scaled(p[3], s) << 17;
-            let margin = ((1i64 << 36) + (1 << 17) + 1)
-                .saturating_add(scaled(slack, s + 17))
-                .min(1 << 61);
-            Plane { n, d2, margin }
+            // From here the plane depends on the largest magnitude's bits
+            // alone: `Plane::new`'s scaling (not a copy of it) once its
+            // maximum by the bits is `f32::max`'s.
+            let by_bits = p.iter().fold(0u32, |m, v| m.max(v.to_bits() & 0x7fff_ffff));
+            assert_eq!(by_bits, big.to_bits(), "{p:?}");
+            Plane::new(p, slack)
         }
         let same = |a: Plane, b: Plane| a.n == b.n && a.d2 == b.d2 && a.margin == b.margin;
         let mut r = crate::testing::rng();
