@@ -41,6 +41,11 @@
 //! Cortex-M3, a library call on a Cortex-M0+) and is exact in `i64`. Clusters take the box test only: it is tighter than the sphere
 //! around the box and, in integers, barely dearer than it.
 
+#[cfg(any(
+    test,
+    all(target_arch = "arm", not(target_abi = "eabihf"), not(microraster_size))
+))]
+use crate::math::times_pow2;
 use crate::math::Mat4;
 use crate::mesh::{Mesh, Vec3Fx};
 use crate::scene::Draw;
@@ -221,6 +226,10 @@ impl Plane {
     /// The planes `r3 + r` and `r3 - r`, in integers, with the margin for
     /// `fixed` (the vertex stage's error of a plane's value, in clip
     /// units) and a mesh whose largest coordinate is `e` (in units).
+    #[cfg(not(any(
+        test,
+        all(target_arch = "arm", not(target_abi = "eabihf"), not(microraster_size))
+    )))]
     fn pair(r3: [f32; 4], r: [f32; 4], fixed: f32, e: f32) -> [Self; 2] {
         // Each sum rounds by at most 2^-24 of its operands' size (more than
         // of its own, when they cancel); at a point within the mesh's
@@ -234,6 +243,32 @@ impl Plane {
             Self::new([0, 1, 2, 3].map(|k| r3[k] + r[k]), slack),
             Self::new([0, 1, 2, 3].map(|k| r3[k] - r[k]), slack),
         ]
+    }
+
+    /// [`pair`](Self::pair) where `f32` is in software ([`SOFT_FLOAT`](crate::math::SOFT_FLOAT)'s
+    /// condition, as a cfg: with an FPU the code is the one above, not
+    /// merely the same in effect, since the Cortex-M4F's frame moved by
+    /// thousands of instructions elsewhere when it was not), the same
+    /// bits. Each size `|r3[k]| + |r[k]|` is one of the planes' sums in
+    /// magnitude: the sum where the two have the same sign (it is theirs
+    /// times `|r3[k]| + |r[k]|`, and rounding to nearest is symmetric),
+    /// the difference where they differ (zeros of either sign included):
+    /// four library calls a pair fewer. The power of two is an exponent's
+    /// sum ([`times_pow2`]).
+    #[cfg(any(
+        test,
+        all(target_arch = "arm", not(target_abi = "eabihf"), not(microraster_size))
+    ))]
+    fn pair(r3: [f32; 4], r: [f32; 4], fixed: f32, e: f32) -> [Self; 2] {
+        let sum = [0, 1, 2, 3].map(|k| r3[k] + r[k]);
+        let diff = [0, 1, 2, 3].map(|k| r3[k] - r[k]);
+        let size = [0, 1, 2, 3].map(|k| {
+            let same = (r3[k].to_bits() ^ r[k].to_bits()) >> 31 == 0;
+            f32::from_bits(if same { sum[k] } else { diff[k] }.to_bits() & 0x7fff_ffff)
+        });
+        let slack =
+            fixed + times_pow2(e * (size[0] + size[1] + size[2]) + size[3], 1.0 / 524_288.0);
+        [Self::new(sum, slack), Self::new(diff, slack)]
     }
 
     /// The plane `p` in integers, with `slack` the bound of its error (in
@@ -440,18 +475,12 @@ mod tests {
                     margin: 1 << 61,
                 };
             }
-            let exp = ((big.to_bits() >> 23) & 0xff) as i32 - 127;
-            let s = if big == 0.0 {
-                0
-            } else {
-                (26 - exp).clamp(-101, 60)
-            };
-            let n = [0, 1, 2].map(|k| scaled(p[k], s) as i32);
-            let d2 = scaled(p[3], s) << 17;
-            let margin = ((1i64 << 36) + (1 << 17) + 1)
-                .saturating_add(scaled(slack, s + 17))
-                .min(1 << 61);
-            Plane { n, d2, margin }
+            // From here the plane depends on the largest magnitude's bits
+            // alone: `Plane::new`'s scaling (not a copy of it) once its
+            // maximum by the bits is `f32::max`'s.
+            let by_bits = p.iter().fold(0u32, |m, v| m.max(v.to_bits() & 0x7fff_ffff));
+            assert_eq!(by_bits, big.to_bits(), "{p:?}");
+            Plane::new(p, slack)
         }
         let same = |a: Plane, b: Plane| a.n == b.n && a.d2 == b.d2 && a.margin == b.margin;
         let mut r = crate::testing::rng();

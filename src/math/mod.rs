@@ -393,8 +393,18 @@ impl Mat4 {
     pub fn normalized(&self) -> Option<Self> {
         let big = self.normal_scale()?;
         let mut out = *self;
-        for v in out.m.iter_mut().flatten() {
-            *v /= big;
+        if SOFT_FLOAT {
+            // Sixteen soft-float divisions (about 100 instructions each on
+            // the Cortex-M3) by one divisor: through its integer
+            // reciprocal instead, the same bits.
+            let d = ScaleDivisor::new(big);
+            for v in out.m.iter_mut().flatten() {
+                *v = d.div(*v);
+            }
+        } else {
+            for v in out.m.iter_mut().flatten() {
+                *v /= big;
+            }
         }
         Some(out)
     }
@@ -475,9 +485,9 @@ impl Mat4 {
 
 /// Whether `f32` arithmetic is in software (ARM cores without an FPU),
 /// where the library takes short cuts around it: there [`Mat4`]'s product
-/// skips an affine matrix's known last row, whose tests cost more than
-/// the products they save where an FPU does them (the Cortex-M4F's
-/// `demo` frame took 2,065 instructions more). Not in builds optimised
+/// skips the terms of zeros and ones, whose tests cost more than the
+/// products they save where an FPU does them (the Cortex-M4F's `demo`
+/// frame took 2,065 instructions more for an affine matrix's last row). Not in builds optimised
 /// for size (`microraster_size`: the OLED firmware's flash took 320 B
 /// more). The library's own tests take the short cut too, to compare it
 /// with the full product.
@@ -506,8 +516,28 @@ impl core::ops::Mul for Mat4 {
     /// additions fewer (`demo`'s frame: Cortex-M3 6,961 instructions
     /// fewer, ARMv6-M 10,556). (The short cut in a function of its own,
     /// inlined here, copied both matrices on the stack.)
+    ///
+    /// Before that, where both matrices are finite, the product is made
+    /// term by term (`product_by_terms`, in soft-float builds), the same
+    /// bits: a term with a zero or a one for a factor needs no
+    /// multiplication, and a known zero no addition (so the affine short cut is left for matrices
+    /// with an element not finite). Rotations, translations and scales
+    /// are mostly zeros and ones: `demo`'s frame, whose scene builds six
+    /// products besides the camera's and the two draws', Cortex-M3
+    /// 3,011,495 -> 2,999,356 instructions, ARMv6-M 6,127,299 ->
+    /// 6,112,817. A cfg, not the `SOFT_FLOAT` test: with an FPU the code
+    /// is not merely the same in effect but the same text (the
+    /// Cortex-M4F's binning moved by 8,600 instructions when the crate's
+    /// codegen units were partitioned otherwise).
     #[inline(never)]
     fn mul(self, rhs: Mat4) -> Mat4 {
+        #[cfg(any(
+            test,
+            all(target_arch = "arm", not(target_abi = "eabihf"), not(microraster_size))
+        ))]
+        if let Some(out) = product_by_terms(&self, &rhs) {
+            return out;
+        }
         let bits = |v: f32| v.to_bits();
         let affine = SOFT_FLOAT
             && (bits(rhs.m[0][3]) | bits(rhs.m[1][3]) | bits(rhs.m[2][3])) == 0
@@ -543,6 +573,73 @@ impl core::ops::Mul for Mat4 {
     }
 }
 
+/// `a * b` where `f32` is in software ([`SOFT_FLOAT`]), term by term with
+/// the zeros and ones known from the bits; `None` when an element is not
+/// finite (then the caller multiplies).
+///
+/// For finite `x` and `y`: `x * ±0` and `±0 * y` are zeros whose sign is
+/// the signs' exclusive or; `x * 1` is `x` (and `1 * y` is `y`); `s +
+/// -0` is `s`, and `s + +0` is `s` but for `s = -0`, whose sum is `+0`
+/// (rounding to nearest); `±0 + t` is `t` for a non-zero `t`, and the sum
+/// of two zeros is `-0` only when both are. A sum is made only where a
+/// term is known to be zero (from its factors' bits); otherwise it is
+/// added, so a zero that a product or sum rounds to is handled by the
+/// library's arithmetic itself. The bits through `black_box`: LLVM turns
+/// integer tests of a float's bits into soft-float compares (a library
+/// call each).
+#[cfg(any(
+    test,
+    all(target_arch = "arm", not(target_abi = "eabihf"), not(microraster_size))
+))]
+#[inline(always)]
+fn product_by_terms(a: &Mat4, b: &Mat4) -> Option<Mat4> {
+    const ONE: u32 = 0x3f80_0000;
+    let finite = |m: &Mat4| {
+        m.m.iter()
+            .flatten()
+            .all(|v| v.to_bits() & 0x7fff_ffff < 0x7f80_0000)
+    };
+    if !(finite(a) && finite(b)) {
+        return None;
+    }
+    // A term: `Err(bits)` for a known zero, `Ok(value)` otherwise. Its
+    // factors' bits through `black_box` one pair at a time (both
+    // matrices' at once took ARMv6-M's vertex stage 48 B more stack).
+    let term = |x: f32, y: f32| -> Result<f32, u32> {
+        let (x, y) = core::hint::black_box((x.to_bits(), y.to_bits()));
+        if x << 1 == 0 || y << 1 == 0 {
+            Err((x ^ y) & 0x8000_0000)
+        } else if y == ONE {
+            Ok(f32::from_bits(x))
+        } else if x == ONE {
+            Ok(f32::from_bits(y))
+        } else {
+            Ok(f32::from_bits(x) * f32::from_bits(y))
+        }
+    };
+    let mut out = [[0.0f32; 4]; 4];
+    for (c, out_col) in out.iter_mut().enumerate() {
+        for (r, o) in out_col.iter_mut().enumerate() {
+            let mut acc = term(a.m[0][r], b.m[c][0]);
+            for k in 1..4 {
+                acc = match (acc, term(a.m[k][r], b.m[c][k])) {
+                    (Ok(s), Ok(t)) => Ok(s + t),
+                    (Ok(s), Err(0)) if s.to_bits() == 0x8000_0000 => Ok(0.0),
+                    (Ok(s), Err(_)) => Ok(s),
+                    (Err(0), Ok(t)) if t.to_bits() == 0x8000_0000 => Ok(0.0),
+                    (Err(_), Ok(t)) => Ok(t),
+                    (Err(z), Err(w)) => Err(z & w),
+                };
+            }
+            *o = match acc {
+                Ok(v) => v,
+                Err(z) => f32::from_bits(z),
+            };
+        }
+    }
+    Some(Mat4 { m: out })
+}
+
 /// `x * k` for `k` a positive normal power of two (an [`Inverse3`]'s
 /// scale), the same bits: where `f32` arithmetic is in software
 /// ([`SOFT_FLOAT`]), a zero is itself and a normal `x` whose product is
@@ -550,7 +647,7 @@ impl core::ops::Mul for Mat4 {
 /// soft-float multiply (some 45 instructions on the Cortex-M3, twelve a
 /// draw's light set-up); any other `x` is multiplied.
 #[inline]
-fn times_pow2(x: f32, k: f32) -> f32 {
+pub(crate) fn times_pow2(x: f32, k: f32) -> f32 {
     if !SOFT_FLOAT {
         return x * k;
     }
@@ -567,6 +664,88 @@ fn times_pow2(x: f32, k: f32) -> f32 {
             f32::from_bits(b.wrapping_add(kb.wrapping_sub(127 << 23)))
         }
         false => x * k,
+    }
+}
+
+/// Division of `f32`s by one positive normal `f32`, correctly rounded
+/// (the same bits as `/`), through an integer reciprocal of the
+/// divisor's significand: [`Mat4::normalized`]'s sixteen divisions by its
+/// largest element where `f32` arithmetic is in software.
+///
+/// With `a` and `b` the dividend's and the divisor's significands (24
+/// bits, `2^23 <= a, b < 2^24`) and `a' = a` or `2 a` (whichever makes
+/// `a' >= b`), the quotient's significand rounded to 24 bits is that of
+/// `q = floor(a' 2^24 / b)`, which has 25 bits, rounded by its last: a
+/// quotient is never exactly halfway between two 24-bit values (then
+/// `a' 2^25 = (2 Q + 1) b` for an integer `Q >= 2^23`, and the odd part
+/// of the left side, that of `a`, below 2^24, would be a multiple of
+/// `2 Q + 1 > 2^24`), so the bit below the last says which way it
+/// rounds. `q` comes from `r = floor((2^64 - 1) / (2^9 b))`, within 2
+/// under `2^55 / b` and below 2^32: `floor(a' r / 2^31)` (`a' < 2^25`)
+/// falls short of `a' 2^24 / b` by less than 2^-5, so it is `q` or
+/// `q - 1`, which the remainder (below `2 b`, exact in wrapping `u32`
+/// arithmetic) tells apart.
+#[derive(Clone, Copy, Debug)]
+struct ScaleDivisor {
+    /// The divisor.
+    d: f32,
+    /// Its significand `b`, the implicit bit included.
+    b: u32,
+    /// Its exponent field.
+    field: i32,
+    /// `floor((2^64 - 1) / (2^9 b))`.
+    r: u32,
+}
+
+impl ScaleDivisor {
+    /// The divisor `d`, positive and normal.
+    #[inline(always)]
+    fn new(d: f32) -> Self {
+        let bits = d.to_bits();
+        let b = (bits & 0x7f_ffff) | 0x80_0000;
+        // `b` is not zero.
+        let nz = core::num::NonZeroU64::new(u64::from(b)).unwrap_or(core::num::NonZeroU64::MIN);
+        Self {
+            d,
+            b,
+            field: ((bits >> 23) & 0xff) as i32,
+            r: (divisor::max_div_long(nz) >> 9) as u32,
+        }
+    }
+
+    /// `v / d`, the same bits. A zero is itself (`d` is positive); a
+    /// subnormal, infinite or NaN `v`, or a quotient outside the normal
+    /// range, is divided.
+    #[inline(always)]
+    fn div(&self, v: f32) -> f32 {
+        // The bits through `black_box`: LLVM turned the zero test into a
+        // soft-float compare (a library call each, as in `Mat4`'s
+        // product).
+        let x = core::hint::black_box(v.to_bits());
+        if x << 1 == 0 {
+            return v;
+        }
+        let fv = ((x >> 23) & 0xff) as i32;
+        let a = (x & 0x7f_ffff) | 0x80_0000;
+        let below = u32::from(a < self.b);
+        let a = a << below;
+        // The quotient's exponent field, before a carry of its rounding.
+        let field = fv - self.field + 127 - below as i32;
+        if fv == 0 || fv == 255 || !(1..=254).contains(&field) {
+            return v / self.d;
+        }
+        let product = if wide::SPLIT {
+            wide::mul_split_u(a, self.r)
+        } else {
+            u64::from(a) * u64::from(self.r)
+        };
+        let est = (product >> 31) as u32;
+        let rem = (a << 24).wrapping_sub(est.wrapping_mul(self.b));
+        let q = est + u32::from(rem >= self.b);
+        // The significand rounded, its implicit bit added to the field
+        // (and a carry to 2^24 makes the next power of two).
+        let sig = (q + 1) >> 1;
+        f32::from_bits((x & 0x8000_0000) | ((((field - 1) as u32) << 23) + sig))
     }
 }
 
@@ -723,12 +902,13 @@ mod tests {
         assert!(!s(top.next_up()).moderate() && !s(low.next_down()).moderate());
     }
 
-    /// The product of an affine right-hand side (its short cut, taken
-    /// on soft-float cores and in these tests: [`SOFT_FLOAT`]) gives
-    /// the full product's bits, zeros' signs included, for any left-hand
-    /// side (NaNs compared as NaNs).
+    /// The product term by term (taken on soft-float cores and in these
+    /// tests: [`SOFT_FLOAT`]) gives the full product's bits, zeros'
+    /// signs included (NaNs compared as NaNs): matrices with many zeros
+    /// and ones, tiny elements whose products round to zero, affine
+    /// right-hand sides.
     #[test]
-    fn affine_product_is_the_full_product() {
+    fn product_by_terms_is_the_full_product() {
         let full = |a: &Mat4, b: &Mat4| {
             let mut out = [[0.0f32; 4]; 4];
             for (c, col) in out.iter_mut().enumerate() {
@@ -743,9 +923,12 @@ mod tests {
         };
         let mut next = crate::testing::rng();
         for i in 0..100_000 {
-            let mut f = || match next(3) {
+            let mut f = || match next(5) {
                 // Zeros of both signs often, so that sums are zero.
                 0 => [0.0, -0.0][next(2) as usize],
+                1 => 1.0,
+                // Products of two round to a zero of either sign.
+                2 => [1e-30, -3e-25, 1e-20][next(3) as usize],
                 _ => odd_f32(&mut next),
             };
             let a = Mat4 {
@@ -865,6 +1048,40 @@ mod tests {
             times_pow2((c0.z * v.x + c1.z * v.y + c2.z * v.z) * inv, k),
         );
         out.is_finite().then_some(out)
+    }
+
+    /// The integer division by a shared divisor gives `/`'s bits: random
+    /// divisors and dividends of any bits, quotients near 1 (both
+    /// significands close) and the divisors of the extreme significands.
+    #[test]
+    fn scale_divisor_is_division() {
+        let mut next = crate::testing::rng();
+        let same = |d: f32, v: f32| {
+            let (got, want) = (ScaleDivisor::new(d).div(v), v / d);
+            assert!(
+                got.to_bits() == want.to_bits() || (got.is_nan() && want.is_nan()),
+                "{v:e} / {d:e}: {got:e}, not {want:e}"
+            );
+        };
+        for _ in 0..300_000 {
+            let d = f32::from_bits(next(0x7f00_0000) as u32 + 0x80_0000);
+            same(d, f32::from_bits(next(1 << 32) as u32));
+            // The same exponent, nearby significands, either sign.
+            let near = (d.to_bits() as i64 + next(64) as i64 - 32) as u32;
+            same(d, f32::from_bits(near | (next(2) as u32) << 31));
+            same(d, odd_f32(&mut next));
+        }
+        for d in [
+            1.0f32,
+            f32::from_bits(0x3fff_ffff),
+            1.5,
+            f32::from_bits(27 << 23),
+        ] {
+            for k in 0..100_000u32 {
+                same(d, f32::from_bits(0x3f00_0000 + k * 167));
+                same(d, f32::from_bits(0x3f80_0000 - k));
+            }
+        }
     }
 
     /// The inverse made once gives the reference's bits, and the largest
