@@ -143,6 +143,16 @@ fn main() {
     if size {
         println!("cargo:rustc-cfg=microraster_size");
     }
+    // Arm cores without an FPU (`f32` in library calls), not optimised
+    // for size: the per-draw set-up's short cuts around soft-float
+    // arithmetic (`math::SOFT_FLOAT`), whose tests cost more than they
+    // save where an FPU does the arithmetic, and flash where size counts.
+    println!("cargo::rustc-check-cfg=cfg(microraster_soft_float)");
+    let arm = env::var("CARGO_CFG_TARGET_ARCH").is_ok_and(|a| a == "arm");
+    let hard_float = env::var("CARGO_CFG_TARGET_ABI").is_ok_and(|a| a == "eabihf");
+    if arm && !hard_float && !size {
+        println!("cargo:rustc-cfg=microraster_soft_float");
+    }
     println!("cargo::rustc-check-cfg=cfg(microraster_lm3s6965)");
     if let Some(map) = board_map(&target, board.as_deref()) {
         let out = PathBuf::from(env::var_os("OUT_DIR").expect("cargo sets OUT_DIR"));

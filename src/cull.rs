@@ -41,10 +41,7 @@
 //! Cortex-M3, a library call on a Cortex-M0+) and is exact in `i64`. Clusters take the box test only: it is tighter than the sphere
 //! around the box and, in integers, barely dearer than it.
 
-#[cfg(any(
-    test,
-    all(target_arch = "arm", not(target_abi = "eabihf"), not(microraster_size))
-))]
+#[cfg(any(test, microraster_soft_float))]
 use crate::math::times_pow2;
 use crate::math::Mat4;
 use crate::mesh::{Mesh, Vec3Fx};
@@ -226,10 +223,7 @@ impl Plane {
     /// The planes `r3 + r` and `r3 - r`, in integers, with the margin for
     /// `fixed` (the vertex stage's error of a plane's value, in clip
     /// units) and a mesh whose largest coordinate is `e` (in units).
-    #[cfg(not(any(
-        test,
-        all(target_arch = "arm", not(target_abi = "eabihf"), not(microraster_size))
-    )))]
+    #[cfg(not(any(test, microraster_soft_float)))]
     fn pair(r3: [f32; 4], r: [f32; 4], fixed: f32, e: f32) -> [Self; 2] {
         // Each sum rounds by at most 2^-24 of its operands' size (more than
         // of its own, when they cancel); at a point within the mesh's
@@ -255,10 +249,7 @@ impl Plane {
     /// the difference where they differ (zeros of either sign included):
     /// four library calls a pair fewer. The power of two is an exponent's
     /// sum ([`times_pow2`]).
-    #[cfg(any(
-        test,
-        all(target_arch = "arm", not(target_abi = "eabihf"), not(microraster_size))
-    ))]
+    #[cfg(any(test, microraster_soft_float))]
     fn pair(r3: [f32; 4], r: [f32; 4], fixed: f32, e: f32) -> [Self; 2] {
         let sum = [0, 1, 2, 3].map(|k| r3[k] + r[k]);
         let diff = [0, 1, 2, 3].map(|k| r3[k] - r[k]);

@@ -133,15 +133,9 @@ where
     // Where `f32` is in software, out of line (`camera_product`); with an
     // FPU as it was (out of line, the Cortex-M4F's vertex stage took
     // 2,024 instructions more).
-    #[cfg(any(
-        test,
-        all(target_arch = "arm", not(target_abi = "eabihf"), not(microraster_size))
-    ))]
+    #[cfg(any(test, microraster_soft_float))]
     let view_proj = camera_product(&scene.camera);
-    #[cfg(not(any(
-        test,
-        all(target_arch = "arm", not(target_abi = "eabihf"), not(microraster_size))
-    )))]
+    #[cfg(not(any(test, microraster_soft_float)))]
     let view_proj = scene.camera.projection * scene.camera.view;
     // Normalized, as the vertex stage converts each draw's product: a
     // camera in any units is fine; only a non-finite or zero one is bad.
@@ -322,10 +316,7 @@ fn transform<F>(
 /// vertex stage's frame, on the deepest path (ARMv6-M's stack took 48 B
 /// more when the soft-float product's term-by-term form made them
 /// copies).
-#[cfg(any(
-    test,
-    all(target_arch = "arm", not(target_abi = "eabihf"), not(microraster_size))
-))]
+#[cfg(any(test, microraster_soft_float))]
 #[inline(never)]
 fn camera_product(camera: &crate::scene::Camera) -> Mat4 {
     camera.projection * camera.view
