@@ -5,7 +5,7 @@
 //! module](super) for the method and the fixed-point formats).
 
 use super::small::{Small, SMALL_EDGE, SMALL_SETUP};
-use crate::math::Divisor;
+use crate::math::{Divisor, SPLIT};
 use crate::raster::{SubPoint, HALF_PIXEL, SUBPIXEL_BITS};
 use core::num::{NonZeroU32, NonZeroU64};
 
@@ -106,11 +106,21 @@ impl Basis {
             }),
             false => None,
         };
+        // ARMv6-M has no 64-bit multiply: `s * x1` there is a library call
+        // (`__aeabi_lmul`) for each of the four, where a negation is two
+        // instructions; the other targets keep their code.
+        let [x1, y1, x2, y2] = if !SPLIT {
+            [s * x1, s * y1, s * x2, s * y2]
+        } else if area2 < 0 {
+            [-x1, -y1, -x2, -y2]
+        } else {
+            [x1, y1, x2, y2]
+        };
         Self {
-            x1: s * x1,
-            y1: s * y1,
-            x2: s * x2,
-            y2: s * y2,
+            x1,
+            y1,
+            x2,
+            y2,
             area: match small {
                 Some(_) => Divisor::new(NonZeroU64::MIN),
                 None => Divisor::new(area),
@@ -186,13 +196,43 @@ impl Basis {
     /// The plane constant `k` of an attribute whose value at vertex 0 is
     /// `value`, in wrapping arithmetic: exact for gradients within
     /// ±[`GRADIENT_LIMIT`](super::GRADIENT_LIMIT), no overflow check beyond.
+    /// On ARMv6-M only its low 32 bits ([`Basis::constant_low`]), the part
+    /// a 32-bit target uses: the rest is for 64-bit hosts' packed starts.
     #[inline(always)]
     pub(super) fn constant_wrapping(&self, value: i64, frac: u32, (gx, gy): (i64, i64)) -> i64 {
+        if SPLIT {
+            return self.constant_low(value, frac, (gx, gy)) as i64;
+        }
         let base = (value << frac) + (1i64 << (frac - 1));
         let t = gx
             .wrapping_mul(self.ox)
             .wrapping_add(gy.wrapping_mul(self.oy));
         base.wrapping_add(t >> SUBPIXEL_BITS)
+    }
+
+    /// The low 32 bits of [`Basis::constant_wrapping`], all that a 32-bit
+    /// target keeps of it ([`Plane::k`]), in 32-bit products: ARMv6-M
+    /// makes each of the two 64-bit products a library call.
+    ///
+    /// With `gx = 16 q + r` (`q = gx >> 4`, `0 <= r < 16`) and likewise
+    /// `gy = 16 qy + ry`, the product `gx ox` is `16 q ox` plus `r ox`, so
+    /// `(gx ox + gy oy) >> 4` is `q ox + qy oy + ((r ox + ry oy) >> 4)`
+    /// exactly. Modulo 2^32 the first two terms need only the low 32 bits
+    /// of `q` and `ox`, and the last is exact in `i32`: `|ox|, |oy| < 2^19`
+    /// (vertices within 2^18 sub-pixels of the origin), so
+    /// `|r ox + ry oy| < 2^24`.
+    #[cfg_attr(not(any(test, microraster_narrow_multiply)), allow(dead_code))]
+    #[inline(always)]
+    pub(super) fn constant_low(&self, value: i64, frac: u32, (gx, gy): (i64, i64)) -> i32 {
+        const _: () = assert!(SUBPIXEL_BITS == 4);
+        let (ox, oy) = (self.ox as i32, self.oy as i32);
+        let base = ((value as i32) << frac).wrapping_add(1 << (frac - 1));
+        let (qx, qy) = ((gx >> SUBPIXEL_BITS) as i32, (gy >> SUBPIXEL_BITS) as i32);
+        let (rx, ry) = ((gx & 15) as i32, (gy & 15) as i32);
+        let low = rx.wrapping_mul(ox).wrapping_add(ry.wrapping_mul(oy)) >> SUBPIXEL_BITS;
+        base.wrapping_add(qx.wrapping_mul(ox))
+            .wrapping_add(qy.wrapping_mul(oy))
+            .wrapping_add(low)
     }
 }
 
@@ -213,5 +253,40 @@ impl Plane {
     #[inline(always)]
     pub(super) fn step(&self) -> i32 {
         self.gx
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// [`Basis::constant_low`] is the low 32 bits of the 64-bit constant,
+    /// for any gradients (wrapping) and vertices in the guard band.
+    #[test]
+    fn constant_low_is_the_wrapping_constant() {
+        let mut next = crate::testing::rng();
+        let v = [SubPoint { x: 0, y: 0 }; 3];
+        let mut f = Basis::with_small(&v, false);
+        let signed = |n: u64, next: &mut dyn FnMut(u64) -> u64| next(2 * n) as i64 - n as i64;
+        for k in 0..1_000_000 {
+            f.ox = HALF_PIXEL as i64 - signed(1 << 18, &mut next);
+            f.oy = HALF_PIXEL as i64 - signed(1 << 18, &mut next);
+            let wide = |next: &mut dyn FnMut(u64) -> u64| {
+                (next(1 << 32) << 32 | next(1 << 32)) as i64 >> next(64)
+            };
+            let (gx, gy) = match k % 3 {
+                0 => (wide(&mut next), wide(&mut next)),
+                1 => (signed(1 << 40, &mut next), signed(1 << 40, &mut next)),
+                _ => (signed(1 << 20, &mut next), signed(1 << 20, &mut next)),
+            };
+            let value = signed(1 << 24, &mut next);
+            for frac in [14, 16] {
+                let base = (value << frac) + (1i64 << (frac - 1));
+                let t = gx.wrapping_mul(f.ox).wrapping_add(gy.wrapping_mul(f.oy));
+                let k = base.wrapping_add(t >> SUBPIXEL_BITS);
+                assert_eq!(f.constant_low(value, frac, (gx, gy)), k as i32);
+                assert_eq!(f.constant_wrapping(value, frac, (gx, gy)) as i32, k as i32);
+            }
+        }
     }
 }
