@@ -6,7 +6,7 @@
 
 use super::lerp::NARROW_MULTIPLY;
 use super::{Q_MAX, Q_ONE};
-use crate::math::{mul_wide, Recip16};
+use crate::math::Recip16;
 use crate::raster::SUBPIXEL_BITS;
 use crate::shade::small::Small;
 use crate::shade::{Basis, GRADIENT_LIMIT};
@@ -185,8 +185,9 @@ pub(super) fn small_planes_wide(f: &Basis, s: &Small, q: [i64; 3]) -> Option<[Wi
 /// products split at bit 16 of the value ([`split_mul`]: 32-bit
 /// products by an edge vector below 2^10) and each gradient from three
 /// digits of the area's 16-bit reciprocal ([`small_gradient_digits`]),
-/// made once for the six. The constants' products by the offsets in
-/// halves too ([`mul_wide`]). Before, `demo-textured-lit` took 12
+/// made once for the six. The constants only in their low 32 bits, the
+/// part narrow planes read ([`constant_low32`]): the same planes modulo
+/// 2^32 in each `k`. Before, `demo-textured-lit` took 12
 /// divisions and 16 64-bit products here per triangle and tile.
 #[cfg_attr(not(any(test, microraster_narrow_multiply)), allow(dead_code))]
 #[inline(always)]
@@ -205,14 +206,35 @@ pub(super) fn small_planes_split(f: &Basis, s: &Small, q: [i64; 3]) -> Option<[W
     let b1y = g(neg(split_mul(q1, x2)))?;
     let b2x = g(neg(split_mul(q2, y1)))?;
     let b2y = g(split_mul(q2, x1))?;
-    // |g| < 2^31 and |o| < 2^19: no overflow; each product exact.
+    // Every plane is narrow (no gradient clamped): the span starts read
+    // only the constants' low 32 bits (`WidePlane::at32_unclamped`).
     let (ox, oy) = (f.ox as i32, f.oy as i32);
-    let plane = |gx: i32, gy: i32, v0: i64| WidePlane {
+    let plane = |gx: i32, gy: i32, v0: i32| WidePlane {
         gx: gx as i64,
         gy: gy as i64,
-        k: v0 + ((mul_wide(gx, ox) + mul_wide(gy, oy)) >> SUBPIXEL_BITS),
+        k: constant_low32(gx, gy, ox, oy, v0) as i64,
     };
-    Some([plane(qx, qy, q[0]), plane(b1x, b1y, 0), plane(b2x, b2y, 0)])
+    Some([plane(qx, qy, q0), plane(b1x, b1y, 0), plane(b2x, b2y, 0)])
+}
+
+/// The low 32 bits of a narrow plane's constant `v0 + ((gx ox + gy oy) >>
+/// 4)`, all that its span starts read (`WidePlane::at32_unclamped`), in
+/// four 32-bit products where the 64-bit form takes eight halves'
+/// products and 64-bit adds on ARMv6-M. With `gx = 16 q + r` (`q = gx >>
+/// 4`, `0 <= r < 16`) and likewise `gy`, `(gx ox + gy oy) >> 4` is
+/// `q ox + qy oy + ((r ox + ry oy) >> 4)` exactly; modulo 2^32 the first
+/// two terms need only 32-bit products, and the last is exact in `i32`
+/// (`|ox|, |oy| < 2^19`, so `|r ox + ry oy| < 2^24`).
+#[cfg_attr(not(any(test, microraster_narrow_multiply)), allow(dead_code))]
+#[inline(always)]
+pub(super) fn constant_low32(gx: i32, gy: i32, ox: i32, oy: i32, v0: i32) -> i32 {
+    const _: () = assert!(SUBPIXEL_BITS == 4);
+    let (qx, qy) = (gx >> SUBPIXEL_BITS, gy >> SUBPIXEL_BITS);
+    let (rx, ry) = (gx & 15, gy & 15);
+    let low = (rx * ox + ry * oy) >> SUBPIXEL_BITS;
+    v0.wrapping_add(qx.wrapping_mul(ox))
+        .wrapping_add(qy.wrapping_mul(oy))
+        .wrapping_add(low)
 }
 
 /// `a e` as `(h, l)` with `a e = h 2^16 + l`, for `|a| <= 2^28` (a
