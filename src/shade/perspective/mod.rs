@@ -710,6 +710,44 @@ mod tests {
         assert!(declined > 0 && checked > 50_000, "{declined} {checked}");
     }
 
+    /// ARMv6-M's `wide_gradients_split` gives `Basis::gradients`' quotients
+    /// for the perspective planes of triangles of any size in the guard
+    /// band, slivers included.
+    #[test]
+    fn split_wide_gradients_match() {
+        use crate::raster::SubPoint;
+        let mut next = crate::testing::rng();
+        let mut checked = 0u32;
+        for n in 0..200_000u32 {
+            let edge = [1u64 << 18, 1 << 12, 1 << 5][n as usize % 3];
+            let o = SubPoint::new(
+                next(1 << 19) as i32 - (1 << 18),
+                next(1 << 19) as i32 - (1 << 18),
+            );
+            let mut p = || {
+                let c = |a: i32, d: u64| (a + d as i32 - edge as i32).clamp(-(1 << 18), 1 << 18);
+                SubPoint::new(c(o.x, next(2 * edge)), c(o.y, next(2 * edge)))
+            };
+            let v = [o, p(), p()];
+            if crate::raster::signed_area2(&v) == 0 {
+                continue;
+            }
+            let f = Basis::with_small(&v, false);
+            let mut q = || match next(4) {
+                0 => Q_ONE,
+                1 => 0,
+                _ => next(Q_ONE as u64 + 1) as i64,
+            };
+            let q = [q(), q(), q()];
+            for values in [q, [0, q[1], 0], [0, 0, q[2]]] {
+                let want = f.gradients(values, 0);
+                assert_eq!(wide_gradients_split(&f, values), want, "{v:?} {values:?}");
+            }
+            checked += 1;
+        }
+        assert!(checked > 150_000, "{checked}");
+    }
+
     /// `small_gradient_digits` gives `small_gradient`'s quotient (or
     /// `None`) for numerators across their range, up to the largest, and
     /// areas across theirs.

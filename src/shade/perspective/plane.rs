@@ -6,7 +6,7 @@
 
 use super::lerp::NARROW_MULTIPLY;
 use super::{Q_MAX, Q_ONE};
-use crate::math::Recip16;
+use crate::math::{mul_wide, Recip16};
 use crate::raster::SUBPIXEL_BITS;
 use crate::shade::small::Small;
 use crate::shade::{Basis, GRADIENT_LIMIT};
@@ -28,6 +28,8 @@ impl WidePlane {
     pub(super) fn new(f: &Basis, values: [i64; 3], small: bool) -> Self {
         let (gx, gy) = if small {
             perspective_gradients(f, values)
+        } else if NARROW_MULTIPLY && f.small.is_none() {
+            wide_gradients_split(f, values)
         } else {
             f.gradients(values, 0)
         };
@@ -304,6 +306,41 @@ pub(super) fn perspective_gradients(f: &Basis, values: [i64; 3]) -> (i64, i64) {
         }
     }
     f.gradients(values, 0)
+}
+
+/// `f.gradients(values, 0)` for a perspective plane of a triangle too large
+/// for the [`Small`] set-up, on ARMv6-M, where each `i64` product is a
+/// library call (`__aeabi_lmul`, about 40 instructions): the numerators
+/// from 32-bit halves ([`mul_wide`]: the values' differences are at most
+/// 2^28 and the edge vectors below 2^19, both within `i32`) and the
+/// division by the area's reciprocal from them too
+/// ([`Divisor::div_split`](crate::math::Divisor)), the same quotients as
+/// `Basis::div_round`. For `f.small` `None` (only then is `f.area` the
+/// area's reciprocal).
+#[cfg_attr(not(any(test, microraster_narrow_multiply)), allow(dead_code))]
+#[inline(always)]
+pub(super) fn wide_gradients_split(f: &Basis, values: [i64; 3]) -> (i64, i64) {
+    debug_assert!(f.small.is_none());
+    let [x1, y1, x2, y2] = [f.x1 as i32, f.y1 as i32, f.x2 as i32, f.y2 as i32];
+    let (d1, d2) = (
+        (values[1] - values[0]) as i32,
+        (values[2] - values[0]) as i32,
+    );
+    // |n| < 2^49 before the shift: within `div_split`'s 2^63 after it.
+    let div_round = |n: i64| {
+        let q = f
+            .area
+            .div_split((n.unsigned_abs() << SUBPIXEL_BITS) + f.half) as i64;
+        if n >= 0 {
+            q
+        } else {
+            -q
+        }
+    };
+    (
+        div_round(mul_wide(d1, y2) - mul_wide(d2, y1)),
+        div_round(mul_wide(d2, x1) - mul_wide(d1, x2)),
+    )
 }
 
 /// `a b` in `i64`: one 32x32 to 64-bit product.
