@@ -748,6 +748,23 @@ mod tests {
         assert!(checked > 150_000, "{checked}");
     }
 
+    /// ARMv6-M's `small_wide_gradients_digits` gives `Basis::gradients`'
+    /// quotients for small triangles' perspective planes, slivers and far
+    /// vertices included.
+    #[test]
+    fn small_wide_gradients_match() {
+        let mut checked = 0u32;
+        each_small_case(100_000, |v, f, small, q| {
+            for values in [q, [0, q[1], 0], [0, 0, q[2]]] {
+                let want = f.gradients(values, 0);
+                let got = small_wide_gradients_digits(f, small, values);
+                assert_eq!(got, want, "{v:?} {values:?}");
+            }
+            checked += 1;
+        });
+        assert!(checked > 50_000, "{checked}");
+    }
+
     /// `small_gradient_digits` gives `small_gradient`'s quotient (or
     /// `None`) for numerators across their range, up to the largest, and
     /// areas across theirs.

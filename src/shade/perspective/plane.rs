@@ -28,8 +28,11 @@ impl WidePlane {
     pub(super) fn new(f: &Basis, values: [i64; 3], small: bool) -> Self {
         let (gx, gy) = if small {
             perspective_gradients(f, values)
-        } else if NARROW_MULTIPLY && f.small.is_none() {
-            wide_gradients_split(f, values)
+        } else if NARROW_MULTIPLY {
+            match &f.small {
+                Some(s) => small_wide_gradients_digits(f, s, values),
+                None => wide_gradients_split(f, values),
+            }
         } else {
             f.gradients(values, 0)
         };
@@ -340,6 +343,56 @@ pub(super) fn wide_gradients_split(f: &Basis, values: [i64; 3]) -> (i64, i64) {
     (
         div_round(mul_wide(d1, y2) - mul_wide(d2, y1)),
         div_round(mul_wide(d2, x1) - mul_wide(d1, x2)),
+    )
+}
+
+/// `f.gradients(values, 0)` for a perspective plane of a [`Small`]
+/// triangle `f` (`s` its `small`) on ARMv6-M, where the small planes
+/// declined (a gradient of 2^31 or more): the numerators' products split
+/// ([`split_mul`]) and the quotient, rounded to nearest as
+/// `Small::div_round_wide`'s, by four 11-bit digits of the area's 16-bit
+/// reciprocal ([`Recip16::estimate`], each remainder corrected so the
+/// next partial dividend, below `d 2^11 < 2^32`, is within the estimate's
+/// range) where that takes four library divisions and their remainders.
+#[cfg_attr(not(any(test, microraster_narrow_multiply)), allow(dead_code))]
+#[inline(always)]
+pub(super) fn small_wide_gradients_digits(f: &Basis, s: &Small, values: [i64; 3]) -> (i64, i64) {
+    debug_assert!(values.iter().all(|v| (0..=Q_ONE).contains(v)));
+    let [x1, y1, x2, y2] = [f.x1 as i32, f.y1 as i32, f.x2 as i32, f.y2 as i32];
+    let (d1, d2) = (
+        (values[1] - values[0]) as i32,
+        (values[2] - values[0]) as i32,
+    );
+    let r = Recip16::new_small(s.area);
+    let div_round = |(h0, l0): (i32, i32), (h1, l1): (i32, i32)| {
+        let n = (((h0 - h1) as i64) << 16) + (l0 - l1) as i64;
+        // |n| < 2^39: `a` below 2^44, four digits of 11 bits.
+        let a = (n.unsigned_abs() << SUBPIXEL_BITS) + s.half as u64;
+        let digit = |rest: u32| {
+            let (q, rem) = r.estimate(rest);
+            if rem >= r.d {
+                (q + 1, rem - r.d)
+            } else {
+                (q, rem)
+            }
+        };
+        let (q, mut rem) = digit((a >> 33) as u32);
+        let mut q = q as u64;
+        for shift in [22, 11, 0] {
+            let (d, next) = digit((rem << 11) | ((a >> shift) as u32 & 0x7FF));
+            q = (q << 11) + d as u64;
+            rem = next;
+        }
+        let q = q as i64;
+        if n < 0 {
+            -q
+        } else {
+            q
+        }
+    };
+    (
+        div_round(split_mul(d1, y2), split_mul(d2, y1)),
+        div_round(split_mul(d2, x1), split_mul(d1, x2)),
     )
 }
 
