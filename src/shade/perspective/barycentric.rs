@@ -205,9 +205,20 @@ pub(super) fn reciprocal_narrow(qn: u32) -> u32 {
     }
     let mut r = crate::math::recip31(qn);
     let mut rem = (1u32 << 31) - r * qn;
-    while rem >= qn {
+    // At most three steps (`rem < 4 qn`), written out: the loop's form
+    // was unrolled with the remainders of one to three more steps
+    // computed up front (products and stack slots) at nearly every
+    // pixel, where the estimate is mostly one short.
+    if rem >= qn {
         r += 1;
         rem -= qn;
+        if rem >= qn {
+            r += 1;
+            rem -= qn;
+            if rem >= qn {
+                r += 1;
+            }
+        }
     }
     r
 }

@@ -696,8 +696,10 @@ mod tests {
                 small_planes_wide(f, small, q),
             ) {
                 (Some(a), Some(b)) => {
+                    // The constants' low 32 bits: all that narrow planes read.
                     for (a, b) in a.iter().zip(&b) {
-                        assert_eq!((a.gx, a.gy, a.k), (b.gx, b.gy, b.k), "{v:?} {q:?}");
+                        let (ak, bk) = (a.k as i32, b.k as i32);
+                        assert_eq!((a.gx, a.gy, ak), (b.gx, b.gy, bk), "{v:?} {q:?}");
                     }
                     checked += 1;
                 }
@@ -706,6 +708,61 @@ mod tests {
             }
         });
         assert!(declined > 0 && checked > 50_000, "{declined} {checked}");
+    }
+
+    /// ARMv6-M's `wide_gradients_split` gives `Basis::gradients`' quotients
+    /// for the perspective planes of triangles of any size in the guard
+    /// band, slivers included.
+    #[test]
+    fn split_wide_gradients_match() {
+        use crate::raster::SubPoint;
+        let mut next = crate::testing::rng();
+        let mut checked = 0u32;
+        for n in 0..200_000u32 {
+            let edge = [1u64 << 18, 1 << 12, 1 << 5][n as usize % 3];
+            let o = SubPoint::new(
+                next(1 << 19) as i32 - (1 << 18),
+                next(1 << 19) as i32 - (1 << 18),
+            );
+            let mut p = || {
+                let c = |a: i32, d: u64| (a + d as i32 - edge as i32).clamp(-(1 << 18), 1 << 18);
+                SubPoint::new(c(o.x, next(2 * edge)), c(o.y, next(2 * edge)))
+            };
+            let v = [o, p(), p()];
+            if crate::raster::signed_area2(&v) == 0 {
+                continue;
+            }
+            let f = Basis::with_small(&v, false);
+            let mut q = || match next(4) {
+                0 => Q_ONE,
+                1 => 0,
+                _ => next(Q_ONE as u64 + 1) as i64,
+            };
+            let q = [q(), q(), q()];
+            for values in [q, [0, q[1], 0], [0, 0, q[2]]] {
+                let want = f.gradients(values, 0);
+                assert_eq!(wide_gradients_split(&f, values), want, "{v:?} {values:?}");
+            }
+            checked += 1;
+        }
+        assert!(checked > 150_000, "{checked}");
+    }
+
+    /// ARMv6-M's `small_wide_gradients_digits` gives `Basis::gradients`'
+    /// quotients for small triangles' perspective planes, slivers and far
+    /// vertices included.
+    #[test]
+    fn small_wide_gradients_match() {
+        let mut checked = 0u32;
+        each_small_case(100_000, |v, f, small, q| {
+            for values in [q, [0, q[1], 0], [0, 0, q[2]]] {
+                let want = f.gradients(values, 0);
+                let got = small_wide_gradients_digits(f, small, values);
+                assert_eq!(got, want, "{v:?} {values:?}");
+            }
+            checked += 1;
+        });
+        assert!(checked > 50_000, "{checked}");
     }
 
     /// `small_gradient_digits` gives `small_gradient`'s quotient (or

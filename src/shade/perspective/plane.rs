@@ -28,6 +28,11 @@ impl WidePlane {
     pub(super) fn new(f: &Basis, values: [i64; 3], small: bool) -> Self {
         let (gx, gy) = if small {
             perspective_gradients(f, values)
+        } else if NARROW_MULTIPLY {
+            match &f.small {
+                Some(s) => small_wide_gradients_digits(f, s, values),
+                None => wide_gradients_split(f, values),
+            }
         } else {
             f.gradients(values, 0)
         };
@@ -185,8 +190,9 @@ pub(super) fn small_planes_wide(f: &Basis, s: &Small, q: [i64; 3]) -> Option<[Wi
 /// products split at bit 16 of the value ([`split_mul`]: 32-bit
 /// products by an edge vector below 2^10) and each gradient from three
 /// digits of the area's 16-bit reciprocal ([`small_gradient_digits`]),
-/// made once for the six. The constants' products by the offsets in
-/// halves too ([`mul_wide`]). Before, `demo-textured-lit` took 12
+/// made once for the six. The constants only in their low 32 bits, the
+/// part narrow planes read ([`constant_low32`]): the same planes modulo
+/// 2^32 in each `k`. Before, `demo-textured-lit` took 12
 /// divisions and 16 64-bit products here per triangle and tile.
 #[cfg_attr(not(any(test, microraster_narrow_multiply)), allow(dead_code))]
 #[inline(always)]
@@ -205,14 +211,35 @@ pub(super) fn small_planes_split(f: &Basis, s: &Small, q: [i64; 3]) -> Option<[W
     let b1y = g(neg(split_mul(q1, x2)))?;
     let b2x = g(neg(split_mul(q2, y1)))?;
     let b2y = g(split_mul(q2, x1))?;
-    // |g| < 2^31 and |o| < 2^19: no overflow; each product exact.
+    // Every plane is narrow (no gradient clamped): the span starts read
+    // only the constants' low 32 bits (`WidePlane::at32_unclamped`).
     let (ox, oy) = (f.ox as i32, f.oy as i32);
-    let plane = |gx: i32, gy: i32, v0: i64| WidePlane {
+    let plane = |gx: i32, gy: i32, v0: i32| WidePlane {
         gx: gx as i64,
         gy: gy as i64,
-        k: v0 + ((mul_wide(gx, ox) + mul_wide(gy, oy)) >> SUBPIXEL_BITS),
+        k: constant_low32(gx, gy, ox, oy, v0) as i64,
     };
-    Some([plane(qx, qy, q[0]), plane(b1x, b1y, 0), plane(b2x, b2y, 0)])
+    Some([plane(qx, qy, q0), plane(b1x, b1y, 0), plane(b2x, b2y, 0)])
+}
+
+/// The low 32 bits of a narrow plane's constant `v0 + ((gx ox + gy oy) >>
+/// 4)`, all that its span starts read (`WidePlane::at32_unclamped`), in
+/// four 32-bit products where the 64-bit form takes eight halves'
+/// products and 64-bit adds on ARMv6-M. With `gx = 16 q + r` (`q = gx >>
+/// 4`, `0 <= r < 16`) and likewise `gy`, `(gx ox + gy oy) >> 4` is
+/// `q ox + qy oy + ((r ox + ry oy) >> 4)` exactly; modulo 2^32 the first
+/// two terms need only 32-bit products, and the last is exact in `i32`
+/// (`|ox|, |oy| < 2^19`, so `|r ox + ry oy| < 2^24`).
+#[cfg_attr(not(any(test, microraster_narrow_multiply)), allow(dead_code))]
+#[inline(always)]
+pub(super) fn constant_low32(gx: i32, gy: i32, ox: i32, oy: i32, v0: i32) -> i32 {
+    const _: () = assert!(SUBPIXEL_BITS == 4);
+    let (qx, qy) = (gx >> SUBPIXEL_BITS, gy >> SUBPIXEL_BITS);
+    let (rx, ry) = (gx & 15, gy & 15);
+    let low = (rx * ox + ry * oy) >> SUBPIXEL_BITS;
+    v0.wrapping_add(qx.wrapping_mul(ox))
+        .wrapping_add(qy.wrapping_mul(oy))
+        .wrapping_add(low)
 }
 
 /// `a e` as `(h, l)` with `a e = h 2^16 + l`, for `|a| <= 2^28` (a
@@ -282,6 +309,91 @@ pub(super) fn perspective_gradients(f: &Basis, values: [i64; 3]) -> (i64, i64) {
         }
     }
     f.gradients(values, 0)
+}
+
+/// `f.gradients(values, 0)` for a perspective plane of a triangle too large
+/// for the [`Small`] set-up, on ARMv6-M, where each `i64` product is a
+/// library call (`__aeabi_lmul`, about 40 instructions): the numerators
+/// from 32-bit halves ([`mul_wide`]: the values' differences are at most
+/// 2^28 and the edge vectors below 2^19, both within `i32`) and the
+/// division by the area's reciprocal from them too
+/// ([`Divisor::div_split`](crate::math::Divisor)), the same quotients as
+/// `Basis::div_round`. For `f.small` `None` (only then is `f.area` the
+/// area's reciprocal).
+#[cfg_attr(not(any(test, microraster_narrow_multiply)), allow(dead_code))]
+#[inline(always)]
+pub(super) fn wide_gradients_split(f: &Basis, values: [i64; 3]) -> (i64, i64) {
+    debug_assert!(f.small.is_none());
+    let [x1, y1, x2, y2] = [f.x1 as i32, f.y1 as i32, f.x2 as i32, f.y2 as i32];
+    let (d1, d2) = (
+        (values[1] - values[0]) as i32,
+        (values[2] - values[0]) as i32,
+    );
+    // |n| < 2^49 before the shift: within `div_split`'s 2^63 after it.
+    let div_round = |n: i64| {
+        let q = f
+            .area
+            .div_split((n.unsigned_abs() << SUBPIXEL_BITS) + f.half) as i64;
+        if n >= 0 {
+            q
+        } else {
+            -q
+        }
+    };
+    (
+        div_round(mul_wide(d1, y2) - mul_wide(d2, y1)),
+        div_round(mul_wide(d2, x1) - mul_wide(d1, x2)),
+    )
+}
+
+/// `f.gradients(values, 0)` for a perspective plane of a [`Small`]
+/// triangle `f` (`s` its `small`) on ARMv6-M, where the small planes
+/// declined (a gradient of 2^31 or more): the numerators' products split
+/// ([`split_mul`]) and the quotient, rounded to nearest as
+/// `Small::div_round_wide`'s, by four 11-bit digits of the area's 16-bit
+/// reciprocal ([`Recip16::estimate`], each remainder corrected so the
+/// next partial dividend, below `d 2^11 < 2^32`, is within the estimate's
+/// range) where that takes four library divisions and their remainders.
+#[cfg_attr(not(any(test, microraster_narrow_multiply)), allow(dead_code))]
+#[inline(always)]
+pub(super) fn small_wide_gradients_digits(f: &Basis, s: &Small, values: [i64; 3]) -> (i64, i64) {
+    debug_assert!(values.iter().all(|v| (0..=Q_ONE).contains(v)));
+    let [x1, y1, x2, y2] = [f.x1 as i32, f.y1 as i32, f.x2 as i32, f.y2 as i32];
+    let (d1, d2) = (
+        (values[1] - values[0]) as i32,
+        (values[2] - values[0]) as i32,
+    );
+    let r = Recip16::new_small(s.area);
+    let div_round = |(h0, l0): (i32, i32), (h1, l1): (i32, i32)| {
+        let n = (((h0 - h1) as i64) << 16) + (l0 - l1) as i64;
+        // |n| < 2^39: `a` below 2^44, four digits of 11 bits.
+        let a = (n.unsigned_abs() << SUBPIXEL_BITS) + s.half as u64;
+        let digit = |rest: u32| {
+            let (q, rem) = r.estimate(rest);
+            if rem >= r.d {
+                (q + 1, rem - r.d)
+            } else {
+                (q, rem)
+            }
+        };
+        let (q, mut rem) = digit((a >> 33) as u32);
+        let mut q = q as u64;
+        for shift in [22, 11, 0] {
+            let (d, next) = digit((rem << 11) | ((a >> shift) as u32 & 0x7FF));
+            q = (q << 11) + d as u64;
+            rem = next;
+        }
+        let q = q as i64;
+        if n < 0 {
+            -q
+        } else {
+            q
+        }
+    };
+    (
+        div_round(split_mul(d1, y2), split_mul(d2, y1)),
+        div_round(split_mul(d2, x1), split_mul(d1, x2)),
+    )
 }
 
 /// `a b` in `i64`: one 32x32 to 64-bit product.
