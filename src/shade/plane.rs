@@ -212,7 +212,19 @@ impl Basis {
 
     /// The low 32 bits of [`Basis::constant_wrapping`], all that a 32-bit
     /// target keeps of it ([`Plane::k`]), in 32-bit products: ARMv6-M
-    /// makes each of the two 64-bit products a library call.
+    /// makes each of the two 64-bit products a library call
+    /// ([`offset_low`](Self::offset_low)).
+    #[cfg_attr(not(any(test, microraster_narrow_multiply)), allow(dead_code))]
+    #[inline(always)]
+    pub(super) fn constant_low(&self, value: i64, frac: u32, g: (i64, i64)) -> i32 {
+        let base = ((value as i32) << frac).wrapping_add(1 << (frac - 1));
+        self.offset_low(g, base)
+    }
+
+    /// The low 32 bits of `base + ((gx ox + gy oy) >> 4)`, a plane's
+    /// constant at the basis's offset, in four 32-bit products (the
+    /// 64-bit form takes two 64-bit products, library calls on ARMv6-M):
+    /// [`constant_low`](Self::constant_low)'s and the perspective planes'.
     ///
     /// With `gx = 16 q + r` (`q = gx >> 4`, `0 <= r < 16`) and likewise
     /// `gy = 16 qy + ry`, the product `gx ox` is `16 q ox` plus `r ox`, so
@@ -223,10 +235,9 @@ impl Basis {
     /// `|r ox + ry oy| < 2^24`.
     #[cfg_attr(not(any(test, microraster_narrow_multiply)), allow(dead_code))]
     #[inline(always)]
-    pub(super) fn constant_low(&self, value: i64, frac: u32, (gx, gy): (i64, i64)) -> i32 {
+    pub(crate) fn offset_low(&self, (gx, gy): (i64, i64), base: i32) -> i32 {
         const _: () = assert!(SUBPIXEL_BITS == 4);
         let (ox, oy) = (self.ox as i32, self.oy as i32);
-        let base = ((value as i32) << frac).wrapping_add(1 << (frac - 1));
         let (qx, qy) = ((gx >> SUBPIXEL_BITS) as i32, (gy >> SUBPIXEL_BITS) as i32);
         let (rx, ry) = ((gx & 15) as i32, (gy & 15) as i32);
         let low = rx.wrapping_mul(ox).wrapping_add(ry.wrapping_mul(oy)) >> SUBPIXEL_BITS;

@@ -154,23 +154,43 @@ pub(super) fn small_planes_of(f: &Basis, s: &Small, q: [i64; 3]) -> Option<[Wide
     }
 }
 
+/// The six gradients of a small triangle's perspective planes, `Q`'s
+/// `(qx, qy)` and the two weights' `(b1x, b1y)`, `(b2x, b2y)`, each
+/// gradient `g` of its numerator: Cramer's rule over the basis's edge
+/// vectors, with the products (`mul`), differences and negations in
+/// whatever form the core does best ([`small_planes_wide`]'s 64-bit
+/// values, [`small_planes_split`]'s split halves). `None` where `g` is.
+#[inline(always)]
+fn six_gradients<N: Copy>(
+    f: &Basis,
+    q: [i64; 3],
+    mul: impl Fn(i32, i32) -> N,
+    sub: impl Fn(N, N) -> N,
+    neg: impl Fn(N) -> N,
+    g: impl Fn(N) -> Option<i32>,
+) -> Option<[i32; 6]> {
+    debug_assert!(q.iter().all(|v| (0..=Q_ONE).contains(v)));
+    let [x1, y1, x2, y2] = [f.x1 as i32, f.y1 as i32, f.x2 as i32, f.y2 as i32];
+    let [q0, q1, q2] = [q[0] as i32, q[1] as i32, q[2] as i32];
+    let (d1, d2) = (q1 - q0, q2 - q0);
+    Some([
+        g(sub(mul(d1, y2), mul(d2, y1)))?,
+        g(sub(mul(d2, x1), mul(d1, x2)))?,
+        g(mul(q1, y2))?,
+        g(neg(mul(q1, x2)))?,
+        g(neg(mul(q2, y1)))?,
+        g(mul(q2, x1))?,
+    ])
+}
+
 /// [`small_planes_of`] where the core has a 32x32 to 64-bit multiply and
 /// a divider: 64-bit numerators, two 32-bit divisions a gradient
 /// ([`small_gradient`]).
 #[cfg_attr(target_pointer_width = "64", allow(dead_code))]
 #[inline(always)]
 pub(super) fn small_planes_wide(f: &Basis, s: &Small, q: [i64; 3]) -> Option<[WidePlane; 3]> {
-    debug_assert!(q.iter().all(|v| (0..=Q_ONE).contains(v)));
-    let [x1, y1, x2, y2] = [f.x1 as i32, f.y1 as i32, f.x2 as i32, f.y2 as i32];
-    let [q0, q1, q2] = [q[0] as i32, q[1] as i32, q[2] as i32];
-    let (d1, d2) = (q1 - q0, q2 - q0);
     let g = |n: i64| small_gradient(s, n);
-    let qx = g(mul(d1, y2) - mul(d2, y1))?;
-    let qy = g(mul(d2, x1) - mul(d1, x2))?;
-    let b1x = g(mul(q1, y2))?;
-    let b1y = g(-mul(q1, x2))?;
-    let b2x = g(-mul(q2, y1))?;
-    let b2y = g(mul(q2, x1))?;
+    let [qx, qy, b1x, b1y, b2x, b2y] = six_gradients(f, q, mul, |a, b| a - b, |a| -a, g)?;
     // |g| < 2^31 and |o| < 2^19: no overflow.
     let plane = |gx: i32, gy: i32, v0: i64| {
         let (gx, gy) = (gx as i64, gy as i64);
@@ -191,55 +211,29 @@ pub(super) fn small_planes_wide(f: &Basis, s: &Small, q: [i64; 3]) -> Option<[Wi
 /// products by an edge vector below 2^10) and each gradient from three
 /// digits of the area's 16-bit reciprocal ([`small_gradient_digits`]),
 /// made once for the six. The constants only in their low 32 bits, the
-/// part narrow planes read ([`constant_low32`]): the same planes modulo
+/// part narrow planes read ([`Basis::offset_low`]): the same planes modulo
 /// 2^32 in each `k`. Before, `demo-textured-lit` took 12
 /// divisions and 16 64-bit products here per triangle and tile.
 #[cfg_attr(not(any(test, microraster_narrow_multiply)), allow(dead_code))]
 #[inline(always)]
 pub(super) fn small_planes_split(f: &Basis, s: &Small, q: [i64; 3]) -> Option<[WidePlane; 3]> {
-    debug_assert!(q.iter().all(|v| (0..=Q_ONE).contains(v)));
-    let [x1, y1, x2, y2] = [f.x1 as i32, f.y1 as i32, f.x2 as i32, f.y2 as i32];
-    let [q0, q1, q2] = [q[0] as i32, q[1] as i32, q[2] as i32];
-    let (d1, d2) = (q1 - q0, q2 - q0);
     let r = Recip16::new_small(s.area);
     let g = |n: (i32, i32)| small_gradient_digits(&r, s.half, n);
     let diff = |a: (i32, i32), b: (i32, i32)| (a.0 - b.0, a.1 - b.1);
     let neg = |a: (i32, i32)| (-a.0, -a.1);
-    let qx = g(diff(split_mul(d1, y2), split_mul(d2, y1)))?;
-    let qy = g(diff(split_mul(d2, x1), split_mul(d1, x2)))?;
-    let b1x = g(split_mul(q1, y2))?;
-    let b1y = g(neg(split_mul(q1, x2)))?;
-    let b2x = g(neg(split_mul(q2, y1)))?;
-    let b2y = g(split_mul(q2, x1))?;
+    let [qx, qy, b1x, b1y, b2x, b2y] = six_gradients(f, q, split_mul, diff, neg, g)?;
     // Every plane is narrow (no gradient clamped): the span starts read
     // only the constants' low 32 bits (`WidePlane::at32_unclamped`).
-    let (ox, oy) = (f.ox as i32, f.oy as i32);
     let plane = |gx: i32, gy: i32, v0: i32| WidePlane {
         gx: gx as i64,
         gy: gy as i64,
-        k: constant_low32(gx, gy, ox, oy, v0) as i64,
+        k: f.offset_low((gx as i64, gy as i64), v0) as i64,
     };
-    Some([plane(qx, qy, q0), plane(b1x, b1y, 0), plane(b2x, b2y, 0)])
-}
-
-/// The low 32 bits of a narrow plane's constant `v0 + ((gx ox + gy oy) >>
-/// 4)`, all that its span starts read (`WidePlane::at32_unclamped`), in
-/// four 32-bit products where the 64-bit form takes eight halves'
-/// products and 64-bit adds on ARMv6-M. With `gx = 16 q + r` (`q = gx >>
-/// 4`, `0 <= r < 16`) and likewise `gy`, `(gx ox + gy oy) >> 4` is
-/// `q ox + qy oy + ((r ox + ry oy) >> 4)` exactly; modulo 2^32 the first
-/// two terms need only 32-bit products, and the last is exact in `i32`
-/// (`|ox|, |oy| < 2^19`, so `|r ox + ry oy| < 2^24`).
-#[cfg_attr(not(any(test, microraster_narrow_multiply)), allow(dead_code))]
-#[inline(always)]
-pub(super) fn constant_low32(gx: i32, gy: i32, ox: i32, oy: i32, v0: i32) -> i32 {
-    const _: () = assert!(SUBPIXEL_BITS == 4);
-    let (qx, qy) = (gx >> SUBPIXEL_BITS, gy >> SUBPIXEL_BITS);
-    let (rx, ry) = (gx & 15, gy & 15);
-    let low = (rx * ox + ry * oy) >> SUBPIXEL_BITS;
-    v0.wrapping_add(qx.wrapping_mul(ox))
-        .wrapping_add(qy.wrapping_mul(oy))
-        .wrapping_add(low)
+    Some([
+        plane(qx, qy, q[0] as i32),
+        plane(b1x, b1y, 0),
+        plane(b2x, b2y, 0),
+    ])
 }
 
 /// `a e` as `(h, l)` with `a e = h 2^16 + l`, for `|a| <= 2^28` (a
