@@ -154,43 +154,23 @@ pub(super) fn small_planes_of(f: &Basis, s: &Small, q: [i64; 3]) -> Option<[Wide
     }
 }
 
-/// The six gradients of a small triangle's perspective planes, `Q`'s
-/// `(qx, qy)` and the two weights' `(b1x, b1y)`, `(b2x, b2y)`, each
-/// gradient `g` of its numerator: Cramer's rule over the basis's edge
-/// vectors, with the products (`mul`), differences and negations in
-/// whatever form the core does best ([`small_planes_wide`]'s 64-bit
-/// values, [`small_planes_split`]'s split halves). `None` where `g` is.
-#[inline(always)]
-fn six_gradients<N: Copy>(
-    f: &Basis,
-    q: [i64; 3],
-    mul: impl Fn(i32, i32) -> N,
-    sub: impl Fn(N, N) -> N,
-    neg: impl Fn(N) -> N,
-    g: impl Fn(N) -> Option<i32>,
-) -> Option<[i32; 6]> {
-    debug_assert!(q.iter().all(|v| (0..=Q_ONE).contains(v)));
-    let [x1, y1, x2, y2] = [f.x1 as i32, f.y1 as i32, f.x2 as i32, f.y2 as i32];
-    let [q0, q1, q2] = [q[0] as i32, q[1] as i32, q[2] as i32];
-    let (d1, d2) = (q1 - q0, q2 - q0);
-    Some([
-        g(sub(mul(d1, y2), mul(d2, y1)))?,
-        g(sub(mul(d2, x1), mul(d1, x2)))?,
-        g(mul(q1, y2))?,
-        g(neg(mul(q1, x2)))?,
-        g(neg(mul(q2, y1)))?,
-        g(mul(q2, x1))?,
-    ])
-}
-
 /// [`small_planes_of`] where the core has a 32x32 to 64-bit multiply and
 /// a divider: 64-bit numerators, two 32-bit divisions a gradient
 /// ([`small_gradient`]).
 #[cfg_attr(target_pointer_width = "64", allow(dead_code))]
 #[inline(always)]
 pub(super) fn small_planes_wide(f: &Basis, s: &Small, q: [i64; 3]) -> Option<[WidePlane; 3]> {
+    debug_assert!(q.iter().all(|v| (0..=Q_ONE).contains(v)));
+    let [x1, y1, x2, y2] = [f.x1 as i32, f.y1 as i32, f.x2 as i32, f.y2 as i32];
+    let [q0, q1, q2] = [q[0] as i32, q[1] as i32, q[2] as i32];
+    let (d1, d2) = (q1 - q0, q2 - q0);
     let g = |n: i64| small_gradient(s, n);
-    let [qx, qy, b1x, b1y, b2x, b2y] = six_gradients(f, q, mul, |a, b| a - b, |a| -a, g)?;
+    let qx = g(mul(d1, y2) - mul(d2, y1))?;
+    let qy = g(mul(d2, x1) - mul(d1, x2))?;
+    let b1x = g(mul(q1, y2))?;
+    let b1y = g(-mul(q1, x2))?;
+    let b2x = g(-mul(q2, y1))?;
+    let b2y = g(mul(q2, x1))?;
     // |g| < 2^31 and |o| < 2^19: no overflow.
     let plane = |gx: i32, gy: i32, v0: i64| {
         let (gx, gy) = (gx as i64, gy as i64);
@@ -217,11 +197,25 @@ pub(super) fn small_planes_wide(f: &Basis, s: &Small, q: [i64; 3]) -> Option<[Wi
 #[cfg_attr(not(any(test, microraster_narrow_multiply)), allow(dead_code))]
 #[inline(always)]
 pub(super) fn small_planes_split(f: &Basis, s: &Small, q: [i64; 3]) -> Option<[WidePlane; 3]> {
+    debug_assert!(q.iter().all(|v| (0..=Q_ONE).contains(v)));
+    let [x1, y1, x2, y2] = [f.x1 as i32, f.y1 as i32, f.x2 as i32, f.y2 as i32];
+    let [q0, q1, q2] = [q[0] as i32, q[1] as i32, q[2] as i32];
+    let (d1, d2) = (q1 - q0, q2 - q0);
     let r = Recip16::new_small(s.area);
     let g = |n: (i32, i32)| small_gradient_digits(&r, s.half, n);
     let diff = |a: (i32, i32), b: (i32, i32)| (a.0 - b.0, a.1 - b.1);
     let neg = |a: (i32, i32)| (-a.0, -a.1);
-    let [qx, qy, b1x, b1y, b2x, b2y] = six_gradients(f, q, split_mul, diff, neg, g)?;
+    // The same Cramer's rule as `small_planes_wide`, line for line: one
+    // function for both over the products' form (closures for the
+    // product, difference, negation and gradient) cost the Cortex-M3's
+    // `fill-lit-exact` 106.93 -> 108.75 a fragment (its span loop's
+    // registers moved), so each keeps its own.
+    let qx = g(diff(split_mul(d1, y2), split_mul(d2, y1)))?;
+    let qy = g(diff(split_mul(d2, x1), split_mul(d1, x2)))?;
+    let b1x = g(split_mul(q1, y2))?;
+    let b1y = g(neg(split_mul(q1, x2)))?;
+    let b2x = g(neg(split_mul(q2, y1)))?;
+    let b2y = g(split_mul(q2, x1))?;
     // Every plane is narrow (no gradient clamped): the span starts read
     // only the constants' low 32 bits (`WidePlane::at32_unclamped`).
     let plane = |gx: i32, gy: i32, v0: i32| WidePlane {
