@@ -222,9 +222,23 @@ fn centre_extent(bounds: &[Vec3Fx; 2]) -> ([i64; 3], [i64; 3]) {
 impl Plane {
     /// The planes `r3 + r` and `r3 - r`, in integers, with the margin for
     /// `fixed` (the vertex stage's error of a plane's value, in clip
-    /// units) and a mesh whose largest coordinate is `e` (in units).
-    #[cfg(not(any(test, microraster_soft_float)))]
+    /// units) and a mesh whose largest coordinate is `e` (in units): by
+    /// `pair_by_bits` where `f32` is in software
+    /// (and in the tests), by `pair_by_sums` with an
+    /// FPU. Both are compiled in the tests, which compare them.
     fn pair(r3: [f32; 4], r: [f32; 4], fixed: f32, e: f32) -> [Self; 2] {
+        #[cfg(any(test, microraster_soft_float))]
+        let pair = Self::pair_by_bits;
+        #[cfg(not(any(test, microraster_soft_float)))]
+        let pair = Self::pair_by_sums;
+        pair(r3, r, fixed, e)
+    }
+
+    /// [`pair`](Self::pair) with an FPU: each size `|r3[k]| + |r[k]|`
+    /// summed as written.
+    #[cfg(any(test, not(microraster_soft_float)))]
+    #[inline(always)]
+    fn pair_by_sums(r3: [f32; 4], r: [f32; 4], fixed: f32, e: f32) -> [Self; 2] {
         // Each sum rounds by at most 2^-24 of its operands' size (more than
         // of its own, when they cancel); at a point within the mesh's
         // extent E that moves the plane's value by at most
@@ -240,17 +254,18 @@ impl Plane {
     }
 
     /// [`pair`](Self::pair) where `f32` is in software ([`SOFT_FLOAT`](crate::math::SOFT_FLOAT)'s
-    /// condition, as a cfg: with an FPU the code is the one above, not
-    /// merely the same in effect, since the Cortex-M4F's frame moved by
-    /// thousands of instructions elsewhere when it was not), the same
-    /// bits. Each size `|r3[k]| + |r[k]|` is one of the planes' sums in
+    /// condition, as a cfg: with an FPU the code is
+    /// `pair_by_sums`, not merely the same in
+    /// effect, since the Cortex-M4F's frame moved by thousands of
+    /// instructions elsewhere when it was not), the same bits. Each size `|r3[k]| + |r[k]|` is one of the planes' sums in
     /// magnitude: the sum where the two have the same sign (it is theirs
     /// times `|r3[k]| + |r[k]|`, and rounding to nearest is symmetric),
     /// the difference where they differ (zeros of either sign included):
     /// four library calls a pair fewer. The power of two is an exponent's
     /// sum ([`times_pow2`]).
     #[cfg(any(test, microraster_soft_float))]
-    fn pair(r3: [f32; 4], r: [f32; 4], fixed: f32, e: f32) -> [Self; 2] {
+    #[inline(always)]
+    fn pair_by_bits(r3: [f32; 4], r: [f32; 4], fixed: f32, e: f32) -> [Self; 2] {
         let sum = [0, 1, 2, 3].map(|k| r3[k] + r[k]);
         let diff = [0, 1, 2, 3].map(|k| r3[k] - r[k]);
         let size = [0, 1, 2, 3].map(|k| {
@@ -501,6 +516,68 @@ mod tests {
             assert!(same(plus, reference(r3, row, 1.0, fixed, extent)));
             assert!(same(minus, reference(r3, row, -1.0, fixed, extent)));
         }
+    }
+
+    /// Both forms of [`Plane::pair`], by the bits (soft-float cores, and
+    /// the other tests) and by the sums (cores with an FPU), give the same
+    /// planes for the rows of random matrices: zeros of either sign, ones,
+    /// subnormals, the largest finite values, infinities and NaNs among
+    /// moderate elements and random bits, for meshes of every extent.
+    #[test]
+    fn plane_pairs_by_bits_are_the_pairs_by_sums() {
+        let same = |a: &[Plane; 2], b: &[Plane; 2]| {
+            a.iter()
+                .zip(b)
+                .all(|(a, b)| a.n == b.n && a.d2 == b.d2 && a.margin == b.margin)
+        };
+        let special = [
+            0.0,
+            -0.0,
+            1.0,
+            -1.0,
+            f32::from_bits(1),
+            -f32::MIN_POSITIVE,
+            1e30,
+            -3e-30,
+            f32::MAX,
+            -f32::MAX,
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+            f32::NAN,
+        ];
+        let mut r = crate::testing::rng();
+        let (mut finite, mut culling) = (0, 0);
+        for i in 0..50_000 {
+            let mut v = || -> f32 {
+                match r(4) {
+                    0 => special[r(special.len() as u64) as usize],
+                    1 => f32::from_bits(r(1 << 32) as u32),
+                    _ => {
+                        (r(1 << 24) as f32 / (1 << 23) as f32 - 1.0) * 2f32.powi(r(60) as i32 - 30)
+                    }
+                }
+            };
+            let m = Mat4 {
+                m: [[0.0f32; 4]; 4].map(|c| c.map(|_| v())),
+            };
+            let extent = match i % 3 {
+                0 => 1 << 16,
+                1 => r(1 << 32) as u32,
+                _ => 0,
+            };
+            let e = extent as f32 * (1.0 / 65_536.0);
+            let fixed = (3.0 * e + 2.0) * (2.0 / 131_072.0);
+            let row = |k: usize| [m.m[0][k], m.m[1][k], m.m[2][k], m.m[3][k]];
+            for k in 0..3 {
+                let bits = Plane::pair_by_bits(row(3), row(k), fixed, e);
+                let sums = Plane::pair_by_sums(row(3), row(k), fixed, e);
+                assert!(same(&bits, &sums), "{m:?} {k} {extent}");
+                finite += row(3).iter().chain(&row(k)).all(|x| x.is_finite()) as u32;
+                culling += bits.iter().filter(|p| p.margin < 1 << 61).count() as u32;
+            }
+        }
+        // Most pairs are of finite rows, and most of their planes can cull.
+        assert!(finite > 60_000 && culling > 100_000, "{finite} {culling}");
     }
 
     /// The bit-shift scaling truncates exactly like `f64` arithmetic.

@@ -377,68 +377,65 @@ impl core::ops::Mul for Mat4 {
     /// model-view-projection), and on a core without an FPU each inlined
     /// copy is 1.3 KB of soft-float calls.
     ///
-    /// There (`SOFT_FLOAT`), when `rhs` is affine (its last row
-    /// exactly `(0, 0, 0, 1)`: a model or view matrix) and `self` finite,
-    /// the last row's products are known: `a * 0.0` is a zero of `a`'s
-    /// sign and `a * 1.0` is `a`, so the last term is added without its
-    /// product, and in the first three columns not added at all (only a
-    /// zero sum's sign can change, fixed by the bits): the same bits as
-    /// the full product (NaN payloads aside), 16 multiplications and 12
-    /// additions fewer (`demo`'s frame: Cortex-M3 6,961 instructions
-    /// fewer, ARMv6-M 10,556). (The short cut in a function of its own,
-    /// inlined here, copied both matrices on the stack.)
-    ///
-    /// Before that, where both matrices are finite, the product is made
-    /// term by term (`product_by_terms`, in soft-float builds), the same
-    /// bits: a term with a zero or a one for a factor needs no
-    /// multiplication, and a known zero no addition (so the affine short cut is left for matrices
-    /// with an element not finite). Rotations, translations and scales
-    /// are mostly zeros and ones: `demo`'s frame, whose scene builds six
+    /// There, where both matrices are finite, the product is made term by
+    /// term (`product_by_terms`, in soft-float builds), the same bits: a
+    /// term with a zero or a one for a factor needs no multiplication, and
+    /// a known zero no addition. Rotations, translations and scales are
+    /// mostly zeros and ones: `demo`'s frame, whose scene builds six
     /// products besides the camera's and the two draws', Cortex-M3
     /// 3,011,495 -> 2,999,356 instructions, ARMv6-M 6,127,299 ->
     /// 6,112,817. A cfg, not the `SOFT_FLOAT` test: with an FPU the code
     /// is not merely the same in effect but the same text (the
     /// Cortex-M4F's binning moved by 8,600 instructions when the crate's
-    /// codegen units were partitioned otherwise).
+    /// codegen units were partitioned otherwise). A matrix with an element
+    /// not finite takes the full product: its result is no matrix the
+    /// vertex stage takes, so it has no short cut of its own.
     #[inline(never)]
     fn mul(self, rhs: Mat4) -> Mat4 {
         #[cfg(any(test, microraster_soft_float))]
-        if let Some(out) = product_by_terms(&self, &rhs) {
-            return out;
-        }
-        let bits = |v: f32| v.to_bits();
-        let affine = SOFT_FLOAT
-            && (bits(rhs.m[0][3]) | bits(rhs.m[1][3]) | bits(rhs.m[2][3])) == 0
-            && bits(rhs.m[3][3]) == bits(1.0)
-            && self
-                .m
-                .iter()
-                .flatten()
-                .all(|v| bits(*v) & 0x7fff_ffff < 0x7f80_0000);
-        let mut out = [[0.0f32; 4]; 4];
-        for (c, out_col) in out.iter_mut().enumerate() {
-            for (r, o) in out_col.iter_mut().enumerate() {
-                let s = self.m[0][r] * rhs.m[c][0]
-                    + self.m[1][r] * rhs.m[c][1]
-                    + self.m[2][r] * rhs.m[c][2];
-                let a = self.m[3][r];
-                *o = match (affine, c) {
-                    (false, _) => s + a * rhs.m[c][3],
-                    (true, 3) => s + a,
-                    // `s + (a * 0.0)`: `s`, but for a zero `s`, whose
-                    // sum with a zero of `a`'s sign is -0.0 only when
-                    // both are (round to nearest). The bits through
-                    // `black_box`: LLVM turned the integer test into a
-                    // soft-float compare (a library call each).
-                    (true, _) => match core::hint::black_box(bits(s)) {
-                        z if z << 1 != 0 => s,
-                        z => f32::from_bits(z & (bits(a) | 0x7fff_ffff)),
-                    },
-                };
+        let Some(out) = product_by_terms(&self, &rhs) else {
+            return full_product(&self, &rhs);
+        };
+        // With an FPU the full product in place, as it was before the
+        // short cuts: a function of its own (even inlined) moved the
+        // Cortex-M4F's callers (`demo` +38 instructions, 104 B more
+        // stack).
+        #[cfg(not(any(test, microraster_soft_float)))]
+        let out = {
+            let mut out = [[0.0f32; 4]; 4];
+            for (c, out_col) in out.iter_mut().enumerate() {
+                for (r, o) in out_col.iter_mut().enumerate() {
+                    *o = self.m[0][r] * rhs.m[c][0]
+                        + self.m[1][r] * rhs.m[c][1]
+                        + self.m[2][r] * rhs.m[c][2]
+                        + self.m[3][r] * rhs.m[c][3];
+                }
             }
-        }
-        Mat4 { m: out }
+            Mat4 { m: out }
+        };
+        out
     }
+}
+
+/// `a * b`, every term multiplied and added, where `f32` is in software
+/// ([`Mat4`]'s product for matrices with an element not finite): cold
+/// and out of line, so that the product term by term keeps `mul`'s
+/// registers (inlined there, the Cortex-M3's `demo` frame took 456
+/// instructions more, ARMv6-M's 130).
+#[cfg(any(test, microraster_soft_float))]
+#[cold]
+#[inline(never)]
+fn full_product(a: &Mat4, b: &Mat4) -> Mat4 {
+    let mut out = [[0.0f32; 4]; 4];
+    for (c, out_col) in out.iter_mut().enumerate() {
+        for (r, o) in out_col.iter_mut().enumerate() {
+            *o = a.m[0][r] * b.m[c][0]
+                + a.m[1][r] * b.m[c][1]
+                + a.m[2][r] * b.m[c][2]
+                + a.m[3][r] * b.m[c][3];
+        }
+    }
+    Mat4 { m: out }
 }
 
 /// `a * b` where `f32` is in software ([`SOFT_FLOAT`]), term by term with

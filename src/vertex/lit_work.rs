@@ -273,6 +273,18 @@ impl LoopConstants {
         k
     }
 
+    /// `Σ n[i] dir[i]` of the normal `n`: n·l before its clamp, whose
+    /// upper word is n·l where [`HIGH_NDOTL`] (both
+    /// [`ndotl`](LitWork::ndotl) and [`table_index`](LitWork::table_index)
+    /// take it, one sum written once).
+    #[inline(always)]
+    fn ndotl_sum(&self, n: Vec3Fx) -> i64 {
+        use crate::math::mul_wide;
+        mul_wide(n[0].to_bits(), self.dir[0])
+            + mul_wide(n[1].to_bits(), self.dir[1])
+            + mul_wide(n[2].to_bits(), self.dir[2])
+    }
+
     /// Whether the light `l` is within [`HIGH_LIGHT`] where n·l is the
     /// upper word of the sum ([`HIGH_NDOTL`]); a draw whose light is not
     /// (longer than 64 in the draw's model space) takes the general loop.
@@ -341,10 +353,7 @@ impl LitWork for LoopConstants {
     /// [`Lambert::ndotl`] of normal `n`: the same n·l.
     #[inline(always)]
     fn ndotl(&self, n: Vec3Fx) -> u32 {
-        use crate::math::mul_wide;
-        let d = mul_wide(n[0].to_bits(), self.dir[0])
-            + mul_wide(n[1].to_bits(), self.dir[1])
-            + mul_wide(n[2].to_bits(), self.dir[2]);
+        let d = self.ndotl_sum(n);
         match HIGH_NDOTL {
             true => {
                 // Written as `clamp(0, 256)`, the Cortex-M3 took eight
@@ -363,11 +372,7 @@ impl LitWork for LoopConstants {
         if !(SAT_INDEX && HIGH_NDOTL) {
             return self.ndotl(n) as usize;
         }
-        use crate::math::mul_wide;
-        let d = mul_wide(n[0].to_bits(), self.dir[0])
-            + mul_wide(n[1].to_bits(), self.dir[1])
-            + mul_wide(n[2].to_bits(), self.dir[2]);
-        let h = (d >> 32) as i32;
+        let h = (self.ndotl_sum(n) >> 32) as i32;
         // Not `clamp(0, 511)`: in the loop that took seven instructions
         // (an unsigned minimum, then a sign test), this form one `USAT`.
         (h.max(0) as u32).min(TABLE_WORDS as u32 - 1) as usize
