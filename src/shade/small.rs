@@ -37,7 +37,7 @@ pub(super) const SMALL_SETUP: bool = cfg!(not(target_pointer_width = "64"));
 /// (measured with one of `rgb16_green_up`'s two barriers left out, which
 /// [`super::FIXED_GOURAUD`] later made the same code). One barrier alone,
 /// or two, measured 3,031,094 to 3,069,541; one before the depth plane
-/// too, 3,019,237.
+/// too, 3,019,237. Red's is left out where [`SHIFTED_NUMERATORS`].
 const PLANE_BARRIERS: bool = cfg!(microraster_armv7em);
 
 /// What the `i32` set-up of a [`Small`] triangle shares
@@ -281,6 +281,48 @@ impl SmallBasis {
     }
 }
 
+impl SmallBasis {
+    /// [`SmallBasis::div_round32`] in signed divisions of `m = n 2^10`
+    /// (the caller's numerator times 2^10, for `-2^21 <= n < 2^21`
+    /// within its bounds): the same steps as
+    /// [`SmallBasis::div_round32_with`], whose `m` is a shift of `n`.
+    /// Given as a product's result, `m` is a register the remainder
+    /// `m - q area2` takes in one multiply-subtract, where the shifted
+    /// `n` went into a subtract with a shifted operand after a
+    /// multiply (see [`SHIFTED_NUMERATORS`]).
+    #[inline(always)]
+    pub(super) fn div_round32_of_m(&self, m: i32, shift: u32) -> i32 {
+        let k = shift - 10;
+        let d = self.area2;
+        let q = m / d;
+        let r = m - q * d;
+        // `n`'s sign (see `div_round32_with`) and `half` with it: no
+        // overflow, as there.
+        let sign = m >> 31;
+        let half = (self.half ^ sign) - sign;
+        let low = ((r << k) + half) / d;
+        (q << k) + low
+    }
+}
+
+/// Whether a colour plane of [`TriangleSetup::small`] takes its numerators
+/// times 2^10 from the colour differences shifted left by 10
+/// ([`SmallBasis::div_round32_of_m`]) rather than shifting the
+/// numerators: on ARMv7E-M (the build script's `microraster_armv7em`),
+/// where each gradient's remainder then takes one multiply-subtract
+/// (`MLS`) instead of a multiply and a subtract of a shifted operand,
+/// and the numerator no shift of its own, for two shifts of the
+/// differences a plane. The same gradients. With red's plane then set up
+/// without the barrier before it (green's and blue's keep theirs,
+/// [`PLANE_BARRIERS`]): Cortex-M4F `demo` 2,974,002 -> 2,969,379
+/// instructions; in the all-scenes build `demo` 2,974,029 -> 2,969,406,
+/// `rock` 2,472,087 -> 2,468,594, `grid4` 852,270 -> 850,552, the
+/// others the same. With the three barriers `demo` measured 3,015,296
+/// (the span loop's registers fell worse), with none 2,994,182, with
+/// one or two others 2,980,639 to 3,007,611; without this, the three
+/// barriers left out gave 2,972,444.
+const SHIFTED_NUMERATORS: bool = cfg!(microraster_armv7em);
+
 impl Small {
     /// `n / area` rounded to nearest, ties away from zero (as
     /// [`Basis::div_round`]), for `|n| < 2^43` and `area < 2^21`: the
@@ -385,17 +427,17 @@ impl TriangleSetup {
         let z = Self::plane_small_of(f, z[0], zfrac, n1, n2);
         let planes = if gouraud {
             // Each channel's plane after a compiler barrier where
-            // `PLANE_BARRIERS`.
-            let part = || {
-                if PLANE_BARRIERS {
+            // `PLANE_BARRIERS` (red's not where `SHIFTED_NUMERATORS`).
+            let part = |first: bool| {
+                if PLANE_BARRIERS && !(first && SHIFTED_NUMERATORS) {
                     core::hint::black_box(());
                 }
             };
-            part();
+            part(true);
             let r = Self::plane_small(f, t, 1);
-            part();
+            part(false);
             let g = Self::plane_small(f, t, 2);
-            part();
+            part(false);
             let b = Self::plane_small(f, t, 3);
             [z, r, g, b]
         } else {
@@ -431,6 +473,22 @@ impl TriangleSetup {
             };
         }
         let [x1, y1, x2, y2] = f.e;
+        if SHIFTED_NUMERATORS {
+            // The numerators times 2^10 from the differences shifted (see
+            // `SHIFTED_NUMERATORS`): `|d| < 2^8`, edge vectors below
+            // 2^10, so each product is below 2^28 and the sums below
+            // 2^29 in magnitude.
+            let (s1, s2) = (d1 << 10, d2 << 10);
+            let (m1, m2) = (s1 * y2 - s2 * y1, s2 * x1 - s1 * x2);
+            let shift = frac + SUBPIXEL_BITS;
+            let (gx, gy) = (f.div_round32_of_m(m1, shift), f.div_round32_of_m(m2, shift));
+            let base = (v[0] << frac) + (1 << (frac - 1));
+            return Plane {
+                gx,
+                gy,
+                k: base.wrapping_add(offset_term(gx, gy, f.o)),
+            };
+        }
         let (n1, n2) = (d1 * y2 - d2 * y1, d2 * x1 - d1 * x2);
         Self::plane_small_of(f, v[0], frac, n1, n2)
     }
