@@ -306,20 +306,21 @@ impl SmallBasis {
 }
 
 /// Whether a colour plane of [`TriangleSetup::small`] takes its numerators
-/// times 2^10 from the colour differences shifted left by 10
+/// times 2^10 from the edge vectors shifted left by 10
 /// ([`SmallBasis::div_round32_of_m`]) rather than shifting the
 /// numerators: on ARMv7E-M (the build script's `microraster_armv7em`),
 /// where each gradient's remainder then takes one multiply-subtract
 /// (`MLS`) instead of a multiply and a subtract of a shifted operand,
-/// and the numerator no shift of its own, for two shifts of the
-/// differences a plane. The same gradients. With red's plane then set up
-/// without the barrier before it (green's and blue's keep theirs,
-/// [`PLANE_BARRIERS`]): Cortex-M4F `demo` 2,974,002 -> 2,969,379
-/// instructions; in the all-scenes build `demo` 2,974,029 -> 2,969,406,
-/// `rock` 2,472,087 -> 2,468,594, `grid4` 852,270 -> 850,552, the
-/// others the same. With the three barriers `demo` measured 3,015,296
-/// (the span loop's registers fell worse), with none 2,994,182, with
-/// one or two others 2,980,639 to 3,007,611; without this, the three
+/// and the numerator no shift of its own, for four shifts a triangle
+/// (the three planes share them). The same gradients. With red's plane
+/// then set up without the barrier before it (green's and blue's keep
+/// theirs, [`PLANE_BARRIERS`]): Cortex-M4F `demo` 2,974,002 -> 2,963,179
+/// instructions; in the all-scenes build `demo` 2,974,029 -> 2,963,206,
+/// `rock` 2,472,087 -> 2,462,792, `grid4` 852,270 -> 849,531, the
+/// others the same. The colour differences shifted instead (two shifts
+/// a plane) gave `demo` 2,969,379; with them, the three barriers
+/// 3,015,296 (the span loop's registers fell worse), none 2,994,182,
+/// one or two others 2,980,639 to 3,007,611. Without this, the three
 /// barriers left out gave 2,972,444.
 const SHIFTED_NUMERATORS: bool = cfg!(microraster_armv7em);
 
@@ -474,12 +475,12 @@ impl TriangleSetup {
         }
         let [x1, y1, x2, y2] = f.e;
         if SHIFTED_NUMERATORS {
-            // The numerators times 2^10 from the differences shifted (see
-            // `SHIFTED_NUMERATORS`): `|d| < 2^8`, edge vectors below
+            // The numerators times 2^10 from the edge vectors shifted
+            // (see `SHIFTED_NUMERATORS`): `|d| < 2^8`, edge vectors below
             // 2^10, so each product is below 2^28 and the sums below
             // 2^29 in magnitude.
-            let (s1, s2) = (d1 << 10, d2 << 10);
-            let (m1, m2) = (s1 * y2 - s2 * y1, s2 * x1 - s1 * x2);
+            let [x1, y1, x2, y2] = [x1 << 10, y1 << 10, x2 << 10, y2 << 10];
+            let (m1, m2) = (d1 * y2 - d2 * y1, d2 * x1 - d1 * x2);
             let shift = frac + SUBPIXEL_BITS;
             let (gx, gy) = (f.div_round32_of_m(m1, shift), f.div_round32_of_m(m2, shift));
             let base = (v[0] << frac) + (1 << (frac - 1));
