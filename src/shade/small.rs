@@ -25,21 +25,6 @@ pub(super) const SMALL_EDGE: i64 = 1 << 10;
 /// Whether the target sets small triangles up in 32-bit divisions.
 pub(super) const SMALL_SETUP: bool = cfg!(not(target_pointer_width = "64"));
 
-/// Whether [`TriangleSetup::small`] reads each colour channel's vertex
-/// values after an empty `black_box` (inline assembly of no instruction):
-/// on ARMv7E-M (the build script's `microraster_armv7em`). The
-/// Cortex-M4F's instruction scheduler (LLVM schedules a core with a
-/// floating-point unit for latency, the soft-float ones for register
-/// pressure) otherwise starts the three channels' products and
-/// divisions together, and spills what they hold: `demo` 3,015,727 ->
-/// 3,010,132 instructions, in the all-scenes build `demo` 3,023,584 ->
-/// 3,017,989, `rock` 2,517,010 -> 2,514,074, `grid4` 864,298 -> 861,024
-/// (measured with one of `rgb16_green_up`'s two barriers left out, which
-/// [`super::FIXED_GOURAUD`] later made the same code). One barrier alone,
-/// or two, measured 3,031,094 to 3,069,541; one before the depth plane
-/// too, 3,019,237. Red's is left out where [`SHIFTED_NUMERATORS`].
-const PLANE_BARRIERS: bool = cfg!(microraster_armv7em);
-
 /// What the `i32` set-up of a [`Small`] triangle shares
 /// ([`TriangleSetup::small`]): the edge vectors `x1, y1, x2, y2` from
 /// vertex 0 (not negated as [`Basis`]'s: the divisor keeps its sign), the
@@ -312,16 +297,20 @@ impl SmallBasis {
 /// where each gradient's remainder then takes one multiply-subtract
 /// (`MLS`) instead of a multiply and a subtract of a shifted operand,
 /// and the numerator no shift of its own, for four shifts a triangle
-/// (the three planes share them). The same gradients. With red's plane
-/// then set up without the barrier before it (green's and blue's keep
-/// theirs, [`PLANE_BARRIERS`]): Cortex-M4F `demo` 2,974,002 -> 2,963,179
-/// instructions; in the all-scenes build `demo` 2,974,029 -> 2,963,206,
-/// `rock` 2,472,087 -> 2,462,792, `grid4` 852,270 -> 849,531, the
-/// others the same. The colour differences shifted instead (two shifts
-/// a plane) gave `demo` 2,969,379; with them, the three barriers
-/// 3,015,296 (the span loop's registers fell worse), none 2,994,182,
-/// one or two others 2,980,639 to 3,007,611. Without this, the three
-/// barriers left out gave 2,972,444.
+/// (the three planes share them). The same gradients. Cortex-M4F `demo`
+/// 2,974,002 -> 2,953,379 instructions; in the all-scenes build `demo`
+/// 2,974,029 -> 2,953,406, `rock` 2,472,087 -> 2,456,357, `grid4`
+/// 852,270 -> 844,539, the others the same.
+///
+/// The M4F's set-up had read each channel's vertex values after an empty
+/// `black_box` (LLVM schedules a core with a floating-point unit for
+/// latency, and started the three channels' products and divisions
+/// together: `demo` 3,015,727 -> 3,010,132 when they came in); with
+/// this set-up they cost: the three barriers `demo` 2,961,124, green's
+/// and blue's 2,963,179, none 2,953,379. The colour differences shifted
+/// instead of the edge vectors (two shifts a plane) gave 2,969,379 with
+/// green's and blue's barriers, 2,994,182 with none, 3,015,296 with
+/// three; without this set-up, no barrier gave 2,972,444.
 const SHIFTED_NUMERATORS: bool = cfg!(microraster_armv7em);
 
 impl Small {
@@ -427,18 +416,8 @@ impl TriangleSetup {
         };
         let z = Self::plane_small_of(f, z[0], zfrac, n1, n2);
         let planes = if gouraud {
-            // Each channel's plane after a compiler barrier where
-            // `PLANE_BARRIERS` (red's not where `SHIFTED_NUMERATORS`).
-            let part = |first: bool| {
-                if PLANE_BARRIERS && !(first && SHIFTED_NUMERATORS) {
-                    core::hint::black_box(());
-                }
-            };
-            part(true);
             let r = Self::plane_small(f, t, 1);
-            part(false);
             let g = Self::plane_small(f, t, 2);
-            part(false);
             let b = Self::plane_small(f, t, 3);
             [z, r, g, b]
         } else {
