@@ -763,6 +763,7 @@ mod tests {
                 f.div_round32_with::<true>(n, shift),
                 f.div_round32_with::<false>(n, shift),
                 f.div_round32_short(n, shift),
+                f.div_round32_of_m(n << 10, shift),
             ] {
                 assert_eq!(q as i64, expected, "{n} << {shift} / {area2}");
             }

@@ -25,21 +25,6 @@ pub(super) const SMALL_EDGE: i64 = 1 << 10;
 /// Whether the target sets small triangles up in 32-bit divisions.
 pub(super) const SMALL_SETUP: bool = cfg!(not(target_pointer_width = "64"));
 
-/// Whether [`TriangleSetup::small`] reads each colour channel's vertex
-/// values after an empty `black_box` (inline assembly of no instruction):
-/// on ARMv7E-M (the build script's `microraster_armv7em`). The
-/// Cortex-M4F's instruction scheduler (LLVM schedules a core with a
-/// floating-point unit for latency, the soft-float ones for register
-/// pressure) otherwise starts the three channels' products and
-/// divisions together, and spills what they hold: `demo` 3,015,727 ->
-/// 3,010,132 instructions, in the all-scenes build `demo` 3,023,584 ->
-/// 3,017,989, `rock` 2,517,010 -> 2,514,074, `grid4` 864,298 -> 861,024
-/// (measured with one of `rgb16_green_up`'s two barriers left out, which
-/// [`super::FIXED_GOURAUD`] later made the same code). One barrier alone,
-/// or two, measured 3,031,094 to 3,069,541; one before the depth plane
-/// too, 3,019,237.
-const PLANE_BARRIERS: bool = cfg!(microraster_armv7em);
-
 /// What the `i32` set-up of a [`Small`] triangle shares
 /// ([`TriangleSetup::small`]): the edge vectors `x1, y1, x2, y2` from
 /// vertex 0 (not negated as [`Basis`]'s: the divisor keeps its sign), the
@@ -281,6 +266,53 @@ impl SmallBasis {
     }
 }
 
+impl SmallBasis {
+    /// [`SmallBasis::div_round32`] in signed divisions of `m = n 2^10`
+    /// (the caller's numerator times 2^10, for `-2^21 <= n < 2^21`
+    /// within its bounds): the same steps as
+    /// [`SmallBasis::div_round32_with`], whose `m` is a shift of `n`.
+    /// Given as a product's result, `m` is a register the remainder
+    /// `m - q area2` takes in one multiply-subtract, where the shifted
+    /// `n` went into a subtract with a shifted operand after a
+    /// multiply (see [`SHIFTED_NUMERATORS`]).
+    #[inline(always)]
+    pub(super) fn div_round32_of_m(&self, m: i32, shift: u32) -> i32 {
+        let k = shift - 10;
+        let d = self.area2;
+        let q = m / d;
+        let r = m - q * d;
+        // `n`'s sign (see `div_round32_with`) and `half` with it: no
+        // overflow, as there.
+        let sign = m >> 31;
+        let half = (self.half ^ sign) - sign;
+        let low = ((r << k) + half) / d;
+        (q << k) + low
+    }
+}
+
+/// Whether a colour plane of [`TriangleSetup::small`] takes its numerators
+/// times 2^10 from the edge vectors shifted left by 10
+/// ([`SmallBasis::div_round32_of_m`]) rather than shifting the
+/// numerators: on ARMv7E-M (the build script's `microraster_armv7em`),
+/// where each gradient's remainder then takes one multiply-subtract
+/// (`MLS`) instead of a multiply and a subtract of a shifted operand,
+/// and the numerator no shift of its own, for four shifts a triangle
+/// (the three planes share them). The same gradients. Cortex-M4F `demo`
+/// 2,974,002 -> 2,953,379 instructions; in the all-scenes build `demo`
+/// 2,974,029 -> 2,953,406, `rock` 2,472,087 -> 2,456,357, `grid4`
+/// 852,270 -> 844,539, the others the same.
+///
+/// The M4F's set-up had read each channel's vertex values after an empty
+/// `black_box` (LLVM schedules a core with a floating-point unit for
+/// latency, and started the three channels' products and divisions
+/// together: `demo` 3,015,727 -> 3,010,132 when they came in); with
+/// this set-up they cost: the three barriers `demo` 2,961,124, green's
+/// and blue's 2,963,179, none 2,953,379. The colour differences shifted
+/// instead of the edge vectors (two shifts a plane) gave 2,969,379 with
+/// green's and blue's barriers, 2,994,182 with none, 3,015,296 with
+/// three; without this set-up, no barrier gave 2,972,444.
+const SHIFTED_NUMERATORS: bool = cfg!(microraster_armv7em);
+
 impl Small {
     /// `n / area` rounded to nearest, ties away from zero (as
     /// [`Basis::div_round`]), for `|n| < 2^43` and `area < 2^21`: the
@@ -384,18 +416,8 @@ impl TriangleSetup {
         };
         let z = Self::plane_small_of(f, z[0], zfrac, n1, n2);
         let planes = if gouraud {
-            // Each channel's plane after a compiler barrier where
-            // `PLANE_BARRIERS`.
-            let part = || {
-                if PLANE_BARRIERS {
-                    core::hint::black_box(());
-                }
-            };
-            part();
             let r = Self::plane_small(f, t, 1);
-            part();
             let g = Self::plane_small(f, t, 2);
-            part();
             let b = Self::plane_small(f, t, 3);
             [z, r, g, b]
         } else {
@@ -431,6 +453,22 @@ impl TriangleSetup {
             };
         }
         let [x1, y1, x2, y2] = f.e;
+        if SHIFTED_NUMERATORS {
+            // The numerators times 2^10 from the edge vectors shifted
+            // (see `SHIFTED_NUMERATORS`): `|d| < 2^8`, edge vectors below
+            // 2^10, so each product is below 2^28 and the sums below
+            // 2^29 in magnitude.
+            let [x1, y1, x2, y2] = [x1 << 10, y1 << 10, x2 << 10, y2 << 10];
+            let (m1, m2) = (d1 * y2 - d2 * y1, d2 * x1 - d1 * x2);
+            let shift = frac + SUBPIXEL_BITS;
+            let (gx, gy) = (f.div_round32_of_m(m1, shift), f.div_round32_of_m(m2, shift));
+            let base = (v[0] << frac) + (1 << (frac - 1));
+            return Plane {
+                gx,
+                gy,
+                k: base.wrapping_add(offset_term(gx, gy, f.o)),
+            };
+        }
         let (n1, n2) = (d1 * y2 - d2 * y1, d2 * x1 - d1 * x2);
         Self::plane_small_of(f, v[0], frac, n1, n2)
     }
