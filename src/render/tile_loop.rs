@@ -55,6 +55,8 @@ where
             found: [Span::default(); TH],
             shaders: &shaders,
             rows: (i32::MAX, i32::MIN),
+            #[cfg(target_pointer_width = "64")]
+            shaded: 0,
         },
     };
     // Transparent triangles, drawn after the opaque ones: (depth key,
@@ -120,7 +122,16 @@ where
                     find(&sv, to.rect, &mut to.found)
                 };
                 if let Some(found) = drawn(&to.found, count, &mut to.rows) {
-                    n += shade(to.tile, to.rect, &sv, found, test);
+                    let m = shade(to.tile, to.rect, &sv, found, test);
+                    // Added in memory on 64-bit hosts (see `Target::shaded`).
+                    #[cfg(target_pointer_width = "64")]
+                    {
+                        to.shaded += m;
+                    }
+                    #[cfg(not(target_pointer_width = "64"))]
+                    {
+                        n += m;
+                    }
                 }
             }
             next = list.next();
@@ -128,6 +139,10 @@ where
     }
     if P::BLEND {
         n += job.draw_later::<P>(&mut later);
+    }
+    #[cfg(target_pointer_width = "64")]
+    {
+        n += job.to.shaded;
     }
     job.to.finish();
     n
