@@ -70,6 +70,12 @@ where
     /// last: none), recorded in the tile when it is done
     /// ([`Target::finish`]).
     pub(super) rows: (i32, i32),
+    /// On 64-bit hosts, the fragments the tile loop's common path has
+    /// written so far in the tile: kept here, in memory, where the loop
+    /// adds a pair's count in one instruction (a local was spilled around
+    /// the span loop's call, loaded, added and stored again).
+    #[cfg(target_pointer_width = "64")]
+    pub(super) shaded: u32,
 }
 
 impl<C, F: ShaderSet<C>, const TW: usize, const TH: usize> Target<'_, C, F, TW, TH>

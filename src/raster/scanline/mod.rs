@@ -225,17 +225,17 @@ fn find_spans_with<const DIRECT: bool, const APART: bool>(
                 let rows = (row_top, row_mid, row_end);
                 let (left_in, right_in) = ((xmin + h) >> 4 >= x0, (xmax + h) >> 4 <= x1);
                 return match (left_in, right_in) {
-                    (true, true) => walk_direct::<false, BOTH>(a, b, c, rows, x0, x1, out),
-                    (false, true) => walk_direct::<true, LEFT>(a, b, c, rows, x0, x1, out),
-                    (true, false) => walk_direct::<true, RIGHT>(a, b, c, rows, x0, x1, out),
-                    (false, false) => walk_direct::<true, BOTH>(a, b, c, rows, x0, x1, out),
+                    (true, true) => walk_direct::<false, BOTH, true>(a, b, c, rows, x0, x1, out),
+                    (false, true) => walk_direct::<true, LEFT, true>(a, b, c, rows, x0, x1, out),
+                    (true, false) => walk_direct::<true, RIGHT, true>(a, b, c, rows, x0, x1, out),
+                    (false, false) => walk_direct::<true, BOTH, true>(a, b, c, rows, x0, x1, out),
                 };
             }
             let inside = ((xmin + h) >> 4 >= x0) & ((xmax + h) >> 4 <= x1);
             return if inside {
-                walk_direct::<false, BOTH>(a, b, c, (row_top, row_mid, row_end), x0, x1, out)
+                walk_direct::<false, BOTH, false>(a, b, c, (row_top, row_mid, row_end), x0, x1, out)
             } else {
-                walk_direct::<true, BOTH>(a, b, c, (row_top, row_mid, row_end), x0, x1, out)
+                walk_direct::<true, BOTH, false>(a, b, c, (row_top, row_mid, row_end), x0, x1, out)
             };
         }
     }
@@ -379,10 +379,11 @@ fn direct_fits(xmin: i32, xmax: i32, dy: i32) -> bool {
 /// `row_top..row_end`, the short edge `a -> b` above `row_mid`, then `b
 /// -> c`. At most `out.len()` spans: a half stops when no slot is left.
 /// With `CLAMP`, the spans clamped on the `SIDES` side or sides (see
-/// [`half_direct`]).
+/// [`half_direct`]); `FRESH` as there (the walk inlined in the
+/// tile loop of 64-bit hosts).
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-fn walk_direct<const CLAMP: bool, const SIDES: u8>(
+fn walk_direct<const CLAMP: bool, const SIDES: u8, const FRESH: bool>(
     a: SubPoint,
     b: SubPoint,
     c: SubPoint,
@@ -405,7 +406,8 @@ fn walk_direct<const CLAMP: bool, const SIDES: u8>(
     let short = Direct::new::<true>(p, q, row_top);
     let (mut left, mut right) = sides(long_on_left, long, short);
     let len = out.len();
-    let rest = half_direct::<CLAMP, SIDES>(out, row_top, stop, &mut left, &mut right, x0, x1);
+    let rest =
+        half_direct::<CLAMP, SIDES, FRESH>(out, row_top, stop, &mut left, &mut right, x0, x1);
     if stop >= row_end {
         return len - rest.len();
     }
@@ -416,7 +418,8 @@ fn walk_direct<const CLAMP: bool, const SIDES: u8>(
         &mut left,
         &mut right,
     );
-    let rest = half_direct::<CLAMP, SIDES>(rest, stop, row_end, &mut left, &mut right, x0, x1);
+    let rest =
+        half_direct::<CLAMP, SIDES, FRESH>(rest, stop, row_end, &mut left, &mut right, x0, x1);
     len - rest.len()
 }
 
