@@ -411,11 +411,11 @@ fn directional_by(
         return Err(LightError::BadDirection { light: i });
     }
     let local = inverse
-        .and_then(|inverse| inverse.apply(direction))
-        .and_then(|v| v.normalize())
+        .and_then(|inverse| inverse.apply_unit(direction))
         .ok_or(LightError::BadMatrix)?;
     let fx = |v: f32| {
-        let x = v * 65536.0;
+        // 2^16 by the exponent where `f32` is in software.
+        let x = crate::math::times_pow2(v, 65536.0);
         if coarse {
             // Truncated, as the vertex stage converts scene::Light.
             crate::math::f32_to_i32(x)
