@@ -58,7 +58,8 @@ const SOFT_MUL: bool = cfg!(any(
 /// `x * y`, the same bits: where [`SOFT_MUL`] says, two normal operands
 /// whose product is normal (before or by its rounding: one past the
 /// largest rounds to infinity, as the IEEE product does) are multiplied
-/// in integers ([`mul_normal`]); any other pair is multiplied.
+/// in integers ([`mul_normal`]), a zero by a finite value is a zero; any
+/// other pair is multiplied.
 #[inline]
 pub(crate) fn mul(x: f32, y: f32) -> f32 {
     if !SOFT_MUL {
@@ -78,8 +79,20 @@ pub(crate) fn mul(x: f32, y: f32) -> f32 {
 /// incremented through the implicit bit's sum).
 #[inline(never)]
 fn mul_normal(x: f32, y: f32) -> f32 {
-    let (a, b) = (x.to_bits(), y.to_bits());
+    // The bits through `black_box`: LLVM turned the zero tests into
+    // soft-float compares (a library call each, as in `times_pow2`).
+    let (a, b) = (
+        core::hint::black_box(x.to_bits()),
+        core::hint::black_box(y.to_bits()),
+    );
     let (fa, fb) = ((a >> 23) & 0xff, (b >> 23) & 0xff);
+    // A zero by a finite value: a zero, its sign the operands' (the
+    // set-up's axes and rotations have many zero elements: `look_at`'s and
+    // `Inverse3`'s cross products took the library's multiply 144 times a
+    // frame of `demo-textured-lit`).
+    if (a << 1 == 0 || b << 1 == 0) && fa != 255 && fb != 255 {
+        return f32::from_bits((a ^ b) & 0x8000_0000);
+    }
     // Both fields in 1..=254: both operands normal.
     if fa.wrapping_sub(1) < 254 && fb.wrapping_sub(1) < 254 {
         let (ma, mb) = ((a & 0x7f_ffff) | 0x80_0000, (b & 0x7f_ffff) | 0x80_0000);
