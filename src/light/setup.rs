@@ -420,7 +420,14 @@ fn directional_by(
             // Truncated, as the vertex stage converts scene::Light.
             crate::math::f32_to_i32(x)
         } else {
-            crate::math::f32_to_i32(x + if x < 0.0 { -0.5 } else { 0.5 })
+            // Where `f32` is in software, the sign by its bit rather than
+            // a soft-float compare: they differ only for -0 (and NaN),
+            // where -0.5 and 0.5 both truncate to 0.
+            let negative = match crate::math::SOFT_FLOAT {
+                true => x.to_bits() >> 31 != 0,
+                false => x < 0.0,
+            };
+            crate::math::f32_to_i32(x + if negative { -0.5 } else { 0.5 })
         }
     };
     Ok([fx(local.x), fx(local.y), fx(local.z)])

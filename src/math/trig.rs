@@ -218,11 +218,13 @@ pub fn sin_cos(x: f32) -> (f32, f32) {
         return (f32::NAN, f32::NAN);
     }
     let a = x.abs();
-    let (n, hi, lo) = if a < core::f32::consts::FRAC_PI_4 {
-        (0, a, 0.0)
-    } else {
-        reduce(a)
+    // `a` is finite and not negative: where `f32` is in software, its
+    // order is that of its bits (no soft-float compare).
+    let small = match SOFT_FLOAT {
+        true => a.to_bits() < core::f32::consts::FRAC_PI_4.to_bits(),
+        false => a < core::f32::consts::FRAC_PI_4,
     };
+    let (n, hi, lo) = if small { (0, a, 0.0) } else { reduce(a) };
     let (s, c) = sin_cos_kernel(hi, lo);
     let (s, c) = match n {
         0 => (s, c),
