@@ -120,12 +120,21 @@ fn mul_normal(x: f32, y: f32) -> f32 {
 /// [`Vec3::dot`] through [`mul`]: the same bits, in the same order.
 #[inline]
 pub(crate) fn dot(a: Vec3, b: Vec3) -> f32 {
+    if !SOFT_MUL {
+        // The method itself: the size build of the OLED firmware kept it
+        // out of line, and took 252 B more with its products inlined.
+        return a.dot(b);
+    }
     mul(a.x, b.x) + mul(a.y, b.y) + mul(a.z, b.z)
 }
 
 /// [`Vec3::cross`] through [`mul`]: the same bits.
 #[inline]
 pub(crate) fn cross(a: Vec3, b: Vec3) -> Vec3 {
+    if !SOFT_MUL {
+        // The method itself, as in `dot`.
+        return a.cross(b);
+    }
     Vec3::new(
         mul(a.y, b.z) - mul(a.z, b.y),
         mul(a.z, b.x) - mul(a.x, b.z),
