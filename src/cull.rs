@@ -41,7 +41,6 @@
 //! Cortex-M3, a library call on a Cortex-M0+) and is exact in `i64`. Clusters take the box test only: it is tighter than the sphere
 //! around the box and, in integers, barely dearer than it.
 
-#[cfg(any(test, microraster_soft_float))]
 use crate::math::times_pow2;
 use crate::math::Mat4;
 use crate::mesh::{Mesh, Vec3Fx};
@@ -144,8 +143,10 @@ impl Frustum {
         // (3 E + 2) 2^-17 with E the largest model coordinate; a plane sums
         // two rows, so twice that.
         let extent = draw.mesh.extent();
-        let e = extent as f32 * (1.0 / 65_536.0);
-        let fixed = (3.0 * e + 2.0) * (2.0 / 131_072.0);
+        // The powers of two by the exponent where `f32` is in software
+        // ([`times_pow2`]; the same bits).
+        let e = times_pow2(extent as f32, 1.0 / 65_536.0);
+        let fixed = times_pow2(3.0 * e + 2.0, 2.0 / 131_072.0);
         let row = |r: usize| [m.m[0][r], m.m[1][r], m.m[2][r], m.m[3][r]];
         let (r0, r1, r2, r3) = (row(0), row(1), row(2), row(3));
         // Each row's pair of planes shares its rounding bound: a soft-float

@@ -411,16 +411,23 @@ fn directional_by(
         return Err(LightError::BadDirection { light: i });
     }
     let local = inverse
-        .and_then(|inverse| inverse.apply(direction))
-        .and_then(|v| v.normalize())
+        .and_then(|inverse| inverse.apply_unit(direction))
         .ok_or(LightError::BadMatrix)?;
     let fx = |v: f32| {
-        let x = v * 65536.0;
+        // 2^16 by the exponent where `f32` is in software.
+        let x = crate::math::times_pow2(v, 65536.0);
         if coarse {
             // Truncated, as the vertex stage converts scene::Light.
             crate::math::f32_to_i32(x)
         } else {
-            crate::math::f32_to_i32(x + if x < 0.0 { -0.5 } else { 0.5 })
+            // Where `f32` is in software, the sign by its bit rather than
+            // a soft-float compare: they differ only for -0 (and NaN),
+            // where -0.5 and 0.5 both truncate to 0.
+            let negative = match crate::math::SOFT_FLOAT {
+                true => x.to_bits() >> 31 != 0,
+                false => x < 0.0,
+            };
+            crate::math::f32_to_i32(x + if negative { -0.5 } else { 0.5 })
         }
     };
     Ok([fx(local.x), fx(local.y), fx(local.z)])

@@ -3,7 +3,7 @@
 //! 3x3 part for the lights ([`Inverse3`]) and its hand-over to
 //! [`FixedMat4`].
 
-use super::soft_float::ScaleDivisor;
+use super::soft_float::{cross, dot, mul, normalize, ScaleDivisor};
 use super::{sin_cos, times_pow2, FixedMat4, Vec3, SOFT_FLOAT};
 use fixed::types::I16F16;
 
@@ -161,15 +161,18 @@ impl Mat4 {
     /// Returns `None` when `eye == target`, `up` is parallel to the view
     /// direction, or a value is not finite.
     pub fn look_at(eye: Vec3, target: Vec3, up: Vec3) -> Option<Self> {
-        let f = (target - eye).normalize()?;
-        let s = f.cross(up).normalize()?;
-        let u = s.cross(f);
+        // The products through `mul` (`dot`, `cross`, `normalize`): the
+        // same bits, where `f32` is in software without the library's
+        // multiply.
+        let f = normalize(target - eye)?;
+        let s = normalize(cross(f, up))?;
+        let u = cross(s, f);
         let r = Self {
             m: [
                 [s.x, u.x, -f.x, 0.0],
                 [s.y, u.y, -f.y, 0.0],
                 [s.z, u.z, -f.z, 0.0],
-                [-s.dot(eye), -u.dot(eye), f.dot(eye), 1.0],
+                [-dot(s, eye), -dot(u, eye), dot(f, eye), 1.0],
             ],
         };
         r.is_finite().then_some(r)
@@ -236,9 +239,10 @@ impl Mat4 {
             )
         };
         let (r0, r1, r2) = (row(0), row(1), row(2));
-        // Columns of the inverse are cross products of rows / det.
-        let c = [r1.cross(r2), r2.cross(r0), r0.cross(r1)];
-        let det = r0.dot(c[0]);
+        // Columns of the inverse are cross products of rows / det (the
+        // products through `mul`, as in `look_at`).
+        let c = [cross(r1, r2), cross(r2, r0), cross(r0, r1)];
+        let det = dot(r0, c[0]);
         if !(det.is_finite() && det != 0.0) {
             return None;
         }
@@ -563,12 +567,21 @@ impl Inverse3 {
     /// `M⁻¹ v`; `None` when a coordinate is not finite.
     pub(crate) fn apply(&self, v: Vec3) -> Option<Vec3> {
         let ([c0, c1, c2], inv, k) = (self.c, self.inv, self.k);
-        // The inverse of the scaled matrix is k times the inverse.
+        // The inverse of the scaled matrix is k times the inverse (the
+        // products through `mul`, as in `look_at`).
+        let row = |x: f32, y: f32, z: f32| dot(Vec3::new(x, y, z), v);
         let out = Vec3::new(
-            times_pow2((c0.x * v.x + c1.x * v.y + c2.x * v.z) * inv, k),
-            times_pow2((c0.y * v.x + c1.y * v.y + c2.y * v.z) * inv, k),
-            times_pow2((c0.z * v.x + c1.z * v.y + c2.z * v.z) * inv, k),
+            times_pow2(mul(row(c0.x, c1.x, c2.x), inv), k),
+            times_pow2(mul(row(c0.y, c1.y, c2.y), inv), k),
+            times_pow2(mul(row(c0.z, c1.z, c2.z), inv), k),
         );
         out.is_finite().then_some(out)
+    }
+
+    /// [`apply`](Self::apply)'s vector normalized ([`Vec3::normalize`],
+    /// the same bits): a light's direction in model space, its products
+    /// through the soft-float short cuts where `f32` is in software.
+    pub(crate) fn apply_unit(&self, v: Vec3) -> Option<Vec3> {
+        self.apply(v).and_then(normalize)
     }
 }

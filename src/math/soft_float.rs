@@ -3,6 +3,8 @@
 //! 100 instructions): the same bits as the IEEE operations, from the
 //! floats' bit patterns.
 
+use super::Vec3;
+
 /// Whether `f32` arithmetic is in software (ARM cores without an FPU),
 /// where the library takes short cuts around it: there [`Mat4`](super::Mat4)'s product
 /// skips the terms of zeros and ones, whose tests cost more than the
@@ -40,6 +42,122 @@ pub(crate) fn times_pow2(x: f32, k: f32) -> f32 {
         }
         false => x * k,
     }
+}
+
+/// Whether [`mul`] takes its integer form: where `f32` arithmetic is in
+/// software and the core has no 32 x 32 -> 64-bit multiply (ARMv6-M,
+/// whose library multiply takes a 64-bit library product too, some 140
+/// instructions in all), and in the library's own tests. Not on the
+/// Cortex-M3, whose library multiply has `UMULL`: its `demo` frame took
+/// 631 instructions more with it.
+const SOFT_MUL: bool = cfg!(any(
+    test,
+    all(microraster_soft_float, microraster_narrow_multiply)
+));
+
+/// `x * y`, the same bits: where [`SOFT_MUL`] says, two normal operands
+/// whose product is normal (before or by its rounding: one past the
+/// largest rounds to infinity, as the IEEE product does) are multiplied
+/// in integers ([`mul_normal`]), a zero by a finite value is a zero; any
+/// other pair is multiplied.
+#[inline]
+pub(crate) fn mul(x: f32, y: f32) -> f32 {
+    if !SOFT_MUL {
+        return x * y;
+    }
+    mul_normal(x, y)
+}
+
+/// [`mul`]'s integer form, out of line (one copy for the set-up's
+/// dozens of products: inlined, each took some 120 B of flash and
+/// spilled its caller's values). The significands' product `p`
+/// (`2^46 <= p < 2^48`) is shifted to 48 bits, its top 24 the result's
+/// significand and the 24 below it what rounds it to nearest, ties to
+/// even: adding `2^23 - 1` and the last bit of the significand carries
+/// into it exactly when the rest is above half, or half and the last bit
+/// odd. A carry to `2^24` makes the next power of two (the field
+/// incremented through the implicit bit's sum).
+#[inline(never)]
+fn mul_normal(x: f32, y: f32) -> f32 {
+    // The bits through `black_box`: LLVM turned the zero tests into
+    // soft-float compares (a library call each, as in `times_pow2`).
+    let (a, b) = (
+        core::hint::black_box(x.to_bits()),
+        core::hint::black_box(y.to_bits()),
+    );
+    let (fa, fb) = ((a >> 23) & 0xff, (b >> 23) & 0xff);
+    // A zero by a finite value: a zero, its sign the operands' (the
+    // set-up's axes and rotations have many zero elements: `look_at`'s and
+    // `Inverse3`'s cross products took the library's multiply 144 times a
+    // frame of `demo-textured-lit`).
+    if (a << 1 == 0 || b << 1 == 0) && fa != 255 && fb != 255 {
+        return f32::from_bits((a ^ b) & 0x8000_0000);
+    }
+    // Both fields in 1..=254: both operands normal.
+    if fa.wrapping_sub(1) < 254 && fb.wrapping_sub(1) < 254 {
+        let (ma, mb) = ((a & 0x7f_ffff) | 0x80_0000, (b & 0x7f_ffff) | 0x80_0000);
+        let p = if super::wide::SPLIT {
+            super::wide::mul_split_u(ma, mb)
+        } else {
+            u64::from(ma) * u64::from(mb)
+        };
+        // The product's field, its significand in [1, 2).
+        let (p, field) = if p >> 47 != 0 {
+            (p, (fa + fb) as i32 - 126)
+        } else {
+            (p << 1, (fa + fb) as i32 - 127)
+        };
+        if (1..=254).contains(&field) {
+            let (q, rest) = ((p >> 24) as u32, p as u32 & 0xff_ffff);
+            let sig = q + ((rest + 0x7f_ffff + (q & 1)) >> 24);
+            let sign = (a ^ b) & 0x8000_0000;
+            return f32::from_bits(sign | ((((field - 1) as u32) << 23) + sig));
+        }
+    }
+    x * y
+}
+
+/// [`Vec3::dot`] through [`mul`]: the same bits, in the same order.
+#[inline]
+pub(crate) fn dot(a: Vec3, b: Vec3) -> f32 {
+    if !SOFT_MUL {
+        // The method itself: the size build of the OLED firmware kept it
+        // out of line, and took 252 B more with its products inlined.
+        return a.dot(b);
+    }
+    mul(a.x, b.x) + mul(a.y, b.y) + mul(a.z, b.z)
+}
+
+/// [`Vec3::cross`] through [`mul`]: the same bits.
+#[inline]
+pub(crate) fn cross(a: Vec3, b: Vec3) -> Vec3 {
+    if !SOFT_MUL {
+        // The method itself, as in `dot`.
+        return a.cross(b);
+    }
+    Vec3::new(
+        mul(a.y, b.z) - mul(a.z, b.y),
+        mul(a.z, b.x) - mul(a.x, b.z),
+        mul(a.x, b.y) - mul(a.y, b.x),
+    )
+}
+
+/// [`Vec3::normalize`] through [`dot`] where `f32` arithmetic is in
+/// software, the same bits: a squared length that is a positive normal
+/// `f32` (finite and at least `f32::MIN_POSITIVE`, tested by its bits)
+/// takes the same square root and divisions; any other vector is
+/// [`Vec3::normalize`]'s.
+#[inline]
+pub(crate) fn normalize(v: Vec3) -> Option<Vec3> {
+    if !SOFT_FLOAT {
+        return v.normalize();
+    }
+    let sq = dot(v, v);
+    if (0x0080_0000..0x7f80_0000).contains(&core::hint::black_box(sq.to_bits())) {
+        let len = super::sqrt(sq);
+        return Some(Vec3::new(v.x / len, v.y / len, v.z / len));
+    }
+    v.normalize()
 }
 
 /// Division of `f32`s by one positive normal `f32`, correctly rounded
@@ -121,5 +239,71 @@ impl ScaleDivisor {
         // (and a carry to 2^24 makes the next power of two).
         let sig = (q + 1) >> 1;
         f32::from_bits((x & 0x8000_0000) | ((((field - 1) as u32) << 23) + sig))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A random `f32`: any bits, or one of a few special values, or one
+    /// near 1 (whose products stay normal), or whose field puts the
+    /// product near the ends of the normal range.
+    fn any_f32(next: &mut impl FnMut(u64) -> u64) -> f32 {
+        let bits = next(1 << 32) as u32;
+        match next(4) {
+            0 => f32::from_bits(bits),
+            1 => f32::from_bits((bits & 0x807f_ffff) | (127 + next(9) as u32 - 4) << 23),
+            2 => f32::from_bits((bits & 0x807f_ffff) | (next(40) as u32 + 1) << 23),
+            _ => [
+                0.0,
+                -0.0,
+                1.0,
+                -1.0,
+                0.5,
+                f32::MAX,
+                f32::MIN_POSITIVE,
+                1e-40,
+                f32::INFINITY,
+            ][next(9) as usize],
+        }
+    }
+
+    /// [`mul`] is the product, bit for bit (NaNs as NaNs), and its
+    /// vectors' forms are [`Vec3`]'s.
+    #[test]
+    fn mul_is_the_product() {
+        let mut next = crate::testing::rng();
+        let same =
+            |got: f32, want: f32| got.to_bits() == want.to_bits() || got.is_nan() && want.is_nan();
+        for _ in 0..2_000_000 {
+            let (x, y) = (any_f32(&mut next), any_f32(&mut next));
+            let y = match next(3) {
+                // A large operand against a small one: products near the
+                // largest and the smallest normal values.
+                0 => f32::from_bits(y.to_bits() ^ 0x4000_0000),
+                _ => y,
+            };
+            assert!(same(mul(x, y), x * y), "{x:e} * {y:e}: {:e}", mul(x, y));
+        }
+        // Ties: significands whose product has exactly half an ulp left.
+        for (x, y) in [
+            (1.000_000_1f32, 1.000_000_1f32),
+            (1.5, 1.000_000_1),
+            (3.0, 1.000_000_1),
+        ] {
+            assert!(same(mul(x, y), x * y));
+        }
+        for _ in 0..200_000 {
+            let v = Vec3::new(any_f32(&mut next), any_f32(&mut next), any_f32(&mut next));
+            let w = Vec3::new(any_f32(&mut next), any_f32(&mut next), any_f32(&mut next));
+            assert!(same(dot(v, w), v.dot(w)));
+            let (c, d) = (cross(v, w), v.cross(w));
+            assert!(same(c.x, d.x) && same(c.y, d.y) && same(c.z, d.z));
+            match (normalize(v), v.normalize()) {
+                (Some(a), Some(b)) => assert!(same(a.x, b.x) && same(a.y, b.y) && same(a.z, b.z)),
+                (a, b) => assert_eq!(a, b),
+            }
+        }
     }
 }

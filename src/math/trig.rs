@@ -31,19 +31,36 @@
 //! the [parent module](super)); [`sqrt`] refines micromath's estimate with
 //! Newton steps.
 
+use super::soft_float::mul;
+use super::{times_pow2, SOFT_FLOAT};
+
 /// Square root to full `f32` precision: micromath's bit-trick estimate
 /// (about 5 % off) refined by three Newton steps. Only basic IEEE
 /// operations, so it gives the same bits on every target.
 pub fn sqrt(x: f32) -> f32 {
-    if x.is_nan() || x < 0.0 {
-        return f32::NAN;
-    }
-    if x == 0.0 || x == f32::INFINITY {
-        return x;
+    if SOFT_FLOAT {
+        // The same tests by the bits, without soft-float compares: a zero
+        // of either sign and infinity are themselves, a NaN or a negative
+        // value (whose bits are above infinity's) NaN.
+        let b = core::hint::black_box(x.to_bits());
+        if b << 1 == 0 || b == 0x7f80_0000 {
+            return x;
+        }
+        if b > 0x7f80_0000 {
+            return f32::NAN;
+        }
+    } else {
+        if x.is_nan() || x < 0.0 {
+            return f32::NAN;
+        }
+        if x == 0.0 || x == f32::INFINITY {
+            return x;
+        }
     }
     let mut y = micromath::F32Ext::sqrt(x);
     for _ in 0..3 {
-        y = 0.5 * (y + x / y);
+        // The half by the exponent where `f32` is in software.
+        y = times_pow2(y + x / y, 0.5);
     }
     y
 }
@@ -141,12 +158,19 @@ fn reduce(a: f32) -> (u32, f32, f32) {
 /// `a²` as the sum of two `f32`s, exactly (Dekker's product, with
 /// Veltkamp's split of `a` into two halves of 12 bits; no fused
 /// multiply-add needed), for `|a| <= 1`.
+///
+/// The products through [`mul`] and [`times_pow2`], the same bits without
+/// the library's multiply where `f32` is in software (as in
+/// [`sin_cos_kernel`]).
 fn square_exact(a: f32) -> (f32, f32) {
-    let c = 4097.0 * a;
+    let c = mul(4097.0, a);
     let ah = c - (c - a);
     let al = a - ah;
-    let z = a * a;
-    (z, ((ah * ah - z) + 2.0 * ah * al) + al * al)
+    let z = mul(a, a);
+    (
+        z,
+        ((mul(ah, ah) - z) + mul(times_pow2(ah, 2.0), al)) + mul(al, al),
+    )
 }
 
 /// sin(r) and cos(r) for `r = hi + lo`, `|r| <= π/4`, `|lo|` below 2^-23
@@ -156,14 +180,27 @@ fn square_exact(a: f32) -> (f32, f32) {
 /// for the cosine `1 - hi²/2` with `hi²` exact and the rounding error of
 /// the subtraction recovered (it is exact in `f32`: `1 - w` by Sterbenz's
 /// lemma).
+///
+/// The products through [`mul`] and the halves through [`times_pow2`]:
+/// the same bits, where `f32` is in software without the library's
+/// multiply (some 100 instructions each on ARMv6-M; the kernel has
+/// nineteen, five a frame of the demo's camera and model).
 fn sin_cos_kernel(hi: f32, lo: f32) -> (f32, f32) {
     let (z, z_err) = square_exact(hi);
-    let p = -1.0 / 6.0 + z * (1.0 / 120.0 + z * (-1.0 / 5_040.0 + z * (1.0 / 362_880.0)));
-    let s = hi + (hi * z * p + lo * (1.0 - 0.5 * z));
-    let q = 1.0 / 24.0 + z * (-1.0 / 720.0 + z * (1.0 / 40_320.0 + z * (-1.0 / 3_628_800.0)));
-    let half = 0.5 * z;
+    let p = -1.0 / 6.0
+        + mul(
+            z,
+            1.0 / 120.0 + mul(z, -1.0 / 5_040.0 + mul(z, 1.0 / 362_880.0)),
+        );
+    let half = times_pow2(z, 0.5);
+    let s = hi + (mul(mul(hi, z), p) + mul(lo, 1.0 - half));
+    let q = 1.0 / 24.0
+        + mul(
+            z,
+            -1.0 / 720.0 + mul(z, 1.0 / 40_320.0 + mul(z, -1.0 / 3_628_800.0)),
+        );
     let w = 1.0 - half;
-    let c = w + (((1.0 - w) - half) + (z * z * q - (0.5 * z_err + hi * lo)));
+    let c = w + (((1.0 - w) - half) + (mul(mul(z, z), q) - (times_pow2(z_err, 0.5) + mul(hi, lo))));
     (s, c)
 }
 
@@ -181,11 +218,13 @@ pub fn sin_cos(x: f32) -> (f32, f32) {
         return (f32::NAN, f32::NAN);
     }
     let a = x.abs();
-    let (n, hi, lo) = if a < core::f32::consts::FRAC_PI_4 {
-        (0, a, 0.0)
-    } else {
-        reduce(a)
+    // `a` is finite and not negative: where `f32` is in software, its
+    // order is that of its bits (no soft-float compare).
+    let small = match SOFT_FLOAT {
+        true => a.to_bits() < core::f32::consts::FRAC_PI_4.to_bits(),
+        false => a < core::f32::consts::FRAC_PI_4,
     };
+    let (n, hi, lo) = if small { (0, a, 0.0) } else { reduce(a) };
     let (s, c) = sin_cos_kernel(hi, lo);
     let (s, c) = match n {
         0 => (s, c),
