@@ -480,7 +480,9 @@ fn product_by_terms(a: &Mat4, b: &Mat4) -> Option<Mat4> {
         } else if x == ONE {
             Ok(f32::from_bits(y))
         } else {
-            Ok(f32::from_bits(x) * f32::from_bits(y))
+            // Where the core has no 32 x 32 -> 64-bit multiply, in
+            // integers (`soft_float::mul`, the same bits).
+            Ok(super::soft_float::mul(f32::from_bits(x), f32::from_bits(y)))
         }
     };
     let mut out = [[0.0f32; 4]; 4];
