@@ -41,7 +41,9 @@ mod plane;
 mod span;
 
 pub(crate) use barycentric::{signed_weights, weights};
-pub(crate) use span::{span_input, Output, AFFINE, CLAMPED, COLOUR_LOOP, FLAT_Q, SHIFTED};
+pub(crate) use span::{
+    colour_constants, span_input, Output, AFFINE, CLAMPED, COLOUR_LOOP, FLAT_Q, SHIFTED,
+};
 
 use lerp::{fine_fit, lerp32, lerp_fit, FIT_PRODUCTS, NARROW_MULTIPLY};
 use plane::{scale_q, small_planes, wide_planes_apart, WidePlane};
