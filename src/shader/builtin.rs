@@ -265,6 +265,15 @@ impl<C: From<Rgb888> + 'static> FragmentShader<C> for Gouraud {
     {
         span.shade_with(true, Gouraud)
     }
+    /// [`shade_span`](Self::shade_span) for each span, with the colour
+    /// loop's constants gathered once for them.
+    #[inline(always)]
+    fn shade_spans(&self, spans: TriangleSpans<'_, C, [I16F16; 0]>) -> u32
+    where
+        C: Copy + From<Rgb888> + Into<Rgb888>,
+    {
+        spans.each_colour(Gouraud)
+    }
 }
 
 /// Where a textured shader's texels come from, decided once per span:

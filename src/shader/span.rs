@@ -44,7 +44,8 @@
 use crate::raster::Span;
 use crate::scene::Blend;
 use crate::shade::perspective::{
-    span_input, Output, PerspectiveSetup, AFFINE, CLAMPED, COLOUR_LOOP, FLAT_Q, SHIFTED,
+    colour_constants, span_input, Output, PerspectiveSetup, AFFINE, CLAMPED, COLOUR_LOOP, FLAT_Q,
+    SHIFTED,
 };
 use crate::shade::{Corners, DepthTest, SpanPos};
 use crate::shader::{Fragment, FragmentShader, Perspective, Varyings};
@@ -161,6 +162,28 @@ impl<'a, C, V: Varyings> TriangleSpans<'a, C, V> {
     }
 }
 
+impl<C, V: Varyings> TriangleSpans<'_, C, V> {
+    /// [`each`](Self::each) with [`SpanInput::shade_with`]`(true,
+    /// fragment)` for a shader that reads the colour and no varyings
+    /// (`Gouraud`), the constants of Thumb-2's colour loop ([`COLOUR_LOOP`],
+    /// `run_colour_shifted`) gathered once for the triangle's spans
+    /// ([`colour_constants`]) where they had been copied at every span:
+    /// Cortex-M3 `fill-gouraud-exact` 58.67 -> 57.27 instructions a
+    /// fragment, Cortex-M4F 69.19 -> 67.72. Elsewhere `shade_with` itself.
+    #[inline(always)]
+    pub(crate) fn each_colour<F: PixelFn<V, C> + Copy>(self, fragment: F) -> u32
+    where
+        C: Copy + From<Rgb888> + Into<Rgb888>,
+    {
+        if COLOUR_LOOP && V::LEN == 0 && self.out.opaque() && self.out.mode == Perspective::Exact {
+            let k = colour_constants(self.setup);
+            self.each(|s| s.shade_with_loops::<true>(true, fragment, Some(&k)))
+        } else {
+            self.each(|s| s.shade_with(true, fragment))
+        }
+    }
+}
+
 /// One span of a triangle in a tile row, handed to
 /// [`FragmentShader::shade_span`]: the pixels `x()..x() + len()` of row
 /// `y()`, and everything needed to colour them.
@@ -271,7 +294,7 @@ impl<'a, C, V: Varyings> SpanInput<'a, C, V> {
     where
         C: Copy + From<Rgb888> + Into<Rgb888>,
     {
-        self.shade_with_loops::<true>(interpolate_color, fragment)
+        self.shade_with_loops::<true>(interpolate_color, fragment, None)
     }
 
     /// [`shade_with`](Self::shade_with) for a span that
@@ -289,16 +312,18 @@ impl<'a, C, V: Varyings> SpanInput<'a, C, V> {
     where
         C: Copy + From<Rgb888> + Into<Rgb888>,
     {
-        self.shade_with_loops::<false>(interpolate_color, fragment)
+        self.shade_with_loops::<false>(interpolate_color, fragment, None)
     }
 
     /// [`shade_with`](Self::shade_with), with the loops with the span's
-    /// shift only if `SHIFT`.
+    /// shift only if `SHIFT`, and the colour loop's constants `k` if the
+    /// caller gathered them ([`colour_constants`]).
     #[inline(always)]
     fn shade_with_loops<const SHIFT: bool>(
         self,
         interpolate_color: bool,
         fragment: impl PixelFn<V, C>,
+        k: Option<&[i32; 13]>,
     ) -> u32
     where
         C: Copy + From<Rgb888> + Into<Rgb888>,
@@ -385,10 +410,18 @@ impl<'a, C, V: Varyings> SpanInput<'a, C, V> {
                 let shift = self.opaque_shift();
                 match shift {
                     Some(sh) if COLOUR_LOOP && V::LEN == 0 && interpolate_color => {
+                        let own;
+                        let k = match k {
+                            Some(k) => k,
+                            None => {
+                                own = colour_constants(self.setup);
+                                &own
+                            }
+                        };
                         if flat {
-                            self.run_colour_shifted::<true>(fragment, sh)
+                            self.run_colour_shifted::<true>(fragment, sh, k)
                         } else {
-                            self.run_colour_shifted::<false>(fragment, sh)
+                            self.run_colour_shifted::<false>(fragment, sh, k)
                         }
                     }
                     Some(sh) if flat && flat_q_loop(V::LEN, interpolate_color) => {

@@ -126,6 +126,33 @@ pub(crate) fn span_input<'a, C, V: Varyings>(
     }
 }
 
+/// The colour constants and steps that [`SpanInput::run_colour_shifted`]
+/// reads, per channel `c0 · 2^16 + 2^15`, `c1 - c0`, `c2 - c0`, then the
+/// steps of depth (as `SpanInput`'s `gz`), `Q`, `B1` and `B2`: all of them
+/// the triangle's, so gathered once per triangle and tile
+/// ([`TriangleSpans::each_colour`](crate::shader::span::TriangleSpans::each_colour))
+/// rather than copied at every span (13 words loaded and stored a span).
+#[inline(always)]
+pub(crate) fn colour_constants<V: Varyings>(p: &PerspectiveSetup<V>) -> [i32; 13] {
+    let [base, e1, e2] = p.color;
+    let [pq, p1, p2] = &p.planes;
+    [
+        base[0],
+        e1[0],
+        e2[0],
+        base[1],
+        e1[1],
+        e2[1],
+        base[2],
+        e1[2],
+        e2[2],
+        ((p.depth.steps()[0] as u32) << (16 - Z_FRAC)) as i32,
+        pq.step(),
+        p1.step(),
+        p2.step(),
+    ]
+}
+
 /// What [`colour_span_flat`] reads: the colour constants and steps of
 /// [`SpanInput::run_colour_shifted`], the span's shift and reciprocal,
 /// depth and `B1`, `B2` at its first pixel.
@@ -349,31 +376,14 @@ impl<C, V: Varyings> SpanInput<'_, C, V> {
         self,
         mut fragment: impl PixelFn<V, C>,
         sh: u32,
+        k: &[i32; 13],
     ) -> u32 {
-        let p = self.setup;
         let [mut q, mut b1, mut b2] = self.planes;
         let r = if FLAT { span_reciprocal(q, sh) } else { 0 };
         let mut z = self.z;
-        let [base, e1, e2] = p.color;
-        // Per channel: base, d1, d2; then the steps of depth, Q, B1, B2.
-        let k: [i32; 13] = [
-            base[0],
-            e1[0],
-            e2[0],
-            base[1],
-            e1[1],
-            e2[1],
-            base[2],
-            e1[2],
-            e2[2],
-            self.gz as i32,
-            self.steps[0],
-            self.steps[1],
-            self.steps[2],
-        ];
         if FLAT {
             let s = ColourSpan {
-                k: &k,
+                k,
                 sh,
                 r,
                 z,
@@ -382,7 +392,7 @@ impl<C, V: Varyings> SpanInput<'_, C, V> {
             };
             return colour_span_flat::<C, V, _>(self.color, self.depth, &s, &mut fragment);
         }
-        let k = core::hint::black_box(&k);
+        let k = core::hint::black_box(k);
         let len = self.color.len() as u32;
         let mut fails = 0;
         let x0 = self.x0;
