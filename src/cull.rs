@@ -43,6 +43,7 @@
 
 use crate::math::times_pow2;
 use crate::math::Mat4;
+use crate::math::{mul_wide, SPLIT};
 use crate::mesh::{Mesh, Vec3Fx};
 use crate::scene::Draw;
 
@@ -109,7 +110,10 @@ fn scaled(x: f32, s: i32) -> i64 {
     let v = match e {
         // The mantissa has 24 bits: below 2^62 up to a shift of 38.
         39.. => 1 << 62,
+        0..=38 if SPLIT => shift_left_split(mant as u32, e as u32),
         0..=38 => mant << e,
+        // A 32-bit shift where a 64-bit one is a library call (ARMv6-M).
+        -23..=-1 if SPLIT => i64::from(mant as u32 >> -e),
         -23..=-1 => mant >> -e,
         _ => 0,
     };
@@ -118,6 +122,21 @@ fn scaled(x: f32, s: i32) -> i64 {
     } else {
         v
     }
+}
+
+/// `m 2^e` for a mantissa `m < 2^24` and `e <= 38` ([`scaled`]'s left
+/// shift) from 32-bit shifts of its two words: ARMv6-M makes a 64-bit
+/// shift by a variable a library call (`__aeabi_llsl`), about 60 a frame.
+#[cfg_attr(not(any(test, microraster_narrow_multiply)), allow(dead_code))]
+#[inline(always)]
+fn shift_left_split(m: u32, e: u32) -> i64 {
+    let (hi, lo) = match e {
+        // Below 2^31: one word.
+        0..=7 => (0, m << e),
+        8..=31 => (m >> (32 - e), m << e),
+        _ => (m << (e - 32), 0),
+    };
+    ((u64::from(hi) << 32) | u64::from(lo)) as i64
 }
 
 impl Frustum {
@@ -175,6 +194,9 @@ impl Frustum {
     /// `-(|a| e_x + |b| e_y + |c| e_z)`.
     #[inline]
     pub fn excludes_box(&self, bounds: &[Vec3Fx; 2]) -> bool {
+        if SPLIT {
+            return self.excludes_box_split(bounds);
+        }
         let (c, e) = centre_extent(bounds);
         self.planes.iter().any(|p| {
             let [a, b, cc] = p.n.map(i64::from);
@@ -182,6 +204,32 @@ impl Frustum {
             let reach = a.abs() * e[0] + b.abs() * e[1] + cc.abs() * e[2];
             // |n| < 2^27 and |c|, e <= 2^32: |dist| < 3 2^59 + 2^44,
             // reach < 3 2^59, margin <= 2^61, so the sum stays below 2^62.
+            dist + reach + p.margin < 0
+        })
+    }
+
+    /// [`excludes_box`](Self::excludes_box) on ARMv6-M, which has no
+    /// 32x32 to 64-bit multiply (each `i64` product a library call of
+    /// about 40 instructions): the same sums, each product from 32-bit
+    /// pieces ([`mul_by_coefficient`]), the same answer. Out of line:
+    /// inlined into the draw, its code cost the binning stage 7,223
+    /// instructions of `demo` a frame (that function's registers moved).
+    /// Elsewhere only inline, so that no other target compiles it.
+    #[cfg_attr(not(any(test, microraster_narrow_multiply)), allow(dead_code))]
+    #[cfg_attr(microraster_narrow_multiply, inline(never))]
+    #[cfg_attr(not(microraster_narrow_multiply), inline)]
+    fn excludes_box_split(&self, bounds: &[Vec3Fx; 2]) -> bool {
+        let (c, e) = centre_extent(bounds);
+        self.planes.iter().any(|p| {
+            let [a, b, cc] = p.n;
+            let dist = mul_by_coefficient(c[0], a)
+                + mul_by_coefficient(c[1], b)
+                + mul_by_coefficient(c[2], cc)
+                + p.d2;
+            let reach = mul_by_coefficient(e[0], a.abs())
+                + mul_by_coefficient(e[1], b.abs())
+                + mul_by_coefficient(e[2], cc.abs());
+            // The bounds of `excludes_box`: the sum stays below 2^62.
             dist + reach + p.margin < 0
         })
     }
@@ -207,6 +255,20 @@ impl Frustum {
             dist + p.norm() * radius as i64 + p.margin < 0
         })
     }
+}
+
+/// `v a` exactly, for a doubled centre or extent `|v| < 2^33` and a plane
+/// coefficient `|a| < 2^27`: with `v = h 2^32 + l`, `l` the signed low
+/// word and `h` the rest (`|h| <= 2`), `v a = (h a) 2^32 + l a`, the
+/// first a 32-bit product (below 2^29 in magnitude), the second
+/// [`mul_wide`]'s (four 16-bit products on ARMv6-M).
+#[cfg_attr(not(any(test, microraster_narrow_multiply)), allow(dead_code))]
+#[inline(always)]
+fn mul_by_coefficient(v: i64, a: i32) -> i64 {
+    let l = v as i32;
+    // `l` negative borrows 2^32 from the upper word: `h` one more.
+    let h = (v >> 32) as i32 - (l >> 31);
+    (((h * a) as i64) << 32) + mul_wide(l, a)
 }
 
 /// The doubled centre `lo + hi` and doubled extent `hi - lo` of a box, raw
@@ -398,6 +460,41 @@ mod tests {
     /// computes them, so culling it cannot change the picture; and it
     /// excludes nearly every box that exact arithmetic finds outside.
     #[test]
+    fn split_shifts_are_exact() {
+        for m in [0x80_0000u32, 0x80_0001, 0xab_cdef, 0xff_ffff] {
+            for e in 0..=38 {
+                assert_eq!(shift_left_split(m, e), i64::from(m) << e, "{m} << {e}");
+            }
+        }
+    }
+
+    #[test]
+    fn split_coefficient_products_are_exact() {
+        let mut next = crate::testing::rng();
+        let vs = [
+            -(1i64 << 33) + 2,
+            -(1 << 32) - 1,
+            -(1 << 32),
+            -1,
+            0,
+            1,
+            u32::MAX as i64,
+            (1 << 33) - 2,
+        ];
+        let az = [-(1i32 << 27) + 1, -65_536, -1, 0, 1, 65_535, (1 << 27) - 1];
+        for &v in &vs {
+            for &a in &az {
+                assert_eq!(mul_by_coefficient(v, a), v * a as i64, "{v} * {a}");
+            }
+        }
+        for _ in 0..100_000 {
+            let v = next(1 << 34) as i64 - (1 << 33) + 1;
+            let a = next(1 << 28) as i32 - (1 << 27) + 1;
+            assert_eq!(mul_by_coefficient(v, a), v * a as i64, "{v} * {a}");
+        }
+    }
+
+    #[test]
     fn excluded_boxes_are_outside_in_the_vertex_stage_and_few_are_missed() {
         use crate::vertex::{outcode, DrawSetup, REJECT_MASK};
         let mut r = crate::testing::rng();
@@ -418,6 +515,8 @@ mod tests {
             let frustum = Frustum::new(&vp, &draw).unwrap();
             let bounds = [pos[0], pos[7]];
             let out = frustum.excludes_box(&bounds);
+            // ARMv6-M's form answers the same.
+            assert_eq!(frustum.excludes_box_split(&bounds), out);
             // The whole-draw test: the sphere never excludes what the box
             // keeps.
             assert!(!frustum.excludes_sphere(&bounds) || out);
