@@ -375,6 +375,27 @@ impl Mat4 {
     }
 }
 
+/// The product of two [`Mat4`]s (or references to them), every term
+/// multiplied and added in order: written once for `Mul` with an FPU,
+/// where it stays in place, and `full_product` in soft-float builds. A
+/// macro, not a function: as a function of its own, even inlined, it
+/// moved the Cortex-M4F's callers (`demo` +38 instructions, 104 B more
+/// stack).
+macro_rules! every_term {
+    ($a:expr, $b:expr) => {{
+        let mut out = [[0.0f32; 4]; 4];
+        for (c, out_col) in out.iter_mut().enumerate() {
+            for (r, o) in out_col.iter_mut().enumerate() {
+                *o = $a.m[0][r] * $b.m[c][0]
+                    + $a.m[1][r] * $b.m[c][1]
+                    + $a.m[2][r] * $b.m[c][2]
+                    + $a.m[3][r] * $b.m[c][3];
+            }
+        }
+        Mat4 { m: out }
+    }};
+}
+
 impl core::ops::Mul for Mat4 {
     type Output = Mat4;
     /// Out of line: a frame takes a few products (camera, each draw's
@@ -401,22 +422,9 @@ impl core::ops::Mul for Mat4 {
             return full_product(&self, &rhs);
         };
         // With an FPU the full product in place, as it was before the
-        // short cuts: a function of its own (even inlined) moved the
-        // Cortex-M4F's callers (`demo` +38 instructions, 104 B more
-        // stack).
+        // short cuts (see `every_term`).
         #[cfg(not(any(test, microraster_soft_float)))]
-        let out = {
-            let mut out = [[0.0f32; 4]; 4];
-            for (c, out_col) in out.iter_mut().enumerate() {
-                for (r, o) in out_col.iter_mut().enumerate() {
-                    *o = self.m[0][r] * rhs.m[c][0]
-                        + self.m[1][r] * rhs.m[c][1]
-                        + self.m[2][r] * rhs.m[c][2]
-                        + self.m[3][r] * rhs.m[c][3];
-                }
-            }
-            Mat4 { m: out }
-        };
+        let out = every_term!(self, rhs);
         out
     }
 }
@@ -430,16 +438,7 @@ impl core::ops::Mul for Mat4 {
 #[cold]
 #[inline(never)]
 fn full_product(a: &Mat4, b: &Mat4) -> Mat4 {
-    let mut out = [[0.0f32; 4]; 4];
-    for (c, out_col) in out.iter_mut().enumerate() {
-        for (r, o) in out_col.iter_mut().enumerate() {
-            *o = a.m[0][r] * b.m[c][0]
-                + a.m[1][r] * b.m[c][1]
-                + a.m[2][r] * b.m[c][2]
-                + a.m[3][r] * b.m[c][3];
-        }
-    }
-    Mat4 { m: out }
+    every_term!(a, b)
 }
 
 /// `a * b` where `f32` is in software ([`SOFT_FLOAT`]), term by term with

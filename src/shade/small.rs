@@ -245,9 +245,23 @@ impl SmallBasis {
                 q as i32
             };
         }
-        let d = self.area2;
         // Within i32 for -2^21 <= n < 2^21: no bit is lost.
-        let m = n << 10;
+        self.div_round32_of_m(n << 10, shift)
+    }
+}
+
+impl SmallBasis {
+    /// [`SmallBasis::div_round32`] in signed divisions of `m = n 2^10`
+    /// (the caller's numerator times 2^10, for `-2^21 <= n < 2^21`
+    /// within its bounds); [`SmallBasis::div_round32_with`]'s signed
+    /// form passes `n` shifted. Given as a product's result, `m` is a register the remainder
+    /// `m - q area2` takes in one multiply-subtract, where the shifted
+    /// `n` went into a subtract with a shifted operand after a
+    /// multiply (see [`SHIFTED_NUMERATORS`]).
+    #[inline(always)]
+    pub(super) fn div_round32_of_m(&self, m: i32, shift: u32) -> i32 {
+        let k = shift - 10;
+        let d = self.area2;
         let q = m / d;
         let r = m - q * d;
         // `n`'s sign, read from `m` (the same bit: the shift loses none).
@@ -260,30 +274,6 @@ impl SmallBasis {
         // `half` with n's sign. `|area2| <= 2 * 1023^2` (edge vectors of at
         // most 1023 sub-pixels), so `|r| 2^10 + half <= (|area2| - 1) 2^10
         // + |area2| / 2 < 2^31`: no overflow.
-        let half = (self.half ^ sign) - sign;
-        let low = ((r << k) + half) / d;
-        (q << k) + low
-    }
-}
-
-impl SmallBasis {
-    /// [`SmallBasis::div_round32`] in signed divisions of `m = n 2^10`
-    /// (the caller's numerator times 2^10, for `-2^21 <= n < 2^21`
-    /// within its bounds): the same steps as
-    /// [`SmallBasis::div_round32_with`], whose `m` is a shift of `n`.
-    /// Given as a product's result, `m` is a register the remainder
-    /// `m - q area2` takes in one multiply-subtract, where the shifted
-    /// `n` went into a subtract with a shifted operand after a
-    /// multiply (see [`SHIFTED_NUMERATORS`]).
-    #[inline(always)]
-    pub(super) fn div_round32_of_m(&self, m: i32, shift: u32) -> i32 {
-        let k = shift - 10;
-        let d = self.area2;
-        let q = m / d;
-        let r = m - q * d;
-        // `n`'s sign (see `div_round32_with`) and `half` with it: no
-        // overflow, as there.
-        let sign = m >> 31;
         let half = (self.half ^ sign) - sign;
         let low = ((r << k) + half) / d;
         (q << k) + low
