@@ -43,7 +43,7 @@
 
 use crate::math::times_pow2;
 use crate::math::Mat4;
-use crate::math::{mul_wide, SPLIT};
+use crate::math::{mul_wide_by_narrow, SPLIT};
 use crate::mesh::{Mesh, Vec3Fx};
 use crate::scene::Draw;
 
@@ -211,7 +211,8 @@ impl Frustum {
     /// [`excludes_box`](Self::excludes_box) on ARMv6-M, which has no
     /// 32x32 to 64-bit multiply (each `i64` product a library call of
     /// about 40 instructions): the same sums, each product from 32-bit
-    /// pieces ([`mul_by_coefficient`]), the same answer. Out of line:
+    /// pieces ([`mul_wide_by_narrow`]: a doubled centre or extent `|v| < 2^33`
+    /// by a coefficient `|a| < 2^27`), the same answer. Out of line:
     /// inlined into the draw, its code cost the binning stage 7,223
     /// instructions of `demo` a frame (that function's registers moved).
     /// Elsewhere only inline, so that no other target compiles it.
@@ -222,13 +223,13 @@ impl Frustum {
         let (c, e) = centre_extent(bounds);
         self.planes.iter().any(|p| {
             let [a, b, cc] = p.n;
-            let dist = mul_by_coefficient(c[0], a)
-                + mul_by_coefficient(c[1], b)
-                + mul_by_coefficient(c[2], cc)
+            let dist = mul_wide_by_narrow(c[0], a)
+                + mul_wide_by_narrow(c[1], b)
+                + mul_wide_by_narrow(c[2], cc)
                 + p.d2;
-            let reach = mul_by_coefficient(e[0], a.abs())
-                + mul_by_coefficient(e[1], b.abs())
-                + mul_by_coefficient(e[2], cc.abs());
+            let reach = mul_wide_by_narrow(e[0], a.abs())
+                + mul_wide_by_narrow(e[1], b.abs())
+                + mul_wide_by_narrow(e[2], cc.abs());
             // The bounds of `excludes_box`: the sum stays below 2^62.
             dist + reach + p.margin < 0
         })
@@ -255,20 +256,6 @@ impl Frustum {
             dist + p.norm() * radius as i64 + p.margin < 0
         })
     }
-}
-
-/// `v a` exactly, for a doubled centre or extent `|v| < 2^33` and a plane
-/// coefficient `|a| < 2^27`: with `v = h 2^32 + l`, `l` the signed low
-/// word and `h` the rest (`|h| <= 2`), `v a = (h a) 2^32 + l a`, the
-/// first a 32-bit product (below 2^29 in magnitude), the second
-/// [`mul_wide`]'s (four 16-bit products on ARMv6-M).
-#[cfg_attr(not(any(test, microraster_narrow_multiply)), allow(dead_code))]
-#[inline(always)]
-fn mul_by_coefficient(v: i64, a: i32) -> i64 {
-    let l = v as i32;
-    // `l` negative borrows 2^32 from the upper word: `h` one more.
-    let h = (v >> 32) as i32 - (l >> 31);
-    (((h * a) as i64) << 32) + mul_wide(l, a)
 }
 
 /// The doubled centre `lo + hi` and doubled extent `hi - lo` of a box, raw
@@ -455,10 +442,6 @@ mod tests {
         (proj.unwrap() * view, model, b)
     }
 
-    /// Every box the integer test excludes has all its corners (and its
-    /// centre) outside one plane as the renderer's 16.16 vertex stage
-    /// computes them, so culling it cannot change the picture; and it
-    /// excludes nearly every box that exact arithmetic finds outside.
     #[test]
     fn split_shifts_are_exact() {
         for m in [0x80_0000u32, 0x80_0001, 0xab_cdef, 0xff_ffff] {
@@ -484,16 +467,20 @@ mod tests {
         let az = [-(1i32 << 27) + 1, -65_536, -1, 0, 1, 65_535, (1 << 27) - 1];
         for &v in &vs {
             for &a in &az {
-                assert_eq!(mul_by_coefficient(v, a), v * a as i64, "{v} * {a}");
+                assert_eq!(mul_wide_by_narrow(v, a), v * a as i64, "{v} * {a}");
             }
         }
         for _ in 0..100_000 {
             let v = next(1 << 34) as i64 - (1 << 33) + 1;
             let a = next(1 << 28) as i32 - (1 << 27) + 1;
-            assert_eq!(mul_by_coefficient(v, a), v * a as i64, "{v} * {a}");
+            assert_eq!(mul_wide_by_narrow(v, a), v * a as i64, "{v} * {a}");
         }
     }
 
+    /// Every box the integer test excludes has all its corners (and its
+    /// centre) outside one plane as the renderer's 16.16 vertex stage
+    /// computes them, so culling it cannot change the picture; and it
+    /// excludes nearly every box that exact arithmetic finds outside.
     #[test]
     fn excluded_boxes_are_outside_in_the_vertex_stage_and_few_are_missed() {
         use crate::vertex::{outcode, DrawSetup, REJECT_MASK};

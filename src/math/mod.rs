@@ -46,7 +46,7 @@ pub(crate) use recip16::leading_zeros_search;
 pub(crate) use recip16::{leading_zeros, recip31, Recip16};
 pub(crate) use soft_float::{times_pow2, SOFT_FLOAT};
 pub use trig::{sin_cos, sqrt, tan};
-pub(crate) use wide::{mul_wide, SPLIT};
+pub(crate) use wide::{mul_wide, mul_wide_by_narrow, SPLIT};
 
 /// A 3-component `f32` vector, used for per-frame set-up (camera, lights).
 #[derive(Clone, Copy, Debug, PartialEq, Default)]

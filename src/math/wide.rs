@@ -23,6 +23,22 @@ pub(crate) fn mul_wide(a: i32, b: i32) -> i64 {
     }
 }
 
+/// `v a` exactly where the upper word of `v` (rounded for a negative low
+/// word) times `a` fits `i32`, from 32-bit pieces: with `v = h 2^32 + l`,
+/// `l` the signed low word and `h` the rest, `v a = (h a) 2^32 + l a`,
+/// the first a 32-bit product, the second [`mul_wide`]'s (four 16-bit
+/// products on ARMv6-M, where an `i64` product is a library call of
+/// about 40 instructions). Used there for the wide perspective planes'
+/// constants and the draw's box test.
+#[cfg_attr(not(any(test, microraster_narrow_multiply)), allow(dead_code))]
+#[inline(always)]
+pub(crate) fn mul_wide_by_narrow(v: i64, a: i32) -> i64 {
+    let l = v as i32;
+    // `l` negative borrows 2^32 from the upper word: `h` one more.
+    let h = (v >> 32) as i32 - (l >> 31);
+    (((h * a) as i64) << 32) + mul_wide(l, a)
+}
+
 /// [`mul_wide`] from 16-bit halves: with `a = ah 2^16 + al` (`ah` signed,
 /// `-2^15 <= ah < 2^15`; `0 <= al < 2^16`) and likewise `b`,
 /// `a b = ah bh 2^32 + (ah bl + al bh) 2^16 + al bl`. Each product fits its

@@ -6,7 +6,7 @@
 
 use super::lerp::NARROW_MULTIPLY;
 use super::{Q_MAX, Q_ONE};
-use crate::math::{mul_wide, Recip16};
+use crate::math::{mul_wide, mul_wide_by_narrow, Recip16};
 use crate::raster::SUBPIXEL_BITS;
 use crate::shade::small::Small;
 use crate::shade::{Basis, GRADIENT_LIMIT};
@@ -43,7 +43,7 @@ impl WidePlane {
         // |g| <= 2^40 and |o| < 2^19: no overflow.
         let k = if NARROW_MULTIPLY {
             values[0]
-                + ((mul_by_narrow(gx, f.ox as i32) + mul_by_narrow(gy, f.oy as i32))
+                + ((mul_wide_by_narrow(gx, f.ox as i32) + mul_wide_by_narrow(gy, f.oy as i32))
                     >> SUBPIXEL_BITS)
         } else {
             values[0] + ((gx * f.ox + gy * f.oy) >> SUBPIXEL_BITS)
@@ -390,22 +390,6 @@ pub(super) fn small_wide_gradients_digits(f: &Basis, s: &Small, values: [i64; 3]
     )
 }
 
-/// `g o` exactly, for a gradient `|g| <= 2^40` and an offset `|o| < 2^19`
-/// ([`WidePlane::new`]'s constant), on ARMv6-M without a 64-bit product
-/// (each `i64` product there is a library call of about 40
-/// instructions): with `g = h 2^32 + l`, `l` the signed low word and `h`
-/// the rest (`|h| <= 2^8 + 1`), `g o = (h o) 2^32 + l o`, the first a
-/// 32-bit product (below 2^28 in magnitude), the second [`mul_wide`]'s
-/// (four 16-bit products).
-#[cfg_attr(not(any(test, microraster_narrow_multiply)), allow(dead_code))]
-#[inline(always)]
-pub(super) fn mul_by_narrow(g: i64, o: i32) -> i64 {
-    let l = g as i32;
-    // `l` negative borrows 2^32 from the upper word: `h` one more.
-    let h = (g >> 32) as i32 - (l >> 31);
-    (((h * o) as i64) << 32) + mul_wide(l, o)
-}
-
 /// `a b` in `i64`: one 32x32 to 64-bit product.
 #[cfg_attr(target_pointer_width = "64", allow(dead_code))]
 #[inline(always)]
@@ -518,13 +502,13 @@ mod tests {
         let os = [-(1i32 << 19) + 1, -65_536, -1, 0, 1, 65_535, (1 << 19) - 1];
         for &g in &gs {
             for &o in &os {
-                assert_eq!(mul_by_narrow(g, o), g * o as i64, "{g} * {o}");
+                assert_eq!(mul_wide_by_narrow(g, o), g * o as i64, "{g} * {o}");
             }
         }
         for _ in 0..100_000 {
             let g = next((1 << 41) + 1) as i64 - (1 << 40);
             let o = next(1 << 20) as i32 - (1 << 19) + 1;
-            assert_eq!(mul_by_narrow(g, o), g * o as i64, "{g} * {o}");
+            assert_eq!(mul_wide_by_narrow(g, o), g * o as i64, "{g} * {o}");
         }
     }
 }
