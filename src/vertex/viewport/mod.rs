@@ -3,12 +3,24 @@
 //! NDC x in `[-1, 1]` maps to `[0, width]` pixels left to right, NDC y in
 //! `[-1, 1]` to `[height, 0]` (screen y grows downwards), both rounded to the
 //! nearest 1/16 pixel. NDC z in `[-1, 1]` maps to depth `0..=65535`.
+//!
+//! The projection divides by `w` in the form the core is fastest at:
+//! [`long`] by 32-bit division where it is an instruction (ARMv7-M,
+//! ARMv8-M Mainline, RISC-V `rv32im`), [`recip`] by `w`'s 16-bit
+//! reciprocal on ARMv6-M, [`wide`] by 64-bit division on 64-bit hosts; the
+//! general form here serves the rare vertex far away or clipped.
+
+mod long;
+mod recip;
+mod wide;
 
 use super::{outcode, ClipVertex, ScreenVertex, MUST_CLIP, W_MIN};
-use crate::math::Recip16;
 use crate::math::WDivisor;
 use crate::raster::{SubPoint, SUBPIXEL};
 use core::num::{NonZeroU32, NonZeroU64};
+
+use long::FAST_W;
+use recip::RECIP_W;
 
 /// Largest viewport side in pixels.
 pub const MAX_VIEWPORT: u32 = 4096;
@@ -185,168 +197,6 @@ impl Viewport {
         self.project_by(p, w, |m| m / d)
     }
 
-    /// [`project`](Self::project) of a vertex without [`MUST_CLIP`] bits
-    /// and `w` below `short_w` (and `2^23`) by 32-bit division: x's and
-    /// y's dividends `|x| h + w / 2 <= 4 w h + w / 2` fit 32 bits, so
-    /// each quotient is one division (where the long division below took
-    /// two and their shifts); depth's quotient is two divisions
-    /// ([`depth_digits`]).
-    #[inline(always)]
-    pub(crate) fn project_digits(&self, p: &[i32; 4], w: NonZeroU32) -> (SubPoint, u32) {
-        debug_assert!(w.get() < self.short_w && w.get() as i64 >= W_MIN);
-        let half = w.get() / 2;
-        // Half a viewport side in sub-pixels is at most 2^15; |x|, |y| <=
-        // 4w.
-        let (hw, hh) = (self.half_w as u32, self.half_h as u32);
-        // div_round(n hw, w) with the sign of n.
-        let round = |n: i32, h: u32| -> i32 {
-            let q = ((n.unsigned_abs() * h + half) / w) as i32;
-            if n < 0 {
-                -q
-            } else {
-                q
-            }
-        };
-        let x = self.half_w as i32 + round(p[0], hw);
-        let y = self.half_h as i32 - round(p[1], hh);
-        // div_round((z + w) 65535, 2w) = floor(((z + w) 65535 + w) / w) / 2,
-        // and -w <= z <= w: not negative, at most
-        // floor((2w 65535 + w) / w) / 2 = 65535, no clamp. (The 64-bit
-        // dividend's two divisions took its shifts and leading-zero count
-        // besides: 8 instructions a vertex more on the Cortex-M3.)
-        let z = depth_digits((p[2] + w.get() as i32) as u32, w);
-        (SubPoint::new(x, y), z)
-    }
-
-    /// [`project`](Self::project) of a vertex without [`MUST_CLIP`] bits
-    /// and `w <` [`RECIP_W`] by `w`'s 16-bit reciprocal ([`Recip16`]), for
-    /// ARMv6-M, which has neither a divide instruction nor a 32 x 32 ->
-    /// 64-bit multiply: every quotient is three digits of a long division
-    /// ([`Recip16::digit`]: two `MULS` and one correction each), with no
-    /// 64-bit product, where `w`'s 32-bit reciprocal and its 64-bit
-    /// multiply-highs took about 350 instructions a vertex more. The
-    /// quotients are the same.
-    ///
-    /// x's quotient `floor((|x| hw + e) / w)` (`e = floor(w / 2)`,
-    /// `|x| <= 4w`, `hw <= 2^15`) from `|x| = a w + b` (`b < w`) and `hw =
-    /// c1 2^7 + c0` (`c1 <= 2^8`, `c0 < 2^7`): with `b c1 = d1 w + r1`,
-    /// `|x| hw + e = (a hw + d1 2^7) w + (r1 2^7 + b c0 + e)`, the last
-    /// term below `w (2^8 + 1)`; so the quotient is `a hw + d1 2^7 +
-    /// floor((r1 2^7 + b c0 + e) / w)`. Likewise y. Depth's `floor((c
-    /// 65535 + w) / w)` (`c = z + w` in `0..=2w`) as [`depth_digits`]'.
-    /// The first digit of each pair is left uncorrected
-    /// ([`Recip16::estimate`]): the identities hold for any `d1`, `r1`
-    /// with `b c1 = d1 w + r1` (or `c 2^8`), and `r1 < 2w` keeps the last
-    /// term below `w 2^9` and `w 514`. Every digit's dividend is below `w
-    /// 2^12` (within [`Recip16::digit`]'s range) and, with `w <`
-    /// [`RECIP_W`], below `2^32`.
-    ///
-    /// Where both half sides are below `2^12` and `w` is at most `one_w`,
-    /// x's and y's `floor((b h + e) / w)` is one digit (its dividend below
-    /// `w 2^12` and `2^32`): ARMv6-M `demo` 6,746,451 to 6,663,049
-    /// instructions (vertex 1,060,241 to 976,845). For a vertex inside the
-    /// view volume (`inside`: `|x|, |y| <= w`, so `a` is 0 or `b = 0`)
-    /// the whole `floor((|x| h + e) / w)` is that one digit, without the
-    /// first digit's compare and `a h`: `demo` 6,661,509 to 6,630,124
-    /// (vertex 927,437 to 896,052).
-    #[inline(always)]
-    #[cfg_attr(not(microraster_narrow_multiply), allow(dead_code))]
-    pub(crate) fn project_recip(
-        &self,
-        p: &[i32; 4],
-        w: NonZeroU32,
-        inside: bool,
-    ) -> (SubPoint, u32) {
-        debug_assert!(w.get() < RECIP_W && w.get() as i64 >= W_MIN);
-        // w < 2^23: its logarithm from a table, not a search.
-        let f = Recip16::new_w23(w);
-        let wu = w.get();
-        let half = wu / 2;
-        // floor((|n| h + half) / w) for |n| <= 4w, h <= 2^15. A function
-        // inline, not a closure: LLVM kept the closure out of line (two
-        // calls a vertex).
-        #[inline(always)]
-        fn quotient(f: &Recip16, half: u32, n: i32, h: u32, one: bool) -> u32 {
-            // The first digit is 0 for nearly every vertex (inside the
-            // view volume, `|n| <= w`): a compare rather than a digit's
-            // two products and correction.
-            let m = n.unsigned_abs();
-            let (a, b) = if m < f.d { (0, m) } else { f.digit(m) };
-            // One digit where `one_w` allows it (a small viewport and
-            // `w`), else two of 8 and 7 bits.
-            let rest = match one {
-                true => f.digit(b * h + half).0,
-                false => {
-                    // The first uncorrected: `r1 < 2w` keeps the second's
-                    // dividend below `w 2^9` (and 2^32).
-                    let (d1, r1) = f.estimate(b * (h >> 7));
-                    let (d0, _) = f.digit((r1 << 7) + b * (h & 127) + half);
-                    (d1 << 7) + d0
-                }
-            };
-            a * h + rest
-        }
-        let (hw, hh) = (self.half_w as u32, self.half_h as u32);
-        let one = wu <= self.one_w();
-        let (qx, qy) = match inside && one {
-            // `|n| <= w` (inside the view volume: nearly every vertex):
-            // `|n| h + half < w (h + 1)`, below `w 2^12` and, for `w <=
-            // one_w`, `2^32`, so each quotient is one digit, without the
-            // first digit's compare and its product `a h`.
-            true => {
-                let digit = |n: i32, h: u32| f.digit(n.unsigned_abs() * h + half).0;
-                (digit(p[0], hw), digit(p[1], hh))
-            }
-            false => (
-                quotient(&f, half, p[0], hw, one),
-                quotient(&f, half, p[1], hh, one),
-            ),
-        };
-        // div_round(n h, w) with the sign of n.
-        let signed = |n: i32, q: u32| if n < 0 { -(q as i32) } else { q as i32 };
-        let x = self.half_w as i32 + signed(p[0], qx);
-        let y = self.half_h as i32 - signed(p[1], qy);
-        // -w <= z <= w (`depth_recip`).
-        (SubPoint::new(x, y), depth_recip(&f, p[2], wu))
-    }
-
-    /// [`project_recip`](Self::project_recip) of a vertex inside the view
-    /// volume (outcode 0) with `2^15 <= w <= one_w` (nearly every vertex:
-    /// `w` from half a unit up), inline in ARMv6-M's vertex loop; `None`
-    /// for any other vertex, which the loop sends out of line
-    /// (`vertex::setup`'s `lit_rest`, the whole vertex). Its outcode is then the
-    /// constant 0 and its `inside` true, where the loop's one inline path
-    /// for every vertex carried both (and the outcode) as values from the
-    /// outcode's paths to the packing, and `w`'s reciprocal is
-    /// [`Recip16::new_w15`], without `new_w23`'s branch below `2^15`. The
-    /// test of the view volume is [`outcode`]'s for ARMv6-M (the three
-    /// `w - |v|` or-ed, one sign test), its `|v|` kept for the digits.
-    #[inline(always)]
-    #[cfg_attr(not(microraster_narrow_multiply), allow(dead_code))]
-    pub(crate) fn project_recip_fast(&self, p: &[i32; 4]) -> Option<(SubPoint, u32)> {
-        let wu = p[3] as u32;
-        // 2^15 <= w <= one_w (W_MIN <= 2^15, one_w < RECIP_W < 2^23).
-        if wu.wrapping_sub(1 << 15) >= self.fast_w() {
-            return None;
-        }
-        let m = [p[0], p[1], p[2]].map(|v| v.unsigned_abs());
-        // |v| <= w for each, as `w - |v|` below 2^31 (see `outcode`).
-        if (wu.wrapping_sub(m[0]) | wu.wrapping_sub(m[1]) | wu.wrapping_sub(m[2])) >> 31 != 0 {
-            return None;
-        }
-        let f = Recip16::new_w15(wu);
-        let half = wu / 2;
-        // `|n| h + half < w (h + 1)`, below `w 2^12` and, for `w <=
-        // one_w`, `2^32`: one digit (as `project_recip`'s).
-        let (hw, hh) = (self.half_w as u32, self.half_h as u32);
-        let qx = f.digit(m[0] * hw + half).0;
-        let qy = f.digit(m[1] * hh + half).0;
-        let signed = |n: i32, q: u32| if n < 0 { -(q as i32) } else { q as i32 };
-        let x = self.half_w as i32 + signed(p[0], qx);
-        let y = self.half_h as i32 - signed(p[1], qy);
-        Some((SubPoint::new(x, y), depth_recip(&f, p[2], wu)))
-    }
-
     /// `hash` (0, where the field is not kept: `project_fast_wide`
     /// unused).
     #[inline(always)]
@@ -444,7 +294,7 @@ impl Viewport {
 
     /// The outcode and projection of [`screen_vertex_lit`](Self::screen_vertex_lit):
     /// with `fast`, a vertex inside the view volume inline (where a
-    /// division is an instruction, or by `w`'s [`Recip16`] on ARMv6-M) and
+    /// division is an instruction, or by `w`'s [`Recip16`](crate::math::Recip16) on ARMv6-M) and
     /// any other out of line; without, every vertex inline.
     #[inline(always)]
     fn project_any(&self, pos: &[i32; 4], fast: bool) -> (u8, SubPoint, u32) {
@@ -499,100 +349,6 @@ impl Viewport {
     fn project_rest(&self, x: i32, y: i32, z: i32, w: i32) -> (u8, SubPoint, u32) {
         self.outcode_and_project(&[x, y, z, w])
     }
-
-    /// [`project`](Self::project) of a vertex inside the view volume
-    /// (outcode 0: `W_MIN <= w`, `|x|, |y|, |z| <= w`) with `w` below
-    /// `short_w`, by 32-bit divisions; `None` for any other vertex. With
-    /// `c = v + w` for each coordinate `v` (`0..=2w` inside, and outside
-    /// it as an unsigned word, for `w < 2^23`: so the inside test is three
-    /// unsigned compares with `2w`):
-    ///
-    /// * x's `div_round(x hw, w)` (ties away from zero) is `floor((x hw +
-    ///   o) / w)` with `o = floor(w / 2)` for `x >= 0` and `floor((w - 1) /
-    ///   2)` for `x < 0`; adding `hw w` (`hw` half the width), the screen
-    ///   `x = hw + div_round(x hw, w)` is `floor((c hw + o) / w)`, which is
-    ///   `floor((2 c hw + w - s) / (2w))` (`s = 1` for `x < 0`, else 0: an
-    ///   odd numerator is never a multiple of `2w`), no sign test; the
-    ///   numerator is at most `4 w hw + w < 2^32` (`short_w`);
-    /// * y likewise, as `2 hh - floor((2 c hh + w - s) / (2w))`;
-    /// * depth by two divisions ([`depth_digits`]).
-    ///
-    /// The same results; about 30 instructions a vertex fewer on the
-    /// Cortex-M3 than the outcode and [`project_digits`](Self::project_digits).
-    #[inline(always)]
-    pub(crate) fn project_fast(&self, p: &[i32; 4]) -> Option<(SubPoint, u32)> {
-        let w = p[3] as u32;
-        // W_MIN <= w < short_w, as one unsigned compare (short_w > W_MIN).
-        // The bound masked to 23 bits, which leaves it as it is (`short_w
-        // <= 2^23`) but shows the compiler that `w < 2^24`, so that `2w`
-        // is not 0 (once per loop: the bound is the loop's; it tested `2w`
-        // every vertex).
-        let bound = (self.short_w - W_MIN as u32) & ((1 << DIGITS_W_BITS) - 1);
-        if w.wrapping_sub(W_MIN as u32) >= bound {
-            return None;
-        }
-        // Not 0 (the compiler sees it through the bound, see above).
-        let w2n = NonZeroU32::new(w << 1)?;
-        let w2 = w2n.get();
-        let c = [p[0], p[1], p[2]].map(|v| (v as u32).wrapping_add(w));
-        if c[0] > w2 || c[1] > w2 || c[2] > w2 {
-            return None;
-        }
-        // The width and height in sub-pixels, 2 hw and 2 hh.
-        let (tw, th) = ((self.half_w as u32) << 1, (self.half_h as u32) << 1);
-        // w - s, for s = 1 where the coordinate is negative.
-        let odd = |v: i32| w.wrapping_add((v >> 31) as u32);
-        let x = (c[0] * tw + odd(p[0])) / w2n;
-        let y = th - (c[1] * th + odd(p[1])) / w2n;
-        // 3w - c = 2w - z: one subtraction (from `c`, `3w` took one more).
-        let z = depth_by_2w(c[2], w2.wrapping_sub(p[2] as u32), w2n);
-        Some((SubPoint::new(x as i32, y as i32), z))
-    }
-
-    /// [`project_fast`](Self::project_fast) in 64-bit words, for any `w`
-    /// from `W_MIN` up, where a 64-bit division is an instruction
-    /// ([`WIDE_DIVISION`]): the same three quotients by `2w` (depth's
-    /// `floor(floor((c 65535 + w) / w) / 2)` is `floor((c 65535 + w) /
-    /// (2w))`), whose numerators (below `2^50`) cannot overflow; `None`
-    /// for a vertex outside the view volume. The general projection's
-    /// sign tests, clamp and `w`'s divisor took x86-64 about 20
-    /// instructions a vertex more, besides the outcode.
-    #[inline(always)]
-    pub(crate) fn project_fast_wide(&self, p: &[i32; 4]) -> Option<(SubPoint, u32)> {
-        self.project_fast_words(&p.map(i64::from))
-    }
-
-    /// [`project_fast_wide`](Self::project_fast_wide) of clip coordinates
-    /// given as 64-bit words, each within `i32` (x86-64's common vertex
-    /// loop, whose transform sums in 64 bits: from 32-bit words it
-    /// sign-extended each again).
-    #[inline(always)]
-    pub(crate) fn project_fast_words(&self, p: &[i64; 4]) -> Option<(SubPoint, u32)> {
-        debug_assert!(p.iter().all(|&v| i32::try_from(v).is_ok()));
-        let w = p[3];
-        if w < W_MIN {
-            return None;
-        }
-        // At least 2 W_MIN: not zero (the compiler does not see it). The
-        // `xor` with zero keeps LLVM's 32-bit test off the three
-        // divisions (see `hash`).
-        let w2n = NonZeroU64::new(((w as u64) << 1) ^ self.hash())?;
-        let w2 = w2n.get();
-        // `v + w`, in `0..=2w` inside the view volume (a negative one
-        // wraps above it).
-        let c = [p[0], p[1], p[2]].map(|v| (v + w) as u64);
-        if c[0] > w2 || c[1] > w2 || c[2] > w2 {
-            return None;
-        }
-        let (tw, th) = ((self.half_w as u64) << 1, (self.half_h as u64) << 1);
-        // w - s, for s = 1 where the coordinate is negative.
-        let odd = |v: i64| (w + (v >> 63)) as u64;
-        let x = (c[0] * tw + odd(p[0])) / w2n;
-        let y = th - (c[1] * th + odd(p[1])) / w2n;
-        let z = (c[2] * 65_535 + w as u64) / w2n;
-        debug_assert!(z <= 65_535);
-        Some((SubPoint::new(x as i32, y as i32), z as u32))
-    }
 }
 
 /// Whether the vertex stage projects a vertex inside the view volume by
@@ -609,82 +365,9 @@ const LONG_DIVISION: bool = cfg!(all(
     not(target_pointer_width = "64")
 ));
 
-/// Depth `floor((c 65535 + w) / w) / 2` (at most 65,535) of `c = z + w`
-/// in `0..=2w`, for `w < 2^23`, by two 32-bit divisions: with `c 2^8 = d1
-/// w + r1`, `c 65535 + w = c 2^16 - c + w = d1 2^8 w + (r1 2^8 + w - c)`,
-/// and `w - c >= -w`, so the quotient is `d1 2^8 + floor((r1 2^8 + 2w - c)
-/// / w) - 1`; every dividend is below `2^32` (`c 2^8 <= w 2^9`, `r1 2^8 +
-/// 2w < w 2^8 + 2w`). (Three digits of one division each, the first `c /
-/// w`, took a multiply and three instructions more.)
-#[inline(always)]
-fn depth_digits(c: u32, w: NonZeroU32) -> u32 {
-    debug_assert!(w.get() >> DIGITS_W_BITS == 0 && c <= 2 * w.get());
-    let c8 = c << 8;
-    let (d1, r1) = (c8 / w, c8 % w);
-    let d0 = ((r1 << 8) + (2 * w.get() - c)) / w;
-    depth_of_digits(d1, d0)
-}
-
-/// Depth `floor((c 65535 + w) / (2w))` (at most 65,535) of `c = z + w`
-/// in `0..=2w`, given `e = 3w - c` and `w2 = 2w`, for `w <` [`FAST_W`],
-/// by two 32-bit divisions by `2w`
-/// ([`Viewport::project_fast`]'s divisor for x and y): with `c 2^8 = d1
-/// 2w + r1` (`r1 < 2w`), `c 65535 + w = d1 2^8 2w + (r1 2^8 + w - c)`,
-/// and `w - c >= -w`, so the depth is `d1 2^8 + floor((r1 2^8 + 3w - c)
-/// / (2w)) - 1`, whose dividend is at least `w` and below `515 w <= 2^32`
-/// (`c 2^8 <= w 2^9` too); and not negative (where `r1 2^8 + w < c`,
-/// `c > w` and `d1 >= 128`). [`depth_digits`]' quotients by `w` took a
-/// halving more: one instruction a vertex on the Cortex-M3 and M4F.
-#[inline(always)]
-fn depth_by_2w(c: u32, e: u32, w2: NonZeroU32) -> u32 {
-    let w = w2.get() / 2;
-    debug_assert!(w < FAST_W && w2.get() == 2 * w && c <= 2 * w && e == 3 * w - c);
-    let c8 = c << 8;
-    let (d1, r1) = (c8 / w2, c8 % w2);
-    let d0 = ((r1 << 8) + e) / w2;
-    let z = (d1 << 8) + d0 - 1;
-    debug_assert!(z <= 65_535);
-    z
-}
-
-/// The bound of `short_w`: [`depth_by_2w`] takes `w` below it, `515 w <
-/// 2^32` (below `2^23`, `DIGITS_W_BITS`).
-const FAST_W: u32 = u32::MAX / 515;
-
-/// Depth from the two digits of [`depth_digits`] (and of
-/// [`Viewport::project_recip`]'s), `d1 2^8 + d0 = floor((c 65535 + w) /
-/// w) + 1`: that quotient halved.
-#[inline(always)]
-fn depth_of_digits(d1: u32, d0: u32) -> u32 {
-    // Not negative: the quotient is at least 1.
-    let z = ((d1 << 8) + d0 - 1) >> 1;
-    debug_assert!(z <= 65_535);
-    z
-}
-
-/// Depth of `z` by `w`'s [`Recip16`] `f` (`-w <= z <= w`, `w <`
-/// [`RECIP_W`]), as [`depth_digits`]' two digits of `c = z + w` in
-/// `0..=2w`, the first uncorrected (`estimate`: `r1 < 2w`, `c 2^8 = d1 w +
-/// r1` all the same), the second's dividend below `w 514` and so below
-/// 2^32 (`RECIP_W`).
-#[inline(always)]
-fn depth_recip(f: &Recip16, z: i32, w: u32) -> u32 {
-    let c = (z + w as i32) as u32;
-    let (d1, r1) = f.estimate(c << 8);
-    let (d0, _) = f.digit((r1 << 8) + (2 * w - c));
-    depth_of_digits(d1, d0)
-}
-
-/// [`Viewport::project_digits`] takes `w` below `2^DIGITS_W_BITS`.
-const DIGITS_W_BITS: u32 = 23;
-
-/// [`Viewport::project_recip`] takes `w` below this: below `2^23` (its
-/// logarithm's table) and such that `514 w < 2^32`, the bound of depth's
-/// second dividend after an uncorrected first digit.
-const RECIP_W: u32 = u32::MAX / 514;
-
 #[cfg(test)]
 mod tests {
+    use super::long::DIGITS_W_BITS;
     use super::*;
     use crate::vertex::{div_round, GUARD_K};
 
