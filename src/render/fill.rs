@@ -246,6 +246,9 @@ where
     let common = WRITE
         && core::mem::size_of::<D>() == 0
         && core::any::TypeId::of::<C>() == core::any::TypeId::of::<Rgb565>();
+    // Where `EARLY_INTERIOR`, the interior bit from the vertices.
+    #[cfg(microraster_interior)]
+    let early = EARLY_INTERIOR && ScreenVertex::all_interior(*sv);
     let small = if common {
         TriangleSetup::small_for_spans::<GOURAUD>(corners)
     } else {
@@ -259,7 +262,15 @@ where
     // `demo` 3,265,769 -> 3,211,719 instructions, `rock` 2,682,037 ->
     // 2,629,032; Cortex-M4F `demo` 3,251,382 -> 3,177,168).
     if let Some(setup) = &small {
-        if GOURAUD && SPLIT_INTERIOR && setup.interior() {
+        #[cfg(microraster_interior)]
+        let interior = if EARLY_INTERIOR {
+            early
+        } else {
+            setup.interior()
+        };
+        #[cfg(not(microraster_interior))]
+        let interior = setup.interior();
+        if GOURAUD && SPLIT_INTERIOR && interior {
             // The same call as the one for the other triangles below,
             // written out twice: shared by one local closure, ARMv6-M's
             // `demo` took 6,663,049 -> 6,710,917 (the raster's registers;
@@ -360,6 +371,19 @@ where
     };
     spans!(setup, corners)
 }
+
+/// Whether [`shade`] takes the interior bit of a triangle with a small
+/// set-up from its vertices (`ScreenVertex::all_interior`, read before the
+/// set-up) rather than from the set-up's field: the same bit (a small
+/// set-up is never wide), on ARMv7E-M (the build script's
+/// `microraster_armv7em`), with the small set-up's half-area bound
+/// (`shade::small`'s `HALF_TEST`). The registers of the set-up and of the
+/// interior span start then fall so that the span start keeps its 42
+/// instructions where the bound alone moved them (two more a span): the
+/// Cortex-M4F's `demo` 2,953,379 -> 2,937,011 instructions with both,
+/// 2,967,907 with the bound alone, 2,960,827 with this alone (see
+/// `HALF_TEST` for the other scenes).
+const EARLY_INTERIOR: bool = cfg!(microraster_armv7em);
 
 /// Whether [`fill`] sends a Gouraud triangle of one colour to the flat
 /// span loops: on the Cortex-M4F (the build script's

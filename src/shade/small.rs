@@ -303,6 +303,40 @@ impl SmallBasis {
 /// three; without this set-up, no barrier gave 2,972,444.
 const SHIFTED_NUMERATORS: bool = cfg!(microraster_armv7em);
 
+/// Whether [`TriangleSetup::small`] bounds depth's first digits by half
+/// the area (`m >> 13 < half`, see [`half_bound_holds`]) rather than by the
+/// area (`m >> 12 < area`): on ARMv7E-M (the build script's
+/// `microraster_armv7em`), and in the unit tests, which compare the small
+/// set-up with the general one under it. Half the area is then a value
+/// that the tests compare before the branch, held in a register, where
+/// each gradient's rounding took it as the area shifted, an operand that
+/// the signed half's `EOR` folded in (`lsr #1`), so that the numerator's
+/// sign took an `ASR` of its own: each of a Gouraud triangle's eight
+/// gradients now takes the half with its sign in two instructions
+/// (`EOR` with the numerator shifted, `ADD` of its sign bit), where it
+/// took three. With the interior bit read from the vertices
+/// (`render::fill`'s `EARLY_INTERIOR`) the Cortex-M4F's `demo` 2,953,379
+/// -> 2,937,011 instructions, in the all-scenes build `demo` 2,953,406 ->
+/// 2,937,038, `rock` 2,456,357 -> 2,442,369, `grid4` 844,539 -> 837,667,
+/// `demo-flat` 2,503,569 -> 2,499,119 (the small set-up, about 7
+/// instructions fewer a pair), `fill` 8,839,841 -> 8,839,081, the shader
+/// fills and `demo-textured-lit` the same. Alone, `demo` measured
+/// 2,967,907 (the span start's registers moved: two instructions more a
+/// span). The bound is stricter (a triangle it turns away takes the
+/// general set-up, the same planes); in `demo` the same 95 pairs a run
+/// take the general set-up either way.
+const HALF_TEST: bool = cfg!(any(microraster_armv7em, test));
+
+/// The depth bound of [`HALF_TEST`]: `m >> 13 < half` (with `half =
+/// area / 2`) implies `m >> 12 < area`, the bound that keeps the first
+/// digits of depth's gradients at most 2^22 (see
+/// [`SmallBasis::div_round32`]), as `m >> 12 <= 2 (m >> 13) + 1 <=
+/// 2 half - 1 < area`.
+#[inline(always)]
+const fn half_bound_holds(m: u32, half: u32) -> bool {
+    m >> 13 < half
+}
+
 impl Small {
     /// `n / area` rounded to nearest, ties away from zero (as
     /// [`Basis::div_round`]), for `|n| < 2^43` and `area < 2^21`: the
@@ -388,7 +422,13 @@ impl TriangleSetup {
         let bad = (e >= SMALL_EDGE as u32 - 1)
             | ((area2.wrapping_add(1) as u32) <= 1)
             | (m >> 21 != 0)
-            | (m >> 12 >= area)
+            | if HALF_TEST {
+                // Stricter (see `half_bound_holds`), and half the area a
+                // register of its own for the gradients (`HALF_TEST`).
+                !half_bound_holds(m, area / 2)
+            } else {
+                m >> 12 >= area
+            }
             | (gouraud & (e >= area.wrapping_mul(2)));
         if bad {
             return None;
@@ -599,6 +639,36 @@ mod tests {
     use super::super::plane::Basis;
     use super::*;
     use crate::vertex::ScreenVertex;
+
+    /// [`half_bound_holds`] implies the depth bound it replaces
+    /// (`m >> 12 < area`) for every area up to `2 * 1023^2` and
+    /// numerators' magnitudes below 2^21, near the bound and at random.
+    #[test]
+    fn half_bound_implies_the_area_bound() {
+        let mut next = crate::testing::rng();
+        let max_area = 2 * 1023 * 1023;
+        let mut checked = 0;
+        for k in 0..200_000u64 {
+            let area = match k % 4 {
+                0 => next(64) as u32,
+                1 => next(max_area + 1) as u32,
+                _ => (next(max_area / 2) as u32) * 2 + (k % 2) as u32,
+            };
+            let half = area / 2;
+            // Around the bound's edge: `m` near `half 2^13`.
+            let edge = (half << 13).min((1 << 21) - 1);
+            let m = match k % 3 {
+                0 => next(1 << 21) as u32,
+                _ => edge.saturating_sub(next(1 << 14) as u32) + next(1 << 14) as u32,
+            }
+            .min((1 << 21) - 1);
+            if half_bound_holds(m, half) {
+                assert!(m >> 12 < area, "{m} {area}");
+                checked += 1;
+            }
+        }
+        assert!(checked > 10_000, "{checked}");
+    }
 
     /// The small set-up of triangles whose colour channels often have one
     /// value at the three vertices (its flat planes, taken without their
