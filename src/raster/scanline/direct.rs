@@ -130,9 +130,17 @@ pub(super) fn half_direct<'a, const CLAMP: bool, const SIDES: u8, const FRESH: b
     // loop keeps in registers, where it had reloaded the tile's copy
     // from the stack at every row (x86-64 `fill` 8.82 -> 8.76 a pixel,
     // `tri10000` 24,523,787 -> 24,437,426 instructions, for `demo`
-    // 2,810,655 -> 2,814,923 and `rock` 2,335,261 -> 2,339,073).
+    // 2,810,655 -> 2,814,923 and `rock` 2,335,261 -> 2,339,073). Only
+    // the column a one-side walk clamps to: the `black_box` of both had
+    // stored and loaded the unused one too, at every such half (x86-64
+    // `demo` 2,814,923 -> 2,812,399, `rock` -1.9 K, `tri4` -3.2 K,
+    // `tri100` -7.9 K, `tri10000` -1.5 K, `fill` -308).
     let (x0, x1) = if CLAMP && FRESH {
-        core::hint::black_box((x0, x1))
+        match SIDES {
+            LEFT => (core::hint::black_box(x0), x1),
+            RIGHT => (x0, core::hint::black_box(x1)),
+            _ => core::hint::black_box((x0, x1)),
+        }
     } else {
         (x0, x1)
     };
