@@ -8,9 +8,10 @@
 //! divided out in [`far_start`]. On ARMv6-M, whose division is a library
 //! call, small quotients come from compares ([`div_rem_compare`]).
 
+use super::replace_short;
 use crate::math::mul_wide;
 use crate::math::Recip16;
-use crate::raster::{SubPoint, HALF_PIXEL, SUBPIXEL, SUBPIXEL_BITS};
+use crate::raster::{Span, SubPoint, HALF_PIXEL, SUBPIXEL, SUBPIXEL_BITS};
 use core::num::NonZeroU32;
 
 /// One edge being walked down the rows: the first covered column at the
@@ -276,6 +277,100 @@ fn div_rem_long(m: u32, d: NonZeroU32) -> (u32, u32) {
         Recip16::new_small(d).digit(m)
     } else {
         (m / d, m % d)
+    }
+}
+
+/// Starts the lower half at `row`: the short edge becomes `b -> c`, on
+/// the left or the right (`long_on_left`).
+#[inline(always)]
+pub(super) fn lower_half(
+    b: SubPoint,
+    c: SubPoint,
+    row: i32,
+    long_on_left: bool,
+    left: &mut EdgeStepper,
+    right: &mut EdgeStepper,
+) {
+    replace_short(
+        long_on_left,
+        EdgeStepper::new::<true>(b, c, row),
+        left,
+        right,
+    );
+}
+
+/// [`half`]'s `REST` where [`find_spans`](super::find_spans) calls it: on 32-bit cores, and
+/// in the unit tests, which thereby walk as those cores do.
+pub(super) const SLOTS_LEFT: bool = cfg!(any(target_pointer_width = "32", test));
+
+/// Walks the rows `row..stop` between the edges `left` and `right`,
+/// recording the non-empty spans, clipped to columns `x0..x1`, in `out`
+/// from `out[n]` on; returns the new count. (A triangle within the
+/// columns is walked by [`half_packed`](super::packed::half_packed) instead.)
+///
+/// With `REST`, a span is written to the first of the slots left, which a
+/// non-empty one then leaves (a pointer and a length in registers, where
+/// the other way keeps the base, the count and the length): fewer live
+/// values in the loop on a 32-bit core, slower on a 64-bit host (x86-64
+/// `demo` +1.5 %; see [`SLOTS_LEFT`]).
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+pub(super) fn half<const REST: bool>(
+    out: &mut [Span],
+    mut n: usize,
+    row: i32,
+    stop: i32,
+    left: &mut EdgeStepper,
+    right: &mut EdgeStepper,
+    x0: i32,
+    x1: i32,
+) -> usize {
+    let (mut lc, mut le) = (left.col, left.err);
+    let (mut rc, mut re) = (right.col, right.err);
+    let (ls, lse, ld) = (left.step_col, left.step_err, left.den);
+    let (rs, rse, rd) = (right.step_col, right.step_err, right.den);
+    let len = out.len();
+    let (out, mut rest) = out.split_at_mut(if REST { n.min(len) } else { len });
+    for j in row..stop {
+        let s = Span {
+            j,
+            x0: lc.max(x0),
+            x1: rc.min(x1),
+        };
+        // Written whether empty or not, kept only if not: no branch.
+        if REST {
+            let r = core::mem::take(&mut rest);
+            let Some(o) = r.first_mut() else {
+                // No slot left: the caller's rows never exceed them.
+                break;
+            };
+            *o = s;
+            // A select of the two slices (see `half_packed`).
+            rest = if s.x0 < s.x1 { &mut r[1..] } else { r };
+        } else {
+            if let Some(o) = out.get_mut(n) {
+                *o = s;
+            }
+            n += (s.x0 < s.x1) as usize;
+        }
+        lc += ls;
+        le += lse;
+        if le >= 0 {
+            le -= ld;
+            lc -= 1;
+        }
+        rc += rs;
+        re += rse;
+        if re >= 0 {
+            re -= rd;
+            rc -= 1;
+        }
+    }
+    (left.col, left.err, right.col, right.err) = (lc, le, rc, re);
+    if REST {
+        len - rest.len()
+    } else {
+        n
     }
 }
 

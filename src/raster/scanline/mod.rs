@@ -44,12 +44,16 @@
 use super::{
     first_centre_at_or_after, PixelRect, Span, SubPoint, HALF_PIXEL, SUBPIXEL, SUBPIXEL_BITS,
 };
+#[cfg(test)]
+use cover::may_cover;
+use cover::{misses, misses_apart};
 use direct::{half_direct, Direct, BOTH, DIRECT_COLS, DIRECT_DY};
 #[cfg(target_pointer_width = "64")]
 use direct::{LEFT, RIGHT};
-use edge::EdgeStepper;
+use edge::{half, lower_half, EdgeStepper, SLOTS_LEFT};
 use packed::{half_packed, Packed, PACKED_COLS, PACKED_DY};
 
+mod cover;
 mod direct;
 mod edge;
 mod packed;
@@ -71,48 +75,6 @@ const DIRECT: bool = cfg!(any(not(microraster_narrow_multiply), test));
 /// 6,292,947, x86-64 3,097,082 -> 3,096,242; `rock` and `fill`
 /// unchanged on all four (24 to 31 within 5 of 20; 12 +5.2 K on the M3).
 const CHECK_ROWS: i32 = 20;
-
-/// Whether the triangle `v`, of positive twice signed area when
-/// `positive` (negative otherwise; zero covers nothing, whatever this
-/// says), may cover a pixel centre of `clip`: false only when no centre
-/// of `clip` can be covered, as every centre of its part within 2^20
-/// pixels of the origin lies strictly outside one of its edges (which no
-/// fill-rule tie can change), and the triangle, within the guard band,
-/// covers none beyond. A cheap test (one corner per edge) that lets a
-/// tile skip the row walk of a triangle whose bounding box merely
-/// overlaps it.
-///
-/// The clip so clamped, the corners' offsets from a vertex fit `i32`
-/// (below 2^25 sub-pixels), as do the edge vectors (2^19): each edge's
-/// test is two 32 x 32-bit products (the `i64` ones took 400 bytes of
-/// the OLED firmware's flash).
-#[inline]
-fn may_cover(v: &[SubPoint; 3], positive: bool, clip: PixelRect) -> bool {
-    const L: i32 = 1 << 20;
-    let (x0, x1) = (clip.x0.clamp(-L, L), clip.x1.clamp(-L, L));
-    let (y0, y1) = (clip.y0.clamp(-L, L), clip.y1.clamp(-L, L));
-    if x0 >= x1 || y0 >= y1 {
-        return false;
-    }
-    let (xl, xh) = (x0 * SUBPIXEL + HALF_PIXEL, (x1 - 1) * SUBPIXEL + HALF_PIXEL);
-    let (yl, yh) = (y0 * SUBPIXEL + HALF_PIXEL, (y1 - 1) * SUBPIXEL + HALF_PIXEL);
-    for k in 0..3 {
-        let (p, q) = (v[k], v[(k + 1) % 3]);
-        let (mut ex, mut ey) = (q.x - p.x, q.y - p.y);
-        // E(c) = ex (c.y - p.y) - ey (c.x - p.x) has the sign of the area on
-        // the inner side; flip it so the inner side is positive.
-        if !positive {
-            (ex, ey) = (-ex, -ey);
-        }
-        // The corner centre where E is largest.
-        let cx = if ey < 0 { xh } else { xl };
-        let cy = if ex > 0 { yh } else { yl };
-        if crate::math::mul_wide(ex, cy - p.y) < crate::math::mul_wide(ey, cx - p.x) {
-            return false;
-        }
-    }
-    true
-}
 
 /// Records the non-empty spans of triangle `v` in `clip`, in row order,
 /// in `out`, and returns how many: the walk of the rows of `clip` (at most
@@ -429,83 +391,8 @@ fn walk_direct<const CLAMP: bool, const SIDES: u8, const FRESH: bool>(
 /// only that one bit stays live. Within the guard band the edge vectors
 /// fit `i32`. A zero area gives false (see [`find_spans`]).
 #[inline(always)]
-fn long_on_left(a: SubPoint, b: SubPoint, c: SubPoint) -> bool {
+pub(super) fn long_on_left(a: SubPoint, b: SubPoint, c: SubPoint) -> bool {
     crate::math::mul_wide(b.x - a.x, c.y - a.y) > crate::math::mul_wide(c.x - a.x, b.y - a.y)
-}
-
-/// Whether the triangle `a, b, c` (sorted by y) misses every pixel centre
-/// of `clip` ([`may_cover`]). Out of line, as only a triangle of more
-/// than [`CHECK_ROWS`] rows in a tile asks: the walk then computes the
-/// orientation only where it needs it, in `i32` for a triangle within
-/// its tile's columns (inlined, the 64-bit orientation was computed for
-/// every triangle and spilled; the M3's `demo` -26 K instructions).
-///
-/// A 64-bit host has the registers for it inline (out of line there,
-/// x86-64 `demo` measured +3 %, `fill` +3.6 %).
-#[cfg_attr(target_pointer_width = "64", inline(always))]
-#[cfg_attr(not(target_pointer_width = "64"), inline(never))]
-fn misses(a: SubPoint, b: SubPoint, c: SubPoint, clip: PixelRect) -> bool {
-    !may_cover(&[a, b, c], long_on_left(a, b, c), clip)
-}
-
-/// [`misses`] out of line, for [`find_spans_inline`]: on 64-bit hosts in
-/// `i64` without the clamps of the clip and its emptiness test
-/// ([`may_cover_wide`]: about 15 instructions fewer a call; `fill` 8.84
-/// -> 8.81 a pixel, `tri10000` -26 K). The walk that `fill`'s
-/// `find_spans` makes (the shader draws' and any other rasterizer's)
-/// keeps [`misses`] inline on 64-bit hosts: out of line there, the
-/// shader fills took 0.07 instructions a fragment more.
-#[inline(never)]
-fn misses_apart(a: SubPoint, b: SubPoint, c: SubPoint, clip: PixelRect) -> bool {
-    if cfg!(target_pointer_width = "64") {
-        return !may_cover_wide(&[a, b, c], long_on_left(a, b, c), clip);
-    }
-    misses(a, b, c, clip)
-}
-
-/// [`may_cover`] in `i64` (64-bit hosts): the corners and products of any
-/// clip fit, so the clip needs no clamp (the same answer for every clip
-/// within 2^20 pixels of the origin, where the clamp changes nothing, and
-/// as exact beyond). An empty clip is not tested: whatever the answer,
-/// its rows are empty or its spans clamped empty (see [`find_spans`]),
-/// and [`misses_apart`] is asked only of the rows the walk takes.
-#[inline(always)]
-fn may_cover_wide(v: &[SubPoint; 3], positive: bool, clip: PixelRect) -> bool {
-    let c = |c: i32| c as i64 * SUBPIXEL as i64 + HALF_PIXEL as i64;
-    let (xl, xh) = (c(clip.x0), c(clip.x1 - 1));
-    let (yl, yh) = (c(clip.y0), c(clip.y1 - 1));
-    for k in 0..3 {
-        let (p, q) = (v[k], v[(k + 1) % 3]);
-        let (mut ex, mut ey) = ((q.x - p.x) as i64, (q.y - p.y) as i64);
-        if !positive {
-            (ex, ey) = (-ex, -ey);
-        }
-        let cx = if ey < 0 { xh } else { xl };
-        let cy = if ex > 0 { yh } else { yl };
-        if ex * (cy - p.y as i64) < ey * (cx - p.x as i64) {
-            return false;
-        }
-    }
-    true
-}
-
-/// Starts the lower half at `row`: the short edge becomes `b -> c`, on
-/// the left or the right (`long_on_left`).
-#[inline(always)]
-fn lower_half(
-    b: SubPoint,
-    c: SubPoint,
-    row: i32,
-    long_on_left: bool,
-    left: &mut EdgeStepper,
-    right: &mut EdgeStepper,
-) {
-    replace_short(
-        long_on_left,
-        EdgeStepper::new::<true>(b, c, row),
-        left,
-        right,
-    );
 }
 
 /// The left and right edges of the upper half's rows, the long edge (from
@@ -523,86 +410,11 @@ fn sides<E>(long_on_left: bool, long: E, short: E) -> (E, E) {
 /// The lower half's short edge `lower` in place of the upper half's, on
 /// the side the long edge leaves free.
 #[inline(always)]
-fn replace_short<E>(long_on_left: bool, lower: E, left: &mut E, right: &mut E) {
+pub(super) fn replace_short<E>(long_on_left: bool, lower: E, left: &mut E, right: &mut E) {
     if long_on_left {
         *right = lower;
     } else {
         *left = lower;
-    }
-}
-
-/// [`half`]'s `REST` where [`find_spans`] calls it: on 32-bit cores, and
-/// in the unit tests, which thereby walk as those cores do.
-const SLOTS_LEFT: bool = cfg!(any(target_pointer_width = "32", test));
-
-/// Walks the rows `row..stop` between the edges `left` and `right`,
-/// recording the non-empty spans, clipped to columns `x0..x1`, in `out`
-/// from `out[n]` on; returns the new count. (A triangle within the
-/// columns is walked by [`half_packed`] instead.)
-///
-/// With `REST`, a span is written to the first of the slots left, which a
-/// non-empty one then leaves (a pointer and a length in registers, where
-/// the other way keeps the base, the count and the length): fewer live
-/// values in the loop on a 32-bit core, slower on a 64-bit host (x86-64
-/// `demo` +1.5 %; see [`SLOTS_LEFT`]).
-#[inline(always)]
-#[allow(clippy::too_many_arguments)]
-fn half<const REST: bool>(
-    out: &mut [Span],
-    mut n: usize,
-    row: i32,
-    stop: i32,
-    left: &mut EdgeStepper,
-    right: &mut EdgeStepper,
-    x0: i32,
-    x1: i32,
-) -> usize {
-    let (mut lc, mut le) = (left.col, left.err);
-    let (mut rc, mut re) = (right.col, right.err);
-    let (ls, lse, ld) = (left.step_col, left.step_err, left.den);
-    let (rs, rse, rd) = (right.step_col, right.step_err, right.den);
-    let len = out.len();
-    let (out, mut rest) = out.split_at_mut(if REST { n.min(len) } else { len });
-    for j in row..stop {
-        let s = Span {
-            j,
-            x0: lc.max(x0),
-            x1: rc.min(x1),
-        };
-        // Written whether empty or not, kept only if not: no branch.
-        if REST {
-            let r = core::mem::take(&mut rest);
-            let Some(o) = r.first_mut() else {
-                // No slot left: the caller's rows never exceed them.
-                break;
-            };
-            *o = s;
-            // A select of the two slices (see `half_packed`).
-            rest = if s.x0 < s.x1 { &mut r[1..] } else { r };
-        } else {
-            if let Some(o) = out.get_mut(n) {
-                *o = s;
-            }
-            n += (s.x0 < s.x1) as usize;
-        }
-        lc += ls;
-        le += lse;
-        if le >= 0 {
-            le -= ld;
-            lc -= 1;
-        }
-        rc += rs;
-        re += rse;
-        if re >= 0 {
-            re -= rd;
-            rc -= 1;
-        }
-    }
-    (left.col, left.err, right.col, right.err) = (lc, le, rc, re);
-    if REST {
-        len - rest.len()
-    } else {
-        n
     }
 }
 
