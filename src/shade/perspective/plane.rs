@@ -140,6 +140,7 @@ pub(super) fn wide_planes_apart(f: &Basis, q: [i64; 3]) -> ([WidePlane; 3], bool
 /// a gradient of 2^31 or more): then [`WidePlane::new`].
 #[inline(always)]
 #[cfg_attr(target_pointer_width = "64", allow(unused_variables))]
+#[cfg_attr(microraster_narrow_multiply, allow(dead_code))]
 pub(super) fn small_planes(f: &Basis, q: [i64; 3]) -> Option<[WidePlane; 3]> {
     #[cfg(not(target_pointer_width = "64"))]
     if let Some(s) = &f.small {
@@ -150,7 +151,10 @@ pub(super) fn small_planes(f: &Basis, q: [i64; 3]) -> Option<[WidePlane; 3]> {
 
 /// [`small_planes`] for a [`Small`] triangle `f` (whose `small` is `s`),
 /// on any target (the tests run it on the host).
-#[cfg_attr(target_pointer_width = "64", allow(dead_code))]
+#[cfg_attr(
+    any(target_pointer_width = "64", microraster_narrow_multiply),
+    allow(dead_code)
+)]
 #[inline(always)]
 pub(super) fn small_planes_of(f: &Basis, s: &Small, q: [i64; 3]) -> Option<[WidePlane; 3]> {
     if NARROW_MULTIPLY {
@@ -163,7 +167,10 @@ pub(super) fn small_planes_of(f: &Basis, s: &Small, q: [i64; 3]) -> Option<[Wide
 /// [`small_planes_of`] where the core has a 32x32 to 64-bit multiply and
 /// a divider: 64-bit numerators, two 32-bit divisions a gradient
 /// ([`small_gradient`]).
-#[cfg_attr(target_pointer_width = "64", allow(dead_code))]
+#[cfg_attr(
+    any(target_pointer_width = "64", microraster_narrow_multiply),
+    allow(dead_code)
+)]
 #[inline(always)]
 pub(super) fn small_planes_wide(f: &Basis, s: &Small, q: [i64; 3]) -> Option<[WidePlane; 3]> {
     debug_assert!(q.iter().all(|v| (0..=Q_ONE).contains(v)));
@@ -200,15 +207,29 @@ pub(super) fn small_planes_wide(f: &Basis, s: &Small, q: [i64; 3]) -> Option<[Wi
 /// part narrow planes read ([`Basis::offset_low`]): the same planes modulo
 /// 2^32 in each `k`. Before, `demo-textured-lit` took 12
 /// divisions and 16 64-bit products here per triangle and tile.
-#[cfg_attr(not(any(test, microraster_narrow_multiply)), allow(dead_code))]
+#[cfg_attr(not(test), allow(dead_code))]
 #[inline(always)]
 pub(super) fn small_planes_split(f: &Basis, s: &Small, q: [i64; 3]) -> Option<[WidePlane; 3]> {
+    small_planes_split_by(f, s, &Recip16::new_small(s.area), q)
+}
+
+/// [`small_planes_split`] by `r`, the area's [`Recip16`]
+/// (`Recip16::new_small(s.area)`), which ARMv6-M's perspective set-up
+/// makes once for these planes and the depth plane
+/// ([`TriangleSetup::depth_small`](crate::shade::TriangleSetup)).
+#[cfg_attr(not(any(test, microraster_narrow_multiply)), allow(dead_code))]
+#[inline(always)]
+pub(super) fn small_planes_split_by(
+    f: &Basis,
+    s: &Small,
+    r: &Recip16,
+    q: [i64; 3],
+) -> Option<[WidePlane; 3]> {
     debug_assert!(q.iter().all(|v| (0..=Q_ONE).contains(v)));
     let [x1, y1, x2, y2] = [f.x1 as i32, f.y1 as i32, f.x2 as i32, f.y2 as i32];
     let [q0, q1, q2] = [q[0] as i32, q[1] as i32, q[2] as i32];
     let (d1, d2) = (q1 - q0, q2 - q0);
-    let r = Recip16::new_small(s.area);
-    let g = |n: (i32, i32)| small_gradient_digits(&r, s.half, n);
+    let g = |n: (i32, i32)| small_gradient_digits(r, s.half, n);
     let diff = |a: (i32, i32), b: (i32, i32)| (a.0 - b.0, a.1 - b.1);
     let neg = |a: (i32, i32)| (-a.0, -a.1);
     // The same Cramer's rule as `small_planes_wide`, line for line: one
