@@ -862,7 +862,13 @@ mod tests {
                 _ => (((area as i64) << 27) - 2 + next(4) as i64).min(top),
             };
             let n = if next(2) == 0 { -n } else { n };
-            let (h, l) = ((n >> 16) as i32, (n & 0xFFFF) as i32);
+            // `n = h 2^16 + l`, `l` anywhere within 2^27 as `split_mul`'s
+            // sums and differences.
+            let k = next(1 << 11) as i64 - (1 << 10);
+            let (h, l) = (
+                (n >> 16) as i32 - k as i32,
+                ((n & 0xFFFF) + (k << 16)) as i32,
+            );
             let r = crate::math::Recip16::new_small(small.area);
             assert_eq!(
                 small_gradient_digits(&r, small.half, (h, l)),
