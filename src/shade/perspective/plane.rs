@@ -499,16 +499,25 @@ pub(super) fn scale_q_digits(wmin: u32, w: core::num::NonZeroU32) -> u32 {
     // `w`'s top byte rather than a search of its leading zeros, and below
     // 2^20 the digit's 12 bits without them.
     let v = w.get();
+    if v < 1 << 20 {
+        // Nearly every `w`: the three digits of 12, 12 and 4 bits written
+        // out, where the loop kept its quotient, count and shift in stack
+        // slots: ARMv6-M `demo-textured-lit` 13,030,706 -> 12,807,162
+        // instructions, `fill-gouraud-exact` 96.71 -> 95.28 a fragment,
+        // for 2.8 KB of flash in the all-scenes firmware (a copy in each
+        // shader's set-up).
+        let f = Recip16::new_w23(w);
+        let (d1, r) = f.digit(wmin << 12);
+        let (d2, r) = f.digit(r << 12);
+        let (d3, _) = f.digit(r << 4);
+        return (d1 << 16) | (d2 << 4) | d3;
+    }
     let f = if v < 1 << 23 {
         Recip16::new_w23(w)
     } else {
         Recip16::new(w)
     };
-    let k = if v < 1 << 20 {
-        12
-    } else {
-        crate::math::leading_zeros(w).min(12)
-    };
+    let k = crate::math::leading_zeros(w).min(12);
     let (mut q, mut r, mut left) = (0u32, wmin, 28u32);
     while left > 0 {
         let s = k.min(left);
