@@ -48,7 +48,7 @@ pub(crate) use span::{
 use lerp::{fine_fit, lerp32, lerp_fit, FIT_PRODUCTS, NARROW_MULTIPLY};
 #[cfg(not(microraster_narrow_multiply))]
 use plane::small_planes;
-use plane::{scale_q, wide_planes_apart, WidePlane};
+use plane::{scale_q, scale_q32, wide_planes_apart, WidePlane};
 #[cfg(microraster_narrow_multiply)]
 use {crate::math::Recip16, plane::small_planes_split_by};
 
@@ -132,6 +132,22 @@ impl<V: Varyings> PerspectiveSetup<V> {
         // an out-of-line call per triangle and tile.
         if affine {
             [Q_ONE; 3]
+        } else if NARROW_MULTIPLY {
+            // ARMv6-M: the same weights in 32-bit words. Each `w` of at
+            // least 1 is below 2^31 (an `i32`), so that `scale_q` takes
+            // `scale_q32` for every vertex: its 64-bit range tests and
+            // the 64-bit minimum left out.
+            let w = [
+                t.w[0].max(1) as u32,
+                t.w[1].max(1) as u32,
+                t.w[2].max(1) as u32,
+            ];
+            let wmin = w[0].min(w[1]).min(w[2]);
+            [
+                scale_q32(wmin, w[0]),
+                scale_q32(wmin, w[1]),
+                scale_q32(wmin, w[2]),
+            ]
         } else {
             // Vertices reaching the shader have w >= W_MIN - 1 > 0 (the
             // clipper's round-off); `max(1)` only keeps this total.
