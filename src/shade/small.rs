@@ -8,9 +8,7 @@
 //! exactly those of the general set-up ([`TriangleSetup::with_basis`]),
 //! which the tests check on random triangles.
 
-#[cfg(doc)]
-use super::plane::Basis;
-use super::plane::Plane;
+use super::plane::{Basis, Plane};
 use super::setup::{Corners, TriangleSetup};
 use crate::math::Recip16;
 use crate::raster::{SubPoint, HALF_PIXEL, SUBPIXEL_BITS};
@@ -528,6 +526,57 @@ impl TriangleSetup {
     }
 }
 
+impl TriangleSetup {
+    /// The depth plane of [`TriangleSetup::with_basis`] (flat: no colour
+    /// planes) for a [`Small`] triangle `s` whose basis is `f`, by the
+    /// `i32` set-up of [`TriangleSetup::small`] where depth's numerators
+    /// allow (within `-2^21..2^21` and below `area 2^12`, as there;
+    /// `None` otherwise), its gradients by `recip`, the area's
+    /// [`Recip16`]: ARMv6-M's perspective set-up, which makes that
+    /// reciprocal once for its planes and this one, where the general
+    /// set-up divided each depth gradient in three digits with 64-bit
+    /// partial quotients after a reciprocal of its own.
+    ///
+    /// The numerators are the general set-up's: `Basis`'s edge vectors
+    /// (negated where the area is negative) and its positive twice the
+    /// area, whose quotients [`SmallBasis::div_round32`] rounds as
+    /// [`Small::div_round`] does (magnitudes, the sign of the
+    /// numerator), and the constant's low 32 bits are
+    /// [`Basis::constant_low`]'s (see [`offset_term`]). The same plane.
+    #[cfg_attr(not(any(test, microraster_narrow_multiply)), allow(dead_code))]
+    #[inline(always)]
+    pub(super) fn depth_small(
+        f: &Basis,
+        s: &Small,
+        recip: Recip16,
+        t: &Corners<'_>,
+    ) -> Option<Self> {
+        // A small triangle's edge vectors are below 2^10 in magnitude.
+        let [x1, y1, x2, y2] = [f.x1 as i32, f.y1 as i32, f.x2 as i32, f.y2 as i32];
+        let area = s.area.get();
+        let (z, zfrac) = t.values(0);
+        let z = [z[0] as i32, z[1] as i32, z[2] as i32];
+        let (d1, d2) = (z[1] - z[0], z[2] - z[0]);
+        // |d| < 2^16: each numerator below 2^27 in magnitude.
+        let (n1, n2) = (d1 * y2 - d2 * y1, d2 * x1 - d1 * x2);
+        let m = fold_sign(n1) | fold_sign(n2);
+        if (m >> 21 != 0) | (m >> 12 >= area) {
+            return None;
+        }
+        let b = &SmallBasis {
+            e: [x1, y1, x2, y2],
+            o: [f.ox as i32, f.oy as i32],
+            // Below 2^21: positive in `i32`.
+            area2: area as i32,
+            half: s.half as i32,
+            recip,
+        };
+        let z = Self::plane_small_of(b, z[0], zfrac, n1, n2);
+        let none = Plane::default();
+        Some(Self::finish([z, none, none, none], false))
+    }
+}
+
 impl SmallBasis {
     /// The bound of the numerators' magnitudes over `2^(23 - shift)` below
     /// which a gradient takes [`SmallBasis::div_round_two_digits`]: `d`,
@@ -668,6 +717,44 @@ mod tests {
             }
         }
         assert!(checked > 10_000, "{checked}");
+    }
+
+    /// ARMv6-M's perspective depth plane ([`TriangleSetup::depth_small`],
+    /// from `Basis`'s edge vectors and the area's reciprocal) against the
+    /// general set-up's flat one: the same plane wherever it applies (all
+    /// but slivers and steep depths).
+    #[test]
+    fn depth_small_matches_the_general_setup() {
+        let mut next = crate::testing::rng();
+        let (mut small, mut applied) = (0, 0);
+        for k in 0..60_000u64 {
+            let r = [24, 64, 600, 2040][k as usize % 4];
+            let mut p = || SubPoint::new(next(r) as i32 - 1020, next(r) as i32 - 1020);
+            let v = [p(), p(), p()];
+            if crate::raster::signed_area2(&v) == 0 {
+                continue;
+            }
+            // Depths near one another, or anywhere.
+            let z0 = next(65_536) as i64;
+            let spread = [16, 1024, 65_536][next(3) as usize];
+            let mut z = || (z0 + next(spread) as i64 - spread as i64 / 2).clamp(0, 65_535) as u16;
+            let sv = [0, 1, 2].map(|i| ScreenVertex::new(v[i].x, v[i].y, z(), 0, [0; 3]));
+            let corners = Corners([&sv[0], &sv[1], &sv[2]]);
+            let f = Basis::with_small(&v, true);
+            let general = TriangleSetup::with_basis(&f, &corners, false);
+            let Some(s) = &f.small else {
+                continue;
+            };
+            small += 1;
+            let recip = Recip16::new_small(s.area);
+            if let Some(d) = TriangleSetup::depth_small(&f, s, recip, &corners) {
+                applied += 1;
+                let (a, b) = (d.planes[0], general.planes[0]);
+                assert_eq!((a.gx, a.gy, a.k), (b.gx, b.gy, b.k), "{v:?} {sv:?}");
+                assert_eq!((d.zstep, d.wide), (general.zstep, general.wide));
+            }
+        }
+        assert!(small > 20_000 && applied > 30_000, "{small} {applied}");
     }
 
     /// The small set-up of triangles whose colour channels often have one
