@@ -4,6 +4,13 @@
 #   scripts/count-instructions.sh                 # demo and fill (the targets)
 #   SCENES="demo demo-flat fill tri4 tri100 tri10000 euc" scripts/count-instructions.sh
 #   N=20 TOP=25 scripts/count-instructions.sh
+#   MICRORASTER_BENCH_TILE=64x32 SCENES="demo rock" scripts/count-instructions.sh
+#
+# MICRORASTER_BENCH_TILE=WxH (32x32 without it) and MICRORASTER_BENCH_BINS=N
+# (the scenes' own bin pools without it) reach the build of the example:
+# the benchmark renderer's tiles and workspaces' bin entries, for a study of
+# the tile size (examples/bench_tile; examples/tile_image.rs checks that the
+# images are the same).
 #
 # For each scene, `examples/count.rs` renders N identical frames into a
 # NullSink. Two independent measurements are printed:

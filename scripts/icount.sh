@@ -8,6 +8,15 @@
 #   BOARDS=lm3s6965evb scripts/icount.sh
 #   TRACE=1 SCENES=demo BOARDS=mps2-an386-v6m scripts/icount.sh
 #   PROFILE=size SCENES=demo BOARDS=lm3s6965evb scripts/icount.sh
+#   MICRORASTER_BENCH_TILE=64x32 SCENES=demo scripts/icount.sh
+#
+# MICRORASTER_BENCH_TILE=WxH (32x32 without it) and MICRORASTER_BENCH_BINS=N
+# (4,096 without it) reach every build, the host's too: the renderer's tiles
+# and the workspace's bin entries, for a study of the tile size
+# (examples/bench_tile). The image hashes fold the tiles in order, so they
+# compare a board with the host at the same tiles (examples/tile_image.rs
+# compares whole images across tile sizes); the firmware's first line says
+# 32x32 whatever the tiles, its statistics line gives their count.
 #
 # With TRACE=1 the firmware runs once under QEMU's execution trace instead
 # (-d in_asm,exec,nochain, through scripts/icount-trace.awk; about a minute

@@ -51,6 +51,8 @@ use microraster::Profiler;
 #[path = "../demo_scene/mod.rs"]
 mod demo_scene;
 use demo_scene::{checker, fx};
+#[path = "../bench_tile/mod.rs"]
+mod bench_tile;
 #[path = "../rock_scene/mod.rs"]
 mod rock_scene;
 
@@ -60,8 +62,11 @@ pub const WIDTH: u32 = 320;
 pub const HEIGHT: u32 = 240;
 
 /// The renderer of every scene: 32x32 tiles of `Rgb565` (4,112 bytes),
-/// with the paths of [`BenchFeatures`].
-pub type BenchRenderer = Renderer<Rgb565, 32, 32, BenchFeatures>;
+/// with the paths of [`BenchFeatures`]; or, for a study of the tile size,
+/// the tiles named at build time in `MICRORASTER_BENCH_TILE=WxH`
+/// (`examples/bench_tile`).
+pub type BenchRenderer =
+    Renderer<Rgb565, { bench_tile::TILE_W }, { bench_tile::TILE_H }, BenchFeatures>;
 
 /// Whether the build holds `demo-textured-lit` and no other scene.
 const TEXTURED_ALONE: bool = {
@@ -95,8 +100,11 @@ impl microraster::Features for BenchFeatures {
     const GOURAUD: bool = !TEXTURED_ALONE;
 }
 /// The workspace of every scene: 2,048 vertices, 4,096 bin entries, all 80
-/// tiles in one pass (33,088 bytes).
-pub type BenchWorkspace = Workspace<2048, 4096, 80>;
+/// tiles in one pass (33,088 bytes); `MICRORASTER_BENCH_BINS` bin entries
+/// if set at build time, and as many tiles as `MICRORASTER_BENCH_TILE`'s
+/// make.
+pub type BenchWorkspace =
+    Workspace<2048, { bench_tile::bin_entries(4096) }, { bench_tile::tiles(WIDTH, HEIGHT) }>;
 
 /// The demo's background (`examples/common/mod.rs`).
 pub const CLEAR: Rgb565 = demo_scene::DEMO_CLEAR;

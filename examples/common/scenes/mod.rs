@@ -19,6 +19,8 @@ use fixed::types::I16F16;
 use microraster::mesh::Vec3Fx;
 use microraster::prelude::*;
 
+#[path = "../../bench_tile/mod.rs"]
+mod bench_tile;
 mod copies;
 mod demo;
 mod euc_demo;
@@ -45,16 +47,24 @@ pub const WIDTH: u32 = 320;
 /// Frame height of every scene.
 pub const HEIGHT: u32 = 240;
 
-/// The renderer every benchmark uses: 32x32 tiles of `Rgb565`.
-pub type BenchRenderer = Renderer<Rgb565, 32, 32>;
-/// The demo's workspace: the whole demo scene, all 80 tiles in one pass.
-pub type DemoWorkspace = Workspace<2048, 4096, 80>;
+pub use bench_tile::{TILE_H, TILE_W};
+
+/// The tiles of the frame: 80 in 32x32 tiles.
+pub const TILES: usize = bench_tile::tiles(WIDTH, HEIGHT);
+
+/// The renderer every benchmark uses: 32x32 tiles of `Rgb565` (or the
+/// tiles named at build time in `MICRORASTER_BENCH_TILE=WxH`, for a study
+/// of the tile size: `examples/bench_tile`).
+pub type BenchRenderer = Renderer<Rgb565, TILE_W, TILE_H>;
+/// The demo's workspace: the whole demo scene, all 80 tiles in one pass
+/// (its 4,096 bin entries `MICRORASTER_BENCH_BINS` at build time if set).
+pub type DemoWorkspace = Workspace<2048, { bench_tile::bin_entries(4096) }, TILES>;
 /// A workspace for the triangle-copies scenes (up to 24,000 vertices).
-pub type CopiesWorkspace = Workspace<24_000, 32_768, 80>;
+pub type CopiesWorkspace = Workspace<24_000, 32_768, TILES>;
 
 /// A workspace for the terrain scene (every vertex of the clustered
 /// terrain, a slot each whether culled or not).
-pub type TerrainWorkspace = Workspace<16_384, 16_384, 80>;
+pub type TerrainWorkspace = Workspace<16_384, 16_384, TILES>;
 
 /// A renderer with the demo's settings (back-face culling, `LessEqual`,
 /// depth writes) and the scanline rasterizer.

@@ -1,6 +1,6 @@
 //! [`RockScene`]: a geodesic sphere of small, uneven triangles.
 
-use super::{BenchRenderer, HEIGHT, WIDTH};
+use super::{BenchRenderer, HEIGHT, TILES, WIDTH};
 use crate::common::{self, rock_scene};
 use embedded_graphics::pixelcolor::Rgb565;
 use microraster::prelude::*;
@@ -9,8 +9,9 @@ use microraster::prelude::*;
 /// vertices (3,920 and 1,962).
 pub const ROCK_FREQUENCY: usize = rock_scene::FREQUENCY;
 
-/// A workspace for the rock: all its vertices, all 80 tiles in one pass.
-pub type RockWorkspace = Workspace<2048, 6144, 80>;
+/// A workspace for the rock: all its vertices, all 80 tiles in one pass
+/// (its 6,144 bin entries `MICRORASTER_BENCH_BINS` at build time if set).
+pub type RockWorkspace = Workspace<2048, { super::bench_tile::bin_entries(6144) }, TILES>;
 
 /// A small-triangle mesh like a scanned or modelled one: a geodesic sphere
 /// of frequency [`ROCK_FREQUENCY`] (3,920 triangles), every vertex pushed
