@@ -433,14 +433,20 @@ const OPAQUE_EXACT_MIN: usize = if cfg!(microraster_narrow_multiply) {
 /// Whether an opaque exact span whose `Q` does not change takes
 /// [`SpanInput::run_opaque`]'s copy with [`FLAT_Q`] weights, for a shader
 /// with `len` varyings that interpolates the colour or not: everywhere but
-/// for a shader with both on 32-bit targets (`TexturedLit`), whose
-/// loops' registers moved with the copy beside them (Cortex-M3
+/// for a shader with both (`TexturedLit`) on the Cortex-M3 and ARMv6-M,
+/// whose loops' registers moved with the copy beside them (Cortex-M3
 /// `demo-textured-lit`, whose spans rarely take it, 8,130,275 ->
 /// 8,222,806 instructions, 1,468 B more flash; out of line, its firmware
-/// no longer fit the LM3S6965's flash). On x86-64 `fill-lit-exact` 128.21
-/// -> 117.48 per fragment and `demo-textured-lit` -1.1 % with it.
+/// no longer fit the LM3S6965's flash; again at `76d1e8b`: 7,057,017 ->
+/// 7,109,584, though `fill-lit-exact` 106.93 -> 103.24 a fragment; out of
+/// line, a call per span, 8,512,440 and 122.53). On x86-64
+/// `fill-lit-exact` 128.21 -> 117.48 per fragment and
+/// `demo-textured-lit` -1.1 % with it; on the Cortex-M4F
+/// (`microraster_armv7em`, the build script's) at `76d1e8b`
+/// `fill-lit-exact` 111.94 -> 106.39 and `demo-textured-lit` 7,085,728 ->
+/// 7,072,276.
 const fn flat_q_loop(len: usize, interpolate_color: bool) -> bool {
-    cfg!(target_pointer_width = "64") || len == 0 || !interpolate_color
+    cfg!(target_pointer_width = "64") || cfg!(microraster_armv7em) || len == 0 || !interpolate_color
 }
 
 /// A span shader's colour at one pixel, for [`SpanInput::shade_with`]:
