@@ -54,6 +54,7 @@ mod builtin;
 mod interpolated;
 mod set;
 pub mod span;
+mod triangle_spans;
 
 pub(crate) use builtin::modulate;
 pub use builtin::{mul255, DepthShade, Flat, Gouraud, Normals, Textured, TexturedLit};

@@ -8,7 +8,7 @@ use super::barycentric::{flat_weights, shifted_weights, span_reciprocal};
 use super::lerp::NARROW_MULTIPLY;
 use super::span::{AFFINE, FLAT_Q};
 use super::{depth16, SpanInput, Z_FRAC};
-use crate::shader::span::TriangleSpans;
+use crate::shader::TriangleSpans;
 use crate::texture::FromTexel;
 use fixed::types::I16F16;
 

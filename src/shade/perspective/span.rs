@@ -130,7 +130,7 @@ pub(crate) fn span_input<'a, C, V: Varyings>(
 /// reads, per channel `c0 · 2^16 + 2^15`, `c1 - c0`, `c2 - c0`, then the
 /// steps of depth (as `SpanInput`'s `gz`), `Q`, `B1` and `B2`: all of them
 /// the triangle's, so gathered once per triangle and tile
-/// ([`TriangleSpans::each_colour`](crate::shader::span::TriangleSpans::each_colour))
+/// ([`TriangleSpans::each_colour`](crate::shader::TriangleSpans::each_colour))
 /// rather than copied at every span (13 words loaded and stored a span).
 #[inline(always)]
 pub(crate) fn colour_constants<V: Varyings>(p: &PerspectiveSetup<V>) -> [i32; 13] {
