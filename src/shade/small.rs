@@ -283,7 +283,8 @@ impl SmallBasis {
 /// Whether a colour plane of [`TriangleSetup::small`] takes its numerators
 /// times 2^10 from the edge vectors shifted left by 10
 /// ([`SmallBasis::div_round32_of_m`]) rather than shifting the
-/// numerators: on ARMv7E-M (the build script's `microraster_armv7em`),
+/// numerators: on ARMv7E-M (the build script's `microraster_armv7em`)
+/// and ARMv7-M (below),
 /// where each gradient's remainder then takes one multiply-subtract
 /// (`MLS`) instead of a multiply and a subtract of a shifted operand,
 /// and the numerator no shift of its own, for four shifts a triangle
@@ -301,7 +302,15 @@ impl SmallBasis {
 /// instead of the edge vectors (two shifts a plane) gave 2,969,379 with
 /// green's and blue's barriers, 2,994,182 with none, 3,015,296 with
 /// three; without this set-up, no barrier gave 2,972,444.
-const SHIFTED_NUMERATORS: bool = cfg!(microraster_armv7em);
+///
+/// On ARMv7-M (the build script's `microraster_armv7m`: the Cortex-M3 has
+/// `MLS` too), with [`HALF_TEST`]: `demo` 2,976,189 -> 2,959,005, `rock`
+/// 2,449,967 -> 2,441,859, `grid4` 848,800 -> 841,417, `demo-flat` and
+/// `fill` the same (with `render::fill`'s `EARLY_INTERIOR` as well,
+/// `demo` 2,975,330, `rock` 2,456,407, `grid4` 846,733: not taken). Not
+/// on ARMv6-M (no `MLS`; the set-up out of line): `demo` 6,081,152 ->
+/// 9,073,694.
+const SHIFTED_NUMERATORS: bool = cfg!(any(microraster_armv7em, microraster_armv7m));
 
 /// Whether [`TriangleSetup::small`] bounds depth's first digits by half
 /// the area (`m >> 13 < half`, see [`half_bound_holds`]) rather than by the
