@@ -281,7 +281,8 @@ impl SmallBasis {
 /// Whether a colour plane of [`TriangleSetup::small`] takes its numerators
 /// times 2^10 from the edge vectors shifted left by 10
 /// ([`SmallBasis::div_round32_of_m`]) rather than shifting the
-/// numerators: on ARMv7E-M (the build script's `microraster_armv7em`),
+/// numerators: on ARMv7E-M (the build script's `microraster_armv7em`)
+/// and ARMv7-M (below),
 /// where each gradient's remainder then takes one multiply-subtract
 /// (`MLS`) instead of a multiply and a subtract of a shifted operand,
 /// and the numerator no shift of its own, for four shifts a triangle
@@ -299,12 +300,20 @@ impl SmallBasis {
 /// instead of the edge vectors (two shifts a plane) gave 2,969,379 with
 /// green's and blue's barriers, 2,994,182 with none, 3,015,296 with
 /// three; without this set-up, no barrier gave 2,972,444.
-const SHIFTED_NUMERATORS: bool = cfg!(microraster_armv7em);
+///
+/// On ARMv7-M (the build script's `microraster_armv7m`: the Cortex-M3 has
+/// `MLS` too), with [`HALF_TEST`]: `demo` 2,976,189 -> 2,959,005, `rock`
+/// 2,449,967 -> 2,441,859, `grid4` 848,800 -> 841,417, `demo-flat` and
+/// `fill` the same (with `render::fill`'s `EARLY_INTERIOR` as well,
+/// `demo` 2,975,330, `rock` 2,456,407, `grid4` 846,733: not taken). Not
+/// on ARMv6-M (no `MLS`; the set-up out of line): `demo` 6,081,152 ->
+/// 9,073,694.
+const SHIFTED_NUMERATORS: bool = cfg!(any(microraster_armv7em, microraster_armv7m));
 
 /// Whether [`TriangleSetup::small`] bounds depth's first digits by half
 /// the area (`m >> 13 < half`, see [`half_bound_holds`]) rather than by the
 /// area (`m >> 12 < area`): on ARMv7E-M (the build script's
-/// `microraster_armv7em`), and in the unit tests, which compare the small
+/// `microraster_armv7em`) and ARMv7-M (below), and in the unit tests, which compare the small
 /// set-up with the general one under it. Half the area is then a value
 /// that the tests compare before the branch, held in a register, where
 /// each gradient's rounding took it as the area shifted, an operand that
@@ -323,7 +332,16 @@ const SHIFTED_NUMERATORS: bool = cfg!(microraster_armv7em);
 /// span). The bound is stricter (a triangle it turns away takes the
 /// general set-up, the same planes); in `demo` the same 95 pairs a run
 /// take the general set-up either way.
-const HALF_TEST: bool = cfg!(any(microraster_armv7em, test));
+///
+/// On ARMv7-M (the build script's `microraster_armv7m`: the Cortex-M3) the
+/// bound alone measured best: `demo` 2,986,611 -> 2,976,189, `rock`
+/// 2,458,702 -> 2,449,967, `grid4` 853,095 -> 848,800, `demo-flat`
+/// 2,525,643 -> 2,523,355, `fill` 8,846,204 -> 8,840,124 (with
+/// `EARLY_INTERIOR` too, `demo` 2,978,987, `rock` 2,451,716, `grid4`
+/// 849,659; that alone, `demo` 2,985,527). Not on ARMv6-M, where the
+/// set-up is out of line: `demo` 6,081,152 -> 6,107,238, `rock`
+/// 5,077,935 -> 5,098,200. 64-bit targets take no small set-up.
+const HALF_TEST: bool = cfg!(any(microraster_armv7em, microraster_armv7m, test));
 
 /// The depth bound of [`HALF_TEST`]: `m >> 13 < half` (with `half =
 /// area / 2`) implies `m >> 12 < area`, the bound that keeps the first
