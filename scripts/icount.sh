@@ -60,13 +60,9 @@ PROFILE=${PROFILE:-release}
 OUT=$TARGET_DIR/icount
 mkdir -p "$OUT"
 
-command -v qemu-system-arm >/dev/null || {
-    echo "qemu-system-arm is not installed (Debian: apt-get install qemu-system-arm)" >&2
-    exit 1
-}
-host=$(rustc -vV | sed -n 's/^host: //p')
-size="$(rustc --print sysroot)/lib/rustlib/$host/bin/llvm-size"
-[ -x "$size" ] || { echo "llvm-size not found: rustup component add llvm-tools" >&2; exit 1; }
+source scripts/tools.sh
+need_qemu_arm
+size=$(llvm_tool llvm-size)
 
 echo "$(rustc --version); $(qemu-system-arm --version | head -n 1)"
 

@@ -31,13 +31,9 @@ machine=${2:-mps2-an386}
 out=${3:-target/pcprof/$(basename "$elf")}
 mkdir -p "$(dirname "$out")"
 
-command -v qemu-system-arm >/dev/null || {
-    echo "qemu-system-arm is not installed (Debian: apt-get install qemu-system-arm)" >&2
-    exit 1
-}
-host=$(rustc -vV | sed -n 's/^host: //p')
-objdump="$(rustc --print sysroot)/lib/rustlib/$host/bin/llvm-objdump"
-[ -x "$objdump" ] || { echo "llvm-objdump not found: rustup component add llvm-tools" >&2; exit 1; }
+source scripts/tools.sh
+need_qemu_arm
+objdump=$(llvm_tool llvm-objdump)
 
 timeout 3600 qemu-system-arm -M "$machine" -display none -serial none \
     -monitor none -icount shift=0 -semihosting-config enable=on,target=native \

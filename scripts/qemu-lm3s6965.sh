@@ -6,10 +6,8 @@
 set -euo pipefail
 elf="$1"
 shift
-if ! command -v qemu-system-arm >/dev/null; then
-    echo "qemu-system-arm is not installed (Debian: apt-get install qemu-system-arm)" >&2
-    exit 1
-fi
+source "$(dirname "$0")/tools.sh"
+need_qemu_arm
 display=(-display none)
 if [ -n "${DISPLAY:-}" ]; then
     display=()

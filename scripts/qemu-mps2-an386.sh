@@ -7,9 +7,7 @@
 set -euo pipefail
 elf="$1"
 shift
-if ! command -v qemu-system-arm >/dev/null; then
-    echo "qemu-system-arm is not installed (Debian: apt-get install qemu-system-arm)" >&2
-    exit 1
-fi
+source "$(dirname "$0")/tools.sh"
+need_qemu_arm
 exec qemu-system-arm -M mps2-an386 -display none -serial none -monitor none \
     -semihosting-config enable=on,target=native -kernel "$elf" "$@"
