@@ -382,7 +382,9 @@ where
 /// instructions where the bound alone moved them (two more a span): the
 /// Cortex-M4F's `demo` 2,953,379 -> 2,937,011 instructions with both,
 /// 2,967,907 with the bound alone, 2,960,827 with this alone (see
-/// `HALF_TEST` for the other scenes).
+/// `HALF_TEST` for the other scenes). (Only where vertices carry the
+/// interior bit, `microraster_interior`: not in builds for size.)
+#[cfg(microraster_interior)]
 const EARLY_INTERIOR: bool = cfg!(microraster_armv7em);
 
 /// Whether [`fill`] sends a Gouraud triangle of one colour to the flat
