@@ -102,8 +102,11 @@ impl Basis {
         // code the test ahead of the area had moved, Cortex-M3 `demo`
         // +64; on ARMv6-M the test written twice measured worse,
         // `demo-textured-lit` +54 K.)
+        // Whether the edge vectors are small: tested where each target
+        // measured it best (see above).
+        let edges_small = || small_setup && [x1, y1, x2, y2].iter().all(|c| c.abs() < SMALL_EDGE);
         #[cfg(microraster_narrow_multiply)]
-        let small_edges = small_setup && [x1, y1, x2, y2].iter().all(|c| c.abs() < SMALL_EDGE);
+        let small_edges = edges_small();
         #[cfg(microraster_narrow_multiply)]
         let area2 = if small_edges {
             let [a, b, c, d] = [x1 as i32, y1 as i32, x2 as i32, y2 as i32];
@@ -121,7 +124,7 @@ impl Basis {
         // denominator and the same rounded result.
         let s = if area2 < 0 { -1 } else { 1 };
         #[cfg(not(microraster_narrow_multiply))]
-        let small_edges = small_setup && [x1, y1, x2, y2].iter().all(|c| c.abs() < SMALL_EDGE);
+        let small_edges = edges_small();
         let small = match small_edges {
             // Twice the area of a small triangle is below 2^21.
             true => NonZeroU32::new(area.get() as u32).map(|area| Small {
