@@ -5,6 +5,7 @@
 
 #[cfg(target_pointer_width = "64")]
 use super::packed::PACKED;
+use super::setup::SHIFTED_TOP;
 use super::{
     depth16, rgb, rgb16_green_up, Corners, DepthFn, SpanPos, To565, TriangleSetup, GREEN_UP,
     NEGATED_OX, VECTOR_LOOPS, Z_FRAC,
@@ -43,7 +44,12 @@ pub(crate) fn span_gouraud<
         // At its constant address where `FIXED_GOURAUD`.
         let table = if FIXED_GOURAUD { To565::fixed() } else { table };
         // `INTERIOR` is the triangle's, tested once ([`SPLIT_INTERIOR`]).
-        let [z, r, g, b] = s.start_tested_as(t, x0, j, INTERIOR);
+        // The colour planes shifted already where `SHIFTED_TOP`.
+        let [z, r, g, b] = if SHIFTED_TOP {
+            s.start_tested_shifted(t, x0, j, INTERIOR)
+        } else {
+            s.start_tested_as(t, x0, j, INTERIOR)
+        };
         let [gz, gr, gg, gb] = s.steps();
         // The depth step is shifted already ([`TriangleSetup::for_spans`]).
         let (start, step) = loop_values(
@@ -175,7 +181,10 @@ const TOP_BYTE: bool = cfg!(microraster_narrow_multiply);
 #[inline(always)]
 fn loop_values(start: [u32; 4], step: [u32; 4]) -> ([u32; 4], [u32; 4]) {
     let ([z, r, g, b], [gz, gr, gg, gb]) = (start, step);
-    if TOP_BYTE {
+    if SHIFTED_TOP {
+        // Shifted by the set-up ([`SHIFTED_TOP`]).
+        (start, step)
+    } else if TOP_BYTE {
         ([z, r << 8, g << 8, b << 8], [gz, gr << 8, gg << 8, gb << 8])
     } else {
         ([z, r, g.wrapping_add(GREEN_UP), b], step)

@@ -997,6 +997,11 @@ mod tests {
                         let [z, r, g, b] = reference;
                         let shifted = [z, r.wrapping_shl(8), g.wrapping_shl(8), b.wrapping_shl(8)];
                         assert_eq!(s.start_shifted(&corners, x0, j, s.interior()), shifted);
+                        // ARMv6-M's tested form (`SHIFTED_TOP`).
+                        assert_eq!(
+                            s.start_tested_shifted(&corners, x0, j, s.interior()),
+                            shifted
+                        );
                         continue;
                     }
                     assert_eq!(s.start_selects(&corners, x0, j), reference);
