@@ -369,6 +369,10 @@ where
         Some(s) => s,
         None => TriangleSetup::for_spans::<GOURAUD>(corners),
     };
+    if GOURAUD && crate::shade::STEPS_IN_PLACE {
+        // Its address escapes: see `STEPS_IN_PLACE`.
+        core::hint::black_box(setup);
+    }
     spans!(setup, corners)
 }
 

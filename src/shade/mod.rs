@@ -61,7 +61,9 @@ use convert::{rgb16_green_up, GREEN_UP};
 pub(crate) use depth::depth16;
 pub use depth::DepthTest;
 pub(crate) use depth::{DLessEqual, DepthFn};
-pub(crate) use gouraud::{span_gouraud, FIXED_GOURAUD, OPAQUE_FLAT, OPAQUE_TABLE, SPLIT_INTERIOR};
+pub(crate) use gouraud::{
+    span_gouraud, FIXED_GOURAUD, OPAQUE_FLAT, OPAQUE_TABLE, SPLIT_INTERIOR, STEPS_IN_PLACE,
+};
 use plane::Basis;
 pub(crate) use setup::{Corners, TriangleSetup, OFFSET_SETUP, SMALL_INLINE};
 
