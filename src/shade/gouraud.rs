@@ -5,6 +5,7 @@
 
 #[cfg(target_pointer_width = "64")]
 use super::packed::PACKED;
+use super::setup::SHIFTED_TOP;
 use super::{
     depth16, rgb, rgb16_green_up, Corners, DepthFn, SpanPos, To565, TriangleSetup, GREEN_UP,
     NEGATED_OX, VECTOR_LOOPS, Z_FRAC,
@@ -43,14 +44,27 @@ pub(crate) fn span_gouraud<
         // At its constant address where `FIXED_GOURAUD`.
         let table = if FIXED_GOURAUD { To565::fixed() } else { table };
         // `INTERIOR` is the triangle's, tested once ([`SPLIT_INTERIOR`]).
-        let [z, r, g, b] = s.start_tested_as(t, x0, j, INTERIOR);
+        // The colour planes shifted already where `SHIFTED_TOP`.
+        let [z, r, g, b] = if SHIFTED_TOP {
+            s.start_tested_shifted(t, x0, j, INTERIOR)
+        } else {
+            s.start_tested_as(t, x0, j, INTERIOR)
+        };
         let [gz, gr, gg, gb] = s.steps();
         // The depth step is shifted already ([`TriangleSetup::for_spans`]).
         let (start, step) = loop_values(
             [z << (16 - Z_FRAC), r, g, b].map(|v| v as u32),
             [gz, gr, gg, gb].map(|v| v as u32),
         );
-        return gouraud_loop::<C, D, WRITE>((dt, table), color, depth, (a0, a1), start, step, n);
+        let place = if STEPS_IN_PLACE { Some(s) } else { None };
+        return gouraud_loop::<C, D, WRITE>(
+            (dt, table),
+            color,
+            depth,
+            (a0, a1),
+            (start, step, place),
+            n,
+        );
     }
     #[cfg(target_pointer_width = "64")]
     if PACKED && (INTERIOR || !s.wide) {
@@ -166,6 +180,16 @@ pub(crate) const SPLIT_INTERIOR: bool = true;
 /// 2^32, whose top byte is bits 16 to 23 of `c + k g`: the same bytes.
 const TOP_BYTE: bool = cfg!(microraster_narrow_multiply);
 
+/// Whether [`gouraud_loop`] reads its four steps from the set-up at each
+/// pixel (ARMv6-M, with the colour planes shifted by the set-up,
+/// [`SHIFTED_TOP`]: the steps are the set-up's fields as they are),
+/// the set-up's address passed once a pair through an empty `black_box`
+/// (`render::fill::shade`), so that the pixel loop's own `black_box` (a
+/// memory clobber) keeps the loads in the loop. The span starts and the
+/// loop then read the planes where the set-up stored them: no copy of
+/// the fields to spill slots once a pair.
+pub(crate) const STEPS_IN_PLACE: bool = SHIFTED_TOP;
+
 /// The start and step of depth (shifted, see `depth16`), red, green and
 /// blue as [`gouraud_loop`] takes them: the channels shifted left by 8
 /// on ARMv6-M ([`TOP_BYTE`]), green raised by [`GREEN_UP`] elsewhere (see
@@ -175,7 +199,10 @@ const TOP_BYTE: bool = cfg!(microraster_narrow_multiply);
 #[inline(always)]
 fn loop_values(start: [u32; 4], step: [u32; 4]) -> ([u32; 4], [u32; 4]) {
     let ([z, r, g, b], [gz, gr, gg, gb]) = (start, step);
-    if TOP_BYTE {
+    if SHIFTED_TOP {
+        // Shifted by the set-up ([`SHIFTED_TOP`]).
+        (start, step)
+    } else if TOP_BYTE {
         ([z, r << 8, g << 8, b << 8], [gz, gr << 8, gg << 8, gb << 8])
     } else {
         ([z, r, g.wrapping_add(GREEN_UP), b], step)
@@ -212,8 +239,7 @@ fn gouraud_loop<C: Copy + From<Rgb888> + 'static, D: DepthFn, const WRITE: bool>
     color: &mut [C],
     depth: &mut [u16],
     (a0, a1): (usize, usize),
-    start: [u32; 4],
-    step: [u32; 4],
+    (start, step, place): ([u32; 4], [u32; 4], Option<&TriangleSetup>),
     mut n: u32,
 ) -> u32 {
     // As `loop_values` makes them.
@@ -272,6 +298,12 @@ fn gouraud_loop<C: Copy + From<Rgb888> + 'static, D: DepthFn, const WRITE: bool>
             }
             n = n.wrapping_sub(1);
         }
+        // Read where the set-up holds them, after the `black_box` above
+        // (see `STEPS_IN_PLACE`); `step` elsewhere.
+        let [gz, gr, gg, gb] = match place {
+            Some(s) if STEPS_IN_PLACE => s.steps().map(|v| v as u32),
+            _ => [gz, gr, gg, gb],
+        };
         z = z.wrapping_add(gz);
         r = r.wrapping_add(gr);
         g = g.wrapping_add(gg);

@@ -61,7 +61,9 @@ use convert::{rgb16_green_up, GREEN_UP};
 pub(crate) use depth::depth16;
 pub use depth::DepthTest;
 pub(crate) use depth::{DLessEqual, DepthFn};
-pub(crate) use gouraud::{span_gouraud, FIXED_GOURAUD, OPAQUE_FLAT, OPAQUE_TABLE, SPLIT_INTERIOR};
+pub(crate) use gouraud::{
+    span_gouraud, FIXED_GOURAUD, OPAQUE_FLAT, OPAQUE_TABLE, SPLIT_INTERIOR, STEPS_IN_PLACE,
+};
 use plane::Basis;
 pub(crate) use setup::{Corners, TriangleSetup, OFFSET_SETUP, SMALL_INLINE};
 
@@ -997,6 +999,11 @@ mod tests {
                         let [z, r, g, b] = reference;
                         let shifted = [z, r.wrapping_shl(8), g.wrapping_shl(8), b.wrapping_shl(8)];
                         assert_eq!(s.start_shifted(&corners, x0, j, s.interior()), shifted);
+                        // ARMv6-M's tested form (`SHIFTED_TOP`).
+                        assert_eq!(
+                            s.start_tested_shifted(&corners, x0, j, s.interior()),
+                            shifted
+                        );
                         continue;
                     }
                     assert_eq!(s.start_selects(&corners, x0, j), reference);

@@ -73,7 +73,19 @@ pub(crate) const OFFSET_SETUP: bool = cfg!(target_pointer_width = "64");
 /// 3,390,160 -> 3,376,708 instructions; 3,294,874 -> 3,277,579 once the
 /// Gouraud loop had lost its vector loop). Depth cannot be: its range is
 /// too wide (see [`TriangleSetup::start_shifted`] for colour's).
-pub(crate) const SHIFTED_COLOR: bool = super::VECTOR_LOOPS;
+///
+/// On ARMv6-M too ([`SHIFTED_TOP`]), whose Gouraud loop steps the
+/// channels shifted (`gouraud::TOP_BYTE`'s form).
+pub(crate) const SHIFTED_COLOR: bool = super::VECTOR_LOOPS || SHIFTED_TOP;
+
+/// Whether the Gouraud set-up of a target without SIMD (ARMv6-M, the
+/// build script's `microraster_narrow_multiply`) holds its colour planes
+/// shifted left by 8 ([`SHIFTED_COLOR`]), for its Gouraud loop, which
+/// steps the channels shifted (`gouraud::TOP_BYTE`): once a pair
+/// where each span shifted its three starts and each pair its three
+/// steps; the span starts are then tested against the shifted bounds
+/// ([`TriangleSetup::start_tested_shifted`]).
+pub(crate) const SHIFTED_TOP: bool = cfg!(microraster_narrow_multiply);
 
 /// A triangle ready to shade: its attribute planes (depth, then red,
 /// green and blue for Gouraud shading).
@@ -329,7 +341,9 @@ impl TriangleSetup {
     /// ([`TriangleSetup::for_gouraud_spans`]); a flat one's is not.
     #[inline(always)]
     pub(crate) fn for_spans<const GOURAUD: bool>(t: &Corners<'_>) -> Self {
-        if GOURAUD {
+        if GOURAUD && SHIFTED_TOP {
+            Self::gouraud_spans(t)
+        } else if GOURAUD {
             Self::gouraud(t).for_gouraud_spans(t)
         } else {
             Self::flat(t)
@@ -413,6 +427,19 @@ impl TriangleSetup {
     #[cfg_attr(not(target_pointer_width = "64"), inline(never))]
     pub(super) fn gouraud(t: &Corners<'_>) -> Self {
         Self::new(t, true)
+    }
+
+    /// [`TriangleSetup::gouraud`] made ready for the span loops
+    /// ([`TriangleSetup::for_gouraud_spans`]) in one call, where the
+    /// colour planes are shifted ([`SHIFTED_TOP`]: ARMv6-M): their nine
+    /// shifts then come before the set-up's stores, from the registers that
+    /// computed the planes, rather than in the caller, reloaded.
+    #[inline(never)]
+    pub(super) fn gouraud_spans(t: &Corners<'_>) -> Self {
+        if let Some(s) = Self::small_as(&t.points(), t, true, true) {
+            return s;
+        }
+        Self::general(t, true).for_gouraud_spans(t)
     }
 
     /// [`TriangleSetup::new`] of a flat triangle.

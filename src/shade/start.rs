@@ -93,6 +93,40 @@ impl TriangleSetup {
         [z.clamp(Z_LO, Z_HI), clamp(r), clamp(g), clamp(b)]
     }
 
+    /// [`TriangleSetup::start_tested_as`] of a set-up whose colour planes
+    /// are shifted left by 8 ([`SHIFTED_TOP`](super::setup::SHIFTED_TOP):
+    /// ARMv6-M), each channel shifted (wrapping): the starts of
+    /// [`TriangleSetup::start_shifted`], tested before their clamps as
+    /// `start_tested_as` tests. A covered pixel's channel lies inside
+    /// `0..2^24` (see there), where the shift, taken as `u32`, keeps the
+    /// order, so the shifted test and clamp are the plain ones shifted.
+    #[cfg_attr(not(any(test, microraster_narrow_multiply)), allow(dead_code))]
+    #[inline(always)]
+    pub(super) fn start_tested_shifted(
+        &self,
+        t: &Corners<'_>,
+        i: i32,
+        j: i32,
+        interior: bool,
+    ) -> [i32; 4] {
+        let shift = |c: i32| c.wrapping_shl(8);
+        let v = self.values_at(i, j);
+        let inside = |c: i32| (c.wrapping_sub(shift(C_LO)) as u32) < shift(C_HI - C_LO) as u32;
+        if interior || z_inside(v[0]) && inside(v[1]) && inside(v[2]) && inside(v[3]) {
+            v
+        } else {
+            let [z, r, g, b] = if self.wide {
+                // Clamped already.
+                let [z, r, g, b] = wide_start(t, i, j);
+                [z, shift(r), shift(g), shift(b)]
+            } else {
+                v
+            };
+            let clamp = |c: i32| (c as u32).clamp(shift(C_LO) as u32, shift(C_HI) as u32) as i32;
+            [z.clamp(Z_LO, Z_HI), clamp(r), clamp(g), clamp(b)]
+        }
+    }
+
     /// [`TriangleSetup::start`] with the clamps as selects.
     // The span loops take `start_shifted` (targets with SIMD) or
     // `start_tested_as`: only the tests call this.

@@ -118,6 +118,21 @@ impl TriangleSetup {
     /// Cortex-M3 has registers.
     #[inline(always)]
     pub(super) fn small(v: &[SubPoint; 3], t: &Corners<'_>, gouraud: bool) -> Option<Self> {
+        Self::small_as(v, t, gouraud, false)
+    }
+
+    /// [`TriangleSetup::small`], made ready for the span loops
+    /// ([`TriangleSetup::for_gouraud_spans`]) where `spans`: ARMv6-M's
+    /// [`TriangleSetup::gouraud_spans`], whose shifted colour planes
+    /// ([`SHIFTED_TOP`](super::setup::SHIFTED_TOP)) are then shifted in
+    /// the registers that computed them, before the set-up's stores.
+    #[inline(always)]
+    pub(super) fn small_as(
+        v: &[SubPoint; 3],
+        t: &Corners<'_>,
+        gouraud: bool,
+        spans: bool,
+    ) -> Option<Self> {
         // Within the guard band the edge vectors fit i32.
         let (x1, y1) = (v[1].x - v[0].x, v[1].y - v[0].y);
         let (x2, y2) = (v[2].x - v[0].x, v[2].y - v[0].y);
@@ -191,7 +206,8 @@ impl TriangleSetup {
         };
         // Gradients within 2^30 + 2^10 are far inside the clamp: never
         // wide.
-        Some(Self::finish(planes, false))
+        let s = Self::finish(planes, false);
+        Some(if spans { s.for_gouraud_spans(t) } else { s })
     }
 
     /// [`TriangleSetup::plane`] of a colour channel `a` (1 to 3) of a
