@@ -141,7 +141,7 @@ where
     /// A renderer with the given settings.
     pub fn new(config: Config<C>) -> Self {
         Self {
-            tile: TileBuffer::new(config.clear_color),
+            tile: TileBuffer::new_at_run_time(config.clear_color),
             config,
             features: core::marker::PhantomData,
         }
