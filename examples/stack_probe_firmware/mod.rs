@@ -19,16 +19,16 @@ use panel::{ChecksumPanel, FRAME_TIMES, STACK_BUDGET};
 // tile buffers. Reached once each, from `run`, through `addr_of_mut!`.
 static mut KNOT: KnotData = KnotData::new();
 static mut WORKSPACE: PicoWorkspace = PicoWorkspace::new();
-static mut TILES: [Option<PicoTile>; 2] = [None, None];
+static mut TILES: [PicoTile; 2] = [
+    PicoTile::new_nearest(Rgb565Be::new(0, 0, 0)),
+    PicoTile::new_nearest(Rgb565Be::new(0, 0, 0)),
+];
 
-/// The two tile buffers, built in their static as on the boards (one
-/// 4 KiB buffer at a time made on the stack and moved in), before the
-/// first frame. Not inlined, as on the boards.
-#[inline(never)]
-fn tiles(slots: &'static mut [Option<PicoTile>; 2]) -> [&'static mut PicoTile; 2] {
+/// The two tile buffers, as on the boards: all zeros in .bss
+/// (`TileBuffer::new_nearest`), never built on the stack.
+fn tiles(slots: &'static mut [PicoTile; 2]) -> [&'static mut PicoTile; 2] {
     let [a, b] = slots;
-    let new = || PicoTile::new(Rgb565Be::new(0, 0, 0));
-    [a.insert(new()), b.insert(new())]
+    [a, b]
 }
 
 /// The probe. `paint` has painted the stack before; everything after that

@@ -70,7 +70,7 @@ use microraster::prelude::*;
 use microraster::sink::wire::{wire_bytes, Window};
 use panic_halt as _;
 use st7789_scene::*;
-use static_cell::{ConstStaticCell, StaticCell};
+use static_cell::ConstStaticCell;
 
 // The application descriptor that the ESP-IDF bootloader checks.
 esp_bootloader_esp_idf::esp_app_desc!();
@@ -101,12 +101,16 @@ struct DmaTile(Tile);
 // Built in place in RAM (.bss), never moved through the stack.
 static KNOT: ConstStaticCell<KnotData> = ConstStaticCell::new(KnotData::new());
 static WORKSPACE: ConstStaticCell<PicoWorkspace> = ConstStaticCell::new(PicoWorkspace::new());
-/// The two tile buffers: one is drawn while DMA sends the other. Built
-/// at start-up (see `tiles`), so that they take RAM (.bss) and no flash: a
-/// `const` tile buffer holds the farthest depth, not zeros, and would be
-/// stored in flash as initial data (.data).
-static TILE_A: StaticCell<DmaTile> = StaticCell::new();
-static TILE_B: StaticCell<DmaTile> = StaticCell::new();
+/// The two tile buffers: one is drawn while DMA sends the other. Built by
+/// the compiler, all zeros (`TileBuffer::new_nearest` with black), so that
+/// they start in RAM cleared at start-up (.bss) and take no flash (a
+/// `TileBuffer::new` buffer, the farthest depth, would be initial data,
+/// .data, stored in flash too), and are never built on the stack and moved
+/// in. (Their first colour is never seen: each tile is cleared first.)
+static TILE_A: ConstStaticCell<DmaTile> =
+    ConstStaticCell::new(DmaTile(Tile::new_nearest(Rgb565Be::new(0, 0, 0))));
+static TILE_B: ConstStaticCell<DmaTile> =
+    ConstStaticCell::new(DmaTile(Tile::new_nearest(Rgb565Be::new(0, 0, 0))));
 /// The descriptors of the transfer in flight.
 static DMA_DESCRIPTORS: ConstStaticCell<InternalMemory<[DmaDescriptor; DESCRIPTORS]>> =
     ConstStaticCell::new(InternalMemory::new([DmaDescriptor::EMPTY; DESCRIPTORS]));
@@ -116,17 +120,9 @@ static DMA_DESCRIPTORS: ConstStaticCell<InternalMemory<[DmaDescriptor; DESCRIPTO
 #[no_mangle]
 static PEAK_STACK_BYTES: AtomicUsize = AtomicUsize::new(0);
 
-/// The two tile buffers, once (`None` the second time). Not inlined: the
-/// compiler builds each 4 KiB buffer on the stack before it moves it into
-/// its static, and that stack is given back before the first frame. (Their first colour is never seen: each tile is cleared
-/// first.)
-#[inline(never)]
+/// The two tile buffers, once (`None` the second time).
 fn tiles() -> Option<[&'static mut Tile; 2]> {
-    let new = || DmaTile(Tile::new(Rgb565Be::new(0, 0, 0)));
-    Some([
-        &mut TILE_A.try_init_with(new)?.0,
-        &mut TILE_B.try_init_with(new)?.0,
-    ])
+    Some([&mut TILE_A.try_take()?.0, &mut TILE_B.try_take()?.0])
 }
 
 /// What can go wrong with a tile on its way to the panel.

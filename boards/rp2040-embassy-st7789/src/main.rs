@@ -68,14 +68,16 @@ const SPI_HZ: u32 = 62_500_000;
 static KNOT: ConstStaticCell<KnotData> = ConstStaticCell::new(KnotData::new());
 static WORKSPACE: ConstStaticCell<PicoWorkspace> = ConstStaticCell::new(PicoWorkspace::new());
 /// The two tile buffers: one is drawn while DMA sends the other. A
-/// `const` pair, so in .data (its 8 KiB of initial values, the farthest
-/// depth, are in flash too), not built at start-up into .bss as the
-/// rp2040-hal firmware's are: `render_async` takes the pair as one array,
-/// which the compiler builds on the stack before moving it into its
-/// static, and that raised the peak stack from 9.9 to 20.8 KB in rp2040js.
+/// `const` pair, never built on the stack (`render_async` takes the pair
+/// as one array: built at run time and moved into its static, it raised
+/// the peak stack from 9.9 to 20.8 KB in rp2040js), and all zeros
+/// (`TileBuffer::new_nearest` with black), so in RAM cleared at start-up
+/// (.bss): a `TileBuffer::new` pair, the farthest depth, would be initial
+/// data (.data), its 8 KiB stored in flash too. (Their first colour is
+/// never seen: each tile is cleared first.)
 static TILES: ConstStaticCell<[PicoTile; 2]> = ConstStaticCell::new([
-    PicoTile::new(Rgb565Be::new(0, 0, 0)),
-    PicoTile::new(Rgb565Be::new(0, 0, 0)),
+    PicoTile::new_nearest(Rgb565Be::new(0, 0, 0)),
+    PicoTile::new_nearest(Rgb565Be::new(0, 0, 0)),
 ]);
 
 /// What can go wrong with a tile on its way to the panel.

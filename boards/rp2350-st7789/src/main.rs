@@ -64,7 +64,7 @@ use microraster::sink::wire::Window;
 use panic_halt as _;
 use rp235x_hal as hal;
 use st7789_scene::*;
-use static_cell::{ConstStaticCell, StaticCell};
+use static_cell::ConstStaticCell;
 use tile_bytes::TileBytes;
 
 use hal::clocks::{init_clocks_and_plls, Clock};
@@ -94,26 +94,25 @@ const BLINK_CYCLES: u32 = 30_000_000;
 static KNOT: ConstStaticCell<KnotData> = ConstStaticCell::new(KnotData::new());
 static WORKSPACE: ConstStaticCell<PicoWorkspace> = ConstStaticCell::new(PicoWorkspace::new());
 // The two tile buffers. `'static`, as a DMA transfer's buffer must be: a
-// transfer that was leaked must not go on reading freed memory. Built at
-// start-up (see `tiles`), so that they take RAM (.bss) and no flash: a
-// `const` tile buffer holds the farthest depth, not zeros, and would be
-// stored in flash as initial data (.data).
-static TILE_A: StaticCell<PicoTile> = StaticCell::new();
-static TILE_B: StaticCell<PicoTile> = StaticCell::new();
+// transfer that was leaked must not go on reading freed memory. Built by
+// the compiler, all zeros (`TileBuffer::new_nearest` with black), so that
+// they start in RAM cleared at start-up (.bss) and take no flash (a
+// `TileBuffer::new` buffer, the farthest depth, would be initial data,
+// .data, stored in flash too), and are never built on the stack and moved
+// in. (Their first colour is never seen: each tile is cleared first.)
+static TILE_A: ConstStaticCell<PicoTile> =
+    ConstStaticCell::new(PicoTile::new_nearest(Rgb565Be::new(0, 0, 0)));
+static TILE_B: ConstStaticCell<PicoTile> =
+    ConstStaticCell::new(PicoTile::new_nearest(Rgb565Be::new(0, 0, 0)));
 
 /// The deepest the stack has gone, in bytes below the top of RAM, as of
 /// the last frame (`examples/stack_gauge`): for a debugger to read.
 #[no_mangle]
 static PEAK_STACK_BYTES: AtomicUsize = AtomicUsize::new(0);
 
-/// The two tile buffers, once (`None` the second time). Not inlined: the
-/// compiler builds each 4 KiB buffer on the stack before it moves it into
-/// its static, and that stack is given back before the first frame. (The
-/// buffers' first colour is never seen: each tile is cleared first.)
-#[inline(never)]
+/// The two tile buffers, once (`None` the second time).
 fn tiles() -> Option<[&'static mut PicoTile; 2]> {
-    let new = || PicoTile::new(Rgb565Be::new(0, 0, 0));
-    Some([TILE_A.try_init_with(new)?, TILE_B.try_init_with(new)?])
+    Some([TILE_A.try_take()?, TILE_B.try_take()?])
 }
 
 /// Where the bus is: free, or carrying a tile by DMA.
