@@ -147,3 +147,31 @@ fn a_reused_buffer_draws_as_a_fresh_one() {
         }
     }
 }
+
+/// A buffer from `TileBuffer::new_nearest` (all zeros, for a static in
+/// .bss: the nearest depth and no row recorded as written) draws its
+/// first tile as a fresh `TileBuffer::new` one, whether the frame clears
+/// to its colour or to another.
+#[test]
+fn a_nearest_buffer_draws_as_a_fresh_one() {
+    let assets = DemoAssets::new();
+    let (knot, cube) = (assets.knot(), cube());
+    let camera = camera(SIZE.width, SIZE.height);
+    let black = Rgb565::new(0, 0, 0);
+    let [k, c] = draws(&knot, &cube, 1.9, Shading::Gouraud);
+    let d = [k, c];
+    let scene = Scene::new(camera, &d).light(light());
+    for clear in [black, Rgb565::new(0, 0, 20)] {
+        let config = Config::new(SIZE, clear);
+        for first in [black, Rgb565::new(31, 0, 0)] {
+            let pool = &mut [Tile::new_nearest(first), Tile::new_nearest(first)];
+            assert_eq!(pool[0].depth(31, 31), Some(0));
+            check(
+                &format!("clear {clear:?}, buffers of {first:?}"),
+                config,
+                &scene,
+                pool,
+            );
+        }
+    }
+}
