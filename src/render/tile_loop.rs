@@ -4,7 +4,7 @@ mod shaded;
 
 use super::cursor::{DrawCursor, TileList};
 use super::dispatch::{ShaderPass, Shaders};
-use super::fill::{drawn, fill, fill_shaded, Target};
+use super::fill::{drawn, drawn_any, fill, fill_shaded, Target, ROWS_BY_TILE};
 use super::state::{FrameState, SetupCache};
 use super::Features;
 use crate::raster::line::{draw_line, draw_point, DepthMode, LinePoint};
@@ -129,7 +129,12 @@ where
                 } else {
                     find(&sv, to.rect, &mut to.found)
                 };
-                if let Some(found) = drawn(&to.found, count, &mut to.rows) {
+                let found = if ROWS_BY_TILE {
+                    drawn_any(&to.found, count)
+                } else {
+                    drawn(&to.found, count, &mut to.rows)
+                };
+                if let Some(found) = found {
                     let m = shade(to.tile, to.rect, &sv, found, test);
                     // Added in memory on 64-bit hosts (see `Target::shaded`).
                     #[cfg(target_pointer_width = "64")]
