@@ -85,6 +85,12 @@ where
     /// Records in the tile the rows drawn (see [`TileBuffer::written`]).
     #[inline(always)]
     pub(super) fn finish(&mut self) {
+        // Where `ROWS_BY_TILE`, the common path's pairs (counted in
+        // `shaded`) may have written any row.
+        #[cfg(target_pointer_width = "64")]
+        if ROWS_BY_TILE && self.shaded > 0 {
+            self.tile.written(0, TH - 1);
+        }
         let (first, last) = self.rows;
         if first <= last {
             // Spans lie inside the tile.
@@ -125,6 +131,22 @@ pub(super) fn drawn<'f>(
         rows.1 = last.j;
     }
     Some(found)
+}
+
+/// Whether the tile loop's common path leaves its pairs' rows unrecorded
+/// ([`drawn_any`]), and a tile where it wrote a pixel is cleared whole
+/// ([`Target::finish`]): 64-bit hosts, where a pair's two compares with
+/// the rows so far, in memory, and the load of its last span's row took
+/// ten instructions. (Clearing a row that was not written rewrites the
+/// values it holds: the same images.)
+pub(super) const ROWS_BY_TILE: bool = cfg!(target_pointer_width = "64");
+
+/// [`drawn`] without the rows (see [`ROWS_BY_TILE`]).
+#[inline(always)]
+pub(super) fn drawn_any(found: &[Span], count: usize) -> Option<&[Span]> {
+    // As in `drawn`: one unsigned compare tells `1..=found.len()`.
+    found.get(count.wrapping_sub(1))?;
+    found.get(..count)
 }
 
 /// Draws one triangle into the tile, Gouraud or flat shaded (flat in the

@@ -4,7 +4,7 @@ mod shaded;
 
 use super::cursor::{DrawCursor, TileList};
 use super::dispatch::{ShaderPass, Shaders};
-use super::fill::{drawn, fill, fill_shaded, Target};
+use super::fill::{drawn, drawn_any, fill, fill_shaded, Target, ROWS_BY_TILE};
 use super::state::{FrameState, SetupCache};
 use super::Features;
 use crate::raster::line::{draw_line, draw_point, DepthMode, LinePoint};
@@ -84,65 +84,83 @@ where
         // bin's entries come in draw order): its triangles (empty unless
         // the draw is plain with `u16` indices), its first triangle, its
         // vertices and its span loop.
-        let (mut fast, mut first, mut verts, mut shade) = (
-            cur.fast,
-            cur.first,
-            cur.verts,
-            shaders.fill[cur.gouraud as usize],
-        );
-        let mut next = list.next();
-        while let Some(t) = next {
-            // One bounds check finds the common pair: a triangle of the
-            // current draw, which is plain. Any other (the next draw's, a
-            // rare path's, `u32` indices) takes the general path, which
-            // moves the cursor, draws the rest of that draw's run of pairs
-            // if the draw is not plain, and gives back the entry after
-            // them.
-            let Some(&[i0, i1, i2]) = fast.get(t.wrapping_sub(first)) else {
-                let (m, after) = job.general::<P>(&mut cur, t, &mut list, &mut later);
-                n += m;
-                next = after;
-                (fast, first, verts) = (cur.fast, cur.first, cur.verts);
-                shade = shaders.fill[cur.gouraud as usize];
-                continue;
-            };
-            let sv = [
-                &verts[i0 as usize],
-                &verts[i1 as usize],
-                &verts[i2 as usize],
-            ];
-            // The outcodes tested in the vertices' whole first words (their
-            // low byte): one `tst` rather than a byte extension and a
-            // compare.
-            let any = sv[0].xy_words().0 | sv[1].xy_words().0 | sv[2].xy_words().0;
-            if any & MUST_CLIP as i32 != 0 {
-                let idx = [i0 as u32, i1 as u32, i2 as u32];
-                n += job.clipped(&cur, idx, any as u8, sv[0].color());
-            } else {
-                // `fill`, with the tile's rasterizer, the draw's span loop
-                // and the depth test from locals.
-                let to = &mut job.to;
-                let count = if WALK_INLINE && scan {
-                    // The walk of `fill`'s `find_spans`, inline.
-                    let v = [sv[0].xy(), sv[1].xy(), sv[2].xy()];
-                    crate::raster::scanline::find_spans_inline(&v, clip, &mut to.found)
-                } else {
-                    find(&sv, to.rect, &mut to.found)
-                };
-                if let Some(found) = drawn(&to.found, count, &mut to.rows) {
-                    let m = shade(to.tile, to.rect, &sv, found, test);
-                    // Added in memory on 64-bit hosts (see `Target::shaded`).
-                    #[cfg(target_pointer_width = "64")]
-                    {
-                        to.shaded += m;
-                    }
-                    #[cfg(not(target_pointer_width = "64"))]
-                    {
+        // The loop written twice, for the scanline walk inline and for
+        // the tile's other rasterizers: the test of `scan` (the
+        // rasterizer's address, compared again for every pair) out of
+        // the loop.
+        macro_rules! common {
+            ($scan:expr) => {{
+                let (mut fast, mut first, mut verts, mut shade) = (
+                    cur.fast,
+                    cur.first,
+                    cur.verts,
+                    shaders.fill[cur.gouraud as usize],
+                );
+                let mut next = list.next();
+                while let Some(t) = next {
+                    // One bounds check finds the common pair: a triangle of the
+                    // current draw, which is plain. Any other (the next draw's, a
+                    // rare path's, `u32` indices) takes the general path, which
+                    // moves the cursor, draws the rest of that draw's run of pairs
+                    // if the draw is not plain, and gives back the entry after
+                    // them.
+                    let Some(&[i0, i1, i2]) = fast.get(t.wrapping_sub(first)) else {
+                        let (m, after) = job.general::<P>(&mut cur, t, &mut list, &mut later);
                         n += m;
+                        next = after;
+                        (fast, first, verts) = (cur.fast, cur.first, cur.verts);
+                        shade = shaders.fill[cur.gouraud as usize];
+                        continue;
+                    };
+                    let sv = [
+                        &verts[i0 as usize],
+                        &verts[i1 as usize],
+                        &verts[i2 as usize],
+                    ];
+                    // The outcodes tested in the vertices' whole first words (their
+                    // low byte): one `tst` rather than a byte extension and a
+                    // compare.
+                    let any = sv[0].xy_words().0 | sv[1].xy_words().0 | sv[2].xy_words().0;
+                    if any & MUST_CLIP as i32 != 0 {
+                        let idx = [i0 as u32, i1 as u32, i2 as u32];
+                        n += job.clipped(&cur, idx, any as u8, sv[0].color());
+                    } else {
+                        // `fill`, with the tile's rasterizer, the draw's span loop
+                        // and the depth test from locals.
+                        let to = &mut job.to;
+                        let count = if $scan {
+                            // The walk of `fill`'s `find_spans`, inline.
+                            let v = [sv[0].xy(), sv[1].xy(), sv[2].xy()];
+                            crate::raster::scanline::find_spans_inline(&v, clip, &mut to.found)
+                        } else {
+                            find(&sv, to.rect, &mut to.found)
+                        };
+                        let found = if ROWS_BY_TILE {
+                            drawn_any(&to.found, count)
+                        } else {
+                            drawn(&to.found, count, &mut to.rows)
+                        };
+                        if let Some(found) = found {
+                            let m = shade(to.tile, to.rect, &sv, found, test);
+                            // Added in memory on 64-bit hosts (see `Target::shaded`).
+                            #[cfg(target_pointer_width = "64")]
+                            {
+                                to.shaded += m;
+                            }
+                            #[cfg(not(target_pointer_width = "64"))]
+                            {
+                                n += m;
+                            }
+                        }
                     }
+                    next = list.next();
                 }
-            }
-            next = list.next();
+            }};
+        }
+        if WALK_INLINE && scan {
+            common!(true)
+        } else {
+            common!(false)
         }
     }
     if P::BLEND {
