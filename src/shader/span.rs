@@ -232,7 +232,12 @@ impl<'a, C, V: Varyings> SpanInput<'a, C, V> {
                 // `USAT`.
                 #[cfg(target_pointer_width = "64")]
                 if interpolate_color && !COLOUR_LOOP {
-                    return match self.opaque_shift_convex() {
+                    let shift = if V::LEN == 0 {
+                        self.opaque_shift_convex_only()
+                    } else {
+                        self.opaque_shift_convex()
+                    };
+                    return match shift {
                         Some((sh, true)) if flat => {
                             self.run_opaque::<FLAT_Q, true>(interpolate_color, fragment, sh)
                         }

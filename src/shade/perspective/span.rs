@@ -246,7 +246,17 @@ impl<C, V: Varyings> SpanInput<'_, C, V> {
     #[cfg(target_pointer_width = "64")]
     #[inline(always)]
     pub(crate) fn opaque_shift_convex(&self) -> Option<(u32, bool)> {
-        span_shift_convex(self.planes, self.steps, self.color.len())
+        span_shift_convex::<false>(self.planes, self.steps, self.color.len())
+    }
+
+    /// [`opaque_shift_convex`](Self::opaque_shift_convex) with `None` for
+    /// the spans that are not convex too, for a shader without varyings
+    /// (`Gouraud`), which takes those through the general loop: fewer
+    /// tests (see [`span_shift_convex`]).
+    #[cfg(target_pointer_width = "64")]
+    #[inline(always)]
+    pub(crate) fn opaque_shift_convex_only(&self) -> Option<(u32, bool)> {
+        span_shift_convex::<true>(self.planes, self.steps, self.color.len())
     }
 
     /// `opaque_shift_convex` (64-bit hosts) in `i32`
