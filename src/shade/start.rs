@@ -82,13 +82,22 @@ impl TriangleSetup {
         if interior {
             return self.values_at(i, j);
         }
+        self.clamped_shifted(t, i, j, self.values_at(i, j))
+    }
+
+    /// The clamped starts of a shifted set-up's span that may leave the
+    /// channels' range ([`TriangleSetup::start_shifted`]), from its values
+    /// at the start `v`: a wide set-up's from the corners, clamped there,
+    /// and shifted; any other's clamped in the shifted form.
+    #[inline(always)]
+    fn clamped_shifted(&self, t: &Corners<'_>, i: i32, j: i32, v: [i32; 4]) -> [i32; 4] {
         let shift = |c: i32| c.wrapping_shl(8);
         if self.wide {
             // Clamped already.
             let [z, r, g, b] = wide_start(t, i, j);
             return [z, shift(r), shift(g), shift(b)];
         }
-        let [z, r, g, b] = self.values_at(i, j);
+        let [z, r, g, b] = v;
         let clamp = |c: i32| (c as u32).clamp(shift(C_LO) as u32, shift(C_HI) as u32) as i32;
         [z.clamp(Z_LO, Z_HI), clamp(r), clamp(g), clamp(b)]
     }
@@ -115,15 +124,7 @@ impl TriangleSetup {
         if interior || z_inside(v[0]) && inside(v[1]) && inside(v[2]) && inside(v[3]) {
             v
         } else {
-            let [z, r, g, b] = if self.wide {
-                // Clamped already.
-                let [z, r, g, b] = wide_start(t, i, j);
-                [z, shift(r), shift(g), shift(b)]
-            } else {
-                v
-            };
-            let clamp = |c: i32| (c as u32).clamp(shift(C_LO) as u32, shift(C_HI) as u32) as i32;
-            [z.clamp(Z_LO, Z_HI), clamp(r), clamp(g), clamp(b)]
+            self.clamped_shifted(t, i, j, v)
         }
     }
 
