@@ -85,10 +85,10 @@ where
     /// Records in the tile the rows drawn (see [`TileBuffer::written`]).
     #[inline(always)]
     pub(super) fn finish(&mut self) {
-        // Where `ROWS_BY_TILE`, the common path's pairs (counted in
+        // Where `WHOLE_TILE_ROWS`, the common path's pairs (counted in
         // `shaded`) may have written any row.
         #[cfg(target_pointer_width = "64")]
-        if ROWS_BY_TILE && self.shaded > 0 {
+        if WHOLE_TILE_ROWS && self.shaded > 0 {
             self.tile.written(0, TH - 1);
         }
         let (first, last) = self.rows;
@@ -139,9 +139,9 @@ pub(super) fn drawn<'f>(
 /// the rows so far, in memory, and the load of its last span's row took
 /// ten instructions. (Clearing a row that was not written rewrites the
 /// values it holds: the same images.)
-pub(super) const ROWS_BY_TILE: bool = cfg!(target_pointer_width = "64");
+pub(super) const WHOLE_TILE_ROWS: bool = cfg!(target_pointer_width = "64");
 
-/// [`drawn`] without the rows (see [`ROWS_BY_TILE`]).
+/// [`drawn`] without the rows (see [`WHOLE_TILE_ROWS`]).
 #[inline(always)]
 pub(super) fn drawn_any(found: &[Span], count: usize) -> Option<&[Span]> {
     // As in `drawn`: one unsigned compare tells `1..=found.len()`.

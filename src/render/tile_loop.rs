@@ -4,7 +4,7 @@ mod shaded;
 
 use super::cursor::{DrawCursor, TileList};
 use super::dispatch::{ShaderPass, Shaders};
-use super::fill::{drawn, drawn_any, fill, fill_shaded, Target, ROWS_BY_TILE};
+use super::fill::{drawn, drawn_any, fill, fill_shaded, Target, WHOLE_TILE_ROWS};
 use super::state::{FrameState, SetupCache};
 use super::Features;
 use crate::raster::line::{draw_line, draw_point, DepthMode, LinePoint};
@@ -135,7 +135,7 @@ where
                         } else {
                             find(&sv, to.rect, &mut to.found)
                         };
-                        let found = if ROWS_BY_TILE {
+                        let found = if WHOLE_TILE_ROWS {
                             drawn_any(&to.found, count)
                         } else {
                             drawn(&to.found, count, &mut to.rows)
