@@ -314,10 +314,21 @@ fn gouraud_loop<C: Copy + From<Rgb888> + 'static, D: DepthFn, const WRITE: bool>
             Some(s) if STEPS_IN_PLACE => s.steps().map(|v| v as u32),
             _ => [gz, gr, gg, gb],
         };
-        z = z.wrapping_add(gz);
-        r = r.wrapping_add(gr);
-        g = g.wrapping_add(gg);
-        b = b.wrapping_add(gb);
+        if FENCE_LAST {
+            // Green stepped before red: the written path's registers then
+            // fall better (ARMv6-M `demo` 5,991,471 -> 5,965,273
+            // instructions; red before green, in any order of the others,
+            // 5,991,471).
+            b = b.wrapping_add(gb);
+            g = g.wrapping_add(gg);
+            r = r.wrapping_add(gr);
+            z = z.wrapping_add(gz);
+        } else {
+            z = z.wrapping_add(gz);
+            r = r.wrapping_add(gr);
+            g = g.wrapping_add(gg);
+            b = b.wrapping_add(gb);
+        }
         // At the end of the pixel where `FENCE_LAST`: the next pixel's
         // steps are read after it all the same.
         if FENCE_LAST {
