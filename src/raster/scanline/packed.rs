@@ -7,22 +7,26 @@ use super::edge::{ceil_div_rem32, far_start_of, EdgeStepper};
 use crate::raster::{Span, SubPoint, HALF_PIXEL, SUBPIXEL, SUBPIXEL_BITS};
 use core::num::NonZeroU32;
 
-/// Bits of a [`Packed`] edge's column.
-const COL_BITS: u32 = 10;
+/// Bits of a [`Packed`] edge's column: with `NARROW` (ARMv6-M) 11 from
+/// bit 0, read sign-extended by two shifts (the columns `0..PACKED_COLS`
+/// read the same), where a shift and a mask had the mask's constant loaded
+/// from the literal pool at every row (no register left for it).
+const COL_BITS: u32 = if NARROW { 11 } else { 10 };
 
 /// Where a [`Packed`] edge's column starts: bit 1, not 0, so that the
 /// column is read by one bit-field extract (`ubfx` on Arm), which leaves
 /// the word in its register. A mask of the low bits made the M3 copy each
 /// word before clearing its upper bits in place (two instructions a row).
-const COL_SHIFT: u32 = 1;
+/// With `NARROW`, bit 0 (see [`COL_BITS`]).
+const COL_SHIFT: u32 = if NARROW { 0 } else { 1 };
 
-/// Bits below a [`Packed`] edge's error term: the column and bit 0
-/// (always clear).
+/// Bits below a [`Packed`] edge's error term: the column and, but for
+/// `NARROW`, bit 0 (always clear).
 const PACKED_BITS: u32 = COL_BITS + COL_SHIFT;
 
 /// Columns a [`Packed`] edge may take, `0..PACKED_COLS`, less one: a step
 /// passes through its column plus one before a carry takes it back.
-pub(super) const PACKED_COLS: i32 = (1 << COL_BITS) - 1;
+pub(super) const PACKED_COLS: i32 = (1 << (PACKED_BITS - 1)) - 1;
 
 /// Height in sub-pixels up to which an edge can be [`Packed`]: its error
 /// term (below `SUBPIXEL * PACKED_DY`, 2^19), shifted, and a step's column
@@ -113,13 +117,26 @@ impl Packed {
             // The error term `rem - den`, and the column.
             ((rem - (d >> PACKED_BITS)) << PACKED_BITS) | (col << COL_SHIFT)
         };
-        debug_assert_eq!(w & !1, EdgeStepper::new::<false>(p, q, row).packed().p);
+        debug_assert_eq!(
+            w & !((1 << COL_SHIFT) - 1),
+            EdgeStepper::new::<false>(p, q, row).packed().p
+        );
         Self { p: w, s, d }
     }
 }
 
 /// A [`Packed`] word's column.
 const MASK: i32 = (1 << COL_BITS) - 1;
+
+/// A [`Packed`] word `p`'s column.
+#[inline(always)]
+fn column(p: i32) -> i32 {
+    if NARROW {
+        (p << (32 - COL_BITS)) >> (32 - COL_BITS)
+    } else {
+        (p >> COL_SHIFT) & MASK
+    }
+}
 
 /// A [`Packed`] word `p` one row on, by its step `s` and, when the error
 /// term turns non-negative, its correction `d`.
@@ -169,38 +186,38 @@ pub(super) fn half_packed<const CLAMP: bool>(
         // the stores and the slot's step (ARMv6-M `demo` 6,381,174 ->
         // 6,315,346 instructions, in the other loop).
         //
-        // The rows are counted up to zero from `row - stop`, which LLVM turns
-        // back into the row itself, but with other registers than the loop of
-        // `for j in row..stop` (`demo` 6,318,708 -> 6,296,419): the slots left
-        // stay in a stack slot, read and written by a non-empty row only.
-        let mut k = row - stop;
-        while k < 0 {
-            let (c0, c1) = ((lp >> COL_SHIFT) & MASK, (rp >> COL_SHIFT) & MASK);
+        // The slots are taken by a slice iterator, its pointer compared
+        // with the end's, and the rows counted by `j` itself: with the
+        // column read by two shifts (`COL_BITS`) the loop keeps both
+        // words, the row and the pointer in registers, where the slice's
+        // length was a count read and written in a stack slot at each
+        // non-empty row (`demo` 5,965,273 -> 5,935,524 instructions).
+        // (Rows counted up to zero from `row - stop` took 5,971,356 with
+        // the iterator; the iterator with the mask, 5,955,160.)
+        let mut slots = core::mem::take(&mut rest).iter_mut();
+        let mut j = row;
+        while j < stop {
+            let (c0, c1) = (column(lp), column(rp));
             let (c0, c1) = if CLAMP {
                 (c0.max(x0), c1.min(x1))
             } else {
                 (c0, c1)
             };
             if c0 < c1 {
-                let Some((o, r)) = core::mem::take(&mut rest).split_first_mut() else {
+                let Some(o) = slots.next() else {
                     // No slot left.
                     break;
                 };
-                *o = Span {
-                    j: stop + k,
-                    x0: c0,
-                    x1: c1,
-                };
-                rest = r;
+                *o = Span { j, x0: c0, x1: c1 };
             }
             (lp, rp) = (next_row(lp, ls, ld), next_row(rp, rs, rd));
-            k += 1;
+            j += 1;
         }
         (left.p, right.p) = (lp, rp);
-        return len - rest.len();
+        return len - slots.into_slice().len();
     }
     for j in row..stop {
-        let (c0, c1) = ((lp >> COL_SHIFT) & MASK, (rp >> COL_SHIFT) & MASK);
+        let (c0, c1) = (column(lp), column(rp));
         let s = if CLAMP {
             Span {
                 j,
