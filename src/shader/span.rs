@@ -233,9 +233,9 @@ impl<'a, C, V: Varyings> SpanInput<'a, C, V> {
                 #[cfg(target_pointer_width = "64")]
                 if interpolate_color && !COLOUR_LOOP {
                     let shift = if V::LEN == 0 {
-                        self.opaque_shift_convex_only()
+                        self.opaque_shift_convex::<true>()
                     } else {
-                        self.opaque_shift_convex()
+                        self.opaque_shift_convex::<false>()
                     };
                     return match shift {
                         Some((sh, true)) if flat => {

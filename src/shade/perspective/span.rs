@@ -242,21 +242,14 @@ impl<C, V: Varyings> SpanInput<'_, C, V> {
     /// `fill-gouraud-exact` took 77.97 -> 80.66 and `fill-bilinear-exact`
     /// 167.49 -> 169.27 (their loops' code moved). With it, whether the
     /// weights sum to one at most along the span ([`span_shift_convex`]:
-    /// the colour then needs no clamp).
-    #[cfg(target_pointer_width = "64")]
-    #[inline(always)]
-    pub(crate) fn opaque_shift_convex(&self) -> Option<(u32, bool)> {
-        span_shift_convex::<false>(self.planes, self.steps, self.color.len())
-    }
-
-    /// [`opaque_shift_convex`](Self::opaque_shift_convex) with `None` for
+    /// the colour then needs no clamp). With `CONVEX_ONLY`, `None` for
     /// the spans that are not convex too, for a shader without varyings
     /// (`Gouraud`), which takes those through the general loop: fewer
     /// tests (see [`span_shift_convex`]).
     #[cfg(target_pointer_width = "64")]
     #[inline(always)]
-    pub(crate) fn opaque_shift_convex_only(&self) -> Option<(u32, bool)> {
-        span_shift_convex::<true>(self.planes, self.steps, self.color.len())
+    pub(crate) fn opaque_shift_convex<const CONVEX_ONLY: bool>(&self) -> Option<(u32, bool)> {
+        span_shift_convex::<CONVEX_ONLY>(self.planes, self.steps, self.color.len())
     }
 
     /// `opaque_shift_convex` (64-bit hosts) in `i32`
