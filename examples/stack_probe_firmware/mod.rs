@@ -16,20 +16,14 @@ pub mod panel;
 use panel::{ChecksumPanel, FRAME_TIMES, STACK_BUDGET};
 
 // In RAM (.bss), as on the boards: the knot's mesh, the workspace, the two
-// tile buffers. Reached once each, from `run`, through `addr_of_mut!`.
+// tile buffers (all zeros, `TileBuffer::new_nearest`: never built on the
+// stack). Reached once each, from `run`, through `addr_of_mut!`.
 static mut KNOT: KnotData = KnotData::new();
 static mut WORKSPACE: PicoWorkspace = PicoWorkspace::new();
 static mut TILES: [PicoTile; 2] = [
     PicoTile::new_nearest(Rgb565Be::new(0, 0, 0)),
     PicoTile::new_nearest(Rgb565Be::new(0, 0, 0)),
 ];
-
-/// The two tile buffers, as on the boards: all zeros in .bss
-/// (`TileBuffer::new_nearest`), never built on the stack.
-fn tiles(slots: &'static mut [PicoTile; 2]) -> [&'static mut PicoTile; 2] {
-    let [a, b] = slots;
-    [a, b]
-}
 
 /// The probe. `paint` has painted the stack before; everything after that
 /// counts: start-up as on the boards, then the frames.
@@ -48,7 +42,7 @@ pub fn run() -> ! {
         let _ = writeln!(out, "stack_probe: the scene did not set up");
         rt::exit(false)
     };
-    let mut tiles = tiles(slots);
+    let mut tiles = slots.each_mut();
     let start_up = stack_gauge::peak();
     let room = stack_gauge::room();
     let _ = writeln!(
