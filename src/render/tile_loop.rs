@@ -80,16 +80,16 @@ where
             n += job.general_one::<P>(&mut cur, t, &mut later);
         }
     } else {
-        // The current draw's common path, per draw rather than per pair (a
-        // bin's entries come in draw order): its triangles (empty unless
-        // the draw is plain with `u16` indices), its first triangle, its
-        // vertices and its span loop.
         // The loop written twice, for the scanline walk inline and for
         // the tile's other rasterizers: the test of `scan` (the
         // rasterizer's address, compared again for every pair) out of
         // the loop.
         macro_rules! common {
             ($scan:expr) => {{
+                // The current draw's common path, per draw rather than per
+                // pair (a bin's entries come in draw order): its triangles
+                // (empty unless the draw is plain with `u16` indices), its
+                // first triangle, its vertices and its span loop.
                 let (mut fast, mut first, mut verts, mut shade) = (
                     cur.fast,
                     cur.first,
