@@ -47,13 +47,21 @@ pub(crate) fn span_gouraud<
         // The colour planes shifted already where `SHIFTED_TOP`.
         let [z, r, g, b] = if SHIFTED_TOP {
             s.start_tested_shifted(t, x0, j, INTERIOR)
+        } else if DEPTH_BY_STEP && INTERIOR {
+            // Depth shifted already.
+            s.start_interior_depth_shifted(x0, j)
         } else {
             s.start_tested_as(t, x0, j, INTERIOR)
+        };
+        let z = if DEPTH_BY_STEP && INTERIOR && !SHIFTED_TOP {
+            z
+        } else {
+            z << (16 - Z_FRAC)
         };
         let [gz, gr, gg, gb] = s.steps();
         // The depth step is shifted already ([`TriangleSetup::for_spans`]).
         let (start, step) = loop_values(
-            [z << (16 - Z_FRAC), r, g, b].map(|v| v as u32),
+            [z, r, g, b].map(|v| v as u32),
             [gz, gr, gg, gb].map(|v| v as u32),
         );
         let place = if STEPS_IN_PLACE { Some(s) } else { None };
@@ -197,6 +205,13 @@ const FENCE_LAST: bool = TOP_BYTE;
 /// loop then read the planes where the set-up stored them: no copy of
 /// the fields to spill slots once a pair.
 pub(crate) const STEPS_IN_PLACE: bool = SHIFTED_TOP;
+
+/// Whether an [`interior`](TriangleSetup::interior) triangle's span
+/// starts take depth shifted for the loop from the depth step
+/// ([`TriangleSetup::start_interior_depth_shifted`]): on the Cortex-M3
+/// (the build script's `microraster_armv7m`), where the span start then
+/// holds one plane coefficient fewer.
+const DEPTH_BY_STEP: bool = cfg!(microraster_armv7m);
 
 /// The start and step of depth (shifted, see `depth16`), red, green and
 /// blue as [`gouraud_loop`] takes them: the channels shifted left by 8

@@ -1026,6 +1026,18 @@ mod tests {
                     shifted.start_shifted(&corners, x0, j, shifted.interior()),
                     [z, r.wrapping_shl(8), g.wrapping_shl(8), b.wrapping_shl(8)]
                 );
+                // An interior triangle's starts with depth from the step
+                // (the Cortex-M3's `DEPTH_BY_STEP`): the planes' values,
+                // depth shifted as the span loop steps it.
+                if for_spans.interior() {
+                    let [pz, pr, pg, pb] = for_spans.planes.map(|p| p.at(x0, j));
+                    assert_eq!(
+                        for_spans.start_interior_depth_shifted(x0, j),
+                        [pz.wrapping_shl(16 - Z_FRAC), pr, pg, pb],
+                        "{v:?} at ({x0}, {j})"
+                    );
+                    assert_eq!(pz, z);
+                }
                 // The packed starts (`PACKED`), as the span loop steps
                 // them, against the exact planes: for an interior triangle,
                 // whose starts they are, the reference itself; for any

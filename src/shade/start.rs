@@ -198,6 +198,30 @@ impl TriangleSetup {
         }
     }
 
+    /// Depth, red, green and blue at the centre of pixel `(i, j)` of an
+    /// [`interior`](Self::interior) triangle, depth shifted left by
+    /// `16 - Z_FRAC` (wrapping) as the Gouraud span loop steps it: the
+    /// same values as [`TriangleSetup::start_tested_as`]'s, depth then
+    /// shifted.
+    ///
+    /// An interior triangle is not [`wide`](Self::wide), so its depth step
+    /// is its depth plane's `gx` shifted ([`TriangleSetup::for_gouraud_spans`]),
+    /// and modulo 2^32 `(k + gy j + gx i) << s` is `((k + gy j) << s) +
+    /// (gx << s) i`: the start takes the step, which the span loop holds
+    /// anyway, for `gx`.
+    #[cfg_attr(not(any(test, microraster_armv7m)), allow(dead_code))]
+    #[inline(always)]
+    pub(super) fn start_interior_depth_shifted(&self, i: i32, j: i32) -> [i32; 4] {
+        let z = &self.planes[0];
+        let row = (z.k.wrapping_add(z.gy.wrapping_mul(j)) as u32) << (16 - super::Z_FRAC);
+        [
+            (row as i32).wrapping_add(self.zstep.wrapping_mul(i)),
+            self.planes[1].at(i, j),
+            self.planes[2].at(i, j),
+            self.planes[3].at(i, j),
+        ]
+    }
+
     /// Depth, red, green and blue of the planes at the centre of pixel
     /// `(i, j)`, before any clamp.
     #[inline(always)]
