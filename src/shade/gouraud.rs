@@ -297,15 +297,16 @@ fn gouraud_loop<C: Copy + From<Rgb888> + 'static, D: DepthFn, const WRITE: bool>
                 rgb16_green_up(table, r, g, b)
             };
         } else {
-            // Counted in `n` already: rare (see above). Not marked cold
-            // on ARMv6-M, where the weights of a cold path cost more than
-            // they save: with the hint the counter and a channel lived in
-            // stack slots around the written path (`demo` 7,849,110 ->
-            // 7,801,997 instructions without it, `rock` 6,503,035 ->
-            // 6,455,162).
-            if !TOP {
-                crate::hint::cold();
-            }
+            // Counted in `n` already: rare (see above). Marked cold on
+            // ARMv6-M too since `top_rgb` and the steps' order there:
+            // `demo` 5,902,459 -> 5,898,746 instructions (all-scenes
+            // build 5,902,505 -> 5,898,792, `rock`, `grid4`, `demo-flat`
+            // and `fill` the same). It had cost there before (`demo`
+            // 7,801,997 -> 7,849,110, `rock` 6,455,162 -> 6,503,035;
+            // +26 K against 6,007,178 in the round of `8570c89`):
+            // the counter and a channel then lived in stack slots around
+            // the written path.
+            crate::hint::cold();
             n = n.wrapping_sub(1);
         }
         // Read where the set-up holds them, after the `black_box` above
