@@ -307,20 +307,21 @@ fn gouraud_loop<C: Copy + From<Rgb888> + 'static, D: DepthFn, const WRITE: bool>
                 *d = zz;
             }
             *c = if TOP {
-                rgb::<C>((r >> 24) as u8, (g >> 24) as u8, (b >> 24) as u8)
+                top_rgb::<C>(r, g, b)
             } else {
                 rgb16_green_up(table, r, g, b)
             };
         } else {
-            // Counted in `n` already: rare (see above). Not marked cold
-            // on ARMv6-M, where the weights of a cold path cost more than
-            // they save: with the hint the counter and a channel lived in
-            // stack slots around the written path (`demo` 7,849,110 ->
-            // 7,801,997 instructions without it, `rock` 6,503,035 ->
-            // 6,455,162).
-            if !TOP {
-                crate::hint::cold();
-            }
+            // Counted in `n` already: rare (see above). Marked cold on
+            // ARMv6-M too since `top_rgb` and the steps' order there:
+            // `demo` 5,902,459 -> 5,898,746 instructions (all-scenes
+            // build 5,902,505 -> 5,898,792, `rock`, `grid4`, `demo-flat`
+            // and `fill` the same). It had cost there before (`demo`
+            // 7,801,997 -> 7,849,110, `rock` 6,455,162 -> 6,503,035;
+            // +26 K against 6,007,178 in the round of `8570c89`):
+            // the counter and a channel then lived in stack slots around
+            // the written path.
+            crate::hint::cold();
             n = n.wrapping_sub(1);
         }
         // Read where the set-up holds them, after the `black_box` above
@@ -330,13 +331,14 @@ fn gouraud_loop<C: Copy + From<Rgb888> + 'static, D: DepthFn, const WRITE: bool>
             _ => [gz, gr, gg, gb],
         };
         if FENCE_LAST {
-            // Green stepped before red: the written path's registers then
-            // fall better (ARMv6-M `demo` 5,991,471 -> 5,965,273
-            // instructions; red before green, in any order of the others,
-            // 5,991,471).
+            // Blue, then red, then green: the written path's registers
+            // then fall best (ARMv6-M `demo` 5,906,658 -> 5,902,459
+            // instructions with `top_rgb`'s order; blue, green, red
+            // 5,906,658, other orders up to 5,940,733; before `top_rgb`,
+            // green before red took 5,991,471 to 5,965,273).
             b = b.wrapping_add(gb);
-            g = g.wrapping_add(gg);
             r = r.wrapping_add(gr);
+            g = g.wrapping_add(gg);
             z = z.wrapping_add(gz);
         } else {
             z = z.wrapping_add(gz);
@@ -355,6 +357,19 @@ fn gouraud_loop<C: Copy + From<Rgb888> + 'static, D: DepthFn, const WRITE: bool>
     } else {
         n
     }
+}
+
+/// The colour of channels whose top bytes are `r`, `g` and `b`, as
+/// [`gouraud_loop`] takes it where [`TOP_BYTE`]: on ARMv6-M with red's and
+/// blue's table reads first (`convert::rgb_red_blue_first`, the same
+/// bits).
+#[inline(always)]
+fn top_rgb<C: From<Rgb888> + 'static>(r: u32, g: u32, b: u32) -> C {
+    let [r, g, b] = [r, g, b].map(|c| (c >> 24) as u8);
+    #[cfg(microraster_narrow_multiply)]
+    return super::convert::rgb_red_blue_first::<C>(r, g, b);
+    #[cfg(not(microraster_narrow_multiply))]
+    rgb::<C>(r, g, b)
 }
 
 /// Whether [`gouraud_loop`] adds a span's fragments to the count after
