@@ -424,13 +424,18 @@ impl<'a, C, V: Varyings> SpanInput<'a, C, V> {
 /// instead. Tuned on `demo-textured-lit` (Cortex-M3): 8 pixels 8,256,167
 /// instructions, 4 8,207,289, 3 8,198,446, 2 8,198,437; x86-64 at 3
 /// 7,709,280 -> 7,696,985 against 4; the shader fills' 32-pixel spans
-/// unchanged. ARMv6-M (no 32x32 to 64-bit multiply) keeps 4: at 3 its
+/// unchanged. ARMv6-M (no 32x32 to 64-bit multiply) kept 4: at 3 its
 /// `demo-textured-lit` took 25,713,431 -> 25,906,607 (the Cortex-M4F
-/// 7,900,918 -> 7,904,071).
+/// 7,900,918 -> 7,904,071). Since its per-pixel weights test a guessed
+/// shift (`weights_guessed`), it takes 5: `demo-textured-lit`
+/// 12,486,713 -> 12,462,540 (single-scene builds: 4 12,482,396, 5
+/// 12,458,223, 6 12,457,475, 7 12,460,891, 8 12,464,780, 12
+/// 12,478,648), the shader fills the same (at 6 they took +0.05 to
+/// +0.10 a fragment).
 ///
 /// [`weights`]: crate::shade::perspective::weights
 const OPAQUE_EXACT_MIN: usize = if cfg!(microraster_narrow_multiply) {
-    4
+    5
 } else {
     3
 };

@@ -7,7 +7,9 @@
 use super::barycentric::span_shift_convex;
 #[cfg(microraster_narrow_multiply)]
 use super::barycentric::span_shift_convex32;
-use super::barycentric::{flat_weights, shifted_weights, span_reciprocal, span_shift};
+use super::barycentric::{
+    flat_weights, shifted_weights, span_reciprocal, span_shift, weights_guessed,
+};
 use super::*;
 
 /// `round(2^24 / l)` for segment lengths `l` of 1 to 16.
@@ -319,7 +321,7 @@ impl<C, V: Varyings> SpanInput<'_, C, V> {
                 } else if WEIGHTS == FLAT_Q {
                     p.values_fit(flat_weights(b1, b2, sh, r), ic, false, CONVEX)
                 } else {
-                    p.values_fit(weights(q, b1, b2), ic, false, false)
+                    p.values_fit(weights_guessed(q, b1, b2), ic, false, false)
                 };
                 let it = Interpolated {
                     x: x0 + k as i32,
