@@ -352,6 +352,23 @@ pub struct Texture<'a> {
     u: Axis,
     v: Axis,
     filter: Filter,
+    /// The sampler's kind ([`Texture::sampler`]), decided whenever the
+    /// texels, filter or wrap modes are set rather than at every
+    /// triangle-tile pair: about twenty tests a pair down to one (it fits
+    /// the struct's padding).
+    kind: Kind,
+}
+
+/// What [`Texture::sampler`] returns for a texture: the `Rgb565`
+/// power-of-two repeated loops, or the general path.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Kind {
+    /// [`Sampler::General`](sampler::Sampler::General).
+    General,
+    /// [`Sampler::NearestRgb565`](sampler::Sampler::NearestRgb565).
+    Nearest,
+    /// [`Sampler::BilinearRgb565`](sampler::Sampler::BilinearRgb565).
+    Bilinear,
 }
 
 // The documented RAM cost.
@@ -453,13 +470,15 @@ impl<'a> Texture<'a> {
             u: Axis::new(width),
             v: Axis::new(height),
             filter: Filter::Nearest,
-        })
+            kind: Kind::General,
+        }
+        .decided())
     }
 
     /// The texture with filter `filter`.
     #[must_use]
     pub const fn filter(self, filter: Filter) -> Self {
-        Self { filter, ..self }
+        Self { filter, ..self }.decided()
     }
 
     /// The texture with wrap mode `wrap` on both axes.
@@ -474,7 +493,27 @@ impl<'a> Texture<'a> {
         let mut t = self;
         t.u.wrap = u;
         t.v.wrap = v;
-        t
+        t.decided()
+    }
+
+    /// The texture with its `kind` set from its texels,
+    /// sides, filter and wrap modes: an `Rgb565` texture of power-of-two
+    /// sides repeated on both axes takes the fast loops, if bilinear or
+    /// at least two texels wide (nearest's
+    /// [`nearest_fine`](sampler::Pow2Rgb565::nearest_fine) needs that
+    /// width; one texel wide it takes the general path).
+    const fn decided(self) -> Self {
+        let fast = self.u.pow2
+            && self.v.pow2
+            && matches!(self.u.wrap, Wrap::Repeat)
+            && matches!(self.v.wrap, Wrap::Repeat)
+            && matches!(self.texels, Texels::Rgb565(_));
+        let kind = match self.filter {
+            Filter::Bilinear if fast => Kind::Bilinear,
+            Filter::Nearest if fast && self.u.log2 > 0 => Kind::Nearest,
+            _ => Kind::General,
+        };
+        Self { kind, ..self }
     }
 
     /// Width in texels.

@@ -5,7 +5,7 @@
 //! its texels read in place; every other texture goes through
 //! [`Texture::sample`]. Both give the same colour at every coordinate.
 
-use super::{rgb565_to_rgb888, Filter, Texels, Texture, Wrap, HALF, WEIGHT_BITS};
+use super::{rgb565_to_rgb888, Filter, Kind, Texels, Texture, HALF, WEIGHT_BITS};
 #[cfg(microraster_armv7m)]
 use crate::shade::lit565_bits;
 use embedded_graphics::pixelcolor::raw::RawU16;
@@ -239,7 +239,7 @@ impl FromTexel for BinaryColor {}
 /// How a span samples a texture: decided by [`Texture::sampler`].
 #[derive(Clone, Copy, Debug)]
 pub enum Sampler<'t> {
-    /// Nearest, `Rgb565` texels, power-of-two sides, [`Wrap::Repeat`] on
+    /// Nearest, `Rgb565` texels, power-of-two sides, [`Wrap::Repeat`](super::Wrap::Repeat) on
     /// both axes.
     NearestRgb565(Pow2Rgb565<'t>),
     /// Bilinear, with the same texels, sides and wrap.
@@ -273,17 +273,11 @@ impl<'t> Texture<'t> {
     /// How a span should sample this texture.
     #[inline(always)]
     pub fn sampler(&'t self) -> Sampler<'t> {
-        let fast = self.u.pow2
-            && self.v.pow2
-            && self.u.wrap == Wrap::Repeat
-            && self.v.wrap == Wrap::Repeat;
+        // The kind was decided when the texture was built or its modes
+        // set (`Texture::decided`): one test here rather than the
+        // sides', wrap modes', filter's and format's at every pair.
         match self.texels {
-            // Nearest needs a width of two texels or more
-            // ([`Pow2Rgb565::nearest_fine`]); a texture one texel wide
-            // takes the general path.
-            Texels::Rgb565(texels)
-                if fast && (self.filter == Filter::Bilinear || self.u.log2 > 0) =>
-            {
+            Texels::Rgb565(texels) if self.kind != Kind::General => {
                 let log2 = [self.u.log2 as u32, self.v.log2 as u32];
                 // Sides of at most 2^15: the count fits `u32`, and
                 // `Texture::new` checked that the texels hold it (were

@@ -329,3 +329,58 @@ fn errors() {
         }
     );
 }
+
+/// The sampler's kind, decided when a texture is built or its modes set
+/// (`Texture::decided`), is the one its texels, sides, filter and wrap
+/// modes give, whatever order the modes were set in: the fast loops
+/// only for `Rgb565` texels of power-of-two sides repeated on both axes
+/// (nearest at least two texels wide).
+#[test]
+fn sampler_kind_follows_every_setter() {
+    let rgb = [0u16; 64];
+    let gray = [0u8; 64];
+    let wraps = [Wrap::Repeat, Wrap::ClampToEdge, Wrap::MirroredRepeat];
+    for (w, h) in [(8, 8), (1, 8), (8, 1), (6, 8), (8, 6), (2, 2)] {
+        for format in 0..2 {
+            let n = (w * h) as usize;
+            let texels = if format == 0 {
+                Texels::Rgb565(&rgb[..n])
+            } else {
+                Texels::Gray8(&gray[..n])
+            };
+            let base = Texture::new(w, h, texels).unwrap();
+            for filter in [Filter::Nearest, Filter::Bilinear] {
+                for u in wraps {
+                    for v in wraps {
+                        let fast = format == 0
+                            && w.is_power_of_two()
+                            && h.is_power_of_two()
+                            && u == Wrap::Repeat
+                            && v == Wrap::Repeat;
+                        let want = match filter {
+                            Filter::Bilinear if fast => "bilinear",
+                            Filter::Nearest if fast && w > 1 => "nearest",
+                            _ => "general",
+                        };
+                        let kind = |t: &Texture<'_>| match t.sampler() {
+                            Sampler::NearestRgb565(_) => "nearest",
+                            Sampler::BilinearRgb565(_) => "bilinear",
+                            Sampler::General(_) => "general",
+                        };
+                        let a = base.filter(filter).wrap_uv(u, v);
+                        let b = base.wrap_uv(u, v).filter(filter);
+                        // Modes set twice: the last setting decides.
+                        let c = base
+                            .filter(Filter::Bilinear)
+                            .wrap(Wrap::Repeat)
+                            .filter(filter)
+                            .wrap_uv(u, v);
+                        for t in [a, b, c] {
+                            assert_eq!(kind(&t), want, "{w}x{h} {format} {filter:?} {u:?} {v:?}");
+                        }
+                    }
+                }
+            }
+        }
+    }
+}
