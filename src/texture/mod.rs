@@ -363,11 +363,11 @@ pub struct Texture<'a> {
 /// power-of-two repeated loops, or the general path.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Kind {
-    /// [`Sampler::General`](sampler::Sampler::General).
+    /// [`Sampler::General`].
     General,
-    /// [`Sampler::NearestRgb565`](sampler::Sampler::NearestRgb565).
+    /// [`Sampler::NearestRgb565`].
     Nearest,
-    /// [`Sampler::BilinearRgb565`](sampler::Sampler::BilinearRgb565).
+    /// [`Sampler::BilinearRgb565`].
     Bilinear,
 }
 
