@@ -53,6 +53,8 @@ pub(crate) fn span_gouraud<
         } else {
             s.start_tested_as(t, x0, j, INTERIOR)
         };
+        // The branch's condition written again: as one `let` for both the
+        // Cortex-M3's `demo` took 2,952,741 -> 2,964,108 instructions.
         let z = if DEPTH_BY_STEP && INTERIOR && !SHIFTED_TOP {
             z
         } else {

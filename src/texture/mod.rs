@@ -360,7 +360,10 @@ pub struct Texture<'a> {
 }
 
 /// What [`Texture::sampler`] returns for a texture: the `Rgb565`
-/// power-of-two repeated loops, or the general path.
+/// power-of-two repeated loops, or the general path. `sampler` tests
+/// only `General`; the other two repeat the filter, yet as a `bool` the
+/// field changed the textured loops' code (ARMv6-M `demo-textured-lit`
+/// 12,423,162 -> 12,448,780 instructions, x86-64 5,993,431 -> 5,979,110).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Kind {
     /// [`Sampler::General`].
