@@ -422,18 +422,16 @@ const STORE_AFTER: bool = cfg!(any(microraster_armv7em, microraster_armv7m));
 /// now keeps the address in a register across the pair, and reloads a
 /// second step from the stack instead: one instruction fewer a written
 /// pixel (the Cortex-M4F's `demo` 3,158,058 -> 3,154,971 instructions).
-/// On the Cortex-M3 (`microraster_armv7m`) too, since its Gouraud loop
-/// stores after the depth test's paths meet (`STORE_AFTER`,
-/// `COUNT_AFTER`): `demo` 3,082,151 -> 3,078,465 instructions, `rock`
-/// and `grid4` the same; not in builds optimised for size (the build
+/// On the Cortex-M3 (`microraster_armv7m`) too from `demo` 3,082,151
+/// -> 3,078,465 instructions, but no longer since that loop counts
+/// before its pixels ([`COUNT_AFTER`] for the interior loop only): with
+/// the constant address `demo` 2,949,074 -> 2,946,917, `rock` -5,
+/// `grid4` the same; never in builds optimised for size (the build
 /// script's `microraster_size`: the OLED firmware 43,304 -> 44,020 B).
 /// The interior loop, which keeps the address already, reads the table
 /// at its constant address. (The Cortex-M4F's Gouraud loops now read it
 /// at its constant address in either case: [`FIXED_GOURAUD`].)
-pub(crate) const OPAQUE_TABLE: bool = cfg!(any(
-    microraster_armv7em,
-    all(microraster_armv7m, not(microraster_size))
-));
+pub(crate) const OPAQUE_TABLE: bool = cfg!(microraster_armv7em);
 
 /// Whether the table's address is made opaque ([`OPAQUE_TABLE`]) for the
 /// flat span loops too, which never read it: on ARMv7E-M, whose flat loop
