@@ -67,7 +67,7 @@ pub(crate) fn span_gouraud<
             [gz, gr, gg, gb].map(|v| v as u32),
         );
         let place = if STEPS_IN_PLACE { Some(s) } else { None };
-        return gouraud_loop::<C, D, WRITE>(
+        return gouraud_loop::<C, D, WRITE, INTERIOR>(
             (dt, table),
             color,
             depth,
@@ -259,7 +259,12 @@ fn loop_values(start: [u32; 4], step: [u32; 4]) -> ([u32; 4], [u32; 4]) {
 /// of failures without the hint 4,716,282, the hint with the count of
 /// writes 4,713,809).
 #[inline(always)]
-fn gouraud_loop<C: Copy + From<Rgb888> + 'static, D: DepthFn, const WRITE: bool>(
+fn gouraud_loop<
+    C: Copy + From<Rgb888> + 'static,
+    D: DepthFn,
+    const WRITE: bool,
+    const INTERIOR: bool,
+>(
     (dt, table): (D, To565),
     color: &mut [C],
     depth: &mut [u16],
@@ -280,9 +285,11 @@ fn gouraud_loop<C: Copy + From<Rgb888> + 'static, D: DepthFn, const WRITE: bool>
     }
     let (color, depth) = (&mut color[a0..a1], &mut depth[a0..a1]);
     // Every fragment counted as written; those that fail are taken off
-    // (wrapping: where `COUNT_AFTER`, before the span's own are added).
+    // (wrapping: where `COUNT_AFTER`, before the span's own are added;
+    // an interior triangle's loop only, see there).
     let len = color.len() as u32;
-    if !COUNT_AFTER {
+    let count_after = COUNT_AFTER && INTERIOR;
+    if !count_after {
         n += len;
     }
     for (c, d) in color.iter_mut().zip(depth.iter_mut()) {
@@ -354,7 +361,7 @@ fn gouraud_loop<C: Copy + From<Rgb888> + 'static, D: DepthFn, const WRITE: bool>
             core::hint::black_box(());
         }
     }
-    if COUNT_AFTER {
+    if count_after {
         n.wrapping_add(len)
     } else {
         n
@@ -383,6 +390,14 @@ fn top_rgb<C: From<Rgb888> + 'static>(r: u32, g: u32, b: u32) -> C {
 /// better: `demo` 3,091,310 -> 3,082,151 instructions with `STORE_AFTER`
 /// (3,135,395 without it). Not on the Cortex-M4F (`demo` 3,061,846 ->
 /// 3,080,948) nor ARMv6-M (6,250,433 -> 6,282,373).
+///
+/// Only in the loop of an [`interior`](TriangleSetup::interior)
+/// triangle (`gouraud_loop`'s `INTERIOR`): the loop of the others counts
+/// before its pixels, from the span's ends, and no longer spills the
+/// span's length to read it back after the loop (`demo` 2,952,741 ->
+/// 2,949,074 against `b54a8eb`, `rock` 2,436,640 -> 2,429,006, `grid4`
+/// 838,843 -> 838,495). The interior loop counting before too measured
+/// worse (`demo` 2,968,383).
 const COUNT_AFTER: bool = cfg!(microraster_armv7m);
 
 /// Whether [`gouraud_loop`] stores the colour after the depth test's two
@@ -407,18 +422,16 @@ const STORE_AFTER: bool = cfg!(any(microraster_armv7em, microraster_armv7m));
 /// now keeps the address in a register across the pair, and reloads a
 /// second step from the stack instead: one instruction fewer a written
 /// pixel (the Cortex-M4F's `demo` 3,158,058 -> 3,154,971 instructions).
-/// On the Cortex-M3 (`microraster_armv7m`) too, since its Gouraud loop
-/// stores after the depth test's paths meet (`STORE_AFTER`,
-/// `COUNT_AFTER`): `demo` 3,082,151 -> 3,078,465 instructions, `rock`
-/// and `grid4` the same; not in builds optimised for size (the build
+/// On the Cortex-M3 (`microraster_armv7m`) too from `demo` 3,082,151
+/// -> 3,078,465 instructions, but no longer since that loop counts
+/// before its pixels ([`COUNT_AFTER`] for the interior loop only): with
+/// the constant address `demo` 2,949,074 -> 2,946,917, `rock` -5,
+/// `grid4` the same; never in builds optimised for size (the build
 /// script's `microraster_size`: the OLED firmware 43,304 -> 44,020 B).
 /// The interior loop, which keeps the address already, reads the table
 /// at its constant address. (The Cortex-M4F's Gouraud loops now read it
 /// at its constant address in either case: [`FIXED_GOURAUD`].)
-pub(crate) const OPAQUE_TABLE: bool = cfg!(any(
-    microraster_armv7em,
-    all(microraster_armv7m, not(microraster_size))
-));
+pub(crate) const OPAQUE_TABLE: bool = cfg!(microraster_armv7em);
 
 /// Whether the table's address is made opaque ([`OPAQUE_TABLE`]) for the
 /// flat span loops too, which never read it: on ARMv7E-M, whose flat loop
