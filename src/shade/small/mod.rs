@@ -4,19 +4,18 @@
 //! instruction each on a Cortex-M3/M4) and, where every value fits, the
 //! whole set-up runs in `i32` ([`TriangleSetup::small`]; on ARMv6-M,
 //! which has no divider, by one reciprocal of the area and 16-bit
-//! products instead: [`Recip16`]). The planes are
+//! products instead: [`Recip16`](crate::math::Recip16)). The planes are
 //! exactly those of the general set-up ([`TriangleSetup::with_basis`]),
 //! which the tests check on random triangles.
 
 use super::plane::{Basis, Plane};
 use super::setup::{Corners, TriangleSetup};
-use crate::math::Recip16;
 use crate::raster::{SubPoint, HALF_PIXEL, SUBPIXEL_BITS};
 use core::num::NonZeroU32;
 
 mod divide;
 
-pub(super) use divide::{Small, SmallBasis};
+pub(super) use divide::{ShortDivisor, Small, SmallBasis};
 
 /// On 32-bit targets, the attribute set-up of a small triangle (edge
 /// vectors from vertex 0 below this, in sub-pixels: 64 pixels) divides in
@@ -190,9 +189,9 @@ impl TriangleSetup {
             area2,
             half: (area / 2) as i32,
             // Only ARMv6-M divides by it (`area` is not 0).
-            recip: match NonZeroU32::new(area) {
-                Some(a) if cfg!(microraster_narrow_multiply) => Recip16::new_small(a),
-                _ => Recip16::default(),
+            short: match NonZeroU32::new(area) {
+                Some(a) if cfg!(microraster_narrow_multiply) => ShortDivisor::new(a),
+                _ => ShortDivisor::default(),
             },
         };
         let z = Self::plane_small_of(f, z[0], zfrac, n1, n2);
@@ -285,11 +284,10 @@ impl TriangleSetup {
     /// planes) for a [`Small`] triangle `s` whose basis is `f`, by the
     /// `i32` set-up of [`TriangleSetup::small`] where depth's numerators
     /// allow (within `-2^21..2^21` and below `area 2^12`, as there;
-    /// `None` otherwise), its gradients by `recip`, the area's
-    /// [`Recip16`]: ARMv6-M's perspective set-up, which makes that
-    /// reciprocal once for its planes and this one, where the general
-    /// set-up divided each depth gradient in three digits with 64-bit
-    /// partial quotients after a reciprocal of its own.
+    /// `None` otherwise), its gradients by the area's scaled reciprocal
+    /// ([`ShortDivisor`], as the Gouraud set-up's): ARMv6-M's perspective
+    /// set-up, where the general set-up divided each depth gradient in
+    /// three digits with 64-bit partial quotients.
     ///
     /// The numerators are the general set-up's: `Basis`'s edge vectors
     /// (negated where the area is negative) and its positive twice the
@@ -299,12 +297,7 @@ impl TriangleSetup {
     /// [`Basis::constant_low`]'s (see [`offset_term`]). The same plane.
     #[cfg_attr(not(any(test, microraster_narrow_multiply)), allow(dead_code))]
     #[inline(always)]
-    pub(super) fn depth_small(
-        f: &Basis,
-        s: &Small,
-        recip: Recip16,
-        t: &Corners<'_>,
-    ) -> Option<Self> {
+    pub(super) fn depth_small(f: &Basis, s: &Small, t: &Corners<'_>) -> Option<Self> {
         // A small triangle's edge vectors are below 2^10 in magnitude.
         let [x1, y1, x2, y2] = [f.x1 as i32, f.y1 as i32, f.x2 as i32, f.y2 as i32];
         let area = s.area.get();
@@ -323,7 +316,7 @@ impl TriangleSetup {
             // Below 2^21: positive in `i32`.
             area2: area as i32,
             half: s.half as i32,
-            recip,
+            short: ShortDivisor::new(s.area),
         };
         let z = Self::plane_small_of(b, z[0], zfrac, n1, n2);
         let none = Plane::default();
@@ -339,12 +332,7 @@ impl SmallBasis {
     /// overflow; those take three digits).
     #[inline(always)]
     fn two_digit_bound(&self) -> u32 {
-        let d = self.recip.d;
-        if d >> 20 == 0 {
-            d
-        } else {
-            0
-        }
+        self.short.bound
     }
 
     /// ARMv6-M's gradients of numerators `n1`, `n2` (as
@@ -500,8 +488,7 @@ mod tests {
                 continue;
             };
             small += 1;
-            let recip = Recip16::new_small(s.area);
-            if let Some(d) = TriangleSetup::depth_small(&f, s, recip, &corners) {
+            if let Some(d) = TriangleSetup::depth_small(&f, s, &corners) {
                 applied += 1;
                 let (a, b) = (d.planes[0], general.planes[0]);
                 assert_eq!((a.gx, a.gy, a.k), (b.gx, b.gy, b.k), "{v:?} {sv:?}");
