@@ -233,7 +233,7 @@ impl<V: Varyings> PerspectiveSetup<V> {
                     Some(planes) => (planes, true),
                     None => wide_planes_apart(&f, q),
                 };
-                let depth = TriangleSetup::depth_small(&f, s, &t.corners)
+                let depth = TriangleSetup::depth_small(&f, s, r, &t.corners)
                     .unwrap_or_else(|| TriangleSetup::with_basis(&f, &t.corners, false));
                 (planes, depth)
             }

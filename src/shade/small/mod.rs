@@ -4,12 +4,13 @@
 //! instruction each on a Cortex-M3/M4) and, where every value fits, the
 //! whole set-up runs in `i32` ([`TriangleSetup::small`]; on ARMv6-M,
 //! which has no divider, by one reciprocal of the area and 16-bit
-//! products instead: [`Recip16`](crate::math::Recip16)). The planes are
+//! products instead: [`Recip16`]). The planes are
 //! exactly those of the general set-up ([`TriangleSetup::with_basis`]),
 //! which the tests check on random triangles.
 
 use super::plane::{Basis, Plane};
 use super::setup::{Corners, TriangleSetup};
+use crate::math::Recip16;
 use crate::raster::{SubPoint, HALF_PIXEL, SUBPIXEL_BITS};
 use core::num::NonZeroU32;
 
@@ -284,10 +285,11 @@ impl TriangleSetup {
     /// planes) for a [`Small`] triangle `s` whose basis is `f`, by the
     /// `i32` set-up of [`TriangleSetup::small`] where depth's numerators
     /// allow (within `-2^21..2^21` and below `area 2^12`, as there;
-    /// `None` otherwise), its gradients by the area's scaled reciprocal
-    /// ([`ShortDivisor`], as the Gouraud set-up's): ARMv6-M's perspective
-    /// set-up, where the general set-up divided each depth gradient in
-    /// three digits with 64-bit partial quotients.
+    /// `None` otherwise), its gradients by `recip`, the area's
+    /// [`Recip16`] ([`ShortDivisor::unscaled`]): ARMv6-M's perspective
+    /// set-up, which makes that reciprocal once for its planes and this
+    /// one, where the general set-up divided each depth gradient in three
+    /// digits with 64-bit partial quotients after a reciprocal of its own.
     ///
     /// The numerators are the general set-up's: `Basis`'s edge vectors
     /// (negated where the area is negative) and its positive twice the
@@ -297,7 +299,12 @@ impl TriangleSetup {
     /// [`Basis::constant_low`]'s (see [`offset_term`]). The same plane.
     #[cfg_attr(not(any(test, microraster_narrow_multiply)), allow(dead_code))]
     #[inline(always)]
-    pub(super) fn depth_small(f: &Basis, s: &Small, t: &Corners<'_>) -> Option<Self> {
+    pub(super) fn depth_small(
+        f: &Basis,
+        s: &Small,
+        recip: Recip16,
+        t: &Corners<'_>,
+    ) -> Option<Self> {
         // A small triangle's edge vectors are below 2^10 in magnitude.
         let [x1, y1, x2, y2] = [f.x1 as i32, f.y1 as i32, f.x2 as i32, f.y2 as i32];
         let area = s.area.get();
@@ -316,7 +323,7 @@ impl TriangleSetup {
             // Below 2^21: positive in `i32`.
             area2: area as i32,
             half: s.half as i32,
-            short: ShortDivisor::new(s.area),
+            short: ShortDivisor::unscaled(recip),
         };
         let z = Self::plane_small_of(b, z[0], zfrac, n1, n2);
         let none = Plane::default();
@@ -488,7 +495,8 @@ mod tests {
                 continue;
             };
             small += 1;
-            if let Some(d) = TriangleSetup::depth_small(&f, s, &corners) {
+            let recip = Recip16::new_small(s.area);
+            if let Some(d) = TriangleSetup::depth_small(&f, s, recip, &corners) {
                 applied += 1;
                 let (a, b) = (d.planes[0], general.planes[0]);
                 assert_eq!((a.gx, a.gy, a.k), (b.gx, b.gy, b.k), "{v:?} {sv:?}");
