@@ -112,6 +112,38 @@ impl Recip16 {
         }
     }
 
+    /// The reciprocal of `d 2^k` for `d < 2^20`, `k = 19 - t`
+    /// (`t = floor(log2(d))`), and `k`: the divisor scaled into
+    /// `2^19..2^20`, so that every digit drops the same 16 bits of its
+    /// dividend ([`Recip16::estimate16`], a constant shift where
+    /// [`Recip16::estimate`] shifts by the field `s`, which ARMv6-M holds
+    /// in a register or reloads). A quotient by `d` is the same by
+    /// `d 2^k` of the dividend times `2^k`. From `2^20` up (`k = 0`),
+    /// [`Recip16::new_small`]'s reciprocal of `d` itself, which
+    /// `estimate16` does not take.
+    #[inline(always)]
+    pub(crate) fn new_scaled(d: NonZeroU32) -> (Self, u32) {
+        let t = log2_small(d);
+        if t >= 20 {
+            return (Self::with_log2(d, t), 0);
+        }
+        let k = 19 - t;
+        // In 2^19..2^20: `with_log2`'s reciprocal for `t = 19`.
+        let dk = d.get() << k;
+        let r = recip31(((dk >> 4) + 1).min(0xffff));
+        (Self { d: dk, r, s: 16 }, k)
+    }
+
+    /// [`Recip16::estimate`] of a divisor in `2^19..2^20`
+    /// ([`Recip16::new_scaled`]'s, `s = 16`): the same estimate, its
+    /// shift a constant.
+    #[inline(always)]
+    pub(crate) fn estimate16(&self, x: u32) -> (u32, u32) {
+        debug_assert_eq!(self.s, 16);
+        let q = ((x >> 16) * self.r) >> 19;
+        (q, x - q * self.d)
+    }
+
     /// `(floor(x / d), x mod d)` for `x < 2^(t + 13)`, which every `x`
     /// up to `d 2^12` is.
     ///

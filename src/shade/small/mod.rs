@@ -16,7 +16,7 @@ use core::num::NonZeroU32;
 
 mod divide;
 
-pub(super) use divide::{Small, SmallBasis};
+pub(super) use divide::{ShortDivisor, Small, SmallBasis};
 
 /// On 32-bit targets, the attribute set-up of a small triangle (edge
 /// vectors from vertex 0 below this, in sub-pixels: 64 pixels) divides in
@@ -190,9 +190,9 @@ impl TriangleSetup {
             area2,
             half: (area / 2) as i32,
             // Only ARMv6-M divides by it (`area` is not 0).
-            recip: match NonZeroU32::new(area) {
-                Some(a) if cfg!(microraster_narrow_multiply) => Recip16::new_small(a),
-                _ => Recip16::default(),
+            short: match NonZeroU32::new(area) {
+                Some(a) if cfg!(microraster_narrow_multiply) => ShortDivisor::new(a),
+                _ => ShortDivisor::default(),
             },
         };
         let z = Self::plane_small_of(f, z[0], zfrac, n1, n2);
@@ -286,10 +286,10 @@ impl TriangleSetup {
     /// `i32` set-up of [`TriangleSetup::small`] where depth's numerators
     /// allow (within `-2^21..2^21` and below `area 2^12`, as there;
     /// `None` otherwise), its gradients by `recip`, the area's
-    /// [`Recip16`]: ARMv6-M's perspective set-up, which makes that
-    /// reciprocal once for its planes and this one, where the general
-    /// set-up divided each depth gradient in three digits with 64-bit
-    /// partial quotients after a reciprocal of its own.
+    /// [`Recip16`] ([`ShortDivisor::unscaled`]): ARMv6-M's perspective
+    /// set-up, which makes that reciprocal once for its planes and this
+    /// one, where the general set-up divided each depth gradient in three
+    /// digits with 64-bit partial quotients after a reciprocal of its own.
     ///
     /// The numerators are the general set-up's: `Basis`'s edge vectors
     /// (negated where the area is negative) and its positive twice the
@@ -323,7 +323,7 @@ impl TriangleSetup {
             // Below 2^21: positive in `i32`.
             area2: area as i32,
             half: s.half as i32,
-            recip,
+            short: ShortDivisor::unscaled(recip),
         };
         let z = Self::plane_small_of(b, z[0], zfrac, n1, n2);
         let none = Plane::default();
@@ -339,12 +339,7 @@ impl SmallBasis {
     /// overflow; those take three digits).
     #[inline(always)]
     fn two_digit_bound(&self) -> u32 {
-        let d = self.recip.d;
-        if d >> 20 == 0 {
-            d
-        } else {
-            0
-        }
+        self.short.bound
     }
 
     /// ARMv6-M's gradients of numerators `n1`, `n2` (as
