@@ -170,6 +170,7 @@ fn shade_nothing<C, const TW: usize, const TH: usize>(
 /// The fragment-shader function of a path the renderer does not link
 /// ([`Features`]): never called, since the scene was refused or the path
 /// is not taken, and it draws nothing.
+// `fill::shade_custom`'s parameters again: it fills the same function pointer.
 #[allow(clippy::too_many_arguments)]
 fn shade_none<C, G: FragmentShader<C>, const TW: usize, const TH: usize>(
     _: &mut TileBuffer<C, TW, TH>,

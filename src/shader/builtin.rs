@@ -26,27 +26,54 @@ fn needs_uv_texture(draw: &Draw<'_>) -> Result<(), ShaderError> {
     }
 }
 
-/// The span methods of [`Textured`] (`$lit` false) and [`TexturedLit`]
-/// (true): one loop per kind of texture ([`Texture::sampler`]), decided once
+/// A span method of a built-in shader: `shade_span` (over a
+/// [`SpanInput`]) or `shade_spans` (over [`TriangleSpans`]) for `$n`
+/// varyings, always inlined (the per-pixel work is inlined into the tile's
+/// shading function), with the bound on the colour type the trait gives
+/// them. A macro, so that each shader's method is the code written out.
+macro_rules! span_method {
+    ($(#[$doc:meta])* $name:ident(&$s:ident, $arg:ident: $input:ident<$n:literal>) $body:block) => {
+        $(#[$doc])*
+        #[inline(always)]
+        fn $name(&$s, $arg: $input<'_, C, [I16F16; $n]>) -> u32
+        where
+            C: Copy + From<Rgb888> + Into<Rgb888>,
+        $body
+    };
+}
+
+/// The varyings of a shader that has none, and its vertex function.
+macro_rules! no_varyings {
+    () => {
+        type Varyings = [I16F16; 0];
+        fn vertex(&self, _: &VertexInput<'_>) -> [I16F16; 0] {
+            []
+        }
+    };
+}
+
+/// The methods of [`Textured`] (`$lit` false) and [`TexturedLit`] (true)
+/// but `fragment`: the texture coordinates as varyings, and span methods
+/// with one loop per kind of texture ([`Texture::sampler`]), decided once
 /// per triangle and tile; an `Rgb565` texel goes to the target as it is
 /// ([`FromTexel`]), and the light's product is taken in 8 bits per channel,
 /// as `fragment` takes it: the same colours, whatever the target.
-macro_rules! textured_span_methods {
+macro_rules! textured_methods {
     ($lit:literal) => {
+        type Varyings = [I16F16; 2];
+        fn check(&self, draw: &Draw<'_>) -> Result<(), ShaderError> {
+            needs_uv_texture(draw)
+        }
         #[inline(always)]
-        fn shade_span(&self, span: SpanInput<'_, C, [I16F16; 2]>) -> u32
-        where
-            C: Copy + From<Rgb888> + Into<Rgb888>,
-        {
+        fn vertex(&self, v: &VertexInput<'_>) -> [I16F16; 2] {
+            v.uv()
+        }
+        span_method!(shade_span(&self, span: SpanInput<2>) {
             textured_span::<C, $lit>(span)
-        }
-        #[inline(always)]
-        fn shade_spans(&self, spans: TriangleSpans<'_, C, [I16F16; 2]>) -> u32
-        where
-            C: Copy + From<Rgb888> + Into<Rgb888>,
-        {
+        });
+        span_method!(shade_spans(&self, spans: TriangleSpans<2>) {
             textured_spans::<C, $lit>(spans)
-        }
+        });
     };
 }
 
@@ -55,21 +82,13 @@ macro_rules! textured_span_methods {
 pub struct Textured;
 
 impl<C: FromTexel> FragmentShader<C> for Textured {
-    type Varyings = [I16F16; 2];
     const INTERPOLATE_COLOR: bool = false;
-    fn check(&self, draw: &Draw<'_>) -> Result<(), ShaderError> {
-        needs_uv_texture(draw)
-    }
-    #[inline(always)]
-    fn vertex(&self, v: &VertexInput<'_>) -> [I16F16; 2] {
-        v.uv()
-    }
     #[inline(always)]
     fn fragment(&self, f: &Fragment<'_, [I16F16; 2]>) -> Option<C> {
         let [r, g, b] = f.texture?.sample(f.varyings[0], f.varyings[1]);
         Some(C::from(Rgb888::new(r, g, b)))
     }
-    textured_span_methods!(false);
+    textured_methods!(false);
 }
 
 /// A colour from its bytes.
@@ -97,20 +116,12 @@ pub fn mul255(a: u8, b: u8) -> u8 {
 }
 
 impl<C: FromTexel> FragmentShader<C> for TexturedLit {
-    type Varyings = [I16F16; 2];
-    fn check(&self, draw: &Draw<'_>) -> Result<(), ShaderError> {
-        needs_uv_texture(draw)
-    }
-    #[inline(always)]
-    fn vertex(&self, v: &VertexInput<'_>) -> [I16F16; 2] {
-        v.uv()
-    }
     #[inline(always)]
     fn fragment(&self, f: &Fragment<'_, [I16F16; 2]>) -> Option<C> {
         let t = f.texture?.sample(f.varyings[0], f.varyings[1]);
         Some(rgb(modulate(t, f.color)))
     }
-    textured_span_methods!(true);
+    textured_methods!(true);
 }
 
 /// Depth as grey: white at depth `near`, black at `far` and beyond,
@@ -152,23 +163,18 @@ impl Default for DepthShade {
 }
 
 impl<C: From<Rgb888>> FragmentShader<C> for DepthShade {
-    type Varyings = [I16F16; 0];
+    no_varyings!();
     const INTERPOLATE_COLOR: bool = false;
-    fn vertex(&self, _: &VertexInput<'_>) -> [I16F16; 0] {
-        []
-    }
     #[inline(always)]
     fn fragment(&self, f: &Fragment<'_, [I16F16; 0]>) -> Option<C> {
         let g = self.grey(f.depth);
         Some(C::from(Rgb888::new(g, g, g)))
     }
-    /// Depth only: no weights, no varyings.
-    #[inline(always)]
-    fn shade_span(&self, span: SpanInput<'_, C, [I16F16; 0]>) -> u32
-    where
-        C: Copy + From<Rgb888> + Into<Rgb888>,
-    {
-        span.shade_with(false, *self)
+    span_method! {
+        /// Depth only: no weights, no varyings.
+        shade_span(&self, span: SpanInput<0>) {
+            span.shade_with(false, *self)
+        }
     }
 }
 
@@ -194,13 +200,11 @@ impl<C: From<Rgb888>> FragmentShader<C> for Normals {
     fn fragment(&self, f: &Fragment<'_, [I16F16; 3]>) -> Option<C> {
         Some(rgb(f.varyings.map(normal_byte)))
     }
-    /// The three varyings, no colour.
-    #[inline(always)]
-    fn shade_span(&self, span: SpanInput<'_, C, [I16F16; 3]>) -> u32
-    where
-        C: Copy + From<Rgb888> + Into<Rgb888>,
-    {
-        span.shade_with(false, Normals)
+    span_method! {
+        /// The three varyings, no colour.
+        shade_span(&self, span: SpanInput<3>) {
+            span.shade_with(false, Normals)
+        }
     }
 }
 
@@ -219,23 +223,18 @@ fn normal_byte(n: I16F16) -> u8 {
 pub struct Flat;
 
 impl<C: From<Rgb888>> FragmentShader<C> for Flat {
-    type Varyings = [I16F16; 0];
+    no_varyings!();
     const INTERPOLATE_COLOR: bool = false;
-    fn vertex(&self, _: &VertexInput<'_>) -> [I16F16; 0] {
-        []
-    }
     #[inline(always)]
     fn fragment(&self, f: &Fragment<'_, [I16F16; 0]>) -> Option<C> {
         Some(rgb(f.color))
     }
-    /// One colour, converted once per span.
-    #[inline(always)]
-    fn shade_span(&self, span: SpanInput<'_, C, [I16F16; 0]>) -> u32
-    where
-        C: Copy + From<Rgb888> + Into<Rgb888>,
-    {
-        let c = rgb(span.flat_color());
-        span.shade_with(false, Constant(c))
+    span_method! {
+        /// One colour, converted once per span.
+        shade_span(&self, span: SpanInput<0>) {
+            let c = rgb(span.flat_color());
+            span.shade_with(false, Constant(c))
+        }
     }
 }
 
@@ -249,30 +248,23 @@ impl<C: From<Rgb888>> FragmentShader<C> for Flat {
 pub struct Gouraud;
 
 impl<C: From<Rgb888> + 'static> FragmentShader<C> for Gouraud {
-    type Varyings = [I16F16; 0];
-    fn vertex(&self, _: &VertexInput<'_>) -> [I16F16; 0] {
-        []
-    }
+    no_varyings!();
     #[inline(always)]
     fn fragment(&self, f: &Fragment<'_, [I16F16; 0]>) -> Option<C> {
         Some(rgb(f.color))
     }
-    /// The weights and the colour, no varyings.
-    #[inline(always)]
-    fn shade_span(&self, span: SpanInput<'_, C, [I16F16; 0]>) -> u32
-    where
-        C: Copy + From<Rgb888> + Into<Rgb888>,
-    {
-        span.shade_with(true, Gouraud)
+    span_method! {
+        /// The weights and the colour, no varyings.
+        shade_span(&self, span: SpanInput<0>) {
+            span.shade_with(true, Gouraud)
+        }
     }
-    /// [`shade_span`](Self::shade_span) for each span, with the colour
-    /// loop's constants gathered once for them.
-    #[inline(always)]
-    fn shade_spans(&self, spans: TriangleSpans<'_, C, [I16F16; 0]>) -> u32
-    where
-        C: Copy + From<Rgb888> + Into<Rgb888>,
-    {
-        spans.each_colour(Gouraud)
+    span_method! {
+        /// [`shade_span`](Self::shade_span) for each span, with the colour
+        /// loop's constants gathered once for them.
+        shade_spans(&self, spans: TriangleSpans<0>) {
+            spans.each_colour(Gouraud)
+        }
     }
 }
 

@@ -313,6 +313,7 @@ fn push_one(bins: &mut Pass<'_>, (c0, r0): (usize, usize), cols: usize, t0: usiz
 
 /// [`push_row_major`] through the row loop: each row's tiles by one
 /// [`Pass::push_run`].
+// `push_row_major`'s parameters again: `fast.rs` calls this past its own one-tile test.
 #[inline(always)]
 fn push_rows(
     bins: &mut Pass<'_>,

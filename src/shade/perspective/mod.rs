@@ -397,6 +397,8 @@ impl<V: Varyings> PerspectiveSetup<V> {
         if !NARROW_MULTIPLY {
             return self.values(w, interpolate_color);
         }
+        // `values`' loop written again: shared through one inlined function
+        // taking the lerp, it changed the code of `shade_custom` (x86-64, M4F).
         let mut out = V::zeroed();
         let [a0, a1, a2] = [
             self.var[0].as_slice(),

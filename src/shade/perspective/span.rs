@@ -167,6 +167,44 @@ struct ColourSpan<'a> {
     x0: i32,
 }
 
+/// One pixel of the colour loops ([`colour_span_flat`] and
+/// [`SpanInput::run_colour_shifted`]): at depth `$z`, if it passes the test
+/// against `*$d`, the colour from the constants `$k` at the weights (taken
+/// only then), the fragment at `$x`, written to `*$c` and `*$d`; a pixel
+/// that fails the test or the fragment adds one to `$fails`. A macro, so
+/// that each loop is its own code written out: the flat one keeps its
+/// failures behind `black_box`, the other its reads (see there).
+macro_rules! colour_pixel {
+    ($c:ident, $d:ident, $z:ident, $x:expr, $k:ident, $weights:expr, $fragment:ident, $fails:expr) => {
+        let zz = depth16($z);
+        if zz <= *$d {
+            let (w1, w2) = $weights;
+            let color = [
+                $k[0] + $k[1] * w1 + $k[2] * w2,
+                $k[3] + $k[4] * w1 + $k[5] * w2,
+                $k[6] + $k[7] * w1 + $k[8] * w2,
+            ];
+            let it = Interpolated {
+                x: $x,
+                depth: zz,
+                varyings: V::zeroed(),
+                color,
+                fine: None,
+                convex: false,
+            };
+            match $fragment.pixel(&it) {
+                Some(out) => {
+                    *$c = out;
+                    *$d = zz;
+                }
+                None => $fails += 1,
+            }
+        } else {
+            $fails += 1;
+        }
+    };
+}
+
 /// [`SpanInput::run_colour_shifted`]'s loop for a span whose `Q` does not
 /// change ([`FLAT_Q`] weights), out of line: inlined into the tile's
 /// shading function, its values were kept in stack slots and moved
@@ -186,32 +224,16 @@ fn colour_span_flat<C, V: Varyings, F: PixelFn<V, C>>(
     let mut fails = [0u32];
     let fails = core::hint::black_box(&mut fails);
     for (i, (c, d)) in color.iter_mut().zip(depth.iter_mut()).enumerate() {
-        let zz = depth16(z);
-        if zz <= *d {
-            let (w1, w2) = flat_weights(b1, b2, sh, r);
-            let color = [
-                k[0] + k[1] * w1 + k[2] * w2,
-                k[3] + k[4] * w1 + k[5] * w2,
-                k[6] + k[7] * w1 + k[8] * w2,
-            ];
-            let it = Interpolated {
-                x: s.x0 + i as i32,
-                depth: zz,
-                varyings: V::zeroed(),
-                color,
-                fine: None,
-                convex: false,
-            };
-            match fragment.pixel(&it) {
-                Some(out) => {
-                    *c = out;
-                    *d = zz;
-                }
-                None => fails[0] += 1,
-            }
-        } else {
-            fails[0] += 1;
-        }
+        colour_pixel!(
+            c,
+            d,
+            z,
+            s.x0 + i as i32,
+            k,
+            flat_weights(b1, b2, sh, r),
+            fragment,
+            fails[0]
+        );
         z = z.wrapping_add(k[9] as u32);
         b1 = b1.wrapping_add(k[11]);
         b2 = b2.wrapping_add(k[12]);
@@ -403,36 +425,20 @@ impl<C, V: Varyings> SpanInput<'_, C, V> {
         let x0 = self.x0;
         for (i, (c, d)) in self.color.iter_mut().zip(self.depth.iter_mut()).enumerate() {
             core::hint::black_box(());
-            let zz = depth16(z);
-            if zz <= *d {
-                let (w1, w2) = if FLAT {
+            colour_pixel!(
+                c,
+                d,
+                z,
+                x0 + i as i32,
+                k,
+                if FLAT {
                     flat_weights(b1, b2, sh, r)
                 } else {
                     shifted_weights(q, b1, b2, sh)
-                };
-                let color = [
-                    k[0] + k[1] * w1 + k[2] * w2,
-                    k[3] + k[4] * w1 + k[5] * w2,
-                    k[6] + k[7] * w1 + k[8] * w2,
-                ];
-                let it = Interpolated {
-                    x: x0 + i as i32,
-                    depth: zz,
-                    varyings: V::zeroed(),
-                    color,
-                    fine: None,
-                    convex: false,
-                };
-                match fragment.pixel(&it) {
-                    Some(out) => {
-                        *c = out;
-                        *d = zz;
-                    }
-                    None => fails += 1,
-                }
-            } else {
-                fails += 1;
-            }
+                },
+                fragment,
+                fails
+            );
             z = z.wrapping_add(k[9] as u32);
             if !FLAT {
                 q = q.wrapping_add(k[10]);
