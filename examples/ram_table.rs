@@ -11,6 +11,9 @@ use microraster::{Renderer, Workspace};
 
 /// One row: a name, the renderer (tile buffer + settings) size and the
 /// workspace size.
+// A line a row, as the table it prints (rustfmt would give each argument of
+// `row!` a line of its own).
+#[rustfmt::skip]
 pub fn rows() -> Vec<(String, usize, usize)> {
     macro_rules! row {
         ($c:ty, $tw:literal, $th:literal, $v:literal, $b:literal, $t:literal, $what:literal) => {
@@ -31,79 +34,16 @@ pub fn rows() -> Vec<(String, usize, usize)> {
         };
     }
     vec![
-        row!(
-            Rgb565,
-            32,
-            32,
-            2048,
-            4096,
-            80,
-            "320x240, 4,000-triangle mesh (the budget)"
-        ),
-        row!(
-            Rgb565,
-            16,
-            16,
-            2048,
-            4096,
-            300,
-            "320x240, 4,000-triangle mesh"
-        ),
-        row!(
-            Rgb565,
-            64,
-            32,
-            2048,
-            3584,
-            40,
-            "320x240, 4,000-triangle mesh"
-        ),
-        row!(
-            Rgb888,
-            32,
-            32,
-            2048,
-            4096,
-            80,
-            "320x240, 4,000-triangle mesh"
-        ),
-        row!(
-            Gray8,
-            32,
-            32,
-            2048,
-            4096,
-            80,
-            "320x240, 4,000-triangle mesh"
-        ),
-        row!(
-            Rgb565,
-            32,
-            32,
-            512,
-            1024,
-            80,
-            "320x240, 1,000-triangle mesh"
-        ),
-        row!(
-            Rgb565,
-            16,
-            16,
-            256,
-            512,
-            16,
-            "240x240, 500 triangles, 16 tiles per pass"
-        ),
-        row!(Gray4, 32, 32, 512, 1024, 8, "128x64 OLED, 1,000 triangles"),
-        row!(
-            BinaryColor,
-            16,
-            16,
-            128,
-            256,
-            32,
-            "128x64 mono, 250 triangles"
-        ),
+        //   colour       tile    vertices bins tiles/pass frame and scene
+        row!(Rgb565,      32, 32, 2048, 4096,  80, "320x240, 4,000-triangle mesh (the budget)"),
+        row!(Rgb565,      16, 16, 2048, 4096, 300, "320x240, 4,000-triangle mesh"),
+        row!(Rgb565,      64, 32, 2048, 3584,  40, "320x240, 4,000-triangle mesh"),
+        row!(Rgb888,      32, 32, 2048, 4096,  80, "320x240, 4,000-triangle mesh"),
+        row!(Gray8,       32, 32, 2048, 4096,  80, "320x240, 4,000-triangle mesh"),
+        row!(Rgb565,      32, 32,  512, 1024,  80, "320x240, 1,000-triangle mesh"),
+        row!(Rgb565,      16, 16,  256,  512,  16, "240x240, 500 triangles, 16 tiles per pass"),
+        row!(Gray4,       32, 32,  512, 1024,   8, "128x64 OLED, 1,000 triangles"),
+        row!(BinaryColor, 16, 16,  128,  256,  32, "128x64 mono, 250 triangles"),
     ]
 }
 

@@ -153,6 +153,8 @@ mod firmware {
     /// Gives the harness the frame's statistics.
     #[inline(always)]
     fn report(stats: &FrameStats) {
+        // examples/demo.rs and tests/support list these fields too, as a
+        // printed row and a comparison key: other subsets, not one list.
         let s = stats;
         let words: [u32; 16] = [
             s.triangles_in,
@@ -230,7 +232,8 @@ mod firmware {
         let Some(mut pac) = pac::Peripherals::take() else {
             fail(Fail::Clocks)
         };
-        // 125 MHz from the crystal, as the Pico example runs.
+        // 125 MHz from the crystal, as the Pico example runs. Not
+        // board_support::rp_st7789_bring_up: the bench has no panel or LED.
         let mut watchdog = Watchdog::new(pac.WATCHDOG);
         if init_clocks_and_plls(
             XTAL_HZ,

@@ -342,19 +342,7 @@ mod firmware {
         }
     }
 
-    /// Sleeps forever: for the one state in which not even the LED can be
-    /// reached.
-    fn park() -> ! {
-        loop {
-            cortex_m::asm::wfi();
-        }
-    }
-
-    /// The board's fault blink (`board_support::fault`), timed by busy
-    /// loops.
-    fn fault(led: &mut impl OutputPin<Error = Infallible>, code: u32) -> ! {
-        board_support::fault(led, code, false, |n| cortex_m::asm::delay(n * BLINK_CYCLES))
-    }
+    board_support::rp_park_and_fault!(cortex_m::asm);
 
     #[rp2040_hal::entry]
     fn main() -> ! {

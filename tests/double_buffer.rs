@@ -96,13 +96,19 @@ fn demo<'a>(knot: &'a Mesh<'a>, cube: &'a Mesh<'a>, t: f32) -> [Draw<'a>; 2] {
     draws(knot, cube, t, Shading::Gouraud)
 }
 
+/// Runs `f` on the demo scene at time `t`, with its config, at a size that
+/// is not a multiple of the tile size: the right column's tiles are packed,
+/// the bottom row's are short.
+fn with_odd_size_scene(t: f32, f: impl FnOnce(&Scene<'_>, Config<Rgb565>)) {
+    let size = Size::new(317, 233);
+    with_demo_scene(t, size, |scene| {
+        f(scene, Config::new(size, Rgb565::new(2, 4, 6)));
+    });
+}
+
 #[test]
 fn double_buffered_frames_match_render_in_both_tile_orders() {
-    // Not a multiple of the tile size: the right column's tiles are
-    // packed, the bottom row's are short.
-    let size = Size::new(317, 233);
-    with_demo_scene(0.7, size, |scene| {
-        let config = Config::new(size, Rgb565::new(2, 4, 6));
+    with_odd_size_scene(0.7, |scene, config| {
         let s = double_buffered::<8192, 80>(scene, config);
         assert_eq!((s.bin_passes, s.tiles), (1, 80));
         assert!(s.pixels_shaded > 10_000, "{s:?}");
@@ -112,9 +118,7 @@ fn double_buffered_frames_match_render_in_both_tile_orders() {
 
 #[test]
 fn double_buffered_frames_match_render_over_many_passes() {
-    let size = Size::new(317, 233);
-    with_demo_scene(1.3, size, |scene| {
-        let config = Config::new(size, Rgb565::new(2, 4, 6));
+    with_odd_size_scene(1.3, |scene, config| {
         let s = double_buffered::<8192, 7>(scene, config);
         assert!(s.bin_passes >= 12, "{s:?}");
         let s = double_buffered::<64, 80>(scene, config.tile_order(TileOrder::Hilbert));
@@ -292,9 +296,7 @@ fn async_frame<const B: usize, const T: usize>(
 
 #[test]
 fn async_frames_match_render() {
-    let size = Size::new(317, 233);
-    with_demo_scene(0.4, size, |scene| {
-        let config = Config::new(size, Rgb565::new(2, 4, 6));
+    with_odd_size_scene(0.4, |scene, config| {
         for pends in [0, 1, 2, 3] {
             async_frame::<8192, 80>(scene, config, pends);
         }

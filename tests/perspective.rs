@@ -57,6 +57,14 @@ impl FragmentShader<Probe> for UvOut {
 const W: u32 = 160;
 const H: u32 = 120;
 
+/// Every perspective mode.
+const MODES: [Perspective; 4] = [
+    Perspective::Exact,
+    Perspective::Quasi8,
+    Perspective::Quasi16,
+    Perspective::Affine,
+];
+
 fn fx(v: f32) -> I16F16 {
     I16F16::from_num(v)
 }
@@ -321,12 +329,7 @@ fn affine_mode_is_linear_in_screen_space() {
 /// each span's ends, which a tile's edge at such a column does not move).
 #[test]
 fn rasterizers_agree_on_varyings() {
-    for mode in [
-        Perspective::Exact,
-        Perspective::Quasi8,
-        Perspective::Quasi16,
-        Perspective::Affine,
-    ] {
+    for mode in MODES {
         let a = render::<16, 16>(mode, Rasterizer::Scanline);
         for raster in [Rasterizer::Hilbert, Rasterizer::Auto] {
             let b = render::<16, 16>(mode, raster);
@@ -334,12 +337,7 @@ fn rasterizers_agree_on_varyings() {
         }
     }
     // No mode's values depend on where tiles cut the spans.
-    for mode in [
-        Perspective::Exact,
-        Perspective::Quasi8,
-        Perspective::Quasi16,
-        Perspective::Affine,
-    ] {
+    for mode in MODES {
         let a = render::<16, 16>(mode, Rasterizer::Scanline);
         for b in [
             render::<64, 8>(mode, Rasterizer::Scanline),

@@ -185,3 +185,31 @@ macro_rules! rp_st7789_bring_up {
 }
 #[allow(unused_imports)]
 pub(crate) use rp_st7789_bring_up;
+
+/// The `park` and `fault` of the Pico and Pico 2 firmwares (which
+/// [`rp_st7789_bring_up`] calls), over `$arch`'s `wfi` and `delay`:
+/// `cortex_m::asm` on the Pico, rp235x-hal's `hal::arch` on the Pico 2.
+/// Expanded where the firmware imports `OutputPin` and `Infallible` and
+/// defines `BLINK_CYCLES`, the busy-loop cycles of a blink unit.
+#[allow(unused_macros)]
+macro_rules! rp_park_and_fault {
+    ($($arch:ident)::+) => {
+        /// Sleeps forever: for the one state in which not even the LED can
+        /// be reached.
+        fn park() -> ! {
+            loop {
+                $($arch)::+::wfi();
+            }
+        }
+
+        /// The board's fault blink (`board_support::fault`), timed by busy
+        /// loops.
+        fn fault(led: &mut impl OutputPin<Error = Infallible>, code: u32) -> ! {
+            board_support::fault(led, code, false, |n| {
+                $($arch)::+::delay(n * BLINK_CYCLES)
+            })
+        }
+    };
+}
+#[allow(unused_imports)]
+pub(crate) use rp_park_and_fault;

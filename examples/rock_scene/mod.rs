@@ -289,7 +289,9 @@ pub const fn rock_data() -> RockData {
         v += 1;
     }
 
-    // Normals: the area-weighted face normals around each vertex.
+    // Normals: the area-weighted face normals around each vertex. (The
+    // cross product below stands in src/shapes.rs's cube test too, in i32
+    // there: a const fn in f32 here, too small to share across them.)
     let mut sums = [[0f32; 3]; VERTICES];
     let mut t = 0;
     while t < TRIANGLES {

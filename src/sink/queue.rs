@@ -159,6 +159,8 @@ where
     }
 }
 
+// The methods' bounds repeat on purpose: each public entry point states its
+// own, where rustdoc shows them.
 impl<C, F, const TW: usize, const TH: usize, P> Frame<'_, C, F, TW, TH, P>
 where
     C: PixelColor + From<Rgb888> + Into<Rgb888> + 'static,

@@ -80,6 +80,8 @@ pub trait TileTransfer<B> {
     fn wait(&mut self) -> (B, Result<(), Self::Error>);
 }
 
+// Bounds that repeat queue.rs's on purpose: each public entry point states
+// its own, where rustdoc shows them.
 impl<C, const TW: usize, const TH: usize, P> Renderer<C, TW, TH, P>
 where
     C: PixelColor + From<Rgb888> + Into<Rgb888> + 'static,
@@ -153,6 +155,8 @@ where
     }
 }
 
+// Bounds that repeat queue.rs's on purpose: each public entry point states
+// its own, where rustdoc shows them.
 impl<C, F, const TW: usize, const TH: usize, P> Frame<'_, C, F, TW, TH, P>
 where
     C: PixelColor + From<Rgb888> + Into<Rgb888> + 'static,

@@ -185,18 +185,7 @@ where
     }
 }
 
-/// Sleeps forever: for the one state in which not even the LED can be
-/// reached.
-fn park() -> ! {
-    loop {
-        hal::arch::wfi();
-    }
-}
-
-/// The board's fault blink (`board_support::fault`), timed by busy loops.
-fn fault(led: &mut impl OutputPin<Error = Infallible>, code: u32) -> ! {
-    board_support::fault(led, code, false, |n| hal::arch::delay(n * BLINK_CYCLES))
-}
+board_support::rp_park_and_fault!(hal::arch);
 
 #[hal::entry]
 fn main() -> ! {
