@@ -54,25 +54,29 @@ pub const fn sin_cos_turns(turns: u32) -> (i64, i64) {
     let x = (f * HALF_PI) >> 30;
     let x2 = (x * x) >> 30;
     // Horner: sin x = x (1 - x²/6 (1 - x²/20 (1 - x²/42 (1 - x²/72 (1 - x²/110))))).
-    let mut s = ONE - x2 / 110;
-    s = ONE - ((x2 * s) >> 30) / 72;
-    s = ONE - ((x2 * s) >> 30) / 42;
-    s = ONE - ((x2 * s) >> 30) / 20;
-    s = ONE - ((x2 * s) >> 30) / 6;
-    let sin = (x * s) >> 30;
+    let sin = (x * horner(x2, &[110, 72, 42, 20, 6])) >> 30;
     // cos x = 1 - x²/2 (1 - x²/12 (1 - x²/30 (1 - x²/56 (1 - x²/90 (1 - x²/132))))).
-    let mut c = ONE - x2 / 132;
-    c = ONE - ((x2 * c) >> 30) / 90;
-    c = ONE - ((x2 * c) >> 30) / 56;
-    c = ONE - ((x2 * c) >> 30) / 30;
-    c = ONE - ((x2 * c) >> 30) / 12;
-    c = ONE - ((x2 * c) >> 30) / 2;
+    let c = horner(x2, &[132, 90, 56, 30, 12, 2]);
     match quadrant {
         0 => (sin, c),
         1 => (c, -sin),
         2 => (-sin, -c),
         _ => (-c, sin),
     }
+}
+
+/// The Horner chain `1 - x²/d[n-1] (... (1 - x²/d[0]))` of
+/// [`sin_cos_turns`] in 2.30, for `x2` = x² in 2.30: the divisors from the
+/// innermost term out.
+const fn horner(x2: i64, divisors: &[i64]) -> i64 {
+    // The innermost term starts at one: `(x2 * ONE) >> 30` is `x2` exactly.
+    let mut s = ONE;
+    let mut i = 0;
+    while i < divisors.len() {
+        s = ONE - ((x2 * s) >> 30) / divisors[i];
+        i += 1;
+    }
+    s
 }
 
 type V3 = [i64; 3];
