@@ -12,14 +12,13 @@
 //! sections and symbols would be defined again), so an argument already
 //! among the rustflags is not repeated.
 
-use std::{env, fs, path::PathBuf};
+use std::env;
+
+#[path = "../memory_map.rs"]
+mod memory_map;
 
 fn main() {
-    let out = PathBuf::from(env::var_os("OUT_DIR").expect("cargo sets OUT_DIR"));
-    fs::copy("memory.x", out.join("memory.x")).expect("copying memory.x to OUT_DIR");
-    println!("cargo:rustc-link-search={}", out.display());
-    println!("cargo:rerun-if-changed=memory.x");
-    println!("cargo:rerun-if-changed=build.rs");
+    memory_map::memory_x_on_search_path();
     let rustflags = env::var("CARGO_ENCODED_RUSTFLAGS").unwrap_or_default();
     let given: Vec<&str> = rustflags.split('\x1f').collect();
     // No page alignment of the load segments: boot2, the vector table and

@@ -312,7 +312,11 @@ fn main() -> ! {
         dc,
     };
 
-    // The scene: the knot is generated once, into its static.
+    // The scene: the knot is generated once, into its static. These lines
+    // and the frame loop read as the Pico 2's on purpose: each board keeps
+    // them in its own `main`, beside its own clock, LED and fault codes; a
+    // function shared over those would add a frame above `Frames::draw`,
+    // on the deepest path (tests/qemu_stack.rs measures it).
     let Some(mut frames) = Frames::new(KNOT.take(), WORKSPACE.take()) else {
         fault(&mut led, 4)
     };
