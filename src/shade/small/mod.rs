@@ -323,7 +323,7 @@ impl TriangleSetup {
             // Below 2^21: positive in `i32`.
             area2: area as i32,
             half: s.half as i32,
-            short: ShortDivisor::unscaled(recip),
+            short: ShortDivisor::unscaled(recip, s.half),
         };
         let z = Self::plane_small_of(b, z[0], zfrac, n1, n2);
         let none = Plane::default();
@@ -339,7 +339,20 @@ impl SmallBasis {
     /// overflow; those take three digits).
     #[inline(always)]
     fn two_digit_bound(&self) -> u32 {
-        self.short.bound
+        let s = &self.short;
+        if s.scaled {
+            s.bound
+        } else {
+            // Unscaled (the perspective set-up's depth plane): made here
+            // from the reciprocal's divisor, not kept live from
+            // `ShortDivisor::unscaled` (see there).
+            let d = s.recip.d;
+            if d >> 20 == 0 {
+                d
+            } else {
+                0
+            }
+        }
     }
 
     /// ARMv6-M's gradients of numerators `n1`, `n2` (as
