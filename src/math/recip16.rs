@@ -96,14 +96,21 @@ impl Recip16 {
     /// [`Recip16::new`] given `t = floor(log2(d))`.
     #[inline(always)]
     fn with_log2(d: NonZeroU32, t: u32) -> Self {
+        Self::of_log2(d.get(), t)
+    }
+
+    /// [`Recip16::with_log2`] of a `d` known not to be 0 (`floor(log2(d))
+    /// = t`).
+    #[inline(always)]
+    fn of_log2(d: u32, t: u32) -> Self {
         let r = if t <= 15 {
-            recip31(d.get() << (15 - t)) << 3u32.saturating_sub(t)
+            recip31(d << (15 - t)) << 3u32.saturating_sub(t)
         } else {
             // (d' + 1 = 2^16 as 2^16 - 1: see `recip31`.)
-            recip31(((d.get() >> (t - 15)) + 1).min(0xffff))
+            recip31(((d >> (t - 15)) + 1).min(0xffff))
         };
         Self {
-            d: d.get(),
+            d,
             r,
             // Masked (`t < 31`: the same value), so that the optimiser
             // knows the shift below 32 and each digit's shift by it needs
@@ -128,10 +135,8 @@ impl Recip16 {
             return (Self::with_log2(d, t), 0);
         }
         let k = 19 - t;
-        // In 2^19..2^20: `with_log2`'s reciprocal for `t = 19`.
-        let dk = d.get() << k;
-        let r = recip31(((dk >> 4) + 1).min(0xffff));
-        (Self { d: dk, r, s: 16 }, k)
+        // In 2^19..2^20 (not 0): `s = 16`.
+        (Self::of_log2(d.get() << k, 19), k)
     }
 
     /// [`Recip16::estimate`] of a divisor in `2^19..2^20`

@@ -46,6 +46,17 @@ pub(in crate::shade) struct ShortDivisor {
     pub(in crate::shade) scaled: bool,
 }
 
+/// [`SmallBasis::two_digit_bound`] of the divisor `d`: `d` below 2^20,
+/// where two digits of a gradient do not overflow, else 0.
+#[inline(always)]
+pub(super) const fn two_digit_bound_of(d: u32) -> u32 {
+    if d >> 20 == 0 {
+        d
+    } else {
+        0
+    }
+}
+
 impl ShortDivisor {
     /// The divisor `d` (below 2^21).
     #[inline(always)]
@@ -56,7 +67,7 @@ impl ShortDivisor {
             recip,
             k,
             half: (d / 2) << k,
-            bound: if d >> 20 == 0 { d } else { 0 },
+            bound: two_digit_bound_of(d),
             scaled: true,
         }
     }
@@ -79,7 +90,7 @@ impl ShortDivisor {
             recip,
             k: 0,
             half,
-            bound: if d >> 20 == 0 { d } else { 0 },
+            bound: two_digit_bound_of(d),
             scaled: false,
         }
     }

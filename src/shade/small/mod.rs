@@ -346,12 +346,7 @@ impl SmallBasis {
             // Unscaled (the perspective set-up's depth plane): made here
             // from the reciprocal's divisor, not kept live from
             // `ShortDivisor::unscaled` (see there).
-            let d = s.recip.d;
-            if d >> 20 == 0 {
-                d
-            } else {
-                0
-            }
+            divide::two_digit_bound_of(s.recip.d)
         }
     }
 
