@@ -341,19 +341,32 @@ const WORDS: bool = !crate::math::SPLIT;
 struct Edges {
     /// Vertex 0's x word (`x 2^8`).
     x0: i32,
-    /// Vertex 0's y.
+    /// Vertex 0's y, times `2^Y_SHIFT` ([`Y_SHIFT`]).
     y0: i32,
     /// Vertex 1's x word less vertex 0's, and vertex 0's less vertex 2's:
     /// the second negated, so that the area is a multiply and a
     /// multiply-accumulate, with the negation on the visible path alone
     /// (Cortex-M3 -1.2 K).
     dx: (Word, Word),
-    /// Vertex 1's and 2's y less vertex 0's.
+    /// Vertex 1's and 2's y less vertex 0's, times `2^Y_SHIFT`.
     dy: (Word, Word),
     /// Vertex 1's and 2's x words, for the pixels on 64-bit hosts
     /// ([`centres`](Self::centres)).
     x12: (i32, i32),
 }
+
+/// The scale of [`Edges`]' y values, `y 2^Y_SHIFT`: on 64-bit hosts the
+/// y words with their low 9 bits cleared (`y 2^9`, within `±2^27`; their
+/// differences within `±2^28`, each area product below `2^56`), so that
+/// the differences are 64-bit subtractions of the sign-extended loads,
+/// where `y` shifted out of each word had been subtracted in 32 bits and
+/// each difference sign-extended again; elsewhere `y` itself (the
+/// Thumb-2 cores shift it within the subtraction).
+const Y_SHIFT: u32 = if cfg!(target_pointer_width = "64") {
+    9
+} else {
+    0
+};
 
 /// The type of [`Edges`]' differences: `i64` on 64-bit hosts, where the
 /// words are then sign-extended as they are loaded and the area's
@@ -371,12 +384,18 @@ impl Edges {
     #[inline(always)]
     fn of(w: &[(i32, i32); 3]) -> Self {
         let [(x0, y0), (x1, y1), (x2, y2)] = w.map(|(x, y)| (x as Word, y as Word));
-        let y0 = y0 >> 9;
+        // y as `y 2^Y_SHIFT` ([`Y_SHIFT`]): the word's low bits cleared,
+        // or shifted out.
+        let y = |w: Word| match Y_SHIFT {
+            9 => w & !511,
+            _ => w >> 9,
+        };
+        let y0 = y(y0);
         Self {
             x0: x0 as i32,
             y0: y0 as i32,
             dx: (x1 - x0, x0 - x2),
-            dy: ((y1 >> 9) - y0, (y2 >> 9) - y0),
+            dy: (y(y1) - y0, y(y2) - y0),
             x12: (x1 as i32, x2 as i32),
         }
     }
@@ -424,9 +443,9 @@ impl Edges {
         let (ly, hy) = span(self.dy.0, self.dy.1);
         PixelRect::new(
             (self.x0 + lx + (UP << 8)) >> (SUBPIXEL_BITS + 8),
-            (self.y0 + ly + UP) >> SUBPIXEL_BITS,
+            (self.y0 + ly + (UP << Y_SHIFT)) >> (SUBPIXEL_BITS + Y_SHIFT),
             (self.x0 + hx + (UP << 8)) >> (SUBPIXEL_BITS + 8),
-            (self.y0 + hy + UP) >> SUBPIXEL_BITS,
+            (self.y0 + hy + (UP << Y_SHIFT)) >> (SUBPIXEL_BITS + Y_SHIFT),
         )
     }
 }
