@@ -11,26 +11,83 @@ use core::num::NonZeroU32;
 /// vertex 0 (not negated as [`Basis`](super::super::plane::Basis)'s: the divisor keeps its sign), the
 /// offsets `ox, oy`, twice the signed area (neither 0 nor -1, at most
 /// `2 * 1023^2` in magnitude) and half its magnitude.
-pub(in crate::shade) struct SmallBasis {
+pub(in crate::shade) struct SmallBasis<D = ShortDivisor> {
     pub(in crate::shade) e: [i32; 4],
     pub(in crate::shade) o: [i32; 2],
     pub(in crate::shade) area2: i32,
     pub(in crate::shade) half: i32,
-    /// `|area2|`'s short reciprocal, where the gradients divide through it
-    /// (ARMv6-M: [`SmallBasis::div_round32`]); unused elsewhere, where
-    /// the optimiser drops it.
-    pub(in crate::shade) short: ShortDivisor,
+    /// `|area2|` as the gradients divide by it where through a reciprocal
+    /// (ARMv6-M: [`SmallBasis::div_round32`]): [`ShortDivisor`], or the
+    /// area's own [`Recip16`] (the perspective set-up's depth plane,
+    /// [`TriangleSetup::depth_small`](super::super::TriangleSetup::depth_small));
+    /// unused elsewhere, where the optimiser drops it.
+    pub(in crate::shade) short: D,
 }
 
-/// `d = |area2|` as ARMv6-M's gradients divide by it: the reciprocal of
-/// `d 2^k`, scaled into `2^19..2^20` ([`Recip16::new_scaled`]; `k = 0`
-/// and `d`'s own from `2^20` up), with half the area scaled alike and the
-/// two-digit quotients' bound. The dividends are scaled by `2^k` too (the
-/// same quotients, remainders times `2^k`), so that every digit of the
-/// two-digit gradients drops a constant 16 bits
-/// ([`Recip16::estimate16`]) where each shifted by a variable `s`: a
-/// `MOV`, a shift and often a reload fewer a digit, and one register
-/// fewer over the set-up.
+/// `d = |area2|` as ARMv6-M's gradients divide it
+/// ([`SmallBasis::div_round32_short`]): the reciprocal of `d 2^k`, with
+/// every dividend scaled by `2^k` (the same quotients, the remainders
+/// times `2^k`). A type a divisor, so that each set-up holds only what its
+/// own digits read.
+pub(in crate::shade) trait AreaDivisor {
+    /// The reciprocal of `d 2^k`.
+    fn recip(&self) -> &Recip16;
+    /// The scale `k`.
+    fn k(&self) -> u32;
+    /// `floor(d / 2) 2^k`, given `half = floor(d / 2)` (the basis's).
+    fn half(&self, half: u32) -> u32;
+    /// [`SmallBasis::two_digit_bound`]: `d` below 2^20, else 0.
+    fn bound(&self) -> u32;
+    /// A digit's estimate ([`Recip16::estimate`]'s) of `x / (d 2^k)`.
+    fn estimate(&self, x: u32) -> (u32, u32);
+}
+
+/// The divisor by its own reciprocal, unscaled (`k = 0`): the perspective
+/// set-up's depth plane
+/// ([`TriangleSetup::depth_small`](super::super::TriangleSetup::depth_small)),
+/// which shares the area's reciprocal with its perspective planes (scaled
+/// there, `demo-textured-lit` measured 12,423,162 -> 12,506,105). Half the
+/// area is the basis's and the two-digit bound is made where it is used:
+/// no value more live over the textured set-up than the reciprocal
+/// (`demo-textured-lit` 12,460,060 -> 12,442,305 against a divisor that
+/// held its own). The same code as that `ShortDivisor` with a constant
+/// `scaled = false`, which the optimiser folded.
+impl AreaDivisor for Recip16 {
+    #[inline(always)]
+    fn recip(&self) -> &Recip16 {
+        self
+    }
+
+    #[inline(always)]
+    fn k(&self) -> u32 {
+        0
+    }
+
+    #[inline(always)]
+    fn half(&self, half: u32) -> u32 {
+        half
+    }
+
+    #[inline(always)]
+    fn bound(&self) -> u32 {
+        two_digit_bound_of(self.d)
+    }
+
+    #[inline(always)]
+    fn estimate(&self, x: u32) -> (u32, u32) {
+        Recip16::estimate(self, x)
+    }
+}
+
+/// `d = |area2|` as ARMv6-M's Gouraud and flat gradients divide by it: the
+/// reciprocal of `d 2^k`, scaled into `2^19..2^20`
+/// ([`Recip16::new_scaled`]; `k = 0` and `d`'s own from `2^20` up), with
+/// half the area scaled alike and the two-digit quotients' bound. The
+/// dividends are scaled by `2^k` too (the same quotients, remainders
+/// times `2^k`), so that every digit of the two-digit gradients drops a
+/// constant 16 bits ([`Recip16::estimate16`]) where each shifted by a
+/// variable `s`: a `MOV`, a shift and often a reload fewer a digit, and
+/// one register fewer over the set-up.
 #[derive(Clone, Copy, Debug, Default)]
 pub(in crate::shade) struct ShortDivisor {
     pub(in crate::shade) recip: Recip16,
@@ -40,16 +97,12 @@ pub(in crate::shade) struct ShortDivisor {
     pub(in crate::shade) half: u32,
     /// [`SmallBasis::two_digit_bound`]: `d` below 2^20, else 0.
     pub(in crate::shade) bound: u32,
-    /// Whether `recip` is scaled ([`ShortDivisor::new`]) or `d`'s own
-    /// ([`ShortDivisor::unscaled`], `k = 0`): a constant where the set-up
-    /// is inlined, which the optimiser folds.
-    pub(in crate::shade) scaled: bool,
 }
 
 /// [`SmallBasis::two_digit_bound`] of the divisor `d`: `d` below 2^20,
 /// where two digits of a gradient do not overflow, else 0.
 #[inline(always)]
-pub(super) const fn two_digit_bound_of(d: u32) -> u32 {
+const fn two_digit_bound_of(d: u32) -> u32 {
     if d >> 20 == 0 {
         d
     } else {
@@ -68,41 +121,36 @@ impl ShortDivisor {
             k,
             half: (d / 2) << k,
             bound: two_digit_bound_of(d),
-            scaled: true,
         }
     }
+}
 
-    /// The divisor `recip.d` (below 2^21) by its own reciprocal, unscaled
-    /// (`k = 0`): the perspective set-up's depth plane
-    /// ([`TriangleSetup::depth_small`](super::super::TriangleSetup::depth_small)),
-    /// which shares the area's reciprocal with its perspective planes. Scaled
-    /// there, `demo-textured-lit` measured 12,423,162 -> 12,506,105.
-    /// `half` is the caller's `floor(d / 2)` ([`Small`]'s, already in a
-    /// register), not `d / 2` anew, and the two-digit bound is made where
-    /// it is used ([`SmallBasis::two_digit_bound`]), as before
-    /// `ShortDivisor`: each a value fewer live over the set-up,
-    /// `demo-textured-lit` 12,460,060 -> 12,442,305.
-    #[cfg_attr(not(any(test, microraster_narrow_multiply)), allow(dead_code))]
+impl AreaDivisor for ShortDivisor {
     #[inline(always)]
-    pub(in crate::shade) fn unscaled(recip: Recip16, half: u32) -> Self {
-        let d = recip.d;
-        Self {
-            recip,
-            k: 0,
-            half,
-            bound: two_digit_bound_of(d),
-            scaled: false,
-        }
+    fn recip(&self) -> &Recip16 {
+        &self.recip
     }
 
-    /// [`Recip16::estimate16`] where scaled, else [`Recip16::estimate`].
+    #[inline(always)]
+    fn k(&self) -> u32 {
+        self.k
+    }
+
+    #[inline(always)]
+    fn half(&self, _: u32) -> u32 {
+        self.half
+    }
+
+    #[inline(always)]
+    fn bound(&self) -> u32 {
+        self.bound
+    }
+
+    /// [`Recip16::estimate16`]: `d 2^k` is in `2^19..2^20` where it
+    /// takes two digits.
     #[inline(always)]
     fn estimate(&self, x: u32) -> (u32, u32) {
-        if self.scaled {
-            self.recip.estimate16(x)
-        } else {
-            self.recip.estimate(x)
-        }
+        self.recip.estimate16(x)
     }
 }
 
@@ -185,7 +233,7 @@ impl Small {
     }
 }
 
-impl SmallBasis {
+impl<D: AreaDivisor> SmallBasis<D> {
     /// [`Small::div_round`] in `i32` arithmetic, for `-2^21 <= n < 2^21`,
     /// `shift` 18 or 20 (depth and colour) and a first digit
     /// `|n| 2^10 / area` of at most `2^(40 - shift)`, which keeps the
@@ -233,10 +281,9 @@ impl SmallBasis {
         // first below `d 2^(12 + k) < 2^32`, the second `r0 2^11 + half
         // 2^k` with `r0` (a multiple of `2^k`) below `2 d 2^k` as above.
         let s = &self.short;
-        let f = &s.recip;
-        let (q0, r0) = s.estimate(n.unsigned_abs() << (shift - 11 + s.k));
-        let (q1, r1) = s.estimate((r0 << 11) + s.half);
-        let q = (q0 << 11) + q1 + (r1 >= f.d) as u32;
+        let (q0, r0) = s.estimate(n.unsigned_abs() << (shift - 11 + s.k()));
+        let (q1, r1) = s.estimate((r0 << 11) + s.half(self.half as u32));
+        let q = (q0 << 11) + q1 + (r1 >= s.recip().d) as u32;
         // The quotient's sign: the numerator's times the divisor's.
         if (n ^ self.area2) < 0 {
             (q as i32).wrapping_neg()
@@ -278,7 +325,7 @@ impl SmallBasis {
     pub(in crate::shade) fn div_round32_short(&self, n: i32, shift: u32) -> i32 {
         let k = shift - 10;
         let s = &self.short;
-        let f = &s.recip;
+        let f = s.recip();
         let a = n.unsigned_abs();
         if a >> (23 - shift) < self.two_digit_bound() {
             return self.div_round_two_digits(n, shift);
@@ -286,9 +333,9 @@ impl SmallBasis {
         // By `d 2^k` ([`ShortDivisor`]): each dividend times `2^k`, the
         // first `|n| 2^k <= d 2^(12 + k) < 2^32` (`d 2^k < 2^20`, or
         // `k = 0`), the remainders times `2^k`; the same digits.
-        let (q0, r0) = f.digit(a << s.k);
+        let (q0, r0) = f.digit(a << s.k());
         let (q1, r1) = f.digit(r0 << 10);
-        let (q2, _) = f.digit((r1 << k) + s.half);
+        let (q2, _) = f.digit((r1 << k) + s.half(self.half as u32));
         let q = (q0 << shift) + (q1 << k) + q2;
         // The quotient's sign: the numerator's times the divisor's.
         if (n ^ self.area2) < 0 {
@@ -323,7 +370,7 @@ impl SmallBasis {
     }
 }
 
-impl SmallBasis {
+impl<D: AreaDivisor> SmallBasis<D> {
     /// [`SmallBasis::div_round32`] in signed divisions of `m = n 2^10`
     /// (the caller's numerator times 2^10, for `-2^21 <= n < 2^21`
     /// within its bounds); [`SmallBasis::div_round32_with`]'s signed

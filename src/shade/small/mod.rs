@@ -16,7 +16,7 @@ use core::num::NonZeroU32;
 
 mod divide;
 
-pub(super) use divide::{ShortDivisor, Small, SmallBasis};
+pub(super) use divide::{AreaDivisor, ShortDivisor, Small, SmallBasis};
 
 /// On 32-bit targets, the attribute set-up of a small triangle (edge
 /// vectors from vertex 0 below this, in sub-pixels: 64 pixels) divides in
@@ -263,7 +263,13 @@ impl TriangleSetup {
     /// wrapping (`i32` by `i32`), and its wrapped `i32` is
     /// `constant_wrapping`'s.
     #[inline(always)]
-    fn plane_small_of(f: &SmallBasis, v0: i32, frac: u32, n1: i32, n2: i32) -> Plane {
+    fn plane_small_of<D: AreaDivisor>(
+        f: &SmallBasis<D>,
+        v0: i32,
+        frac: u32,
+        n1: i32,
+        n2: i32,
+    ) -> Plane {
         let shift = frac + SUBPIXEL_BITS;
         let (gx, gy, term) = if cfg!(microraster_narrow_multiply) {
             f.plane_short(n1, n2, shift)
@@ -286,7 +292,7 @@ impl TriangleSetup {
     /// `i32` set-up of [`TriangleSetup::small`] where depth's numerators
     /// allow (within `-2^21..2^21` and below `area 2^12`, as there;
     /// `None` otherwise), its gradients by `recip`, the area's
-    /// [`Recip16`] ([`ShortDivisor::unscaled`]): ARMv6-M's perspective
+    /// [`Recip16`] (unscaled, as an [`AreaDivisor`]): ARMv6-M's perspective
     /// set-up, which makes that reciprocal once for its planes and this
     /// one, where the general set-up divided each depth gradient in three
     /// digits with 64-bit partial quotients after a reciprocal of its own.
@@ -323,7 +329,7 @@ impl TriangleSetup {
             // Below 2^21: positive in `i32`.
             area2: area as i32,
             half: s.half as i32,
-            short: ShortDivisor::unscaled(recip, s.half),
+            short: recip,
         };
         let z = Self::plane_small_of(b, z[0], zfrac, n1, n2);
         let none = Plane::default();
@@ -331,7 +337,7 @@ impl TriangleSetup {
     }
 }
 
-impl SmallBasis {
+impl<D: AreaDivisor> SmallBasis<D> {
     /// The bound of the numerators' magnitudes over `2^(23 - shift)` below
     /// which a gradient takes [`SmallBasis::div_round_two_digits`]: `d`,
     /// or 0 where `d >= 2^20` (twice an area of 2,048 pixels and more,
@@ -339,15 +345,7 @@ impl SmallBasis {
     /// overflow; those take three digits).
     #[inline(always)]
     fn two_digit_bound(&self) -> u32 {
-        let s = &self.short;
-        if s.scaled {
-            s.bound
-        } else {
-            // Unscaled (the perspective set-up's depth plane): made here
-            // from the reciprocal's divisor, not kept live from
-            // `ShortDivisor::unscaled` (see there).
-            divide::two_digit_bound_of(s.recip.d)
-        }
+        self.short.bound()
     }
 
     /// ARMv6-M's gradients of numerators `n1`, `n2` (as
