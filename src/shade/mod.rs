@@ -343,7 +343,7 @@ mod tests {
                 o: [0; 2],
                 area2,
                 half: area / 2,
-                short: ShortDivisor::new(NonZeroU32::new(area as u32).unwrap()),
+                divisor: ShortDivisor::new(NonZeroU32::new(area as u32).unwrap()),
             };
             let small = Small {
                 area: NonZeroU32::new(area as u32).unwrap(),
@@ -463,7 +463,7 @@ mod tests {
                 o: [0; 2],
                 area2,
                 half: (area / 2) as i32,
-                short: ShortDivisor::new(NonZeroU32::new(area).unwrap()),
+                divisor: ShortDivisor::new(NonZeroU32::new(area).unwrap()),
             };
             let small = Small {
                 area: NonZeroU32::new(area).unwrap(),
@@ -619,7 +619,7 @@ mod tests {
                 ],
                 area2,
                 half: area / 2,
-                short: ShortDivisor::new(NonZeroU32::new(area as u32).unwrap()),
+                divisor: ShortDivisor::new(NonZeroU32::new(area as u32).unwrap()),
             };
             let (gx, gy) = (
                 f.div_round32_with::<false>(n1, shift),

@@ -21,14 +21,14 @@ pub(in crate::shade) struct SmallBasis<D = ShortDivisor> {
     /// area's own [`Recip16`] (the perspective set-up's depth plane,
     /// [`TriangleSetup::depth_small`](super::super::TriangleSetup::depth_small));
     /// unused elsewhere, where the optimiser drops it.
-    pub(in crate::shade) short: D,
+    pub(in crate::shade) divisor: D,
 }
 
 /// `d = |area2|` as ARMv6-M's gradients divide it
 /// ([`SmallBasis::div_round32_short`]): the reciprocal of `d 2^k`, with
 /// every dividend scaled by `2^k` (the same quotients, the remainders
-/// times `2^k`). A type a divisor, so that each set-up holds only what its
-/// own digits read.
+/// times `2^k`). One type for each form of divisor, so that each set-up
+/// holds only what its own digits read.
 pub(in crate::shade) trait AreaDivisor {
     /// The reciprocal of `d 2^k`.
     fn recip(&self) -> &Recip16;
@@ -50,8 +50,8 @@ pub(in crate::shade) trait AreaDivisor {
 /// area is the basis's and the two-digit bound is made where it is used:
 /// no value more live over the textured set-up than the reciprocal
 /// (`demo-textured-lit` 12,460,060 -> 12,442,305 against a divisor that
-/// held its own). The same code as that `ShortDivisor` with a constant
-/// `scaled = false`, which the optimiser folded.
+/// held its own). The same machine code as the divisor with a run-time
+/// `scaled` flag had, whose flag the optimiser folded here.
 impl AreaDivisor for Recip16 {
     #[inline(always)]
     fn recip(&self) -> &Recip16 {
@@ -280,7 +280,7 @@ impl<D: AreaDivisor> SmallBasis<D> {
         // By `d 2^k` ([`ShortDivisor`]), the dividends times `2^k`: the
         // first below `d 2^(12 + k) < 2^32`, the second `r0 2^11 + half
         // 2^k` with `r0` (a multiple of `2^k`) below `2 d 2^k` as above.
-        let s = &self.short;
+        let s = &self.divisor;
         let (q0, r0) = s.estimate(n.unsigned_abs() << (shift - 11 + s.k()));
         let (q1, r1) = s.estimate((r0 << 11) + s.half(self.half as u32));
         let q = (q0 << 11) + q1 + (r1 >= s.recip().d) as u32;
@@ -324,7 +324,7 @@ impl<D: AreaDivisor> SmallBasis<D> {
     #[inline(always)]
     pub(in crate::shade) fn div_round32_short(&self, n: i32, shift: u32) -> i32 {
         let k = shift - 10;
-        let s = &self.short;
+        let s = &self.divisor;
         let f = s.recip();
         let a = n.unsigned_abs();
         if a >> (23 - shift) < self.two_digit_bound() {

@@ -190,7 +190,7 @@ impl TriangleSetup {
             area2,
             half: (area / 2) as i32,
             // Only ARMv6-M divides by it (`area` is not 0).
-            short: match NonZeroU32::new(area) {
+            divisor: match NonZeroU32::new(area) {
                 Some(a) if cfg!(microraster_narrow_multiply) => ShortDivisor::new(a),
                 _ => ShortDivisor::default(),
             },
@@ -329,7 +329,7 @@ impl TriangleSetup {
             // Below 2^21: positive in `i32`.
             area2: area as i32,
             half: s.half as i32,
-            short: recip,
+            divisor: recip,
         };
         let z = Self::plane_small_of(b, z[0], zfrac, n1, n2);
         let none = Plane::default();
@@ -345,7 +345,7 @@ impl<D: AreaDivisor> SmallBasis<D> {
     /// overflow; those take three digits).
     #[inline(always)]
     fn two_digit_bound(&self) -> u32 {
-        self.short.bound()
+        self.divisor.bound()
     }
 
     /// ARMv6-M's gradients of numerators `n1`, `n2` (as
