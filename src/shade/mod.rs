@@ -345,6 +345,14 @@ mod tests {
                 half: area / 2,
                 divisor: ShortDivisor::new(NonZeroU32::new(area as u32).unwrap()),
             };
+            // The depth plane's form: the area's own reciprocal, unscaled.
+            let plain = SmallBasis {
+                e: f.e,
+                o: f.o,
+                area2,
+                half: f.half,
+                divisor: Recip16::new_small(NonZeroU32::new(area as u32).unwrap()),
+            };
             let small = Small {
                 area: NonZeroU32::new(area as u32).unwrap(),
                 half: area as u32 / 2,
@@ -358,6 +366,7 @@ mod tests {
                 f.div_round32_with::<true>(n, shift),
                 f.div_round32_with::<false>(n, shift),
                 f.div_round32_short(n, shift),
+                plain.div_round32_short(n, shift),
                 f.div_round32_of_m(n << 10, shift),
             ] {
                 assert_eq!(q as i64, expected, "{n} << {shift} / {area2}");
@@ -465,6 +474,14 @@ mod tests {
                 half: (area / 2) as i32,
                 divisor: ShortDivisor::new(NonZeroU32::new(area).unwrap()),
             };
+            // The depth plane's form: the area's own reciprocal, unscaled.
+            let plain = SmallBasis {
+                e: f.e,
+                o: f.o,
+                area2,
+                half: f.half,
+                divisor: Recip16::new_small(NonZeroU32::new(area).unwrap()),
+            };
             let small = Small {
                 area: NonZeroU32::new(area).unwrap(),
                 half: area / 2,
@@ -496,6 +513,11 @@ mod tests {
                     let expected = f.div_round32_with::<false>(n, shift);
                     assert_eq!(
                         f.div_round32_short(n, shift),
+                        expected,
+                        "{n} {shift} {area2}"
+                    );
+                    assert_eq!(
+                        plain.div_round32_short(n, shift),
                         expected,
                         "{n} {shift} {area2}"
                     );
