@@ -141,7 +141,7 @@ fn find_spans_with<const DIRECT: bool, const APART: bool>(
     let row_mid = first_row(b.y);
     // On ARMv6-M the last row alone by `first_row` (an add and a shift;
     // the local `first_row` is `first_centre_at_or_after` there): `demo`
-    // 5,863,001 -> 5,846,626 instructions, `rock` 4,892,285 -> 4,880,063,
+    // 5,862,997 -> 5,846,622 instructions, `rock` 4,892,285 -> 4,880,063,
     // `fill` 20.06 -> 20.05 a pixel. All three rows by `first_row` took
     // `demo` to 5,858,873 but `fill` to 20.08 (the clamped row loop's
     // registers moved), `rock` +446.
