@@ -36,6 +36,17 @@ impl Lambert {
         }
     }
 
+    /// n·l of the normal `n` in 1/256 steps, floored but not clamped
+    /// ([`ndotl`](Self::ndotl) before its clamp), by 64-bit products.
+    #[inline(always)]
+    pub(super) fn ndotl_steps(&self, n: crate::mesh::Vec3Fx) -> i64 {
+        use crate::math::mul_wide;
+        let n = [n[0].to_bits(), n[1].to_bits(), n[2].to_bits()];
+        let d =
+            mul_wide(n[0], self.dir[0]) + mul_wide(n[1], self.dir[1]) + mul_wide(n[2], self.dir[2]);
+        d >> 24
+    }
+
     /// [`ndotl`](Self::ndotl) of the normal's bits `n` by 64-bit products.
     #[inline(always)]
     pub(super) fn ndotl_wide(&self, n: [i32; 3]) -> u32 {

@@ -68,6 +68,13 @@ pub(super) trait LitWork {
     fn shade(&self, n: Vec3Fx) -> u32 {
         self.word(self.ndotl(n))
     }
+    /// n·l of the normal `n` in 1/256 steps, clamped or not: where it is
+    /// not (64-bit hosts' loop, [`ndotl_steps`](Lambert::ndotl_steps)),
+    /// clamped to `0..=256` it is [`ndotl`](Self::ndotl).
+    #[inline(always)]
+    fn ndotl_steps(&self, n: Vec3Fx) -> i64 {
+        self.ndotl(n) as i64
+    }
     /// The index of the normal `n` in a [`ColorTable`] of
     /// [`TABLE_WORDS`] words: its [`ndotl`](Self::ndotl), or where the
     /// table is longer ([`SAT_INDEX`]) and the work allows it n·l
@@ -116,6 +123,11 @@ impl LitWork for (&FixedMat4, &Lambert, [u8; 3], [u32; 2]) {
     fn word(&self, ndotl: u32) -> u32 {
         let color = self.1.shade_ndotl(ndotl, self.2);
         color_word(color, within(ndotl, self.3))
+    }
+
+    #[inline(always)]
+    fn ndotl_steps(&self, n: Vec3Fx) -> i64 {
+        self.1.ndotl_steps(n)
     }
 }
 

@@ -227,6 +227,42 @@ impl ScreenVertex {
         }
     }
 
+    /// A [`color_word`] `word` for [`with_wide_word`](Self::with_wide_word):
+    /// the word in the low 32 bits, its red and interior bit (its low 9
+    /// bits) again in the top 9.
+    #[inline(always)]
+    pub(crate) const fn wide_word(word: u32) -> u64 {
+        ((word & (0xff | COLOR_WORD_INTERIOR)) as u64) << 55 | word as u64
+    }
+
+    /// [`with_color_word`](Self::with_color_word) (outcode 0) of a
+    /// [`wide_word`](Self::wide_word): y's word is `y 2^9` and the top 9
+    /// bits, depth's `z 2^16` and green and blue (bits 16 to 31), a double
+    /// shift each (`SHLD`) without masking red out of the colour word.
+    #[inline(always)]
+    pub(crate) fn with_wide_word(x: i32, y: i32, z: u32, word: u64) -> Self {
+        debug_assert!(
+            (COORD_MIN..=COORD_MAX).contains(&x) && (COORD_MIN..=COORD_MAX).contains(&y),
+            "screen vertex outside the coordinate fields"
+        );
+        debug_assert!(z <= 65_535, "screen vertex depth beyond 16 bits");
+        // y within 23 bits (any sign): its word's bits are the low 32 of
+        // the 64-bit shift.
+        let mut yr = ((y as u32 as u64) << 9 | word >> 55) as u32;
+        // Nearly every depth is interior: the bit cleared on a branch
+        // hinted rare, where the select copied and masked the word every
+        // vertex.
+        if !depth_interior(z) {
+            crate::hint::cold();
+            yr &= !INTERIOR;
+        }
+        Self {
+            xo: Self::xo_word(x, 0),
+            yr,
+            gbz: z << 16 | (word as u32) >> 16,
+        }
+    }
+
     /// The words of y, depth and the colour of
     /// [`with_color_word`](Self::with_color_word), after
     /// [`set_x`](Self::set_x).
@@ -450,6 +486,9 @@ mod tests {
                 s.set_lit_word(y, z as u32, word);
                 let want = ScreenVertex::new_tested(x, y, z as u32, 0, c, inside);
                 assert_eq!(s, want, "{x} {y} {z} {c:?} {inside}");
+                // 64-bit hosts' table words pack the same.
+                let v = ScreenVertex::with_wide_word(x, y, z as u32, ScreenVertex::wide_word(word));
+                assert_eq!(v, want, "{x} {y} {z} {c:?} {inside}");
             }
         };
         for i in (0..1u32 << COORD_BITS).step_by(97) {
