@@ -411,12 +411,15 @@ const COUNT_AFTER: bool = cfg!(microraster_armv7m);
 /// after the clamped starts, with the end read back from a stack slot
 /// (`gouraud_loop`'s own test then folds away; kept as measured:
 /// the registers around the clamped starts move with it).
-/// On the Cortex-M3: `demo` 2,946,917 -> 2,940,881 instructions, `rock`
-/// 2,429,001 -> 2,424,965, `grid4` 838,495 -> 838,356, `fill` the same.
+/// On the Cortex-M3 and ARMv6-M. On the Cortex-M3: `demo` 2,946,917 ->
+/// 2,940,881 instructions, `rock` 2,429,001 -> 2,424,965, `grid4`
+/// 838,495 -> 838,356, `fill` the same.
 /// (The interior loop tested early too: the same count. The end masked
 /// into the tile instead, so that its test could go: `demo` +11 K, and
-/// +112 K in both loops.)
-const EARLY_END: bool = cfg!(microraster_armv7m);
+/// +112 K in both loops.) On ARMv6-M too: `demo` 5,846,622 -> 5,844,402
+/// (single-scene build); `rock`, `demo-flat`, `grid4`, `fill`, the
+/// shader fills and `demo-textured-lit` the same.
+const EARLY_END: bool = cfg!(any(microraster_armv7m, microraster_narrow_multiply));
 
 /// Whether [`gouraud_loop`] stores the colour after the depth test's two
 /// paths meet, a fragment that fails storing back the colour it read
