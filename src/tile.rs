@@ -33,7 +33,11 @@ pub enum TileOrder {
 }
 
 /// Colour and depth for one tile, sized at compile time.
+///
+/// Word-aligned, colour plane first, so that the clear's pair stores
+/// (`fill`) are aligned words (the depth plane too when `W * H` is even).
 #[derive(Clone, Debug)]
+#[repr(C, align(4))]
 pub struct TileBuffer<C, const W: usize, const H: usize> {
     pub(crate) color: [[C; W]; H],
     pub(crate) depth: [[u16; W]; H],
@@ -253,11 +257,42 @@ impl<C: Copy + PartialEq, const W: usize, const H: usize> TileBuffer<C, W, H> {
 
 /// `slice.fill(value)`, 32 values a turn: stores with constant offsets, one
 /// loop test per 32 (`fill` tests every 4 on the Cortex-M3).
+#[cfg(not(all(target_arch = "arm", target_has_atomic = "32")))]
 #[inline(always)]
 fn fill<T: Copy>(slice: &mut [T], value: T) {
     let (chunks, rest) = slice.as_chunks_mut::<32>();
     for c in chunks {
         *c = [value; 32];
+    }
+    rest.fill(value);
+}
+
+/// Two values side by side, word-aligned: copied as one unit.
+#[cfg(all(target_arch = "arm", target_has_atomic = "32"))]
+#[repr(C, align(4))]
+#[derive(Clone, Copy)]
+struct Pair<T>([T; 2]);
+
+/// `slice.fill(value)` on ARMv7-M / ARMv7E-M, a pair of values a store:
+/// LLVM does not merge two `strh` of a run-time value into one `str`, but
+/// a pair read from memory it cannot see into (`black_box`) is a 4-byte
+/// copy, which it makes one word load (hoisted out of the loop) and one
+/// word store a pair: 16 stores per 32 values where `strh` took 32. Not on
+/// ARMv6-M (no unaligned stores: still two `strh` a pair) nor x86 (its
+/// splat fill is already vector stores).
+#[cfg(all(target_arch = "arm", target_has_atomic = "32"))]
+#[inline(always)]
+fn fill<T: Copy>(slice: &mut [T], value: T) {
+    let pair = core::hint::black_box(Pair([value; 2]));
+    let (pairs, rest) = slice.as_chunks_mut::<2>();
+    let (chunks, tail) = pairs.as_chunks_mut::<16>();
+    for c in chunks {
+        for p in c {
+            *p = pair.0;
+        }
+    }
+    for p in tail {
+        *p = pair.0;
     }
     rest.fill(value);
 }
