@@ -268,7 +268,7 @@ fn fill<T: Copy>(slice: &mut [T], value: T) {
 }
 
 /// Two values side by side, word-aligned: copied as one unit.
-#[cfg(all(target_arch = "arm", not(microraster_narrow_multiply)))]
+#[cfg(any(test, all(target_arch = "arm", not(microraster_narrow_multiply))))]
 #[repr(C, align(4))]
 #[derive(Clone, Copy)]
 struct Pair<T>([T; 2]);
@@ -286,6 +286,14 @@ struct Pair<T>([T; 2]);
 #[cfg(all(target_arch = "arm", not(microraster_narrow_multiply)))]
 #[inline(always)]
 fn fill<T: Copy>(slice: &mut [T], value: T) {
+    fill_pairs(slice, value);
+}
+
+/// The pair fill of Thumb-2 cores ([`fill`] there); built on the host
+/// for its tests too.
+#[cfg(any(test, all(target_arch = "arm", not(microraster_narrow_multiply))))]
+#[inline(always)]
+fn fill_pairs<T: Copy>(slice: &mut [T], value: T) {
     let pair = core::hint::black_box(Pair([value; 2]));
     let (pairs, rest) = slice.as_chunks_mut::<2>();
     let (chunks, tail) = pairs.as_chunks_mut::<16>();
@@ -463,5 +471,44 @@ impl TileGrid {
             r.y0 as u32 / self.tile_h,
             (r.y1 as u32 - 1) / self.tile_h + 1,
         ))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The Thumb-2 clear's pair fill writes every value of the slice, and
+    /// only those, for every length: whole turns of 32, a tail of pairs
+    /// and an odd last value.
+    #[test]
+    fn pair_fill_writes_every_value_of_any_length() {
+        let mut buf = [0u16; 140];
+        for start in 0..3 {
+            for len in 0..(buf.len() - start - 2) {
+                buf.fill(7);
+                fill_pairs(&mut buf[start..start + len], 0xBEEF);
+                for (i, &v) in buf.iter().enumerate() {
+                    let inside = (start..start + len).contains(&i);
+                    assert_eq!(v, if inside { 0xBEEF } else { 7 }, "{start} {len} {i}");
+                }
+            }
+        }
+    }
+
+    /// A clear after drawing leaves every pixel of both planes at the
+    /// clear's values, whichever fill the target takes.
+    #[test]
+    fn clear_rewrites_the_written_rows() {
+        let mut t = TileBuffer::<u16, 6, 5>::new(1);
+        t.color[2][3] = 9;
+        t.depth[3][0] = 4;
+        t.written(2, 3);
+        t.clear(1, u16::MAX);
+        assert!(t.color.as_flattened().iter().all(|&c| c == 1));
+        assert!(t.depth.as_flattened().iter().all(|&d| d == u16::MAX));
+        t.clear(5, 100);
+        assert!(t.color.as_flattened().iter().all(|&c| c == 5));
+        assert!(t.depth.as_flattened().iter().all(|&d| d == 100));
     }
 }
