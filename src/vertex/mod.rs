@@ -20,14 +20,16 @@
 //! per draw whether any vertex could ([`FixedMat4::bounded`](crate::math::FixedMat4::bounded)).
 //!
 //! The files follow the vertex: `setup` (the per-draw set-up and the
-//! vertex loop, with the Lambert fast path in `lambert` and the common
-//! loop's per-draw constants and colour table in `lit_work`), `clip_space`
+//! vertex loop, with the common lit loop in `lit_loop`, the Lambert fast
+//! path in `lambert` and the common loop's per-draw constants and colour
+//! table in `lit_work`), `clip_space`
 //! (the clipper's vertex, outcodes and the guard band), `viewport` (the
 //! projection to screen sub-pixels and depth) and `screen` (the packed
 //! [`ScreenVertex`]).
 
 mod clip_space;
 mod lambert;
+mod lit_loop;
 mod lit_work;
 mod screen;
 mod setup;
