@@ -3,7 +3,8 @@
 //! A frame is rendered one `W x H` tile at a time into this buffer, which is
 //! the only per-pixel memory the renderer owns: `W * H * (size_of::<C>() +
 //! 2)` bytes, e.g. 4 KiB for 32 x 32 `Rgb565`, and a few bytes more that
-//! record its last clear. Tiles at the right and bottom of a frame whose
+//! record its last clear (and, where the colour plane's bytes are not a
+//! multiple of 4, up to 3 that align the depth plane). Tiles at the right and bottom of a frame whose
 //! size is not a multiple of the tile size use only their top-left part.
 //!
 //! Clearing the buffer for the next tile rewrites only the rows written
@@ -34,13 +35,13 @@ pub enum TileOrder {
 
 /// Colour and depth for one tile, sized at compile time.
 ///
-/// Word-aligned, colour plane first, so that the clear's pair stores
-/// (`fill`) are aligned words (the depth plane too when `W * H` is even).
+/// Colour plane first, each plane word-aligned, so that the stores of the
+/// clear between tiles are aligned words, two a `strd` on Thumb-2 cores.
 #[derive(Clone, Debug)]
 #[repr(C, align(4))]
 pub struct TileBuffer<C, const W: usize, const H: usize> {
     pub(crate) color: [[C; W]; H],
-    pub(crate) depth: [[u16; W]; H],
+    pub(crate) depth: Plane<[[u16; W]; H]>,
     /// What the buffer was last cleared with and which rows were written
     /// since, so that the next clear rewrites only those.
     cleared: Cleared<C>,
@@ -77,7 +78,7 @@ impl<C: Copy, const W: usize, const H: usize> TileBuffer<C, W, H> {
         let () = Self::VALID;
         Self {
             color: [[color; W]; H],
-            depth: Self::FAR,
+            depth: Plane(Self::FAR),
             cleared: Self::fresh(color),
         }
     }
@@ -100,7 +101,7 @@ impl<C: Copy, const W: usize, const H: usize> TileBuffer<C, W, H> {
         let () = Self::VALID;
         Self {
             color: [[color; W]; H],
-            depth: [[0; W]; H],
+            depth: Plane([[0; W]; H]),
             // Every row holds `color` and depth 0; `lo == hi == 0` (no row
             // written) keeps the record's bytes zero too.
             cleared: Cleared {
@@ -125,7 +126,7 @@ impl<C: Copy, const W: usize, const H: usize> TileBuffer<C, W, H> {
         let () = Self::VALID;
         Self {
             color: core::array::from_fn(|_| [color; W]),
-            depth: Self::FAR,
+            depth: Plane(Self::FAR),
             cleared: Self::fresh(color),
         }
     }
@@ -148,7 +149,7 @@ impl<C: Copy, const W: usize, const H: usize> TileBuffer<C, W, H> {
 
     /// The depth of tile-local pixel `(x, y)`.
     pub fn depth(&self, x: usize, y: usize) -> Option<u16> {
-        self.depth.get(y).and_then(|r| r.get(x)).copied()
+        self.depth.0.get(y).and_then(|r| r.get(x)).copied()
     }
 
     /// The finished pixels of the tile that covers `area` of the frame
@@ -238,26 +239,66 @@ impl<C: Copy + PartialEq, const W: usize, const H: usize> TileBuffer<C, W, H> {
             true => (c.lo as usize, c.hi as usize),
             false => (0, H),
         };
-        // Whole rows: one fill over the rows' contiguous storage, rather
-        // than a fill per row. None when no row was written (lo >= hi).
-        if let Some(rows) = self.color.get_mut(lo..hi) {
-            fill(rows.as_flattened_mut(), color);
-        }
-        if let Some(rows) = self.depth.get_mut(lo..hi) {
-            fill(rows.as_flattened_mut(), depth);
-        }
-        self.cleared = Cleared {
+        let record = Cleared {
             color,
             depth,
             lo: H as u16,
             hi: 0,
         };
+        if PAIR_FILL {
+            // The record first: its values then need no register across
+            // the fill (Cortex-M3 `demo` -300 instructions).
+            self.cleared = record;
+            self.fill_rows_by_pairs(lo, hi, color, depth);
+        } else {
+            // Whole rows: one fill over the rows' contiguous storage,
+            // rather than a fill per row. None when no row was written
+            // (lo >= hi).
+            if let Some(rows) = self.color.get_mut(lo..hi) {
+                fill(rows.as_flattened_mut(), color);
+            }
+            if let Some(rows) = self.depth.0.get_mut(lo..hi) {
+                fill(rows.as_flattened_mut(), depth);
+            }
+            self.cleared = record;
+        }
+    }
+
+    /// Rows `lo..hi` of both planes filled with `color` and `depth` on
+    /// Thumb-2 cores ([`PAIR_FILL`]; built on the host for its tests too),
+    /// a pair of values a word store, a row of each plane a turn:
+    ///
+    /// * LLVM does not merge two `strh` of a run-time value into one `str`,
+    ///   but copies a pair read from memory it cannot see into
+    ///   (`black_box`) as one word;
+    /// * stores at constant offsets from a row's start, which LLVM knows
+    ///   word-aligned, pair into `strd` (the same word twice), where the
+    ///   planes' fill over their contiguous rows had taken `str` each,
+    ///   its first with the pointer's write-back;
+    /// * the depth plane's rows through a reference that LLVM cannot tie
+    ///   to the colour plane's (`black_box`; word-aligned as a
+    ///   [`Plane`]): tied, their 2 KiB apart (32 x 32 tiles) are folded
+    ///   into offsets beyond `strd`'s reach, and the depth plane takes
+    ///   `str` each.
+    ///
+    /// 16 `strd` a row of both planes where 32 `str` were: Cortex-M3
+    /// `demo` 2,917,195 -> 2,904,369 instructions.
+    #[inline(always)]
+    fn fill_rows_by_pairs(&mut self, lo: usize, hi: usize, color: C, depth: u16) {
+        let pc = core::hint::black_box(Pair([color; 2]));
+        let pd = core::hint::black_box(Pair([depth; 2]));
+        let depth_plane = core::hint::black_box(&mut self.depth);
+        if let (Some(c), Some(d)) = (self.color.get_mut(lo..hi), depth_plane.0.get_mut(lo..hi)) {
+            for (c, d) in c.iter_mut().zip(d.iter_mut()) {
+                fill_row(c, pc.0);
+                fill_row(d, pd.0);
+            }
+        }
     }
 }
 
 /// `slice.fill(value)`, 32 values a turn: stores with constant offsets, one
 /// loop test per 32 (`fill` tests every 4 on the Cortex-M3).
-#[cfg(not(all(target_arch = "arm", not(microraster_narrow_multiply))))]
 #[inline(always)]
 fn fill<T: Copy>(slice: &mut [T], value: T) {
     let (chunks, rest) = slice.as_chunks_mut::<32>();
@@ -267,46 +308,36 @@ fn fill<T: Copy>(slice: &mut [T], value: T) {
     rest.fill(value);
 }
 
+/// One plane of a [`TileBuffer`], word-aligned wherever it lies (the
+/// depth plane after a colour plane of an odd number of bytes too), so
+/// that a reference to it tells LLVM so ([`TileBuffer::fill_rows_by_pairs`]).
+#[derive(Clone, Debug, PartialEq, Eq)]
+#[repr(C, align(4))]
+pub(crate) struct Plane<T>(pub(crate) T);
+
+/// Whether the clear fills its rows by pairs ([`TileBuffer::fill_rows_by_pairs`]):
+/// on Thumb-2 cores (ARMv7-M, ARMv7E-M, ARMv8-M Mainline). Not on ARMv6-M
+/// and ARMv8-M Baseline (`microraster_narrow_multiply`: no unaligned
+/// stores nor `strd`, a pair still two `strh`) nor x86 (its splat fill is
+/// vector stores already).
+const PAIR_FILL: bool = cfg!(all(target_arch = "arm", not(microraster_narrow_multiply)));
+
+/// `row` filled with `pair`, a pair a copy, and an odd last value.
+#[inline(always)]
+fn fill_row<T: Copy>(row: &mut [T], pair: [T; 2]) {
+    let (pairs, rest) = row.as_chunks_mut::<2>();
+    for p in pairs {
+        *p = pair;
+    }
+    if let Some(r) = rest.first_mut() {
+        *r = pair[0];
+    }
+}
+
 /// Two values side by side, word-aligned: copied as one unit.
-#[cfg(any(test, all(target_arch = "arm", not(microraster_narrow_multiply))))]
 #[repr(C, align(4))]
 #[derive(Clone, Copy)]
 struct Pair<T>([T; 2]);
-
-/// `slice.fill(value)` on Thumb-2 cores (ARMv7-M, ARMv7E-M, ARMv8-M
-/// Mainline: unaligned word stores), a pair of values a store:
-/// LLVM does not merge two `strh` of a run-time value into one `str`, but
-/// a pair read from memory it cannot see into (`black_box`) is a 4-byte
-/// copy, which it makes one word load (hoisted out of the loop) and one
-/// word store a pair: 16 stores per 32 values where `strh` took 32
-/// (Cortex-M3 `demo` 2,940,879 -> 2,917,195 instructions, Cortex-M4F
-/// 2,936,285 -> 2,912,665). Not on ARMv6-M and ARMv8-M Baseline
-/// (`microraster_narrow_multiply`; no unaligned stores: still two `strh`
-/// a pair) nor x86 (its splat fill is already vector stores).
-#[cfg(all(target_arch = "arm", not(microraster_narrow_multiply)))]
-#[inline(always)]
-fn fill<T: Copy>(slice: &mut [T], value: T) {
-    fill_pairs(slice, value);
-}
-
-/// The pair fill of Thumb-2 cores ([`fill`] there); built on the host
-/// for its tests too.
-#[cfg(any(test, all(target_arch = "arm", not(microraster_narrow_multiply))))]
-#[inline(always)]
-fn fill_pairs<T: Copy>(slice: &mut [T], value: T) {
-    let pair = core::hint::black_box(Pair([value; 2]));
-    let (pairs, rest) = slice.as_chunks_mut::<2>();
-    let (chunks, tail) = pairs.as_chunks_mut::<16>();
-    for c in chunks {
-        for p in c {
-            *p = pair.0;
-        }
-    }
-    for p in tail {
-        *p = pair.0;
-    }
-    rest.fill(value);
-}
 
 /// The finished pixels of one tile, row-major, as handed to a sink.
 #[derive(Clone, Copy, Debug)]
@@ -478,22 +509,39 @@ impl TileGrid {
 mod tests {
     use super::*;
 
-    /// The Thumb-2 clear's pair fill writes every value of the slice, and
-    /// only those, for every length: whole turns of 32, a tail of pairs
-    /// and an odd last value.
+    /// The Thumb-2 clear's fill by pairs ([`TileBuffer::fill_rows_by_pairs`],
+    /// which the host's clear does not take) writes every value of rows
+    /// `lo..hi` of both planes, and only those, for even and odd widths,
+    /// one- and two-byte colours, and any rows (`lo >= hi`: none).
     #[test]
-    fn pair_fill_writes_every_value_of_any_length() {
-        let mut buf = [0u16; 140];
-        for start in 0..3 {
-            for len in 0..(buf.len() - start - 2) {
-                buf.fill(7);
-                fill_pairs(&mut buf[start..start + len], 0xBEEF);
-                for (i, &v) in buf.iter().enumerate() {
-                    let inside = (start..start + len).contains(&i);
-                    assert_eq!(v, if inside { 0xBEEF } else { 7 }, "{start} {len} {i}");
+    fn fill_by_pairs_writes_exactly_the_rows() {
+        fn check<C: Copy + PartialEq + core::fmt::Debug, const W: usize, const H: usize>(
+            old: C,
+            new: C,
+        ) {
+            for lo in 0..=H + 1 {
+                for hi in 0..=H + 1 {
+                    let mut t = TileBuffer::<C, W, H>::new(old);
+                    t.fill_rows_by_pairs(lo, hi, new, 77);
+                    for y in 0..H {
+                        let inside = lo < hi && hi <= H && (lo..hi).contains(&y);
+                        for x in 0..W {
+                            assert_eq!(
+                                t.color[y][x],
+                                if inside { new } else { old },
+                                "{lo} {hi} {x} {y}"
+                            );
+                            let d = if inside { 77 } else { u16::MAX };
+                            assert_eq!(t.depth.0[y][x], d, "{lo} {hi} {x} {y}");
+                        }
+                    }
                 }
             }
         }
+        check::<u16, 32, 4>(1, 0xBEEF);
+        check::<u16, 7, 5>(1, 0xBEEF);
+        check::<u8, 5, 3>(1, 0xEE);
+        check::<u8, 6, 1>(1, 0xEE);
     }
 
     /// A clear after drawing leaves every pixel of both planes at the
@@ -502,13 +550,13 @@ mod tests {
     fn clear_rewrites_the_written_rows() {
         let mut t = TileBuffer::<u16, 6, 5>::new(1);
         t.color[2][3] = 9;
-        t.depth[3][0] = 4;
+        t.depth.0[3][0] = 4;
         t.written(2, 3);
         t.clear(1, u16::MAX);
         assert!(t.color.as_flattened().iter().all(|&c| c == 1));
-        assert!(t.depth.as_flattened().iter().all(|&d| d == u16::MAX));
+        assert!(t.depth.0.as_flattened().iter().all(|&d| d == u16::MAX));
         t.clear(5, 100);
         assert!(t.color.as_flattened().iter().all(|&c| c == 5));
-        assert!(t.depth.as_flattened().iter().all(|&d| d == 100));
+        assert!(t.depth.0.as_flattened().iter().all(|&d| d == 100));
     }
 }

@@ -436,7 +436,7 @@ fn put<C: Copy, const W: usize, const H: usize>(
     z: u16,
     color: impl FnOnce() -> C,
 ) -> u32 {
-    let depth = &mut tile.depth[y][x];
+    let depth = &mut tile.depth.0[y][x];
     if !mode.test.passes(z, *depth) {
         return 0;
     }
@@ -1188,7 +1188,7 @@ mod tests {
         let b = pt(50 * 16, 25 * 16, 1000, [200, 0, 0]);
         let filled = || {
             let mut t: TileBuffer<Rgb888, 16, 16> = TileBuffer::new(SENTINEL);
-            for row in t.depth.iter_mut() {
+            for row in t.depth.0.iter_mut() {
                 row.fill(1000);
             }
             t
@@ -1217,7 +1217,7 @@ mod tests {
         });
         assert_eq!(biased, inside);
         assert_eq!(
-            t.depth.iter().flatten().filter(|&&z| z == 999).count() as u32,
+            t.depth.0.iter().flatten().filter(|&&z| z == 999).count() as u32,
             inside
         );
         // A line behind loses even a less-or-equal test.
@@ -1228,14 +1228,14 @@ mod tests {
             draw_line::<_, 16, 16>(&mut t, &rect, LESS_EQUAL, &a2, &b2, true, 0),
             0
         );
-        assert!(t.depth.iter().flatten().all(|&z| z == 1000));
+        assert!(t.depth.0.iter().flatten().all(|&z| z == 1000));
         // Unless the bias brings it in front; without writes the depth
         // stays and only the colour is drawn.
         assert_eq!(
             draw_line::<_, 16, 16>(&mut t, &rect, LESS_EQUAL_NO_WRITE, &a2, &b2, true, 1000),
             inside
         );
-        assert!(t.depth.iter().flatten().all(|&z| z == 1000));
+        assert!(t.depth.0.iter().flatten().all(|&z| z == 1000));
         assert_eq!(
             t.color.iter().flatten().filter(|&&c| c != SENTINEL).count() as u32,
             inside
@@ -1249,7 +1249,7 @@ mod tests {
             inside
         );
         assert_eq!(
-            t.depth.iter().flatten().filter(|&&z| z == 0).count() as u32,
+            t.depth.0.iter().flatten().filter(|&&z| z == 0).count() as u32,
             inside
         );
         // Depth interpolated along the line: its own pixels only, ends exact.

@@ -483,7 +483,10 @@ fn each_span<C, const BASE: bool, const TW: usize, const TH: usize>(
     mut shade: impl FnMut(&mut [C], &mut [u16], SpanPos, u32) -> u32,
 ) -> u32 {
     let mut n = 0;
-    let (color, depth) = (tile.color.as_flattened_mut(), tile.depth.as_flattened_mut());
+    let (color, depth) = (
+        tile.color.as_flattened_mut(),
+        tile.depth.0.as_flattened_mut(),
+    );
     // Within the tile and the guard band: far below 2^31.
     let base = rect.x0 + rect.y0 * TW as i32;
     for &Span { j, x0, x1 } in found {
@@ -531,7 +534,7 @@ where
     let setup = &PerspectiveSetup::new(tri, out.mode == Perspective::Affine);
     shader.shade_spans(TriangleSpans {
         color: tile.color.as_flattened_mut(),
-        depth: tile.depth.as_flattened_mut(),
+        depth: tile.depth.0.as_flattened_mut(),
         width: TW,
         ox: rect.x0,
         oy: rect.y0,
