@@ -201,28 +201,28 @@ fn add_normal(x: f32, y: f32) -> f32 {
     x + y
 }
 
-/// [`Vec3::dot`] through [`mul`]: the same bits, in the same order.
+/// [`Vec3::dot`] through [`mul`] and [`add`]: the same bits, in the same order.
 #[inline]
 pub(crate) fn dot(a: Vec3, b: Vec3) -> f32 {
-    if !SOFT_MUL {
+    if !SOFT_MUL && !SOFT_ADD {
         // The method itself: the size build of the OLED firmware kept it
         // out of line, and took 252 B more with its products inlined.
         return a.dot(b);
     }
-    mul(a.x, b.x) + mul(a.y, b.y) + mul(a.z, b.z)
+    add(add(mul(a.x, b.x), mul(a.y, b.y)), mul(a.z, b.z))
 }
 
-/// [`Vec3::cross`] through [`mul`]: the same bits.
+/// [`Vec3::cross`] through [`mul`] and [`add`]: the same bits.
 #[inline]
 pub(crate) fn cross(a: Vec3, b: Vec3) -> Vec3 {
-    if !SOFT_MUL {
+    if !SOFT_MUL && !SOFT_ADD {
         // The method itself, as in `dot`.
         return a.cross(b);
     }
     Vec3::new(
-        mul(a.y, b.z) - mul(a.z, b.y),
-        mul(a.z, b.x) - mul(a.x, b.z),
-        mul(a.x, b.y) - mul(a.y, b.x),
+        add(mul(a.y, b.z), -mul(a.z, b.y)),
+        add(mul(a.z, b.x), -mul(a.x, b.z)),
+        add(mul(a.x, b.y), -mul(a.y, b.x)),
     )
 }
 
