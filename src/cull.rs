@@ -324,8 +324,14 @@ impl Plane {
             let same = (r3[k].to_bits() ^ r[k].to_bits()) >> 31 == 0;
             f32::from_bits(if same { sum[k] } else { diff[k] }.to_bits() & 0x7fff_ffff)
         });
-        let slack =
-            fixed + times_pow2(e * (size[0] + size[1] + size[2]) + size[3], 1.0 / 524_288.0);
+        let add = crate::math::soft_float::add;
+        let slack = add(
+            fixed,
+            times_pow2(
+                add(e * add(add(size[0], size[1]), size[2]), size[3]),
+                1.0 / 524_288.0,
+            ),
+        );
         [Self::new(sum, slack), Self::new(diff, slack)]
     }
 

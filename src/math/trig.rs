@@ -60,7 +60,10 @@ pub fn sqrt(x: f32) -> f32 {
     let mut y = micromath::F32Ext::sqrt(x);
     for _ in 0..3 {
         // The half by the exponent where `f32` is in software.
-        y = times_pow2(y + x / y, 0.5);
+        // The sum through `add` where `f32` is in software (the same
+        // bits).
+        let sum = if SOFT_ADD { add(y, x / y) } else { y + x / y };
+        y = times_pow2(sum, 0.5);
     }
     y
 }
