@@ -490,7 +490,7 @@ fn product_by_terms(a: &Mat4, b: &Mat4) -> Option<Mat4> {
             let mut acc = term(a.m[0][r], b.m[c][0]);
             for k in 1..4 {
                 acc = match (acc, term(a.m[k][r], b.m[c][k])) {
-                    (Ok(s), Ok(t)) => Ok(s + t),
+                    (Ok(s), Ok(t)) => Ok(super::soft_float::add(s, t)),
                     (Ok(s), Err(0)) if s.to_bits() == 0x8000_0000 => Ok(0.0),
                     (Ok(s), Err(_)) => Ok(s),
                     (Err(0), Ok(t)) if t.to_bits() == 0x8000_0000 => Ok(0.0),

@@ -31,7 +31,7 @@ mod divisor;
 mod fixed_mat4;
 mod mat4;
 mod recip16;
-mod soft_float;
+pub(crate) mod soft_float;
 mod trig;
 mod wide;
 

@@ -117,28 +117,112 @@ fn mul_normal(x: f32, y: f32) -> f32 {
     x * y
 }
 
-/// [`Vec3::dot`] through [`mul`]: the same bits, in the same order.
+/// Whether [`add`] takes its integer form: where `f32` arithmetic is in
+/// software (the library's addition is some 65 instructions on the
+/// Cortex-M3, with its entry), and in the library's own tests.
+pub(crate) const SOFT_ADD: bool = cfg!(any(test, microraster_soft_float));
+
+/// `x + y`, the same bits: where [`SOFT_ADD`] says, two normal operands
+/// whose sum is normal (or overflows by its rounding) are added in
+/// integers ([`add_normal`]), a finite value plus a zero is that value
+/// (two zeros `-0` only if both are); any other pair is added.
+#[inline]
+pub(crate) fn add(x: f32, y: f32) -> f32 {
+    if !SOFT_ADD {
+        return x + y;
+    }
+    add_normal(x, y)
+}
+
+/// [`add`]'s integer form, out of line (one copy). With `a` the operand
+/// of the larger magnitude and `d` the exponents' difference, a `d` of
+/// 26 or more leaves `a` (`|b|` is below a quarter of `a`'s ulp, and
+/// below half of the ulp under it where `a` is a power of two). Else
+/// both significands (the implicit bit included) are shifted up by 6
+/// (below 2^30), `b`'s then down by `d`, the bits it loses kept as one
+/// sticky bit (its lowest): the sum or difference then lies in the same
+/// open interval between two multiples of 2 as the exact one, and
+/// rounding (at bit 6, or bit 5 for a sum that carried) needs no more
+/// (where a difference is normalised by more than one place, `d <= 1`
+/// and nothing was lost). The significand is rounded to nearest, ties
+/// to even, as in [`mul_normal`], a carry to 2^24 making the next power
+/// of two. A difference of zero is `+0`. A finite value plus a zero is
+/// that value (two zeros `-0` only if both are); subnormals, infinities
+/// and NaNs are added by the library, as is a result outside the normal
+/// range.
+#[inline(never)]
+fn add_normal(x: f32, y: f32) -> f32 {
+    let (a, b) = (x.to_bits(), y.to_bits());
+    let (a, b) = if a << 1 >= b << 1 { (a, b) } else { (b, a) };
+    let (fa, fb) = (a << 1 >> 24, b << 1 >> 24);
+    // `fb <= fa`: both fields in 1..=254, both operands normal.
+    if fa.wrapping_sub(1) < 254 && fb != 0 {
+        let d = fa - fb;
+        if d >= 26 {
+            return f32::from_bits(a);
+        }
+        let ma = ((a & 0x7f_ffff) | 0x80_0000) << 6;
+        let mb = ((b & 0x7f_ffff) | 0x80_0000) << 6;
+        // The bits `mb >> d` loses (none where `d` is 0: `mb`'s lowest
+        // bit is clear).
+        let lost = (mb << 1) << (31 - d);
+        let mb = (mb >> d) | u32::from(lost != 0);
+        let (m, field) = if (a ^ b) >> 31 == 0 {
+            let s = ma + mb;
+            match s >> 30 {
+                0 => (s, fa),
+                _ => ((s >> 1) | (s & 1), fa + 1),
+            }
+        } else {
+            // `ma >= mb`: `|a| >= |b|`.
+            let s = ma - mb;
+            if s == 0 {
+                return 0.0;
+            }
+            let lz = s.leading_zeros() - 2;
+            (s << lz, fa.wrapping_sub(lz))
+        };
+        if field.wrapping_sub(1) < 254 {
+            let sig = m >> 6;
+            let sig = sig + (((m & 0x3f) + 0x1f + (sig & 1)) >> 6);
+            return f32::from_bits((a & 0x8000_0000) | (((field - 1) << 23) + sig));
+        }
+        return x + y;
+    }
+    // A finite `a` plus a zero: `a`, but for a zero `a`, whose sum is `-0`
+    // only if both are (the set-up adds many zeros: a plane's sums of a
+    // projection's rows, a kernel's first-order term at a remainder of
+    // zero). The bits through `black_box` here only: LLVM turns the zero
+    // tests into soft-float compares (as in `mul_normal`).
+    let (a, b) = core::hint::black_box((a, b));
+    if b << 1 == 0 && fa != 255 {
+        return f32::from_bits(if a << 1 == 0 { a & b } else { a });
+    }
+    x + y
+}
+
+/// [`Vec3::dot`] through [`mul`] and [`add`]: the same bits, in the same order.
 #[inline]
 pub(crate) fn dot(a: Vec3, b: Vec3) -> f32 {
-    if !SOFT_MUL {
+    if !SOFT_MUL && !SOFT_ADD {
         // The method itself: the size build of the OLED firmware kept it
         // out of line, and took 252 B more with its products inlined.
         return a.dot(b);
     }
-    mul(a.x, b.x) + mul(a.y, b.y) + mul(a.z, b.z)
+    add(add(mul(a.x, b.x), mul(a.y, b.y)), mul(a.z, b.z))
 }
 
-/// [`Vec3::cross`] through [`mul`]: the same bits.
+/// [`Vec3::cross`] through [`mul`] and [`add`]: the same bits.
 #[inline]
 pub(crate) fn cross(a: Vec3, b: Vec3) -> Vec3 {
-    if !SOFT_MUL {
+    if !SOFT_MUL && !SOFT_ADD {
         // The method itself, as in `dot`.
         return a.cross(b);
     }
     Vec3::new(
-        mul(a.y, b.z) - mul(a.z, b.y),
-        mul(a.z, b.x) - mul(a.x, b.z),
-        mul(a.x, b.y) - mul(a.y, b.x),
+        add(mul(a.y, b.z), -mul(a.z, b.y)),
+        add(mul(a.z, b.x), -mul(a.x, b.z)),
+        add(mul(a.x, b.y), -mul(a.y, b.x)),
     )
 }
 
@@ -266,6 +350,78 @@ mod tests {
                 1e-40,
                 f32::INFINITY,
             ][next(9) as usize],
+        }
+    }
+
+    /// [`add`] is the sum, bit for bit (NaNs as NaNs): every pair of
+    /// exponent fields with random significands and signs (significands
+    /// of all ones and zeros often: carries to the next power of two,
+    /// exact cancellations), ties, zeros, overflows, subnormals.
+    #[test]
+    fn add_is_the_sum() {
+        let mut next = crate::testing::rng();
+        let same =
+            |got: f32, want: f32| got.to_bits() == want.to_bits() || got.is_nan() && want.is_nan();
+        let sig = |next: &mut dyn FnMut(u64) -> u64| match next(6) {
+            0 => 0,
+            1 => 0x7f_ffff,
+            2 => next(4) as u32,
+            3 => 0x7f_ffff - next(4) as u32,
+            _ => next(1 << 23) as u32,
+        };
+        let rounds = if cfg!(debug_assertions) { 2 } else { 64 };
+        for fa in 0..256u32 {
+            for fb in 0..256u32 {
+                for _ in 0..rounds {
+                    let sa = (next(2) as u32) << 31;
+                    let sb = (next(2) as u32) << 31;
+                    let x = f32::from_bits(sa | fa << 23 | sig(&mut next));
+                    // Often the same significand: cancellation.
+                    let y = match next(4) {
+                        0 => f32::from_bits(sb | fb << 23 | (x.to_bits() & 0x7f_ffff)),
+                        _ => f32::from_bits(sb | fb << 23 | sig(&mut next)),
+                    };
+                    assert!(same(add(x, y), x + y), "{x:e} + {y:e}: {:e}", add(x, y));
+                }
+            }
+        }
+        let ulp = f32::EPSILON / 2.0; // 2^-24
+        for (x, y) in [
+            // Ties, to even both ways, in sums and differences.
+            (1.0f32, ulp),
+            (1.0 + f32::EPSILON, ulp),
+            (1.0, -ulp / 2.0),
+            (1.0 + f32::EPSILON, -ulp / 2.0),
+            (2.0, -ulp),
+            (1.5, 3.0 * ulp),
+            // Carries to the next power of two, and to infinity.
+            (2.0 - f32::EPSILON, ulp),
+            (f32::MAX, f32::MAX),
+            (f32::MAX, f32::MAX * ulp),
+            (-f32::MAX, -f32::MAX * ulp / 2.0),
+            // Cancellation to zero, and below the normal range.
+            (1.5, -1.5),
+            (-1.5, 1.5),
+            (f32::MIN_POSITIVE * 1.5, -f32::MIN_POSITIVE),
+            (f32::MIN_POSITIVE, 1e-40),
+            // Zeros, infinities and NaNs.
+            (0.0, 0.0),
+            (-0.0, 0.0),
+            (0.0, -0.0),
+            (-0.0, -0.0),
+            (2.5, -0.0),
+            (-0.0, 2.5),
+            (1e-40, 0.0),
+            (-0.0, -1e-40),
+            (f32::INFINITY, -f32::INFINITY),
+            (f32::INFINITY, 1.0),
+            (f32::NEG_INFINITY, -0.0),
+            (f32::NAN, 0.0),
+            (0.0, f32::NAN),
+            (f32::NAN, 1.0),
+        ] {
+            assert!(same(add(x, y), x + y), "{x:e} + {y:e}: {:e}", add(x, y));
+            assert!(same(add(y, x), y + x), "{y:e} + {x:e}: {:e}", add(y, x));
         }
     }
 

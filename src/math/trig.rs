@@ -31,7 +31,7 @@
 //! the [parent module](super)); [`sqrt`] refines micromath's estimate with
 //! Newton steps.
 
-use super::soft_float::mul;
+use super::soft_float::{add, mul, SOFT_ADD};
 use super::{times_pow2, SOFT_FLOAT};
 
 /// Square root to full `f32` precision: micromath's bit-trick estimate
@@ -60,7 +60,10 @@ pub fn sqrt(x: f32) -> f32 {
     let mut y = micromath::F32Ext::sqrt(x);
     for _ in 0..3 {
         // The half by the exponent where `f32` is in software.
-        y = times_pow2(y + x / y, 0.5);
+        // The sum through `add` where `f32` is in software (the same
+        // bits).
+        let sum = if SOFT_ADD { add(y, x / y) } else { y + x / y };
+        y = times_pow2(sum, 0.5);
     }
     y
 }
@@ -163,6 +166,9 @@ fn reduce(a: f32) -> (u32, f32, f32) {
 /// the library's multiply where `f32` is in software (as in
 /// [`sin_cos_kernel`]).
 fn square_exact(a: f32) -> (f32, f32) {
+    if SOFT_ADD {
+        return square_exact_by_add(a);
+    }
     let c = mul(4097.0, a);
     let ah = c - (c - a);
     let al = a - ah;
@@ -171,6 +177,67 @@ fn square_exact(a: f32) -> (f32, f32) {
         z,
         ((mul(ah, ah) - z) + mul(times_pow2(ah, 2.0), al)) + mul(al, al),
     )
+}
+
+/// [`square_exact`] where `f32` arithmetic is in software ([`SOFT_ADD`]):
+/// the sums and differences through [`add`], the same bits (not with an
+/// FPU, whose code stays the expressions as written).
+fn square_exact_by_add(a: f32) -> (f32, f32) {
+    let c = mul(4097.0, a);
+    let ah = sub(c, sub(c, a));
+    let al = sub(a, ah);
+    let z = mul(a, a);
+    (
+        z,
+        add(
+            add(sub(mul(ah, ah), z), mul(times_pow2(ah, 2.0), al)),
+            mul(al, al),
+        ),
+    )
+}
+
+/// `x - y` through [`add`], the same bits.
+#[inline(always)]
+fn sub(x: f32, y: f32) -> f32 {
+    add(x, -y)
+}
+
+/// [`sin_cos_kernel`] where `f32` arithmetic is in software
+/// ([`SOFT_ADD`]): the sums and differences through [`add`], the same
+/// bits, in the same order.
+fn sin_cos_kernel_by_add(hi: f32, lo: f32) -> (f32, f32) {
+    let (z, z_err) = square_exact(hi);
+    let p = add(
+        -1.0 / 6.0,
+        mul(
+            z,
+            add(
+                1.0 / 120.0,
+                mul(z, add(-1.0 / 5_040.0, mul(z, 1.0 / 362_880.0))),
+            ),
+        ),
+    );
+    let half = times_pow2(z, 0.5);
+    let s = add(hi, add(mul(mul(hi, z), p), mul(lo, sub(1.0, half))));
+    let q = add(
+        1.0 / 24.0,
+        mul(
+            z,
+            add(
+                -1.0 / 720.0,
+                mul(z, add(1.0 / 40_320.0, mul(z, -1.0 / 3_628_800.0))),
+            ),
+        ),
+    );
+    let w = sub(1.0, half);
+    let c = add(
+        w,
+        add(
+            sub(sub(1.0, w), half),
+            sub(mul(mul(z, z), q), add(times_pow2(z_err, 0.5), mul(hi, lo))),
+        ),
+    );
+    (s, c)
 }
 
 /// sin(r) and cos(r) for `r = hi + lo`, `|r| <= π/4`, `|lo|` below 2^-23
@@ -186,6 +253,9 @@ fn square_exact(a: f32) -> (f32, f32) {
 /// multiply (some 100 instructions each on ARMv6-M; the kernel has
 /// nineteen, five a frame of the demo's camera and model).
 fn sin_cos_kernel(hi: f32, lo: f32) -> (f32, f32) {
+    if SOFT_ADD {
+        return sin_cos_kernel_by_add(hi, lo);
+    }
     let (z, z_err) = square_exact(hi);
     let p = -1.0 / 6.0
         + mul(
