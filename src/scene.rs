@@ -151,8 +151,10 @@ impl Camera {
     /// of a rigid view matrix `[R | t]` (as [`Mat4::look_at`] makes).
     pub fn eye(&self) -> Vec3 {
         let m = &self.view.m;
-        let t = [m[3][0], m[3][1], m[3][2]];
-        let col = |c: usize| -(m[c][0] * t[0] + m[c][1] * t[1] + m[c][2] * t[2]);
+        let t = Vec3::new(m[3][0], m[3][1], m[3][2]);
+        // The dot product through the soft-float short cuts where `f32`
+        // is in software (the same bits, in the same order).
+        let col = |c: usize| -crate::math::soft_float::dot(Vec3::new(m[c][0], m[c][1], m[c][2]), t);
         Vec3::new(col(0), col(1), col(2))
     }
 }

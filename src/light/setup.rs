@@ -427,7 +427,10 @@ fn directional_by(
                 true => x.to_bits() >> 31 != 0,
                 false => x < 0.0,
             };
-            crate::math::f32_to_i32(x + if negative { -0.5 } else { 0.5 })
+            let half = if negative { -0.5 } else { 0.5 };
+            // The sum through the integer addition where `f32` is in
+            // software (the same bits).
+            crate::math::f32_to_i32(crate::math::soft_float::add(x, half))
         }
     };
     Ok([fx(local.x), fx(local.y), fx(local.z)])

@@ -3,7 +3,7 @@
 //! 3x3 part for the lights ([`Inverse3`]) and its hand-over to
 //! [`FixedMat4`].
 
-use super::soft_float::{cross, dot, mul, normalize, ScaleDivisor};
+use super::soft_float::{add, cross, dot, mul, normalize, sub, ScaleDivisor};
 use super::{sin_cos, times_pow2, FixedMat4, Vec3, SOFT_FLOAT};
 use fixed::types::I16F16;
 
@@ -101,7 +101,7 @@ impl Mat4 {
         // cot(fovy / 2) from one sine and cosine (within 3 ulps).
         let (s, c) = sin_cos(fovy * 0.5);
         let f = c / s;
-        let nf = 1.0 / (near - far);
+        let nf = 1.0 / add(near, -far);
         // 2 far near / (near - far) as 2 far (near / (near - far)): the
         // product far near underflows f32 for planes below about 1e-19 (and
         // overflows above 1e19) where the ratio is still exact, so the
@@ -111,7 +111,7 @@ impl Mat4 {
             m: [
                 [f / aspect, 0.0, 0.0, 0.0],
                 [0.0, f, 0.0, 0.0],
-                [0.0, 0.0, (far + near) * nf, -1.0],
+                [0.0, 0.0, add(far, near) * nf, -1.0],
                 [0.0, 0.0, 2.0 * far * (near * nf), 0.0],
             ],
         };
@@ -164,7 +164,7 @@ impl Mat4 {
         // The products through `mul` (`dot`, `cross`, `normalize`): the
         // same bits, where `f32` is in software without the library's
         // multiply.
-        let f = normalize(target - eye)?;
+        let f = normalize(sub(target, eye))?;
         let s = normalize(cross(f, up))?;
         let u = cross(s, f);
         let r = Self {

@@ -226,6 +226,13 @@ pub(crate) fn cross(a: Vec3, b: Vec3) -> Vec3 {
     )
 }
 
+/// `a - b` through [`add`] (`x - y` is `x + (-y)` in IEEE arithmetic,
+/// the same bits).
+#[inline]
+pub(crate) fn sub(a: Vec3, b: Vec3) -> Vec3 {
+    Vec3::new(add(a.x, -b.x), add(a.y, -b.y), add(a.z, -b.z))
+}
+
 /// [`Vec3::normalize`] through [`dot`] where `f32` arithmetic is in
 /// software, the same bits: a squared length that is a positive normal
 /// `f32` (finite and at least `f32::MIN_POSITIVE`, tested by its bits)
