@@ -41,7 +41,7 @@ pub enum TileOrder {
 #[repr(C, align(4))]
 pub struct TileBuffer<C, const W: usize, const H: usize> {
     pub(crate) color: [[C; W]; H],
-    pub(crate) depth: Plane<[[u16; W]; H]>,
+    pub(crate) depth: WordAligned<[[u16; W]; H]>,
     /// What the buffer was last cleared with and which rows were written
     /// since, so that the next clear rewrites only those.
     cleared: Cleared<C>,
@@ -78,7 +78,7 @@ impl<C: Copy, const W: usize, const H: usize> TileBuffer<C, W, H> {
         let () = Self::VALID;
         Self {
             color: [[color; W]; H],
-            depth: Plane(Self::FAR),
+            depth: WordAligned(Self::FAR),
             cleared: Self::fresh(color),
         }
     }
@@ -101,7 +101,7 @@ impl<C: Copy, const W: usize, const H: usize> TileBuffer<C, W, H> {
         let () = Self::VALID;
         Self {
             color: [[color; W]; H],
-            depth: Plane([[0; W]; H]),
+            depth: WordAligned([[0; W]; H]),
             // Every row holds `color` and depth 0; `lo == hi == 0` (no row
             // written) keeps the record's bytes zero too.
             cleared: Cleared {
@@ -126,7 +126,7 @@ impl<C: Copy, const W: usize, const H: usize> TileBuffer<C, W, H> {
         let () = Self::VALID;
         Self {
             color: core::array::from_fn(|_| [color; W]),
-            depth: Plane(Self::FAR),
+            depth: WordAligned(Self::FAR),
             cleared: Self::fresh(color),
         }
     }
@@ -277,7 +277,7 @@ impl<C: Copy + PartialEq, const W: usize, const H: usize> TileBuffer<C, W, H> {
     ///   its first with the pointer's write-back;
     /// * the depth plane's rows through a reference that LLVM cannot tie
     ///   to the colour plane's (`black_box`; word-aligned as a
-    ///   [`Plane`]): tied, their 2 KiB apart (32 x 32 tiles) are folded
+    ///   [`WordAligned`]): tied, their 2 KiB apart (32 x 32 tiles) are folded
     ///   into offsets beyond `strd`'s reach, and the depth plane takes
     ///   `str` each.
     ///
@@ -313,7 +313,7 @@ fn fill<T: Copy>(slice: &mut [T], value: T) {
 /// that a reference to it tells LLVM so ([`TileBuffer::fill_rows_by_pairs`]).
 #[derive(Clone, Debug, PartialEq, Eq)]
 #[repr(C, align(4))]
-pub(crate) struct Plane<T>(pub(crate) T);
+pub(crate) struct WordAligned<T>(pub(crate) T);
 
 /// Whether the clear fills its rows by pairs ([`TileBuffer::fill_rows_by_pairs`]):
 /// on Thumb-2 cores (ARMv7-M, ARMv7E-M, ARMv8-M Mainline). Not on ARMv6-M
