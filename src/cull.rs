@@ -318,13 +318,13 @@ impl Plane {
     fn pair_by_bits(r3: [f32; 4], r: [f32; 4], fixed: f32, e: f32) -> [Self; 2] {
         // The sums through `soft_float::add` (the same bits; a
         // projection's rows have many zeros).
-        let sum = [0, 1, 2, 3].map(|k| crate::math::soft_float::add(r3[k], r[k]));
-        let diff = [0, 1, 2, 3].map(|k| crate::math::soft_float::add(r3[k], -r[k]));
+        use crate::math::soft_float::{add, sub};
+        let sum = [0, 1, 2, 3].map(|k| add(r3[k], r[k]));
+        let diff = [0, 1, 2, 3].map(|k| sub(r3[k], r[k]));
         let size = [0, 1, 2, 3].map(|k| {
             let same = (r3[k].to_bits() ^ r[k].to_bits()) >> 31 == 0;
             f32::from_bits(if same { sum[k] } else { diff[k] }.to_bits() & 0x7fff_ffff)
         });
-        let add = crate::math::soft_float::add;
         let slack = add(
             fixed,
             times_pow2(

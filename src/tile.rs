@@ -4,8 +4,9 @@
 //! the only per-pixel memory the renderer owns: `W * H * (size_of::<C>() +
 //! 2)` bytes, e.g. 4 KiB for 32 x 32 `Rgb565`, and a few bytes more that
 //! record its last clear (and, where the colour plane's bytes are not a
-//! multiple of 4, up to 3 that align the depth plane). Tiles at the right and bottom of a frame whose
-//! size is not a multiple of the tile size use only their top-left part.
+//! multiple of 4, up to 3 that align the depth plane). Tiles at the right
+//! and bottom of a frame whose size is not a multiple of the tile size use
+//! only their top-left part.
 //!
 //! Clearing the buffer for the next tile rewrites only the rows written
 //! since its last clear (when that was with the same colour and depth):
@@ -329,9 +330,7 @@ fn fill_row<T: Copy>(row: &mut [T], pair: [T; 2]) {
     for p in pairs {
         *p = pair;
     }
-    if let Some(r) = rest.first_mut() {
-        *r = pair[0];
-    }
+    rest.fill(pair[0]);
 }
 
 /// Two values side by side, word-aligned: copied as one unit.

@@ -3,7 +3,7 @@
 //! 3x3 part for the lights ([`Inverse3`]) and its hand-over to
 //! [`FixedMat4`].
 
-use super::soft_float::{add, cross, dot, mul, normalize, sub, ScaleDivisor};
+use super::soft_float::{add, cross, dot, mul, normalize, sub, sub_vec, ScaleDivisor};
 use super::{sin_cos, times_pow2, FixedMat4, Vec3, SOFT_FLOAT};
 use fixed::types::I16F16;
 
@@ -101,7 +101,7 @@ impl Mat4 {
         // cot(fovy / 2) from one sine and cosine (within 3 ulps).
         let (s, c) = sin_cos(fovy * 0.5);
         let f = c / s;
-        let nf = 1.0 / add(near, -far);
+        let nf = 1.0 / sub(near, far);
         // 2 far near / (near - far) as 2 far (near / (near - far)): the
         // product far near underflows f32 for planes below about 1e-19 (and
         // overflows above 1e19) where the ratio is still exact, so the
@@ -164,7 +164,7 @@ impl Mat4 {
         // The products through `mul` (`dot`, `cross`, `normalize`): the
         // same bits, where `f32` is in software without the library's
         // multiply.
-        let f = normalize(sub(target, eye))?;
+        let f = normalize(sub_vec(target, eye))?;
         let s = normalize(cross(f, up))?;
         let u = cross(s, f);
         let r = Self {
@@ -490,7 +490,7 @@ fn product_by_terms(a: &Mat4, b: &Mat4) -> Option<Mat4> {
             let mut acc = term(a.m[0][r], b.m[c][0]);
             for k in 1..4 {
                 acc = match (acc, term(a.m[k][r], b.m[c][k])) {
-                    (Ok(s), Ok(t)) => Ok(super::soft_float::add(s, t)),
+                    (Ok(s), Ok(t)) => Ok(add(s, t)),
                     (Ok(s), Err(0)) if s.to_bits() == 0x8000_0000 => Ok(0.0),
                     (Ok(s), Err(_)) => Ok(s),
                     (Err(0), Ok(t)) if t.to_bits() == 0x8000_0000 => Ok(0.0),

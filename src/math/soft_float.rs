@@ -220,17 +220,23 @@ pub(crate) fn cross(a: Vec3, b: Vec3) -> Vec3 {
         return a.cross(b);
     }
     Vec3::new(
-        add(mul(a.y, b.z), -mul(a.z, b.y)),
-        add(mul(a.z, b.x), -mul(a.x, b.z)),
-        add(mul(a.x, b.y), -mul(a.y, b.x)),
+        sub(mul(a.y, b.z), mul(a.z, b.y)),
+        sub(mul(a.z, b.x), mul(a.x, b.z)),
+        sub(mul(a.x, b.y), mul(a.y, b.x)),
     )
 }
 
-/// `a - b` through [`add`] (`x - y` is `x + (-y)` in IEEE arithmetic,
+/// `x - y` through [`add`] (`x - y` is `x + (-y)` in IEEE arithmetic,
 /// the same bits).
 #[inline]
-pub(crate) fn sub(a: Vec3, b: Vec3) -> Vec3 {
-    Vec3::new(add(a.x, -b.x), add(a.y, -b.y), add(a.z, -b.z))
+pub(crate) fn sub(x: f32, y: f32) -> f32 {
+    add(x, -y)
+}
+
+/// `a - b` through [`sub`], the same bits.
+#[inline]
+pub(crate) fn sub_vec(a: Vec3, b: Vec3) -> Vec3 {
+    Vec3::new(sub(a.x, b.x), sub(a.y, b.y), sub(a.z, b.z))
 }
 
 /// [`Vec3::normalize`] through [`dot`] where `f32` arithmetic is in

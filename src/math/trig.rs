@@ -31,7 +31,7 @@
 //! the [parent module](super)); [`sqrt`] refines micromath's estimate with
 //! Newton steps.
 
-use super::soft_float::{add, mul, SOFT_ADD};
+use super::soft_float::{add, mul, sub};
 use super::{times_pow2, SOFT_FLOAT};
 
 /// Square root to full `f32` precision: micromath's bit-trick estimate
@@ -62,8 +62,7 @@ pub fn sqrt(x: f32) -> f32 {
         // The half by the exponent where `f32` is in software.
         // The sum through `add` where `f32` is in software (the same
         // bits).
-        let sum = if SOFT_ADD { add(y, x / y) } else { y + x / y };
-        y = times_pow2(sum, 0.5);
+        y = times_pow2(add(y, x / y), 0.5);
     }
     y
 }
@@ -166,23 +165,6 @@ fn reduce(a: f32) -> (u32, f32, f32) {
 /// the library's multiply where `f32` is in software (as in
 /// [`sin_cos_kernel`]).
 fn square_exact(a: f32) -> (f32, f32) {
-    if SOFT_ADD {
-        return square_exact_by_add(a);
-    }
-    let c = mul(4097.0, a);
-    let ah = c - (c - a);
-    let al = a - ah;
-    let z = mul(a, a);
-    (
-        z,
-        ((mul(ah, ah) - z) + mul(times_pow2(ah, 2.0), al)) + mul(al, al),
-    )
-}
-
-/// [`square_exact`] where `f32` arithmetic is in software ([`SOFT_ADD`]):
-/// the sums and differences through [`add`], the same bits (not with an
-/// FPU, whose code stays the expressions as written).
-fn square_exact_by_add(a: f32) -> (f32, f32) {
     let c = mul(4097.0, a);
     let ah = sub(c, sub(c, a));
     let al = sub(a, ah);
@@ -196,16 +178,19 @@ fn square_exact_by_add(a: f32) -> (f32, f32) {
     )
 }
 
-/// `x - y` through [`add`], the same bits.
-#[inline(always)]
-fn sub(x: f32, y: f32) -> f32 {
-    add(x, -y)
-}
-
-/// [`sin_cos_kernel`] where `f32` arithmetic is in software
-/// ([`SOFT_ADD`]): the sums and differences through [`add`], the same
-/// bits, in the same order.
-fn sin_cos_kernel_by_add(hi: f32, lo: f32) -> (f32, f32) {
+/// sin(r) and cos(r) for `r = hi + lo`, `|r| <= π/4`, `|lo|` below 2^-23
+/// of `|hi|`: the Taylor series of sine to r⁹ and of cosine to r¹⁰ (the
+/// next terms are below 2^-28 of the results) by Horner's rule, with `lo`
+/// to first order. The leading terms are added last: `hi` for the sine;
+/// for the cosine `1 - hi²/2` with `hi²` exact and the rounding error of
+/// the subtraction recovered (it is exact in `f32`: `1 - w` by Sterbenz's
+/// lemma).
+///
+/// The products through [`mul`] and the halves through [`times_pow2`]:
+/// the same bits, where `f32` is in software without the library's
+/// multiply (some 100 instructions each on ARMv6-M; the kernel has
+/// nineteen, five a frame of the demo's camera and model).
+fn sin_cos_kernel(hi: f32, lo: f32) -> (f32, f32) {
     let (z, z_err) = square_exact(hi);
     let p = add(
         -1.0 / 6.0,
@@ -237,40 +222,6 @@ fn sin_cos_kernel_by_add(hi: f32, lo: f32) -> (f32, f32) {
             sub(mul(mul(z, z), q), add(times_pow2(z_err, 0.5), mul(hi, lo))),
         ),
     );
-    (s, c)
-}
-
-/// sin(r) and cos(r) for `r = hi + lo`, `|r| <= π/4`, `|lo|` below 2^-23
-/// of `|hi|`: the Taylor series of sine to r⁹ and of cosine to r¹⁰ (the
-/// next terms are below 2^-28 of the results) by Horner's rule, with `lo`
-/// to first order. The leading terms are added last: `hi` for the sine;
-/// for the cosine `1 - hi²/2` with `hi²` exact and the rounding error of
-/// the subtraction recovered (it is exact in `f32`: `1 - w` by Sterbenz's
-/// lemma).
-///
-/// The products through [`mul`] and the halves through [`times_pow2`]:
-/// the same bits, where `f32` is in software without the library's
-/// multiply (some 100 instructions each on ARMv6-M; the kernel has
-/// nineteen, five a frame of the demo's camera and model).
-fn sin_cos_kernel(hi: f32, lo: f32) -> (f32, f32) {
-    if SOFT_ADD {
-        return sin_cos_kernel_by_add(hi, lo);
-    }
-    let (z, z_err) = square_exact(hi);
-    let p = -1.0 / 6.0
-        + mul(
-            z,
-            1.0 / 120.0 + mul(z, -1.0 / 5_040.0 + mul(z, 1.0 / 362_880.0)),
-        );
-    let half = times_pow2(z, 0.5);
-    let s = hi + (mul(mul(hi, z), p) + mul(lo, 1.0 - half));
-    let q = 1.0 / 24.0
-        + mul(
-            z,
-            -1.0 / 720.0 + mul(z, 1.0 / 40_320.0 + mul(z, -1.0 / 3_628_800.0)),
-        );
-    let w = 1.0 - half;
-    let c = w + (((1.0 - w) - half) + (mul(mul(z, z), q) - (times_pow2(z_err, 0.5) + mul(hi, lo))));
     (s, c)
 }
 
