@@ -298,6 +298,12 @@ impl<C: Copy + PartialEq, const W: usize, const H: usize> TileBuffer<C, W, H> {
             core::hint::black_box((Pair([color; 2]), Pair([depth; 2]), &mut self.depth));
         // Out of the `black_box`'s memory here, once (see above).
         let (pc, pd): ([C; 2], [u16; 2]) = (pc.0, pd.0);
+        // No row first: `get_mut`'s own tests then fold to the end test
+        // (`hi <= H`), two instructions fewer a clear with rows
+        // (Cortex-M3 and M4F `demo` -64).
+        if lo >= hi {
+            return;
+        }
         if let (Some(c), Some(d)) = (self.color.get_mut(lo..hi), depth_plane.0.get_mut(lo..hi)) {
             for (c, d) in c.iter_mut().zip(d.iter_mut()) {
                 fill_row(c, pc);
