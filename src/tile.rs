@@ -298,13 +298,13 @@ impl<C: Copy + PartialEq, const W: usize, const H: usize> TileBuffer<C, W, H> {
             core::hint::black_box((Pair([color; 2]), Pair([depth; 2]), &mut self.depth));
         // Out of the `black_box`'s memory here, once (see above).
         let (pc, pd): ([C; 2], [u16; 2]) = (pc.0, pd.0);
-        // No row, or rows past the planes' (none: every writer records
-        // rows below H), first: the rows' index tests below then fold
-        // away, and the row loop takes its remainder rows before its
-        // unrolled turns, which step two pointers and a count (6
-        // instructions a turn of 4 rows, where the planes' zipped
-        // `get_mut(lo..hi)` took 7 and tested its slices apart; Cortex-M3
-        // and M4F `demo` -64 for the first test, -309 for the loop by
+        // Back first when there is no row, or rows past the planes' (never:
+        // every writer records rows below H). The rows' index checks below
+        // then fold away, and the row loop takes its remainder rows before
+        // its turns unrolled by four, which step two pointers and a count:
+        // 6 instructions a turn, where the planes' zipped
+        // `get_mut(lo..hi)` took 7 and tested each slice apart (Cortex-M3
+        // and M4F `demo` -64 for the early return, -309 for the rows by
         // index).
         if lo >= hi {
             return;
