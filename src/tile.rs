@@ -306,10 +306,7 @@ impl<C: Copy + PartialEq, const W: usize, const H: usize> TileBuffer<C, W, H> {
         // `get_mut(lo..hi)` took 7 and tested each slice apart (Cortex-M3
         // and M4F `demo` -64 for the early return, -309 for the rows by
         // index).
-        if lo >= hi {
-            return;
-        }
-        if hi > H {
+        if lo >= hi || hi > H {
             return;
         }
         for r in lo..hi {

@@ -59,9 +59,8 @@ pub fn sqrt(x: f32) -> f32 {
     }
     let mut y = micromath::F32Ext::sqrt(x);
     for _ in 0..3 {
-        // The half by the exponent where `f32` is in software.
-        // The sum through `add` where `f32` is in software (the same
-        // bits).
+        // The sum through `add` and the half by the exponent where `f32`
+        // is in software (the same bits).
         y = times_pow2(add(y, x / y), 0.5);
     }
     y
