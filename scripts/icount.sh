@@ -44,11 +44,13 @@
 # the linked ELF) and peak stack (which the firmware measures). SCENES (names separated by spaces) is passed to the
 # build as MICRORASTER_ICOUNT_SCENES; the scenes are demo, demo-flat, fill,
 # grid4 and the fragment-shader fills fill-gouraud-exact,
-# fill-nearest-exact, fill-nearest-affine, fill-bilinear-exact and
-# fill-lit-exact, the small-triangle rock and demo-textured-lit
-# (examples/icount_scenes/mod.rs). Without SCENES, the LM3S6965 gets five
-# builds (demo demo-flat fill; grid4; rock; the shader fills;
-# demo-textured-lit): its flash holds only part of the scenes at a time.
+# fill-nearest-exact, fill-nearest-affine, fill-nearest-quasi16,
+# fill-bilinear-exact and fill-lit-exact, the small-triangle rock and
+# demo-textured-lit (examples/icount_scenes/mod.rs). Without SCENES, the
+# LM3S6965 gets six builds (demo demo-flat fill; grid4; rock; the exact
+# and affine shader fills; fill-nearest-quasi16, whose build links the
+# shaders' quasi-perspective copies too; demo-textured-lit): its flash
+# holds only part of the scenes at a time.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -100,7 +102,7 @@ for board in $BOARDS; do
     if [ -n "$SCENES" ]; then
         groups=("$SCENES")
     elif [ "$board" = lm3s6965evb ]; then
-        groups=("demo demo-flat fill" "grid4" "rock" "$SHADER_SCENES" "demo-textured-lit")
+        groups=("demo demo-flat fill" "grid4" "rock" "$SHADER_SCENES" "fill-nearest-quasi16" "demo-textured-lit")
     else
         groups=("")
     fi

@@ -299,6 +299,26 @@ pub trait FragmentShader<C> {
     {
         spans.each(|span| self.shade_span(span))
     }
+
+    /// [`shade_spans`](Self::shade_spans) for the spans of an opaque draw
+    /// (no blend, the `LessEqual` depth test, depth written) in a
+    /// quasi-perspective frame ([`Perspective::Quasi8`],
+    /// [`Perspective::Quasi16`]; [`TriangleSpans::quasi_opaque`]). The
+    /// renderer calls it from a function of its own, so that its loops are
+    /// compiled apart from those of the other frames. Override it to
+    /// colour them with [`TriangleSpans::each_quasi`] and a per-pixel
+    /// function, whose loop has the test, write and blend known; it must
+    /// colour them as `shade_span` would. The default calls
+    /// [`shade_span`](Self::shade_span) for each (not `shade_spans`, whose
+    /// loop would then be called from two places, which can leave it out
+    /// of line in every frame).
+    #[inline(always)]
+    fn shade_quasi_spans(&self, spans: TriangleSpans<'_, C, Self::Varyings>) -> u32
+    where
+        C: Copy + From<Rgb888> + Into<Rgb888>,
+    {
+        spans.each(|span| self.shade_span(span))
+    }
 }
 
 /// A shader by reference, so that a [`ShaderSet`] tuple can hold
@@ -333,6 +353,13 @@ impl<C, S: FragmentShader<C> + ?Sized> FragmentShader<C> for &S {
         C: Copy + From<Rgb888> + Into<Rgb888>,
     {
         (**self).shade_spans(spans)
+    }
+    #[inline(always)]
+    fn shade_quasi_spans(&self, spans: TriangleSpans<'_, C, Self::Varyings>) -> u32
+    where
+        C: Copy + From<Rgb888> + Into<Rgb888>,
+    {
+        (**self).shade_quasi_spans(spans)
     }
 }
 

@@ -293,6 +293,19 @@ prop_compose! {
     }
 }
 
+prop_compose! {
+    /// [`facing_case`] in a quasi-perspective mode: long opaque spans of
+    /// several segments, through the opaque quasi-perspective loops
+    /// (`FragmentShader::shade_quasi_spans`: `TriangleSpans::each_quasi`,
+    /// and `Textured`'s nearest loop of its own on power-of-two `Rgb565`
+    /// textures).
+    fn facing_quasi_case()(c in facing_case(), quasi16 in any::<bool>()) -> Case {
+        let mut c = c;
+        c.mode = if quasi16 { 2 } else { 1 };
+        c
+    }
+}
+
 proptest! {
     #![proptest_config(ProptestConfig { cases: 96, ..ProptestConfig::default() })]
 
@@ -305,6 +318,13 @@ proptest! {
 
     #[test]
     fn long_opaque_spans_match_the_per_fragment_path(c in facing_case()) {
+        every_builtin::<Rgb565>(&c)?;
+        every_builtin::<Rgb888>(&c)?;
+        every_builtin::<Gray8>(&c)?;
+    }
+
+    #[test]
+    fn quasi_spans_match_the_per_fragment_path(c in facing_quasi_case()) {
         every_builtin::<Rgb565>(&c)?;
         every_builtin::<Rgb888>(&c)?;
         every_builtin::<Gray8>(&c)?;

@@ -17,6 +17,7 @@
 //!   separate triangles, whose 24,000 vertices fit neither the LM3S6965's
 //!   RAM nor its flash).
 //! * `fill-gouraud-exact`, `fill-nearest-exact`, `fill-nearest-affine`,
+//!   `fill-nearest-quasi16`,
 //!   `fill-bilinear-exact`, `fill-lit-exact`: the fill quads through the
 //!   `Gouraud`, `Textured` (nearest or bilinear) and `TexturedLit` fragment
 //!   shaders, with the host's 32x32 checker texture, as the host's
@@ -88,6 +89,11 @@ const TEXTURED_ALONE: bool = {
 /// (the other depth tests' copies of the shader span loops above all) no
 /// longer fits the LM3S6965's 256 KiB of flash beside the knot's 88,000
 /// bytes of mesh data; the frame's work is the same, as the image is.
+/// Every build but the one with `fill-nearest-quasi16` leaves out the
+/// opaque quasi-perspective loops ([`Features::QUASI`]), which no other
+/// scene takes.
+///
+/// [`Features::QUASI`]: microraster::Features::QUASI
 pub struct BenchFeatures;
 
 impl microraster::Features for BenchFeatures {
@@ -98,6 +104,7 @@ impl microraster::Features for BenchFeatures {
     const U32_INDICES: bool = !TEXTURED_ALONE;
     const FLAT: bool = !TEXTURED_ALONE;
     const GOURAUD: bool = !TEXTURED_ALONE;
+    const QUASI: bool = SceneId::FillNearestQuasi16.built();
 }
 /// The workspace of every scene: 2,048 vertices, 4,096 bin entries, all 80
 /// tiles in one pass (33,088 bytes); `MICRORASTER_BENCH_BINS` bin entries
@@ -293,6 +300,8 @@ pub enum SceneId {
     FillNearest,
     /// Textured, nearest texel, affine.
     FillNearestAffine,
+    /// Textured, nearest texel, quasi-perspective every 16 columns.
+    FillNearestQuasi16,
     /// Textured, bilinear, exact perspective.
     FillBilinear,
     /// Textured and lit (`TexturedLit`), nearest texel, exact perspective.
@@ -305,7 +314,7 @@ pub enum SceneId {
 
 impl SceneId {
     /// Every scene, in the order of the tables.
-    pub const ALL: [SceneId; 11] = [
+    pub const ALL: [SceneId; 12] = [
         Self::Demo,
         Self::DemoFlat,
         Self::Fill,
@@ -313,6 +322,7 @@ impl SceneId {
         Self::FillGouraud,
         Self::FillNearest,
         Self::FillNearestAffine,
+        Self::FillNearestQuasi16,
         Self::FillBilinear,
         Self::FillLit,
         Self::Rock,
@@ -329,6 +339,7 @@ impl SceneId {
             Self::FillGouraud => "fill-gouraud-exact",
             Self::FillNearest => "fill-nearest-exact",
             Self::FillNearestAffine => "fill-nearest-affine",
+            Self::FillNearestQuasi16 => "fill-nearest-quasi16",
             Self::FillBilinear => "fill-bilinear-exact",
             Self::FillLit => "fill-lit-exact",
             Self::Rock => "rock",
@@ -362,6 +373,7 @@ pub const SHADER_SCENES: bool = SceneId::DemoTexturedLit.built()
     || SceneId::FillGouraud.built()
     || SceneId::FillNearest.built()
     || SceneId::FillNearestAffine.built()
+    || SceneId::FillNearestQuasi16.built()
     || SceneId::FillBilinear.built()
     || SceneId::FillLit.built();
 
@@ -624,12 +636,14 @@ pub fn frame<P: Profiler>(
     const GOURAUD: bool = SceneId::FillGouraud.built();
     const NEAREST: bool = SceneId::FillNearest.built();
     const AFFINE: bool = SceneId::FillNearestAffine.built();
+    const QUASI: bool = SceneId::FillNearestQuasi16.built();
     const BILINEAR: bool = SceneId::FillBilinear.built();
     const LIT: bool = SceneId::FillLit.built();
     const ROCK_SCENE: bool = SceneId::Rock.built();
     const TEXTURED: bool = SceneId::DemoTexturedLit.built();
     const EXACT: Perspective = Perspective::Exact;
     const AFFINE_MODE: Perspective = Perspective::Affine;
+    const QUASI_MODE: Perspective = Perspective::Quasi16;
     // A shader fill: the frame's result, returned from its arm.
     macro_rules! fill {
         ($shader:expr, $filter:expr, $mode:expr) => {
@@ -685,6 +699,7 @@ pub fn frame<P: Profiler>(
         SceneId::FillGouraud if GOURAUD => fill!(&Gouraud, Filter::Nearest, EXACT),
         SceneId::FillNearest if NEAREST => fill!(&Textured, Filter::Nearest, EXACT),
         SceneId::FillNearestAffine if AFFINE => fill!(&Textured, Filter::Nearest, AFFINE_MODE),
+        SceneId::FillNearestQuasi16 if QUASI => fill!(&Textured, Filter::Nearest, QUASI_MODE),
         SceneId::FillBilinear if BILINEAR => fill!(&Textured, Filter::Bilinear, EXACT),
         SceneId::FillLit if LIT => fill!(&TexturedLit, Filter::Nearest, EXACT),
         _ => return Err(FrameError::NotBuilt),

@@ -82,12 +82,12 @@ where
                 },
             ],
             flat_t: if P::BLEND && P::FLAT {
-                shade_custom::<C, shader::Flat, TW, TH>
+                shade_custom::<C, shader::Flat, TW, TH, false>
             } else {
                 shade_none::<C, shader::Flat, TW, TH>
             },
             gouraud_t: if P::BLEND && P::GOURAUD {
-                shade_custom::<C, shader::Gouraud, TW, TH>
+                shade_custom::<C, shader::Gouraud, TW, TH, false>
             } else {
                 shade_none::<C, shader::Gouraud, TW, TH>
             },
@@ -96,10 +96,14 @@ where
     }
 
     /// The function that shades with the scene's shader `G`: none when the
-    /// paths `P` leave shaders out, so that none is linked.
-    pub(super) fn custom<G: FragmentShader<C>, P: Features>() -> CustomFn<C, G, TW, TH> {
-        if P::SHADERS {
-            shade_custom::<C, G, TW, TH>
+    /// paths `P` leave shaders out, so that none is linked; the copy with
+    /// the opaque quasi-perspective loops in a quasi-perspective frame
+    /// where `P` has them ([`Features::QUASI`]).
+    pub(super) fn custom<G: FragmentShader<C>, P: Features>(&self) -> CustomFn<C, G, TW, TH> {
+        if P::SHADERS && P::QUASI && self.out.quasi_opaque() {
+            shade_custom::<C, G, TW, TH, true>
+        } else if P::SHADERS {
+            shade_custom::<C, G, TW, TH, false>
         } else {
             shade_none::<C, G, TW, TH>
         }

@@ -80,6 +80,18 @@ pub trait Features {
     /// [`Shading::Gouraud`](crate::scene::Shading::Gouraud) (their
     /// attribute set-up and span loop, the largest of the triangle paths).
     const GOURAUD: bool = true;
+    /// The opaque quasi-perspective span loops: in a frame with
+    /// [`Perspective::Quasi8`] or [`Perspective::Quasi16`], opaque draws'
+    /// spans go to
+    /// [`FragmentShader::shade_quasi_spans`](crate::shader::FragmentShader::shade_quasi_spans),
+    /// a second copy of each shader's shading function. Without it they
+    /// take the general loop (the same image, more instructions a pixel),
+    /// and a firmware that never draws quasi-perspective frames does not
+    /// link that copy.
+    ///
+    /// [`Perspective::Quasi8`]: crate::shader::Perspective::Quasi8
+    /// [`Perspective::Quasi16`]: crate::shader::Perspective::Quasi16
+    const QUASI: bool = true;
     /// Meshes with `u32` vertex indices ([`Mesh::new_u32`]); without it
     /// only `u16` meshes are binned, and a draw of a `u32` mesh is refused.
     ///
@@ -111,6 +123,7 @@ impl<const FLAT: bool, const GOURAUD: bool> Features for Triangles<FLAT, GOURAUD
     const SORT: bool = false;
     const DEPTH_TESTS: bool = false;
     const LIGHTING: bool = false;
+    const QUASI: bool = false;
     const U32_INDICES: bool = false;
     const FLAT: bool = FLAT;
     const GOURAUD: bool = GOURAUD;

@@ -74,6 +74,12 @@ macro_rules! textured_methods {
         span_method!(shade_spans(&self, spans: TriangleSpans<2>) {
             textured_spans::<C, $lit>(spans)
         });
+        span_method!(shade_quasi_spans(&self, spans: TriangleSpans<2>) {
+            match spans.texture() {
+                Some(t) => textured_quasi_spans::<C, $lit>(spans, t.sampler()),
+                None => 0,
+            }
+        });
     };
 }
 
@@ -266,6 +272,12 @@ impl<C: From<Rgb888> + 'static> FragmentShader<C> for Gouraud {
             spans.each_colour(Gouraud)
         }
     }
+    span_method! {
+        /// The opaque quasi-perspective loop with the colour stepped.
+        shade_quasi_spans(&self, spans: TriangleSpans<0>) {
+            spans.each_quasi(true, Gouraud)
+        }
+    }
 }
 
 /// Where a textured shader's texels come from, decided once per span:
@@ -364,6 +376,7 @@ impl Texels for &Texture<'_> {
 /// The pixel of [`Textured`] (`LIT` false: the texel, in the target's
 /// format where it matches) and of [`TexturedLit`] (`LIT`: the texel
 /// modulated by the interpolated colour).
+#[derive(Clone, Copy)]
 struct TexelPixel<T, const LIT: bool>(T);
 
 impl<C: FromTexel, T: Texels, const LIT: bool> PixelFn<[I16F16; 2], C> for TexelPixel<T, LIT> {
@@ -454,6 +467,35 @@ where
             spans.each(|s| s.shade_with(LIT, TexelPixel::<_, LIT>(Bilinear565(t, Quad::NONE))))
         }
         Sampler::General(t) => spans.each(|s| s.shade_unspecialised(LIT, TexelPixel::<_, LIT>(t))),
+    }
+}
+
+/// [`textured_spans`] for an opaque draw's spans in a quasi-perspective
+/// frame ([`FragmentShader::shade_quasi_spans`]), the texture's sampler
+/// `sampler`: `Textured`'s nearest texels in a loop of their own
+/// (`run_nearest_quasi`), the others in the opaque quasi-perspective loop
+/// with the shader's pixel.
+#[inline(always)]
+fn textured_quasi_spans<C, const LIT: bool>(
+    spans: TriangleSpans<'_, C, [I16F16; 2]>,
+    sampler: Sampler<'_>,
+) -> u32
+where
+    C: FromTexel + Copy + Into<Rgb888>,
+{
+    match sampler {
+        Sampler::NearestRgb565(t) => {
+            // `Textured`'s spans (`LIT` false) take a loop of their own.
+            let parts = t.fine_parts().filter(|_| !LIT && spans.quasi_opaque());
+            if let Some(c) = parts.and_then(|(texels, p)| spans.nearest_constants(texels, p)) {
+                return spans.each(|s| s.run_nearest_quasi(&c));
+            }
+            spans.each_quasi(LIT, TexelPixel::<_, LIT>(Nearest565(t)))
+        }
+        Sampler::BilinearRgb565(t) => {
+            spans.each_quasi(LIT, TexelPixel::<_, LIT>(Bilinear565(t, Quad::NONE)))
+        }
+        Sampler::General(t) => spans.each_quasi(LIT, TexelPixel::<_, LIT>(t)),
     }
 }
 

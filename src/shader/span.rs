@@ -489,6 +489,24 @@ pub(crate) trait PutPixel<V, C> {
     fn put(&mut self, it: &Interpolated<V>, out: &mut C, d: &mut u16) -> bool;
 }
 
+/// An opaque draw's pixel (no blend, depth written): the shader's
+/// function alone.
+pub(crate) struct Opaque<F>(pub F);
+
+impl<V, C, F: PixelFn<V, C>> PutPixel<V, C> for Opaque<F> {
+    #[inline(always)]
+    fn put(&mut self, it: &Interpolated<V>, out: &mut C, d: &mut u16) -> bool {
+        match self.0.pixel(it) {
+            Some(c) => {
+                *out = c;
+                *d = it.depth;
+                true
+            }
+            None => false,
+        }
+    }
+}
+
 /// [`SpanInput::shade`]'s pixel: the shader's function, the blend, the
 /// depth write.
 struct Put<F> {

@@ -2,7 +2,7 @@
 //! together ([`FragmentShader::shade_spans`](crate::shader::FragmentShader::shade_spans)) so that what is the same
 //! for all of them is decided once per triangle and tile.
 
-use super::span::{PixelFn, SpanInput};
+use super::span::{Opaque, PixelFn, SpanInput};
 use crate::raster::Span;
 use crate::shade::perspective::{
     colour_constants, span_input, Output, PerspectiveSetup, COLOUR_LOOP,
@@ -38,6 +38,10 @@ pub struct TriangleSpans<'a, C, V> {
     pub(crate) corners: &'a Corners<'a>,
     pub(crate) texture: Option<&'a Texture<'a>>,
     pub(crate) out: Output,
+    /// See [`quasi_opaque`](Self::quasi_opaque): set by the renderer,
+    /// a constant in each of its two shading functions, so that code for
+    /// the other case is left out of each.
+    pub(crate) quasi_opaque: bool,
 }
 
 impl<'a, C, V: Varyings> TriangleSpans<'a, C, V> {
@@ -95,6 +99,7 @@ impl<'a, C, V: Varyings> TriangleSpans<'a, C, V> {
             corners,
             texture,
             out,
+            ..
         } = self;
         // A triangle whose varyings' differences do not fit `i32` takes
         // the general loop (`PerspectiveSetup::fits`).
@@ -121,6 +126,33 @@ impl<'a, C, V: Varyings> TriangleSpans<'a, C, V> {
 }
 
 impl<C, V: Varyings> TriangleSpans<'_, C, V> {
+    /// Whether the spans are an opaque draw's (no blend, the `LessEqual`
+    /// depth test, depth written) in a quasi-perspective frame
+    /// ([`Perspective::Quasi8`], [`Perspective::Quasi16`]): those that
+    /// the renderer hands to
+    /// [`FragmentShader::shade_quasi_spans`](crate::shader::FragmentShader::shade_quasi_spans).
+    #[inline(always)]
+    pub fn quasi_opaque(&self) -> bool {
+        self.quasi_opaque
+    }
+
+    /// Colours each span through `fragment` as
+    /// [`each`](Self::each) with [`SpanInput::shade_with`] would, the
+    /// colour interpolated if `interpolate_color`; for spans that are
+    /// [`quasi_opaque`](Self::quasi_opaque), in the opaque
+    /// quasi-perspective loop (the depth test, write and blend known, so
+    /// only the depth comparison branches per pixel).
+    #[inline(always)]
+    pub fn each_quasi<F: PixelFn<V, C> + Copy>(self, interpolate_color: bool, fragment: F) -> u32
+    where
+        C: Copy + From<Rgb888> + Into<Rgb888>,
+    {
+        if !self.quasi_opaque() {
+            return self.each(|s| s.shade_with(interpolate_color, fragment));
+        }
+        self.each(|s| s.run_quasi_opaque(interpolate_color, Opaque(fragment)))
+    }
+
     /// [`each`](Self::each) with [`SpanInput::shade_with`]`(true,
     /// fragment)` for a shader that reads the colour and no varyings
     /// (`Gouraud`), the constants of Thumb-2's colour loop ([`COLOUR_LOOP`],

@@ -1,13 +1,15 @@
-//! The nearest-texel span loop of [`Textured`](crate::shader::Textured)
-//! on a repeated power-of-two `Rgb565` texture: its per-triangle
-//! constants ([`TriangleSpans::nearest_constants`]) and the loop itself,
-//! out of line ([`nearest_span`]), with affine, shifted or
-//! constant-`Q` weights (the same bits as the general loop's).
+//! The nearest-texel span loops of [`Textured`](crate::shader::Textured)
+//! on a repeated power-of-two `Rgb565` texture: their per-triangle
+//! constants ([`TriangleSpans::nearest_constants`]) and the loops
+//! themselves, out of line: [`nearest_span`], with affine, shifted or
+//! constant-`Q` weights, and [`nearest_quasi_span`], quasi-perspective
+//! (the same bits as the general loop's).
 
 use super::barycentric::{flat_weights, shifted_weights, span_reciprocal};
 use super::lerp::NARROW_MULTIPLY;
+use super::quasi::{segment_step, RECIPROCAL};
 use super::span::{AFFINE, FLAT_Q};
-use super::{depth16, SpanInput, Z_FRAC};
+use super::{depth16, signed_weights, PerspectiveSetup, SpanInput, Z_FRAC};
 use crate::shader::TriangleSpans;
 use crate::texture::FromTexel;
 use fixed::types::I16F16;
@@ -67,6 +69,24 @@ impl<C: FromTexel> SpanInput<'_, C, [I16F16; 2]> {
         };
         nearest_span::<C, WEIGHTS>(self.color, self.depth, &s)
     }
+
+    /// The opaque quasi-perspective loop
+    /// ([`run_quasi_opaque`](Self::run_quasi_opaque)) for
+    /// [`Textured`](crate::shader::Textured) on a repeated power-of-two
+    /// `Rgb565` texture, nearest (its constants `c`): the same bits, in a
+    /// function of its own ([`nearest_quasi_span`]).
+    #[inline(always)]
+    pub(crate) fn run_nearest_quasi(self, c: &NearestConstants<'_>) -> u32 {
+        let s = QuasiSpan {
+            c,
+            setup: self.setup,
+            seg: self.mode.segment() as i32,
+            x0: self.x0,
+            z: self.z,
+            planes: self.planes,
+        };
+        nearest_quasi_span::<C>(self.color, self.depth, &s)
+    }
 }
 
 /// Where each of [`NearestConstants`]'s words sits in `k`: the fractions'
@@ -108,12 +128,57 @@ struct NearestSpan<'a, 't> {
     planes: [i32; 3],
 }
 
+/// What [`nearest_quasi_span`] reads: the triangle's constants and
+/// set-up, the segment length, the span's first column, depth and the
+/// planes at its first pixel.
+struct QuasiSpan<'a, 't> {
+    c: &'a NearestConstants<'t>,
+    setup: &'a PerspectiveSetup<[I16F16; 2]>,
+    seg: i32,
+    x0: i32,
+    z: u32,
+    planes: [i32; 3],
+}
+
 /// The top `log2(m)` bits of `f`, for `m` a power of two below 2^32:
 /// `f >> (32 - log2(m))` as the high word of a product (one `UMULL` on a
 /// Cortex-M3), with no shift by a register to mask.
 #[inline(always)]
 fn top_bits(f: u32, m: u32) -> u32 {
     ((f as u64 * m as u64) >> 32) as u32
+}
+
+/// On ARMv6-M, the shifts of `fu` and `fv` and the row's bits for
+/// [`texel_index`]: `WIDTH` and `HEIGHT` hold `Pow2Rgb565::fine_parts`'
+/// shifts there, masked so that the shifts by them need no mask of their
+/// own, and the row's bits come from `LAST`. Zeros elsewhere.
+#[inline(always)]
+fn narrow_shifts(k: &[u32; at::LAST + 1]) -> (u32, u32, u32) {
+    if NARROW_MULTIPLY {
+        let (su, sv) = (k[at::WIDTH] & 31, k[at::HEIGHT] & 31);
+        (su, sv, k[at::LAST] & !(u32::MAX >> su))
+    } else {
+        (0, 0, 0)
+    }
+}
+
+/// `Pow2Rgb565::nearest_fine`'s index of the texel at fractions `fu`,
+/// `fv` for a texture `w` by `h`: the row `y < h` (the top `log2(h)`
+/// bits of `fv`) times the width, plus `x < w` (those of `fu`); one
+/// multiply-add where the row had taken a mask and an `or`, without the
+/// row mask's constant. Below the count already, so a mask by `LAST`
+/// changes nothing. On ARMv6-M,
+/// whose 64-bit products (`top_bits`) are library calls of about 40
+/// instructions each, `nearest_fine`'s shifts and mask instead (the same
+/// index; `shifts` from [`narrow_shifts`]).
+#[inline(always)]
+fn texel_index(w: u32, h: u32, fu: u32, fv: u32, shifts: (u32, u32, u32)) -> u32 {
+    if NARROW_MULTIPLY {
+        let (su, sv, row) = shifts;
+        ((fv >> sv) & row) | (fu >> su)
+    } else {
+        top_bits(fv, h) * w + top_bits(fu, w)
+    }
 }
 
 /// The loop of [`SpanInput::run_nearest`], out of line: inlined into the
@@ -171,15 +236,7 @@ fn nearest_span<C: FromTexel, const WEIGHTS: u8>(
     let Some(texels) = s.c.texels.get(..=m) else {
         return 0;
     };
-    // On ARMv6-M `WIDTH` and `HEIGHT` hold `Pow2Rgb565::fine_parts`'
-    // shifts (see the index below), masked so that the shifts by them
-    // need no mask of their own, and the row's bits come from `last`.
-    let (su, sv, row) = if NARROW_MULTIPLY {
-        let (su, sv) = (k[at::WIDTH] & 31, k[at::HEIGHT] & 31);
-        (su, sv, last & !(u32::MAX >> su))
-    } else {
-        (0, 0, 0)
-    };
+    let shifts = narrow_shifts(k);
     let len = color.len() as u32;
     // The pixels that fail, counted in memory: the common path holds no
     // count (a register fewer; it had been spilled around every pixel
@@ -203,20 +260,7 @@ fn nearest_span<C: FromTexel, const WEIGHTS: u8>(
             let fv = k[at::F0V]
                 .wrapping_add(k[at::D1V].wrapping_mul(w1))
                 .wrapping_add(k[at::D2V].wrapping_mul(w2));
-            // `Pow2Rgb565::nearest_fine`'s index: the row `y < h` (the
-            // top `log2(h)` bits of `fv`) times the width, plus `x < w`
-            // (those of `fu`); one multiply-add where the row had taken a
-            // mask and an `or`, without the row mask's constant. Below the
-            // count already: the mask by `m` changes nothing. On ARMv6-M,
-            // whose 64-bit products (`top_bits`) are library calls of
-            // about 40 instructions each, `nearest_fine`'s shifts and
-            // mask instead (the same index).
-            let at = if NARROW_MULTIPLY {
-                ((fv >> sv) & row) | (fu >> su)
-            } else {
-                let (w, h) = (k[at::WIDTH], k[at::HEIGHT]);
-                top_bits(fv, h) * w + top_bits(fu, w)
-            };
+            let at = texel_index(k[at::WIDTH], k[at::HEIGHT], fu, fv, shifts);
             *c = C::from_rgb565(texels[at as usize & m]);
             *d = zz;
         } else {
@@ -230,4 +274,147 @@ fn nearest_span<C: FromTexel, const WEIGHTS: u8>(
         b2 = b2.wrapping_add(k[at::DB2] as i32);
     }
     len - fails[0]
+}
+
+/// The texture coordinates (raw 16.16) at the weights of the planes'
+/// values `q`, `b1`, `b2` ([`signed_weights`]), as the general
+/// quasi-perspective loop takes its samples.
+#[inline(always)]
+fn quasi_sample(p: &PerspectiveSetup<[I16F16; 2]>, q: i32, b1: i32, b2: i32) -> [i32; 2] {
+    p.varyings_fit(signed_weights(q, b1, b2))
+        .map(I16F16::to_bits)
+}
+
+/// The loop of [`SpanInput::run_nearest_quasi`], out of line as
+/// [`nearest_span`] is: the quasi-perspective samples and segments of
+/// [`SpanInput::run`],
+/// with the texture coordinates stepped as fractions to 32 bits (`fu =
+/// u << 16`: the general loop steps `u` in wrapping `i32`, and the texel
+/// reads only its low 16 bits, so `fu` stepped by `du << 16` holds them
+/// at every pixel) and the texel read as `nearest_span` reads it.
+#[inline(never)]
+fn nearest_quasi_span<C: FromTexel>(color: &mut [C], depth: &mut [u16], s: &QuasiSpan) -> u32 {
+    let k = &s.c.k;
+    let p = s.setup;
+    let (seg, x0) = (s.seg, s.x0);
+    let m = k[at::LAST] as usize;
+    let Some(texels) = s.c.texels.get(..=m) else {
+        return 0;
+    };
+    let t = Texels {
+        texels,
+        k,
+        shifts: narrow_shifts(k),
+    };
+    let [mut q, mut b1, mut b2] = s.planes;
+    let [gq, g1, g2] = [k[at::DQ] as i32, k[at::DB1] as i32, k[at::DB2] as i32];
+    let mut z = s.z;
+    let len = color.len() as i32;
+    let mut fails = 0;
+    let [mut u, mut v] = quasi_sample(p, q, b1, b2);
+    let mut pos = 0;
+    while pos < len {
+        // As `run_quasi`: pixels to the next sample column, or to the last
+        // pixel (drawn from its exact values).
+        let next = seg - ((x0 + pos) & (seg - 1));
+        let l = if next <= len - pos {
+            next
+        } else {
+            len - 1 - pos
+        };
+        let (mut du, mut dv) = (0, 0);
+        let [mut nu, mut nv] = [u, v];
+        if l > 0 {
+            [nu, nv] = quasi_sample(
+                p,
+                q.wrapping_add(gq.wrapping_mul(l)),
+                b1.wrapping_add(g1.wrapping_mul(l)),
+                b2.wrapping_add(g2.wrapping_mul(l)),
+            );
+            let r = RECIPROCAL[l as usize];
+            (du, dv) = (segment_step(u, nu, r), segment_step(v, nv, r));
+        }
+        let stop = if l == 0 { pos + 1 } else { pos + l };
+        let (a, b) = (pos as usize, stop as usize);
+        let steps = [(du as u32) << 16, (dv as u32) << 16];
+        if let (Some(cs), Some(ds)) = (color.get_mut(a..b), depth.get_mut(a..b)) {
+            let f = [(u as u32) << 16, (v as u32) << 16];
+            let (failed, zn) = nearest_pixels(cs, ds, &t, z, f, steps);
+            fails += failed;
+            z = zn;
+        }
+        let li = stop - pos;
+        q = q.wrapping_add(gq.wrapping_mul(li));
+        b1 = b1.wrapping_add(g1.wrapping_mul(li));
+        b2 = b2.wrapping_add(g2.wrapping_mul(li));
+        [u, v] = [nu, nv];
+        pos = stop;
+    }
+    len as u32 - fails
+}
+
+/// What [`nearest_pixels`] reads: the texels (cut to the count), the
+/// triangle's constants, [`narrow_shifts`].
+struct Texels<'a> {
+    texels: &'a [u16],
+    k: &'a [u32; at::LAST + 1],
+    shifts: (u32, u32, u32),
+}
+
+/// The pixels of one segment of [`nearest_quasi_span`]: depth `z` and the
+/// fractions `f` at the first, stepped by `k[DZ]` and `df`; returns the
+/// pixels that fail and the depth after the last. Out of line: inlined,
+/// the segments' values took the registers, and the loop reloaded the
+/// texels', the tile's and the constants' addresses from the stack at
+/// every pixel.
+#[inline(never)]
+fn nearest_pixels<C: FromTexel>(
+    color: &mut [C],
+    depth: &mut [u16],
+    t: &Texels,
+    mut z: u32,
+    f: [u32; 2],
+    df: [u32; 2],
+) -> (u32, u32) {
+    // The constants in locals: read through `t`, they were read again at
+    // every pixel (the stores might have changed them, for all the
+    // compiler knows). On ARMv7-M those the loop steps by and the
+    // texture's sides are read in the loop, through a pointer hidden by
+    // `black_box`, and the pixels that fail counted in memory through
+    // another, as in `nearest_span`: in registers, the loop spilled four
+    // of them, and LLVM unrolled it by four, spilling more.
+    let (m, shifts) = (t.k[at::LAST] as usize, t.shifts);
+    let Some(texels) = t.texels.get(..=m) else {
+        return (0, z);
+    };
+    let consts = [t.k[at::DZ], df[0], df[1], t.k[at::WIDTH], t.k[at::HEIGHT]];
+    let k = if cfg!(microraster_armv7m) {
+        core::hint::black_box(&consts)
+    } else {
+        &consts
+    };
+    let [mut fu, mut fv] = f;
+    let mut fails = [0u32];
+    let fails = if cfg!(microraster_armv7m) {
+        core::hint::black_box(&mut fails)
+    } else {
+        &mut fails
+    };
+    for (c, d) in color.iter_mut().zip(depth.iter_mut()) {
+        // A compiler barrier (no instruction): LLVM does not unroll a loop
+        // that holds one.
+        core::hint::black_box(());
+        let zz = depth16(z);
+        if zz <= *d {
+            let i = texel_index(k[3], k[4], fu, fv, shifts);
+            *c = C::from_rgb565(texels[i as usize & m]);
+            *d = zz;
+        } else {
+            fails[0] += 1;
+        }
+        z = z.wrapping_add(k[0]);
+        fu = fu.wrapping_add(k[1]);
+        fv = fv.wrapping_add(k[2]);
+    }
+    (fails[0], z)
 }

@@ -10,18 +10,8 @@ use super::barycentric::span_shift_convex32;
 use super::barycentric::{
     flat_weights, shifted_weights, span_reciprocal, span_shift, weights_guessed,
 };
+use super::quasi::{quasi_segments, segment_step, RECIPROCAL};
 use super::*;
-
-/// `round(2^24 / l)` for segment lengths `l` of 1 to 16.
-const RECIPROCAL: [i64; 17] = {
-    let mut t = [0i64; 17];
-    let mut l = 1;
-    while l <= 16 {
-        t[l] = ((1i64 << 25) / l as i64 + 1) >> 1;
-        l += 1;
-    }
-    t
-};
 
 /// Whether an opaque exact span of a shader that reads only the colour
 /// takes [`SpanInput::run_colour_shifted`]: on Thumb-2 cores (32-bit Arm
@@ -63,6 +53,14 @@ impl Output {
     #[inline(always)]
     pub(crate) fn opaque(&self) -> bool {
         self.blend == Blend::Opaque && self.write && self.test == DepthTest::LessEqual
+    }
+
+    /// Whether the spans take the opaque quasi-perspective loop: an
+    /// [`opaque`](Self::opaque) draw in [`Perspective::Quasi8`] or
+    /// [`Perspective::Quasi16`].
+    #[inline(always)]
+    pub(crate) fn quasi_opaque(&self) -> bool {
+        matches!(self.mode, Perspective::Quasi8 | Perspective::Quasi16) && self.opaque()
     }
 }
 
@@ -511,96 +509,11 @@ impl<C, V: Varyings> SpanInput<'_, C, V> {
         }
         // Quasi-perspective: exact at the columns x = 0 (mod seg), at the
         // span's first and at its last pixel; linear between.
-        let len = color.len() as i32;
-        let (mut var, mut col) = p.values(signed_weights(q, b1, b2), ic);
-        let mut k = 0;
-        while k < len {
-            // Pixels to the next sample: the next column that is a
-            // multiple of `seg` (a power of two) if the span reaches it or
-            // ends just before it (a tile cut there leaves the samples
-            // where they were), or else the last pixel.
-            let next = seg - ((x0 + k) & (seg - 1));
-            let l = if next <= len - k { next } else { len - 1 - k };
-            let (mut dv, mut dc) = (V::zeroed(), [0i32; 3]);
-            let (mut nvar, mut ncol) = (var, col);
-            if l > 0 {
-                // One pixel beyond the span's end, the weights may be a
-                // little negative.
-                let w = signed_weights(
-                    q.wrapping_add(gq.wrapping_mul(l)),
-                    b1.wrapping_add(g1.wrapping_mul(l)),
-                    b2.wrapping_add(g2.wrapping_mul(l)),
-                );
-                (nvar, ncol) = p.values(w, ic);
-                let r = RECIPROCAL[l as usize];
-                for (s, (a, b)) in dv
-                    .as_mut_slice()
-                    .iter_mut()
-                    .zip(var.as_slice().iter().zip(nvar.as_slice()))
-                {
-                    *s = I16F16::from_bits(segment_step(a.to_bits(), b.to_bits(), r));
-                }
-                if ic {
-                    for ch in 0..3 {
-                        dc[ch] = segment_step(col[ch], ncol[ch], r);
-                    }
-                }
-            }
-            // Pixels k..k + l step from the exact values at k; the last
-            // pixel of the span (l = 0) is drawn from exact values too.
-            let stop = if l == 0 { k + 1 } else { k + l };
-            for m in k as usize..stop as usize {
-                let zz = depth16(z);
-                if let (Some(c), Some(d)) = (color.get_mut(m), depth.get_mut(m)) {
-                    if test.passes(zz, *d) {
-                        let it = Interpolated {
-                            x: x0 + m as i32,
-                            depth: zz,
-                            varyings: var,
-                            color: col,
-                            fine: None,
-                            convex: false,
-                        };
-                        n += put.put(&it, c, d) as u32;
-                    }
-                }
-                z = z.wrapping_add(gz);
-                for (a, s) in var.as_mut_slice().iter_mut().zip(dv.as_slice()) {
-                    *a = I16F16::from_bits(a.to_bits().wrapping_add(s.to_bits()));
-                }
-                for ch in 0..3 {
-                    col[ch] = col[ch].wrapping_add(dc[ch]);
-                }
-            }
-            let li = stop - k;
-            q = q.wrapping_add(gq.wrapping_mul(li));
-            b1 = b1.wrapping_add(g1.wrapping_mul(li));
-            b2 = b2.wrapping_add(g2.wrapping_mul(li));
-            (var, col) = (nvar, ncol);
-            k = stop;
-        }
-        n
-    }
-}
-
-/// The step per pixel from `from` to `to` over a segment whose length's
-/// reciprocal is `r` (2^24 / l), rounded: the differences are below 2^32,
-/// times 2^24, so nothing overflows; the result wraps to `i32` like the
-/// values it steps.
-#[inline(always)]
-fn segment_step(from: i32, to: i32, r: i64) -> i32 {
-    (((to as i64 - from as i64) * r + (1 << 23)) >> 24) as i32
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn reciprocals_round() {
-        for (l, &r) in RECIPROCAL.iter().enumerate().skip(1) {
-            let exact = (1u64 << 24) as f64 / l as f64;
-            assert!((r as f64 - exact).abs() <= 0.5);
-        }
+        quasi_segments!(
+            (x0, color, depth, p),
+            (z, gz, [q, b1, b2], [gq, g1, g2]),
+            (ic, put, n, seg),
+            |zz, d| test.passes(zz, *d)
+        )
     }
 }
