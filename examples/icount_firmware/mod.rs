@@ -378,7 +378,7 @@ fn run() -> Result<(), Error> {
     // The stack since boot (calibration, printing); then each scene's
     // own, painted afresh below this frame before it.
     let boot_stack = stack_gauge::peak();
-    let mut results = [None; SceneId::ALL.len()];
+    let mut results = [None; crate::icount_scenes::BUILT_SCENES];
     for (slot, scene) in results.iter_mut().zip(scenes.into_iter().flatten()) {
         stack_gauge::paint();
         let a = measure(scene, &meshes, ws, s, syst, overhead)?;
