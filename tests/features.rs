@@ -232,3 +232,56 @@ fn one_colour_gouraud_triangles_draw_as_flat_ones() {
         assert_eq!(gouraud.1.pixels_shaded, flat.1.pixels_shaded);
     }
 }
+
+/// Every path but the opaque quasi-perspective loops.
+struct NoQuasiLoops;
+impl Features for NoQuasiLoops {
+    const QUASI: bool = false;
+}
+
+#[test]
+fn quasi_perspective_frames_draw_the_same_without_their_own_loops() {
+    use microraster::shader::{Textured, TexturedLit};
+    use microraster::texture::{Filter, Texels, Texture};
+    let texels = checker_texels(32);
+    let cube = textured_cube();
+    for filter in [Filter::Nearest, Filter::Bilinear] {
+        let texture = Texture::new(32, 32, Texels::Rgb565(&texels))
+            .unwrap()
+            .filter(filter);
+        // An opaque draw (the copy with the quasi-perspective loops) and a
+        // blended one (handed on to the other copy), in front of it.
+        let opaque = Draw::new(&cube)
+            .shading(Shading::Shader)
+            .texture(&texture)
+            .transform(Mat4::rotation_y(0.6) * Mat4::rotation_x(0.4));
+        let blended = Draw::new(&cube)
+            .shading(Shading::Shader)
+            .texture(&texture)
+            .blend(Blend::Alpha(120))
+            .transform(
+                Mat4::translation(Vec3::new(0.4, 0.2, 0.8)) * Mat4::scale(Vec3::new(0.5, 0.5, 0.5)),
+            );
+        let d = [opaque, blended];
+        let scene = Scene::new(camera(SIZE.width, SIZE.height), &d).light(light());
+        for mode in [Perspective::Quasi8, Perspective::Quasi16] {
+            let config = Config::new(SIZE, Rgb565::new(1, 2, 3)).perspective(mode);
+            let shaders = [
+                render::<All, _>(&scene.shader(&Textured), config),
+                render::<NoQuasiLoops, _>(&scene.shader(&Textured), config),
+                render::<All, _>(&scene.shader(&TexturedLit), config),
+                render::<NoQuasiLoops, _>(&scene.shader(&TexturedLit), config),
+                render::<All, _>(&scene.shader(&Gouraud), config),
+                render::<NoQuasiLoops, _>(&scene.shader(&Gouraud), config),
+            ];
+            let shaders: Vec<_> = shaders.into_iter().map(Result::unwrap).collect();
+            for pair in shaders.chunks(2) {
+                assert!(pair[0].1.pixels_shaded > 2000, "{:?}", pair[0].1);
+                assert!(
+                    pair[0].0 == pair[1].0,
+                    "{filter:?} {mode:?}: the same image"
+                );
+            }
+        }
+    }
+}
