@@ -301,7 +301,7 @@ fn nearest_quasi_span<C: FromTexel>(color: &mut [C], depth: &mut [u16], s: &Quas
     let Some(texels) = s.c.texels.get(..=m) else {
         return 0;
     };
-    let t = Texels {
+    let t = SegmentConstants {
         texels,
         k,
         shifts: narrow_shifts(k),
@@ -355,7 +355,7 @@ fn nearest_quasi_span<C: FromTexel>(color: &mut [C], depth: &mut [u16], s: &Quas
 
 /// What [`nearest_pixels`] reads: the texels (cut to the count), the
 /// triangle's constants, [`narrow_shifts`].
-struct Texels<'a> {
+struct SegmentConstants<'a> {
     texels: &'a [u16],
     k: &'a [u32; at::LAST + 1],
     shifts: (u32, u32, u32),
@@ -371,7 +371,7 @@ struct Texels<'a> {
 fn nearest_pixels<C: FromTexel>(
     color: &mut [C],
     depth: &mut [u16],
-    t: &Texels,
+    t: &SegmentConstants,
     mut z: u32,
     f: [u32; 2],
     df: [u32; 2],
