@@ -96,11 +96,16 @@ where
     }
 
     /// The function that shades with the scene's shader `G`: none when the
-    /// paths `P` leave shaders out, so that none is linked; the copy with
-    /// the opaque quasi-perspective loops in a quasi-perspective frame
-    /// where `P` has them ([`Features::QUASI`]).
-    pub(super) fn custom<G: FragmentShader<C>, P: Features>(&self) -> CustomFn<C, G, TW, TH> {
-        if P::SHADERS && P::QUASI && self.out.quasi_opaque() {
+    /// paths `P` leave shaders out, so that none is linked; for an opaque
+    /// pass (`blend`) of a quasi-perspective frame, the copy with the
+    /// opaque quasi-perspective loops where `P` has them
+    /// ([`Features::QUASI`]), so that a blended pass is not set up there
+    /// only to be handed on.
+    pub(super) fn custom<G: FragmentShader<C>, P: Features>(
+        &self,
+        blend: Blend,
+    ) -> CustomFn<C, G, TW, TH> {
+        if P::SHADERS && P::QUASI && blend == Blend::Opaque && self.out.quasi_opaque() {
             shade_custom::<C, G, TW, TH, true>
         } else if P::SHADERS {
             shade_custom::<C, G, TW, TH, false>

@@ -517,9 +517,9 @@ fn each_span<C, const BASE: bool, const TW: usize, const TH: usize>(
 
 /// The second phase of [`fill_shaded`]: the perspective set-up of the
 /// triangle and its spans shaded through the fragment shader. With
-/// `QUASI`, for the opaque draws of a quasi-perspective frame: their spans
-/// go to [`FragmentShader::shade_quasi_spans`], and any others to the
-/// copy without `QUASI`. Two functions, so that each shader's loops for
+/// `QUASI`, for the opaque passes of a quasi-perspective frame: their
+/// spans go to [`FragmentShader::shade_quasi_spans`], and a triangle the
+/// opaque loops cannot take to the copy without `QUASI`. Two functions, so that each shader's loops for
 /// the other frames are compiled as they were: one calling both methods
 /// had the closures of `shade_spans` called from two places, and the
 /// compiler then left them out of line (x86-64 `demo-textured-lit`
@@ -542,9 +542,10 @@ where
     if !QUASI {
         return shader.shade_spans(triangle_spans(tile, rect, tri, found, setup, texture, out));
     }
-    // A blended draw, or a triangle whose varyings' differences do not fit
-    // `i32` (`PerspectiveSetup::fits`: slivers, huge texture coordinates),
-    // goes to the other copy, which sets it up again.
+    // A triangle whose varyings' differences do not fit `i32`
+    // (`PerspectiveSetup::fits`: slivers, huge texture coordinates) goes to
+    // the other copy, which sets it up again (blended passes never come
+    // here: `Shaders::custom`).
     if !(out.quasi_opaque() && setup.fits()) {
         return shade_custom::<C, F, TW, TH, false>(tile, rect, tri, found, shader, texture, out);
     }

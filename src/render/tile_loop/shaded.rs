@@ -262,7 +262,7 @@ where
     type Output = u32;
     #[inline(always)]
     fn visit<G: FragmentShader<C>>(self, shader: &G) -> u32 {
-        let shade = self.job.to.shaders.custom::<G, P>();
+        let shade = self.job.to.shaders.custom::<G, P>(self.blend);
         let mut pass = self.job.to.shaders.pass(shader, shade, self.blend);
         if self.blend != Blend::Opaque {
             pass = pass.with(no_write(self.blend));
@@ -294,7 +294,7 @@ where
     type Output = (u32, Option<usize>);
     #[inline(always)]
     fn visit<G: FragmentShader<C>>(self, shader: &G) -> Self::Output {
-        let shade = self.job.to.shaders.custom::<G, P>();
+        let shade = self.job.to.shaders.custom::<G, P>(Blend::Opaque);
         let pass = self.job.to.shaders.pass(shader, shade, Blend::Opaque);
         self.job.shader_run(self.cur, self.t, self.list, pass)
     }

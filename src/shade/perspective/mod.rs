@@ -469,30 +469,6 @@ impl<V: Varyings> PerspectiveSetup<V> {
         (out, color, Some(Self::fine(self, (b1, b2))))
     }
 
-    /// [`values`](Self::values)' varyings for a triangle that
-    /// [`fits`](Self::fits), from the differences of `dvar` by
-    /// [`lerp_fit`] (a 32x32 to 64-bit product each; the same bits), the
-    /// weights of any sign (a quasi-perspective sample one pixel beyond a
-    /// span). On ARMv6-M, which has no such product, `values` itself.
-    #[inline(always)]
-    pub(crate) fn varyings_fit(&self, (b1, b2): (i32, i32)) -> V {
-        if NARROW_MULTIPLY {
-            return self.values((b1, b2), false).0;
-        }
-        debug_assert!(self.fits());
-        let [a0, d1, d2] = [
-            self.var[0].as_slice(),
-            self.dvar[0].as_slice(),
-            self.dvar[1].as_slice(),
-        ];
-        let mut out = V::zeroed();
-        for (k, o) in out.as_mut_slice().iter_mut().enumerate() {
-            let (d1, d2) = (d1[k].to_bits(), d2[k].to_bits());
-            *o = I16F16::from_bits(lerp_fit(a0[k].to_bits(), d1, d2, (b1, b2)));
-        }
-        out
-    }
-
     /// Each varying's fraction to 32 bits at weights `(b1, b2)` (see
     /// [`values_fit`](Self::values_fit)).
     #[inline(always)]

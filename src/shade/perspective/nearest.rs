@@ -7,7 +7,7 @@
 
 use super::barycentric::{flat_weights, shifted_weights, span_reciprocal};
 use super::lerp::NARROW_MULTIPLY;
-use super::quasi::{segment_step, RECIPROCAL};
+use super::quasi::{segment_length, segment_step, RECIPROCAL};
 use super::span::{AFFINE, FLAT_Q};
 use super::{depth16, signed_weights, PerspectiveSetup, SpanInput, Z_FRAC};
 use crate::shader::TriangleSpans;
@@ -167,10 +167,9 @@ fn narrow_shifts(k: &[u32; at::LAST + 1]) -> (u32, u32, u32) {
 /// bits of `fv`) times the width, plus `x < w` (those of `fu`); one
 /// multiply-add where the row had taken a mask and an `or`, without the
 /// row mask's constant. Below the count already, so a mask by `LAST`
-/// changes nothing. On ARMv6-M,
-/// whose 64-bit products (`top_bits`) are library calls of about 40
-/// instructions each, `nearest_fine`'s shifts and mask instead (the same
-/// index; `shifts` from [`narrow_shifts`]).
+/// changes nothing. On ARMv6-M, whose 64-bit products (`top_bits`) are
+/// library calls of about 40 instructions each, `nearest_fine`'s shifts
+/// and mask instead (the same index; `shifts` from [`narrow_shifts`]).
 #[inline(always)]
 fn texel_index(w: u32, h: u32, fu: u32, fv: u32, shifts: (u32, u32, u32)) -> u32 {
     if NARROW_MULTIPLY {
@@ -278,31 +277,30 @@ fn nearest_span<C: FromTexel, const WEIGHTS: u8>(
 
 /// The texture coordinates (raw 16.16) at the weights of the planes'
 /// values `q`, `b1`, `b2` ([`signed_weights`]), as the general
-/// quasi-perspective loop takes its samples.
+/// quasi-perspective loop takes its samples (`values`' bits), through
+/// [`PerspectiveSetup::values_fit`]: the triangle fits, and its `affine`
+/// form is `values` itself where it takes no 32x32 products, for weights
+/// of any sign (the sample one pixel past a span's end).
 #[inline(always)]
 fn quasi_sample(p: &PerspectiveSetup<[I16F16; 2]>, q: i32, b1: i32, b2: i32) -> [i32; 2] {
-    p.varyings_fit(signed_weights(q, b1, b2))
-        .map(I16F16::to_bits)
+    let (var, _, _) = p.values_fit(signed_weights(q, b1, b2), false, true, false);
+    var.map(I16F16::to_bits)
 }
 
 /// The loop of [`SpanInput::run_nearest_quasi`], out of line as
 /// [`nearest_span`] is: the quasi-perspective samples and segments of
-/// [`SpanInput::run`],
-/// with the texture coordinates stepped as fractions to 32 bits (`fu =
-/// u << 16`: the general loop steps `u` in wrapping `i32`, and the texel
-/// reads only its low 16 bits, so `fu` stepped by `du << 16` holds them
-/// at every pixel) and the texel read as `nearest_span` reads it.
+/// [`SpanInput::run`], with the texture coordinates stepped as fractions
+/// to 32 bits (`fu = u << 16`: the general loop steps `u` in wrapping
+/// `i32`, and the texel reads only its low 16 bits, so `fu` stepped by
+/// `du << 16` holds them at every pixel) and the texel read as
+/// `nearest_span` reads it.
 #[inline(never)]
 fn nearest_quasi_span<C: FromTexel>(color: &mut [C], depth: &mut [u16], s: &QuasiSpan) -> u32 {
     let k = &s.c.k;
     let p = s.setup;
     let (seg, x0) = (s.seg, s.x0);
-    let m = k[at::LAST] as usize;
-    let Some(texels) = s.c.texels.get(..=m) else {
-        return 0;
-    };
     let t = SegmentConstants {
-        texels,
+        texels: s.c.texels,
         k,
         shifts: narrow_shifts(k),
     };
@@ -314,14 +312,7 @@ fn nearest_quasi_span<C: FromTexel>(color: &mut [C], depth: &mut [u16], s: &Quas
     let [mut u, mut v] = quasi_sample(p, q, b1, b2);
     let mut pos = 0;
     while pos < len {
-        // As `run_quasi`: pixels to the next sample column, or to the last
-        // pixel (drawn from its exact values).
-        let next = seg - ((x0 + pos) & (seg - 1));
-        let l = if next <= len - pos {
-            next
-        } else {
-            len - 1 - pos
-        };
+        let l = segment_length(seg, x0 + pos, len - pos);
         let (mut du, mut dv) = (0, 0);
         let [mut nu, mut nv] = [u, v];
         if l > 0 {
@@ -353,8 +344,8 @@ fn nearest_quasi_span<C: FromTexel>(color: &mut [C], depth: &mut [u16], s: &Quas
     len as u32 - fails
 }
 
-/// What [`nearest_pixels`] reads: the texels (cut to the count), the
-/// triangle's constants, [`narrow_shifts`].
+/// What [`nearest_pixels`] reads: the texels, the triangle's constants,
+/// [`narrow_shifts`].
 struct SegmentConstants<'a> {
     texels: &'a [u16],
     k: &'a [u32; at::LAST + 1],
@@ -384,8 +375,11 @@ fn nearest_pixels<C: FromTexel>(
     // another, as in `nearest_span`: in registers, the loop spilled four
     // of them, and LLVM unrolled it by four, spilling more.
     let (m, shifts) = (t.k[at::LAST] as usize, t.shifts);
+    // The texels cut to the count here, where the loop is, so that the
+    // masked index needs no bounds check (as in `nearest_span`); never
+    // short (`nearest_constants` checked), and then nothing is written.
     let Some(texels) = t.texels.get(..=m) else {
-        return (0, z);
+        return (color.len() as u32, z);
     };
     let consts = [t.k[at::DZ], df[0], df[1], t.k[at::WIDTH], t.k[at::HEIGHT]];
     let k = if cfg!(microraster_armv7m) {

@@ -50,12 +50,7 @@ macro_rules! quasi_segments {
         let (mut var, mut col) = $p.values(signed_weights($q, $b1, $b2), $ic);
         let mut k = 0;
         while k < len {
-            // Pixels to the next sample: the next column that is a
-            // multiple of `seg` (a power of two) if the span reaches it or
-            // ends just before it (a tile cut there leaves the samples
-            // where they were), or else the last pixel.
-            let next = $seg - (($x0 + k) & ($seg - 1));
-            let l = if next <= len - k { next } else { len - 1 - k };
+            let l = segment_length($seg, $x0 + k, len - k);
             let (mut dv, mut dc) = (V::zeroed(), [0i32; 3]);
             let (mut nvar, mut ncol) = (var, col);
             if l > 0 {
@@ -134,6 +129,21 @@ impl<C, V: Varyings> SpanInput<'_, C, V> {
             (ic, put, n, seg),
             |zz, d| zz <= *d
         )
+    }
+}
+
+/// Pixels from column `x` (with `left` pixels of the span from it) to the
+/// next sample: the next column that is a multiple of `seg` (a power of
+/// two) if the span reaches it or ends just before it (a tile cut there
+/// leaves the samples where they were), or else the span's last pixel (0
+/// at the last pixel itself, which is drawn from its exact values).
+#[inline(always)]
+pub(super) fn segment_length(seg: i32, x: i32, left: i32) -> i32 {
+    let next = seg - (x & (seg - 1));
+    if next <= left {
+        next
+    } else {
+        left - 1
     }
 }
 

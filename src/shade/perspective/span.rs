@@ -10,7 +10,7 @@ use super::barycentric::span_shift_convex32;
 use super::barycentric::{
     flat_weights, shifted_weights, span_reciprocal, span_shift, weights_guessed,
 };
-use super::quasi::{quasi_segments, segment_step, RECIPROCAL};
+use super::quasi::{quasi_segments, segment_length, segment_step, RECIPROCAL};
 use super::*;
 
 /// Whether an opaque exact span of a shader that reads only the colour
