@@ -45,11 +45,13 @@
 # build as MICRORASTER_ICOUNT_SCENES; the scenes are demo, demo-flat, fill,
 # grid4 and the fragment-shader fills fill-gouraud-exact,
 # fill-nearest-exact, fill-nearest-affine, fill-nearest-quasi16,
-# fill-bilinear-exact and fill-lit-exact, the small-triangle rock and
+# fill-gouraud-quasi16, fill-lit-quasi16, fill-bilinear-exact and
+# fill-lit-exact, the small-triangle rock and
 # demo-textured-lit (examples/icount_scenes/mod.rs). Without SCENES, the
-# LM3S6965 gets six builds (demo demo-flat fill; grid4; rock; the exact
-# and affine shader fills; fill-nearest-quasi16, whose build links the
-# shaders' quasi-perspective copies too; demo-textured-lit): its flash
+# LM3S6965 gets seven builds (demo demo-flat fill; grid4; rock; the exact
+# and affine shader fills; the nearest and Gouraud quasi-perspective
+# fills, whose builds link the shaders' quasi-perspective copies too; the
+# lit one; demo-textured-lit): its flash
 # holds only part of the scenes at a time.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -102,7 +104,7 @@ for board in $BOARDS; do
     if [ -n "$SCENES" ]; then
         groups=("$SCENES")
     elif [ "$board" = lm3s6965evb ]; then
-        groups=("demo demo-flat fill" "grid4" "rock" "$SHADER_SCENES" "fill-nearest-quasi16" "demo-textured-lit")
+        groups=("demo demo-flat fill" "grid4" "rock" "$SHADER_SCENES" "fill-nearest-quasi16 fill-gouraud-quasi16" "fill-lit-quasi16" "demo-textured-lit")
     else
         groups=("")
     fi

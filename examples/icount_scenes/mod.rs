@@ -17,7 +17,7 @@
 //!   separate triangles, whose 24,000 vertices fit neither the LM3S6965's
 //!   RAM nor its flash).
 //! * `fill-gouraud-exact`, `fill-nearest-exact`, `fill-nearest-affine`,
-//!   `fill-nearest-quasi16`,
+//!   `fill-nearest-quasi16`, `fill-gouraud-quasi16`, `fill-lit-quasi16`,
 //!   `fill-bilinear-exact`, `fill-lit-exact`: the fill quads through the
 //!   `Gouraud`, `Textured` (nearest or bilinear) and `TexturedLit` fragment
 //!   shaders, with the host's 32x32 checker texture, as the host's
@@ -89,7 +89,7 @@ const TEXTURED_ALONE: bool = {
 /// (the other depth tests' copies of the shader span loops above all) no
 /// longer fits the LM3S6965's 256 KiB of flash beside the knot's 88,000
 /// bytes of mesh data; the frame's work is the same, as the image is.
-/// Every build but the one with `fill-nearest-quasi16` leaves out the
+/// Every build but those with the `*-quasi16` fills leaves out the
 /// opaque quasi-perspective loops ([`Features::QUASI`]), which no other
 /// scene takes.
 ///
@@ -104,7 +104,9 @@ impl microraster::Features for BenchFeatures {
     const U32_INDICES: bool = !TEXTURED_ALONE;
     const FLAT: bool = !TEXTURED_ALONE;
     const GOURAUD: bool = !TEXTURED_ALONE;
-    const QUASI: bool = SceneId::FillNearestQuasi16.built();
+    const QUASI: bool = SceneId::FillNearestQuasi16.built()
+        || SceneId::FillGouraudQuasi16.built()
+        || SceneId::FillLitQuasi16.built();
 }
 /// The workspace of every scene: 2,048 vertices, 4,096 bin entries, all 80
 /// tiles in one pass (33,088 bytes); `MICRORASTER_BENCH_BINS` bin entries
@@ -302,6 +304,12 @@ pub enum SceneId {
     FillNearestAffine,
     /// Textured, nearest texel, quasi-perspective every 16 columns.
     FillNearestQuasi16,
+    /// The fill quads through the `Gouraud` fragment shader,
+    /// quasi-perspective every 16 columns.
+    FillGouraudQuasi16,
+    /// Textured and lit, nearest texel, quasi-perspective every 16
+    /// columns.
+    FillLitQuasi16,
     /// Textured, bilinear, exact perspective.
     FillBilinear,
     /// Textured and lit (`TexturedLit`), nearest texel, exact perspective.
@@ -314,7 +322,7 @@ pub enum SceneId {
 
 impl SceneId {
     /// Every scene, in the order of the tables.
-    pub const ALL: [SceneId; 12] = [
+    pub const ALL: [SceneId; 14] = [
         Self::Demo,
         Self::DemoFlat,
         Self::Fill,
@@ -323,6 +331,8 @@ impl SceneId {
         Self::FillNearest,
         Self::FillNearestAffine,
         Self::FillNearestQuasi16,
+        Self::FillGouraudQuasi16,
+        Self::FillLitQuasi16,
         Self::FillBilinear,
         Self::FillLit,
         Self::Rock,
@@ -340,6 +350,8 @@ impl SceneId {
             Self::FillNearest => "fill-nearest-exact",
             Self::FillNearestAffine => "fill-nearest-affine",
             Self::FillNearestQuasi16 => "fill-nearest-quasi16",
+            Self::FillGouraudQuasi16 => "fill-gouraud-quasi16",
+            Self::FillLitQuasi16 => "fill-lit-quasi16",
             Self::FillBilinear => "fill-bilinear-exact",
             Self::FillLit => "fill-lit-exact",
             Self::Rock => "rock",
@@ -386,6 +398,8 @@ pub const SHADER_SCENES: bool = SceneId::DemoTexturedLit.built()
     || SceneId::FillNearest.built()
     || SceneId::FillNearestAffine.built()
     || SceneId::FillNearestQuasi16.built()
+    || SceneId::FillGouraudQuasi16.built()
+    || SceneId::FillLitQuasi16.built()
     || SceneId::FillBilinear.built()
     || SceneId::FillLit.built();
 
@@ -649,6 +663,8 @@ pub fn frame<P: Profiler>(
     const NEAREST: bool = SceneId::FillNearest.built();
     const AFFINE: bool = SceneId::FillNearestAffine.built();
     const QUASI: bool = SceneId::FillNearestQuasi16.built();
+    const GOURAUD_QUASI: bool = SceneId::FillGouraudQuasi16.built();
+    const LIT_QUASI: bool = SceneId::FillLitQuasi16.built();
     const BILINEAR: bool = SceneId::FillBilinear.built();
     const LIT: bool = SceneId::FillLit.built();
     const ROCK_SCENE: bool = SceneId::Rock.built();
@@ -712,6 +728,10 @@ pub fn frame<P: Profiler>(
         SceneId::FillNearest if NEAREST => fill!(&Textured, Filter::Nearest, EXACT),
         SceneId::FillNearestAffine if AFFINE => fill!(&Textured, Filter::Nearest, AFFINE_MODE),
         SceneId::FillNearestQuasi16 if QUASI => fill!(&Textured, Filter::Nearest, QUASI_MODE),
+        SceneId::FillGouraudQuasi16 if GOURAUD_QUASI => {
+            fill!(&Gouraud, Filter::Nearest, QUASI_MODE)
+        }
+        SceneId::FillLitQuasi16 if LIT_QUASI => fill!(&TexturedLit, Filter::Nearest, QUASI_MODE),
         SceneId::FillBilinear if BILINEAR => fill!(&Textured, Filter::Bilinear, EXACT),
         SceneId::FillLit if LIT => fill!(&TexturedLit, Filter::Nearest, EXACT),
         _ => return Err(FrameError::NotBuilt),
