@@ -102,6 +102,8 @@ fn main() {
     // `COLOUR_LOOP`): on 32-bit Arm cores with a long multiply (Thumb-2),
     // where it is faster; anywhere with `MICRORASTER_COLOUR_LOOP=1`, so
     // that the host's span-shader and golden tests can run it too (CI).
+    // The variable also gives the host `TexturedLit`'s quasi-perspective
+    // loop of 32-bit targets (`shader::builtin`'s `LIT_QUASI_LOOP`).
     println!("cargo::rustc-check-cfg=cfg(microraster_colour_loop)");
     println!("cargo:rerun-if-env-changed=MICRORASTER_COLOUR_LOOP");
     let thumb2 = target.starts_with("thumbv7") || target.starts_with("thumbv8m.main");

@@ -51,7 +51,7 @@
 //! [`Shading::Gouraud`]: crate::scene::Shading::Gouraud
 
 mod builtin;
-mod interpolated;
+pub(crate) mod interpolated;
 mod set;
 pub mod span;
 mod triangle_spans;

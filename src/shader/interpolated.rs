@@ -47,6 +47,6 @@ impl<V> Interpolated<V> {
 
 /// A colour channel in 8.16 (rounding bias included) clamped to a byte.
 #[inline(always)]
-fn byte(c: i32) -> u8 {
+pub(crate) fn byte(c: i32) -> u8 {
     (c >> 16).clamp(0, 255) as u8
 }

@@ -132,6 +132,85 @@ impl<C, V: Varyings> SpanInput<'_, C, V> {
     }
 }
 
+/// How a quasi-perspective span's segments are drawn ([`quasi_span`]):
+/// the values a sample holds, the steps between two samples, and the
+/// pixels of one segment.
+pub(super) trait Segments<C> {
+    /// The values at a sample, or their steps per pixel.
+    type Values: Copy;
+    /// The values at the weights of the planes' values `q`, `b1`, `b2`
+    /// ([`signed_weights`]).
+    fn sample(&self, q: i32, b1: i32, b2: i32) -> Self::Values;
+    /// The steps per pixel from `from` to `to` over a segment whose
+    /// length's reciprocal is `r` ([`segment_step`]).
+    fn steps(&self, from: &Self::Values, to: &Self::Values, r: i64) -> Self::Values;
+    /// No steps (the span's last pixel, a segment of its own).
+    fn still(&self) -> Self::Values;
+    /// Draws a segment's pixels, the first at depth `z` with values `at`,
+    /// stepped by `steps`: returns the pixels that failed the depth test
+    /// and the depth after the last.
+    fn pixels(
+        &mut self,
+        color: &mut [C],
+        depth: &mut [u16],
+        z: u32,
+        at: Self::Values,
+        steps: Self::Values,
+    ) -> (u32, u32);
+}
+
+/// A quasi-perspective span of an opaque draw, segment by segment, in a
+/// loop of its own (`nearest_quasi_span`): the segments of
+/// [`quasi_segments!`], exact
+/// values at its first pixel and at each sample ([`segment_length`]), and
+/// `s`'s pixels stepped linearly from one to the next. `(seg, x0)` are
+/// the segment length and the span's first column; `(z, planes, steps)`
+/// the depth and the planes `Q`, `B1`, `B2` at its first pixel, and the
+/// planes' steps. Returns the pixels written.
+#[inline(always)]
+pub(super) fn quasi_span<C, S: Segments<C>>(
+    color: &mut [C],
+    depth: &mut [u16],
+    s: &mut S,
+    (seg, x0): (i32, i32),
+    (mut z, [mut q, mut b1, mut b2], [gq, g1, g2]): (u32, [i32; 3], [i32; 3]),
+) -> u32 {
+    let len = color.len() as i32;
+    let mut fails = 0;
+    let mut at = s.sample(q, b1, b2);
+    let mut pos = 0;
+    while pos < len {
+        let l = segment_length(seg, x0 + pos, len - pos);
+        let (mut steps, mut next) = (s.still(), at);
+        if l > 0 {
+            // One pixel beyond the span's end, the weights may be a
+            // little negative (`signed_weights`).
+            next = s.sample(
+                q.wrapping_add(gq.wrapping_mul(l)),
+                b1.wrapping_add(g1.wrapping_mul(l)),
+                b2.wrapping_add(g2.wrapping_mul(l)),
+            );
+            steps = s.steps(&at, &next, RECIPROCAL[l as usize]);
+        }
+        // Pixels pos..pos + l step from the exact values at pos; the last
+        // pixel of the span (l = 0) is drawn from exact values too.
+        let stop = if l == 0 { pos + 1 } else { pos + l };
+        let (a, b) = (pos as usize, stop as usize);
+        if let (Some(cs), Some(ds)) = (color.get_mut(a..b), depth.get_mut(a..b)) {
+            let (failed, zn) = s.pixels(cs, ds, z, at, steps);
+            fails += failed;
+            z = zn;
+        }
+        let li = stop - pos;
+        q = q.wrapping_add(gq.wrapping_mul(li));
+        b1 = b1.wrapping_add(g1.wrapping_mul(li));
+        b2 = b2.wrapping_add(g2.wrapping_mul(li));
+        at = next;
+        pos = stop;
+    }
+    len as u32 - fails
+}
+
 /// Pixels from column `x` (with `left` pixels of the span from it) to the
 /// next sample: the next column that is a multiple of `seg` (a power of
 /// two) if the span reaches it or ends just before it (a tile cut there
