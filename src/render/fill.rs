@@ -519,11 +519,11 @@ fn each_span<C, const BASE: bool, const TW: usize, const TH: usize>(
 /// triangle and its spans shaded through the fragment shader. With
 /// `QUASI`, for the opaque passes of a quasi-perspective frame: their
 /// spans go to [`FragmentShader::shade_quasi_spans`], and a triangle the
-/// opaque loops cannot take to the copy without `QUASI`. Two functions, so that each shader's loops for
-/// the other frames are compiled as they were: one calling both methods
-/// had the closures of `shade_spans` called from two places, and the
-/// compiler then left them out of line (x86-64 `demo-textured-lit`
-/// 5,975,883 -> 7,047,718 instructions).
+/// opaque loops cannot take to the copy without `QUASI`. Two functions,
+/// so that each shader's loops for the other frames are compiled as they
+/// were: one calling both methods had the closures of `shade_spans`
+/// called from two places, and the compiler then left them out of line
+/// (x86-64 `demo-textured-lit` 5,975,883 -> 7,047,718 instructions).
 #[inline(never)]
 pub(super) fn shade_custom<C, F, const TW: usize, const TH: usize, const QUASI: bool>(
     tile: &mut TileBuffer<C, TW, TH>,

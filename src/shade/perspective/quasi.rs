@@ -161,9 +161,9 @@ pub(super) trait Segments<C> {
 
 /// A quasi-perspective span of an opaque draw, segment by segment, in a
 /// loop of its own (`nearest_quasi_span`): the segments of
-/// [`quasi_segments!`], exact
-/// values at its first pixel and at each sample ([`segment_length`]), and
-/// `s`'s pixels stepped linearly from one to the next. `(seg, x0)` are
+/// [`quasi_segments!`], exact values at its first pixel and at each
+/// sample ([`segment_length`]), and `s`'s pixels stepped linearly from one
+/// to the next. `(seg, x0)` are
 /// the segment length and the span's first column; `(z, planes, steps)`
 /// the depth and the planes `Q`, `B1`, `B2` at its first pixel, and the
 /// planes' steps. Returns the pixels written.
