@@ -102,13 +102,19 @@ fn main() {
     // `COLOUR_LOOP`): on 32-bit Arm cores with a long multiply (Thumb-2),
     // where it is faster; anywhere with `MICRORASTER_COLOUR_LOOP=1`, so
     // that the host's span-shader and golden tests can run it too (CI).
-    // The variable also gives the host `TexturedLit`'s quasi-perspective
-    // loop of 32-bit targets (`shader::builtin`'s `LIT_QUASI_LOOP`).
     println!("cargo::rustc-check-cfg=cfg(microraster_colour_loop)");
     println!("cargo:rerun-if-env-changed=MICRORASTER_COLOUR_LOOP");
     let thumb2 = target.starts_with("thumbv7") || target.starts_with("thumbv8m.main");
     if thumb2 || env::var("MICRORASTER_COLOUR_LOOP").is_ok_and(|v| v == "1") {
         println!("cargo:rustc-cfg=microraster_colour_loop");
+    }
+    // The built-in shaders' loops of 32-bit targets (`shade::perspective`'s
+    // `LOOPS32`), on a 64-bit host too with `MICRORASTER_LOOPS32=1`, for
+    // the same tests.
+    println!("cargo::rustc-check-cfg=cfg(microraster_loops32)");
+    println!("cargo:rerun-if-env-changed=MICRORASTER_LOOPS32");
+    if env::var("MICRORASTER_LOOPS32").is_ok_and(|v| v == "1") {
+        println!("cargo:rustc-cfg=microraster_loops32");
     }
     // `vertex::screen`'s interior bit and the clamp-free Gouraud span
     // starts it allows (`INTERIOR_STARTS`): not in builds optimised for

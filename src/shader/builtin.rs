@@ -11,7 +11,7 @@ use super::{
     VertexInput,
 };
 use crate::scene::Draw;
-use crate::shade::perspective::{AFFINE, FLAT_Q, SHIFTED};
+use crate::shade::perspective::{AFFINE, FLAT_Q, LOOPS32, SHIFTED};
 use crate::texture::{rgb565_to_rgb888, FromTexel, Pow2Rgb565, Quad, Sampler, Texture};
 use embedded_graphics::pixelcolor::Rgb888;
 use fixed::types::I16F16;
@@ -445,15 +445,15 @@ where
             };
             match near {
                 Some(c) => spans.each(|s| {
-                    // Affine spans keep the shared loop on 64-bit hosts:
-                    // x86-64 `fill-nearest-affine` 44.4 per fragment with
-                    // it, 49.7 through this one (the Cortex-M3's 49.8 ->
-                    // 47.1).
-                    if cfg!(not(target_pointer_width = "64")) && s.affine_opaque() {
+                    // Affine spans keep the shared loop on 64-bit hosts
+                    // ([`LOOPS32`]): x86-64 `fill-nearest-affine` 44.4 per
+                    // fragment with it, 49.7 through this one (the
+                    // Cortex-M3's 49.8 -> 47.1).
+                    if LOOPS32 && s.affine_opaque() {
                         return s.run_nearest::<AFFINE>(&c, 0);
                     }
                     if let Some(sh) = s.shifted_opaque() {
-                        if cfg!(not(target_pointer_width = "64")) && s.flat_q() {
+                        if LOOPS32 && s.flat_q() {
                             return s.run_nearest::<FLAT_Q>(&c, sh);
                         }
                         return s.run_nearest::<SHIFTED>(&c, sh);
@@ -472,17 +472,13 @@ where
 
 /// Whether `TexturedLit`'s opaque quasi-perspective spans on a repeated
 /// power-of-two `Rgb565` texture take a loop of their own
-/// (`run_nearest_quasi::<true>`, the same bits as the general one): on
-/// 32-bit targets, where it was measured faster (`fill-lit-quasi16`
-/// 104.72 -> 97.31 instructions a fragment on the Cortex-M3, 108.16 ->
-/// 105.23 on the Cortex-M4F, 200.00 -> 198.41 on ARMv6-M), and on the
-/// host with `MICRORASTER_COLOUR_LOOP=1` (`build.rs`), so that CI runs the
-/// span-shader tests through it. On x86-64 it spilled more than the
-/// general loop: 98.43 -> 104.84.
-const LIT_QUASI_LOOP: bool = cfg!(any(
-    not(target_pointer_width = "64"),
-    microraster_colour_loop
-));
+/// (`run_nearest_quasi::<true>`, the same bits as the general one): where
+/// [`LOOPS32`], as it was measured faster on 32-bit targets
+/// (`fill-lit-quasi16` 104.72 -> 97.31 instructions a fragment on the
+/// Cortex-M3, 108.16 -> 105.23 on the Cortex-M4F, 200.00 -> 198.41 on
+/// ARMv6-M). On x86-64 it spilled more than the general loop: 98.43 ->
+/// 104.84.
+const LIT_QUASI_LOOP: bool = LOOPS32;
 
 /// [`textured_spans`] for an opaque draw's spans in a quasi-perspective
 /// frame ([`FragmentShader::shade_quasi_spans`]), the texture's sampler

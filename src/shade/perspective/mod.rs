@@ -43,7 +43,7 @@ mod span;
 
 pub(crate) use barycentric::{signed_weights, weights};
 pub(crate) use span::{
-    colour_constants, span_input, Output, AFFINE, CLAMPED, COLOUR_LOOP, FLAT_Q, SHIFTED,
+    colour_constants, span_input, Output, AFFINE, CLAMPED, COLOUR_LOOP, FLAT_Q, LOOPS32, SHIFTED,
 };
 
 use lerp::{fine_fit, lerp32, lerp_fit, FIT_PRODUCTS, NARROW_MULTIPLY};

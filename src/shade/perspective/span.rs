@@ -24,6 +24,15 @@ use super::*;
 /// pixels that fail rather than those written (see there).
 pub(crate) const COLOUR_LOOP: bool = cfg!(microraster_colour_loop);
 
+/// Whether the built-in shaders take the span loops chosen for 32-bit
+/// targets, where they were measured faster than on a 64-bit host
+/// (`Textured`'s nearest loops for affine spans and for spans of constant
+/// `Q`, `TexturedLit`'s quasi-perspective loop): on every target whose
+/// pointers are not 64 bits wide, and on any target with
+/// `MICRORASTER_LOOPS32=1` (`build.rs`), so that CI runs the host's
+/// span-shader and golden tests through them too.
+pub(crate) const LOOPS32: bool = cfg!(any(not(target_pointer_width = "64"), microraster_loops32));
+
 /// [`SpanInput::run_opaque`]'s weights: affine (`B1`, `B2` shifted), or
 /// exact from [`shifted_weights`] with the span's shift, or exact from
 /// [`weights`] (its clamps and normalisation per pixel).
