@@ -99,7 +99,9 @@ pub enum Perspective {
     /// The columns `x ≡ 0 (mod 16)` and each span's ends are samples.
     Quasi16,
     /// All `1 / w` treated as equal: varyings are linear in screen space
-    /// (textures swim on planes seen at an angle). Two samples per span.
+    /// (textures swim on planes seen at an angle), each rounded once from
+    /// its exact linear value (within about half a unit of 2^-16), so that
+    /// span loops step them by one addition a pixel.
     Affine,
 }
 
@@ -319,6 +321,24 @@ pub trait FragmentShader<C> {
     {
         spans.each(|span| self.shade_span(span))
     }
+
+    /// [`shade_spans`](Self::shade_spans) for the spans of an opaque draw
+    /// in an affine frame ([`Perspective::Affine`];
+    /// [`TriangleSpans::affine_opaque`]). The renderer calls it from a
+    /// function of its own, as it calls
+    /// [`shade_quasi_spans`](Self::shade_quasi_spans), and
+    /// [`SpanInput::shade_with`] colours these spans in the opaque affine
+    /// loop (the test, write and blend known). Override it to decide once
+    /// per triangle and tile what does not change between its spans; it
+    /// must colour them as `shade_span` would. The default calls
+    /// [`shade_span`](Self::shade_span) for each.
+    #[inline(always)]
+    fn shade_affine_spans(&self, spans: TriangleSpans<'_, C, Self::Varyings>) -> u32
+    where
+        C: Copy + From<Rgb888> + Into<Rgb888>,
+    {
+        spans.each(|span| self.shade_span(span))
+    }
 }
 
 /// A shader by reference, so that a [`ShaderSet`] tuple can hold
@@ -360,6 +380,13 @@ impl<C, S: FragmentShader<C> + ?Sized> FragmentShader<C> for &S {
         C: Copy + From<Rgb888> + Into<Rgb888>,
     {
         (**self).shade_quasi_spans(spans)
+    }
+    #[inline(always)]
+    fn shade_affine_spans(&self, spans: TriangleSpans<'_, C, Self::Varyings>) -> u32
+    where
+        C: Copy + From<Rgb888> + Into<Rgb888>,
+    {
+        (**self).shade_affine_spans(spans)
     }
 }
 

@@ -233,14 +233,15 @@ fn one_colour_gouraud_triangles_draw_as_flat_ones() {
     }
 }
 
-/// Every path but the opaque quasi-perspective loops.
-struct NoQuasiLoops;
-impl Features for NoQuasiLoops {
+/// Every path but the opaque quasi-perspective and affine loops.
+struct NoModeLoops;
+impl Features for NoModeLoops {
     const QUASI: bool = false;
+    const AFFINE: bool = false;
 }
 
 #[test]
-fn quasi_perspective_frames_draw_the_same_without_their_own_loops() {
+fn quasi_perspective_and_affine_frames_draw_the_same_without_their_own_loops() {
     use microraster::shader::{Textured, TexturedLit};
     use microraster::texture::{Filter, Texels, Texture};
     let texels = checker_texels(32);
@@ -249,7 +250,7 @@ fn quasi_perspective_frames_draw_the_same_without_their_own_loops() {
         let texture = Texture::new(32, 32, Texels::Rgb565(&texels))
             .unwrap()
             .filter(filter);
-        // An opaque draw (the copy with the quasi-perspective loops) and a
+        // An opaque draw (the copy with the mode's loops) and a
         // blended one (handed on to the other copy), in front of it.
         let opaque = Draw::new(&cube)
             .shading(Shading::Shader)
@@ -264,15 +265,19 @@ fn quasi_perspective_frames_draw_the_same_without_their_own_loops() {
             );
         let d = [opaque, blended];
         let scene = Scene::new(camera(SIZE.width, SIZE.height), &d).light(light());
-        for mode in [Perspective::Quasi8, Perspective::Quasi16] {
+        for mode in [
+            Perspective::Quasi8,
+            Perspective::Quasi16,
+            Perspective::Affine,
+        ] {
             let config = Config::new(SIZE, Rgb565::new(1, 2, 3)).perspective(mode);
             let shaders = [
                 render::<All, _>(&scene.shader(&Textured), config),
-                render::<NoQuasiLoops, _>(&scene.shader(&Textured), config),
+                render::<NoModeLoops, _>(&scene.shader(&Textured), config),
                 render::<All, _>(&scene.shader(&TexturedLit), config),
-                render::<NoQuasiLoops, _>(&scene.shader(&TexturedLit), config),
+                render::<NoModeLoops, _>(&scene.shader(&TexturedLit), config),
                 render::<All, _>(&scene.shader(&Gouraud), config),
-                render::<NoQuasiLoops, _>(&scene.shader(&Gouraud), config),
+                render::<NoModeLoops, _>(&scene.shader(&Gouraud), config),
             ];
             let shaders: Vec<_> = shaders.into_iter().map(Result::unwrap).collect();
             for pair in shaders.chunks(2) {

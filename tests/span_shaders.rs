@@ -306,6 +306,18 @@ prop_compose! {
     }
 }
 
+prop_compose! {
+    /// [`facing_case`] in affine mode: long opaque spans through the
+    /// opaque affine loops (`FragmentShader::shade_affine_spans`, and
+    /// `Textured`'s nearest loop with the sums stepped on power-of-two
+    /// `Rgb565` textures).
+    fn facing_affine_case()(c in facing_case()) -> Case {
+        let mut c = c;
+        c.mode = 3;
+        c
+    }
+}
+
 proptest! {
     #![proptest_config(ProptestConfig { cases: 96, ..ProptestConfig::default() })]
 
@@ -325,6 +337,13 @@ proptest! {
 
     #[test]
     fn quasi_spans_match_the_per_fragment_path(c in facing_quasi_case()) {
+        every_builtin::<Rgb565>(&c)?;
+        every_builtin::<Rgb888>(&c)?;
+        every_builtin::<Gray8>(&c)?;
+    }
+
+    #[test]
+    fn affine_spans_match_the_per_fragment_path(c in facing_affine_case()) {
         every_builtin::<Rgb565>(&c)?;
         every_builtin::<Rgb888>(&c)?;
         every_builtin::<Gray8>(&c)?;

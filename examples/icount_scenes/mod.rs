@@ -91,9 +91,11 @@ const TEXTURED_ALONE: bool = {
 /// bytes of mesh data; the frame's work is the same, as the image is.
 /// Every build but those with the `*-quasi16` fills leaves out the
 /// opaque quasi-perspective loops ([`Features::QUASI`]), which no other
-/// scene takes.
+/// scene takes, and every build but that with `fill-nearest-affine` the
+/// opaque affine loops ([`Features::AFFINE`]).
 ///
 /// [`Features::QUASI`]: microraster::Features::QUASI
+/// [`Features::AFFINE`]: microraster::Features::AFFINE
 pub struct BenchFeatures;
 
 impl microraster::Features for BenchFeatures {
@@ -107,6 +109,7 @@ impl microraster::Features for BenchFeatures {
     const QUASI: bool = SceneId::FillNearestQuasi16.built()
         || SceneId::FillGouraudQuasi16.built()
         || SceneId::FillLitQuasi16.built();
+    const AFFINE: bool = SceneId::FillNearestAffine.built();
 }
 /// The workspace of every scene: 2,048 vertices, 4,096 bin entries, all 80
 /// tiles in one pass (33,088 bytes); `MICRORASTER_BENCH_BINS` bin entries

@@ -1,6 +1,6 @@
 //! Which span loop shades a triangle: chosen once per tile from the configuration.
 
-use super::fill::{finder, shade, shade_custom, FindFn};
+use super::fill::{finder, shade, shade_custom, FindFn, AFFINE, GENERAL, QUASI};
 use super::Config;
 use super::Features;
 use crate::raster::{PixelRect, Span};
@@ -82,12 +82,12 @@ where
                 },
             ],
             flat_t: if P::BLEND && P::FLAT {
-                shade_custom::<C, shader::Flat, TW, TH, false>
+                shade_custom::<C, shader::Flat, TW, TH, GENERAL>
             } else {
                 shade_none::<C, shader::Flat, TW, TH>
             },
             gouraud_t: if P::BLEND && P::GOURAUD {
-                shade_custom::<C, shader::Gouraud, TW, TH, false>
+                shade_custom::<C, shader::Gouraud, TW, TH, GENERAL>
             } else {
                 shade_none::<C, shader::Gouraud, TW, TH>
             },
@@ -97,18 +97,20 @@ where
 
     /// The function that shades with the scene's shader `G`: none when the
     /// paths `P` leave shaders out, so that none is linked; for an opaque
-    /// pass (`blend`) of a quasi-perspective frame, the copy with the
-    /// opaque quasi-perspective loops where `P` has them
-    /// ([`Features::QUASI`]), so that a blended pass is not set up there
-    /// only to be handed on.
+    /// pass (`blend`) of a quasi-perspective or affine frame, the copy
+    /// with the opaque quasi-perspective or affine loops where `P` has
+    /// them ([`Features::QUASI`], [`Features::AFFINE`]), so that a blended
+    /// pass is not set up there only to be handed on.
     pub(super) fn custom<G: FragmentShader<C>, P: Features>(
         &self,
         blend: Blend,
     ) -> CustomFn<C, G, TW, TH> {
         if P::SHADERS && P::QUASI && blend == Blend::Opaque && self.out.quasi_opaque() {
-            shade_custom::<C, G, TW, TH, true>
+            shade_custom::<C, G, TW, TH, QUASI>
+        } else if P::SHADERS && P::AFFINE && blend == Blend::Opaque && self.out.affine_opaque() {
+            shade_custom::<C, G, TW, TH, AFFINE>
         } else if P::SHADERS {
-            shade_custom::<C, G, TW, TH, false>
+            shade_custom::<C, G, TW, TH, GENERAL>
         } else {
             shade_none::<C, G, TW, TH>
         }

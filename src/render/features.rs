@@ -92,6 +92,16 @@ pub trait Features {
     /// [`Perspective::Quasi8`]: crate::shader::Perspective::Quasi8
     /// [`Perspective::Quasi16`]: crate::shader::Perspective::Quasi16
     const QUASI: bool = true;
+    /// The opaque affine span loops: in a frame with
+    /// [`Perspective::Affine`], opaque draws' spans go to
+    /// [`FragmentShader::shade_affine_spans`](crate::shader::FragmentShader::shade_affine_spans),
+    /// a copy of each shader's shading function of its own. Without it
+    /// they take the general loop (the same image, more instructions a
+    /// pixel), and a firmware that never draws affine frames does not link
+    /// that copy.
+    ///
+    /// [`Perspective::Affine`]: crate::shader::Perspective::Affine
+    const AFFINE: bool = true;
     /// Meshes with `u32` vertex indices ([`Mesh::new_u32`]); without it
     /// only `u16` meshes are binned, and a draw of a `u32` mesh is refused.
     ///
@@ -124,6 +134,7 @@ impl<const FLAT: bool, const GOURAUD: bool> Features for Triangles<FLAT, GOURAUD
     const DEPTH_TESTS: bool = false;
     const LIGHTING: bool = false;
     const QUASI: bool = false;
+    const AFFINE: bool = false;
     const U32_INDICES: bool = false;
     const FLAT: bool = FLAT;
     const GOURAUD: bool = GOURAUD;

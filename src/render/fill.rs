@@ -515,17 +515,27 @@ fn each_span<C, const BASE: bool, const TW: usize, const TH: usize>(
     n
 }
 
-/// The second phase of [`fill_shaded`]: the perspective set-up of the
-/// triangle and its spans shaded through the fragment shader. With
-/// `QUASI`, for the opaque passes of a quasi-perspective frame: their
-/// spans go to [`FragmentShader::shade_quasi_spans`], and a triangle the
-/// opaque loops cannot take to the copy without `QUASI`. Two functions,
-/// so that each shader's loops for the other frames are compiled as they
-/// were: one calling both methods had the closures of `shade_spans`
-/// called from two places, and the compiler then left them out of line
-/// (x86-64 `demo-textured-lit` 5,975,883 -> 7,047,718 instructions).
+/// [`shade_custom`]'s copy for every pass but those below: its spans go
+/// to [`FragmentShader::shade_spans`].
+pub(super) const GENERAL: u8 = 0;
+/// [`shade_custom`]'s copy for the opaque passes of a quasi-perspective
+/// frame: their spans go to [`FragmentShader::shade_quasi_spans`].
+pub(super) const QUASI: u8 = 1;
+/// [`shade_custom`]'s copy for the opaque passes of an affine frame: their
+/// spans go to [`FragmentShader::shade_affine_spans`].
+pub(super) const AFFINE: u8 = 2;
+
+/// The second phase of [`fill_shaded`]: the
+/// perspective set-up of the triangle and its spans shaded through the
+/// fragment shader, in the copy `COPY` ([`GENERAL`], [`QUASI`] or
+/// [`AFFINE`]); a triangle that the opaque loops of `QUASI` or `AFFINE`
+/// cannot take goes to `GENERAL`. A function a copy, so that each shader's
+/// loops for the other frames are compiled as they were: one calling
+/// every method had the closures of `shade_spans` called from two places,
+/// and the compiler then left them out of line (x86-64
+/// `demo-textured-lit` 5,975,883 -> 7,047,718 instructions).
 #[inline(never)]
-pub(super) fn shade_custom<C, F, const TW: usize, const TH: usize, const QUASI: bool>(
+pub(super) fn shade_custom<C, F, const TW: usize, const TH: usize, const COPY: u8>(
     tile: &mut TileBuffer<C, TW, TH>,
     rect: &PixelRect,
     tri: &ShaderTriangle<'_, F::Varyings>,
@@ -538,24 +548,36 @@ where
     C: PixelColor + From<Rgb888> + Into<Rgb888> + 'static,
     F: FragmentShader<C>,
 {
-    let setup = &PerspectiveSetup::new(tri, out.mode == Perspective::Affine);
-    if !QUASI {
+    let setup = &PerspectiveSetup::new(tri, COPY == AFFINE || out.mode == Perspective::Affine);
+    if COPY == GENERAL {
         return shader.shade_spans(triangle_spans(tile, rect, tri, found, setup, texture, out));
     }
     // A triangle whose varyings' differences do not fit `i32`
-    // (`PerspectiveSetup::fits`: slivers, huge texture coordinates) goes to
-    // the other copy, which sets it up again (blended passes never come
-    // here: `Shaders::custom`).
-    if !(out.quasi_opaque() && setup.fits()) {
-        return shade_custom::<C, F, TW, TH, false>(tile, rect, tri, found, shader, texture, out);
+    // (`PerspectiveSetup::fits`, `fits_for`: slivers, huge texture
+    // coordinates) goes to the general copy, which sets it up again
+    // (blended passes never come here: `Shaders::custom`).
+    let fits = if COPY == QUASI {
+        out.quasi_opaque() && setup.fits()
+    } else {
+        out.affine_opaque() && setup.fits_for(Perspective::Affine)
+    };
+    if !fits {
+        return shade_custom::<C, F, TW, TH, GENERAL>(tile, rect, tri, found, shader, texture, out);
     }
     let mut spans = triangle_spans(tile, rect, tri, found, setup, texture, out);
-    spans.quasi_opaque = true;
-    shader.shade_quasi_spans(spans)
+    if COPY == QUASI {
+        spans.quasi_opaque = true;
+        shader.shade_quasi_spans(spans)
+    } else {
+        spans.affine_opaque = true;
+        shader.shade_affine_spans(spans)
+    }
 }
 
 /// The spans `found` of triangle `tri` (set up as `setup`) in `tile`, at
-/// `rect`, for the shader; not [`quasi_opaque`](TriangleSpans::quasi_opaque).
+/// `rect`, for the shader; neither
+/// [`quasi_opaque`](TriangleSpans::quasi_opaque) nor
+/// [`affine_opaque`](TriangleSpans::affine_opaque).
 #[inline(always)]
 fn triangle_spans<'a, C, V, const TW: usize, const TH: usize>(
     tile: &'a mut TileBuffer<C, TW, TH>,
@@ -578,5 +600,6 @@ fn triangle_spans<'a, C, V, const TW: usize, const TH: usize>(
         texture,
         out,
         quasi_opaque: false,
+        affine_opaque: false,
     }
 }

@@ -74,6 +74,9 @@ macro_rules! textured_methods {
         span_method!(shade_spans(&self, spans: TriangleSpans<2>) {
             textured_spans::<C, $lit>(spans)
         });
+        span_method!(shade_affine_spans(&self, spans: TriangleSpans<2>) {
+            textured_affine_spans::<C, $lit>(spans)
+        });
         span_method!(shade_quasi_spans(&self, spans: TriangleSpans<2>) {
             match spans.texture() {
                 Some(t) => textured_quasi_spans::<C, $lit>(spans, t.sampler()),
@@ -445,13 +448,6 @@ where
             };
             match near {
                 Some(c) => spans.each(|s| {
-                    // Affine spans keep the shared loop on 64-bit hosts
-                    // ([`LOOPS32`]): x86-64 `fill-nearest-affine` 44.4 per
-                    // fragment with it, 49.7 through this one (the
-                    // Cortex-M3's 49.8 -> 47.1).
-                    if LOOPS32 && s.affine_opaque() {
-                        return s.run_nearest::<AFFINE>(&c, 0);
-                    }
                     if let Some(sh) = s.shifted_opaque() {
                         if LOOPS32 && s.flat_q() {
                             return s.run_nearest::<FLAT_Q>(&c, sh);
@@ -462,6 +458,38 @@ where
                 }),
                 None => spans.each(|s| s.shade_with(LIT, TexelPixel::<_, LIT>(Nearest565(t)))),
             }
+        }
+        Sampler::BilinearRgb565(t) => {
+            spans.each(|s| s.shade_with(LIT, TexelPixel::<_, LIT>(Bilinear565(t, Quad::NONE))))
+        }
+        Sampler::General(t) => spans.each(|s| s.shade_unspecialised(LIT, TexelPixel::<_, LIT>(t))),
+    }
+}
+
+/// [`textured_spans`] for an opaque draw's spans in an affine frame
+/// ([`FragmentShader::shade_affine_spans`]): `Textured`'s nearest texels
+/// on a repeated power-of-two `Rgb565` texture in a loop of their own
+/// (`run_nearest::<AFFINE>`, the texture coordinates' sums stepped), the
+/// others in the opaque affine loop with the shader's pixel. Its own
+/// `match` rather than a call of `textured_spans` for the other samplers:
+/// called from two shading functions, that one's span closures went out
+/// of line (x86-64 `demo-textured-lit` 5,976,296 -> 7,049,062
+/// instructions).
+#[inline(always)]
+fn textured_affine_spans<C, const LIT: bool>(spans: TriangleSpans<'_, C, [I16F16; 2]>) -> u32
+where
+    C: FromTexel + Copy + Into<Rgb888>,
+{
+    let Some(texture) = spans.texture() else {
+        return 0;
+    };
+    match texture.sampler() {
+        Sampler::NearestRgb565(t) => {
+            let parts = t.fine_parts().filter(|_| !LIT && spans.affine_opaque());
+            if let Some(c) = parts.and_then(|(texels, p)| spans.nearest_constants(texels, p)) {
+                return spans.each(|s| s.run_nearest::<AFFINE>(&c, 0));
+            }
+            spans.each(|s| s.shade_with(LIT, TexelPixel::<_, LIT>(Nearest565(t))))
         }
         Sampler::BilinearRgb565(t) => {
             spans.each(|s| s.shade_with(LIT, TexelPixel::<_, LIT>(Bilinear565(t, Quad::NONE))))

@@ -39,9 +39,11 @@ pub struct TriangleSpans<'a, C, V> {
     pub(crate) texture: Option<&'a Texture<'a>>,
     pub(crate) out: Output,
     /// See [`quasi_opaque`](Self::quasi_opaque): set by the renderer,
-    /// a constant in each of its two shading functions, so that code for
+    /// a constant in each of its shading functions, so that code for
     /// the other case is left out of each.
     pub(crate) quasi_opaque: bool,
+    /// See [`affine_opaque`](Self::affine_opaque), likewise.
+    pub(crate) affine_opaque: bool,
 }
 
 impl<'a, C, V: Varyings> TriangleSpans<'a, C, V> {
@@ -134,6 +136,16 @@ impl<C, V: Varyings> TriangleSpans<'_, C, V> {
     #[inline(always)]
     pub fn quasi_opaque(&self) -> bool {
         self.quasi_opaque
+    }
+
+    /// Whether the spans are an opaque draw's in an affine frame
+    /// ([`Perspective::Affine`]): those that the renderer hands to
+    /// [`FragmentShader::shade_affine_spans`](crate::shader::FragmentShader::shade_affine_spans),
+    /// and which [`SpanInput::shade_with`] colours in the opaque affine
+    /// loop.
+    #[inline(always)]
+    pub fn affine_opaque(&self) -> bool {
+        self.affine_opaque
     }
 
     /// Colours each span through `fragment` as

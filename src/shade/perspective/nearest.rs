@@ -12,6 +12,7 @@ use super::lerp::NARROW_MULTIPLY;
 use super::quasi::{quasi_span, segment_step, Segments};
 use super::span::{AFFINE, FLAT_Q};
 use super::{depth16, signed_weights, PerspectiveSetup, SpanInput, Z_FRAC};
+use crate::math::mul_wide;
 use crate::shader::interpolated::byte;
 use crate::shader::TriangleSpans;
 use crate::texture::FromTexel;
@@ -242,6 +243,28 @@ fn nearest_span<C: FromTexel, const WEIGHTS: u8>(
     };
     let shifts = narrow_shifts(k);
     let len = color.len() as u32;
+    // Affine: each fraction is the high word of `2^20 T` modulo 2^64
+    // (`PerspectiveSetup::values_affine`'s `T`, whose low 44 bits it
+    // keeps), which changes by the same step at every pixel: the plane
+    // values `B1`, `B2` change by their steps exactly along a span (their
+    // sums stay within `i32`, see `affine_sum`), so the stepped sums are
+    // the products' at every pixel. Two 64-bit additions a pixel where
+    // the weights and fractions took six products.
+    let (mut su, mut sv, gu, gv) = if WEIGHTS == AFFINE {
+        // `2^20 (d1 b1 + d2 b2)` modulo 2^64.
+        let sum = |d1: usize, d2: usize, (b1, b2): (i32, i32)| {
+            ((mul_wide(k[d1] as i32, b1) + mul_wide(k[d2] as i32, b2)) as u64) << 20
+        };
+        let (b, g) = ((b1, b2), (k[at::DB1] as i32, k[at::DB2] as i32));
+        (
+            sum(at::D1U, at::D2U, b).wrapping_add((k[at::F0U] as u64) << 32),
+            sum(at::D1V, at::D2V, b).wrapping_add((k[at::F0V] as u64) << 32),
+            sum(at::D1U, at::D2U, g),
+            sum(at::D1V, at::D2V, g),
+        )
+    } else {
+        (0, 0, 0, 0)
+    };
     // The pixels that fail, counted in memory: the common path holds no
     // count (a register fewer; it had been spilled around every pixel
     // written).
@@ -250,25 +273,33 @@ fn nearest_span<C: FromTexel, const WEIGHTS: u8>(
     for (c, d) in color.iter_mut().zip(depth.iter_mut()) {
         let zz = depth16(z);
         if zz <= *d {
-            let (w1, w2) = if WEIGHTS == AFFINE {
-                (b1 >> 12, b2 >> 12)
-            } else if WEIGHTS == FLAT_Q {
-                flat_weights(b1, b2, sh, r)
+            let (fu, fv) = if WEIGHTS == AFFINE {
+                ((su >> 32) as u32, (sv >> 32) as u32)
             } else {
-                shifted_weights(q, b1, b2, sh)
+                let (w1, w2) = if WEIGHTS == FLAT_Q {
+                    flat_weights(b1, b2, sh, r)
+                } else {
+                    shifted_weights(q, b1, b2, sh)
+                };
+                let (w1, w2) = (w1 as u32, w2 as u32);
+                (
+                    k[at::F0U]
+                        .wrapping_add(k[at::D1U].wrapping_mul(w1))
+                        .wrapping_add(k[at::D2U].wrapping_mul(w2)),
+                    k[at::F0V]
+                        .wrapping_add(k[at::D1V].wrapping_mul(w1))
+                        .wrapping_add(k[at::D2V].wrapping_mul(w2)),
+                )
             };
-            let (w1, w2) = (w1 as u32, w2 as u32);
-            let fu = k[at::F0U]
-                .wrapping_add(k[at::D1U].wrapping_mul(w1))
-                .wrapping_add(k[at::D2U].wrapping_mul(w2));
-            let fv = k[at::F0V]
-                .wrapping_add(k[at::D1V].wrapping_mul(w1))
-                .wrapping_add(k[at::D2V].wrapping_mul(w2));
             let at = texel_index(k[at::WIDTH], k[at::HEIGHT], fu, fv, shifts);
             *c = C::from_rgb565(texels[at as usize & m]);
             *d = zz;
         } else {
             fails[0] += 1;
+        }
+        if WEIGHTS == AFFINE {
+            su = su.wrapping_add(gu);
+            sv = sv.wrapping_add(gv);
         }
         z = z.wrapping_add(k[at::DZ]);
         if WEIGHTS != FLAT_Q {

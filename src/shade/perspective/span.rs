@@ -26,14 +26,14 @@ pub(crate) const COLOUR_LOOP: bool = cfg!(microraster_colour_loop);
 
 /// Whether the built-in shaders take the span loops chosen for 32-bit
 /// targets, where they were measured faster than on a 64-bit host
-/// (`Textured`'s nearest loops for affine spans and for spans of constant
-/// `Q`, `TexturedLit`'s quasi-perspective loop): on every target whose
-/// pointers are not 64 bits wide, and on any target with
-/// `MICRORASTER_LOOPS32=1` (`build.rs`), so that CI runs the host's
-/// span-shader and golden tests through them too.
+/// (`Textured`'s nearest loop for spans of constant `Q`, `TexturedLit`'s
+/// quasi-perspective loop): on every target whose pointers are not 64 bits
+/// wide, and on any target with `MICRORASTER_LOOPS32=1` (`build.rs`), so
+/// that CI runs the host's span-shader and golden tests through them too.
 pub(crate) const LOOPS32: bool = cfg!(any(not(target_pointer_width = "64"), microraster_loops32));
 
-/// [`SpanInput::run_opaque`]'s weights: affine (`B1`, `B2` shifted), or
+/// [`SpanInput::run_opaque`]'s weights: affine (`B1`, `B2` themselves,
+/// [`PerspectiveSetup::values_affine`]), or
 /// exact from [`shifted_weights`] with the span's shift, or exact from
 /// [`weights`] (its clamps and normalisation per pixel).
 pub(crate) const AFFINE: u8 = 0;
@@ -62,6 +62,13 @@ impl Output {
     #[inline(always)]
     pub(crate) fn opaque(&self) -> bool {
         self.blend == Blend::Opaque && self.write && self.test == DepthTest::LessEqual
+    }
+
+    /// Whether the spans take the opaque affine loops: an
+    /// [`opaque`](Self::opaque) draw in [`Perspective::Affine`].
+    #[inline(always)]
+    pub(crate) fn affine_opaque(&self) -> bool {
+        self.mode == Perspective::Affine && self.opaque()
     }
 
     /// Whether the spans take the opaque quasi-perspective loop: an
@@ -348,7 +355,14 @@ impl<C, V: Varyings> SpanInput<'_, C, V> {
                 let (varyings, color, fine) = if !weighted {
                     (V::zeroed(), [0; 3], None)
                 } else if WEIGHTS == AFFINE {
-                    p.values_fit((b1 >> 12, b2 >> 12), ic, true, false)
+                    // The sums from the differences of `dvar` where `fits`
+                    // tested them ([`FIT_PRODUCTS`]: the opaque loops take
+                    // only such triangles there), else from the vertex
+                    // values. (Chosen by a flag in each span saying which
+                    // of the renderer's copies it is in, the test was not
+                    // folded away: ARMv6-M's `demo-textured-lit` +7 %.)
+                    let (v, c, f) = p.values_affine::<FIT_PRODUCTS>((b1, b2), ic);
+                    (v, c, Some(f))
                 } else if WEIGHTS == SHIFTED {
                     p.values_fit(shifted_weights(q, b1, b2, sh), ic, false, CONVEX)
                 } else if WEIGHTS == FLAT_Q {
@@ -495,7 +509,8 @@ impl<C, V: Varyings> SpanInput<'_, C, V> {
                     let (varyings, color) = if !weighted {
                         (V::zeroed(), [0; 3])
                     } else if affine {
-                        p.values((b1 >> 12, b2 >> 12), ic)
+                        let (v, c, _) = p.values_affine::<false>((b1, b2), ic);
+                        (v, c)
                     } else {
                         p.values_weighted(weights(q, b1, b2), ic)
                     };
