@@ -525,15 +525,15 @@ pub(super) const QUASI: u8 = 1;
 /// spans go to [`FragmentShader::shade_affine_spans`].
 pub(super) const AFFINE: u8 = 2;
 
-/// The second phase of [`fill_shaded`]: the
-/// perspective set-up of the triangle and its spans shaded through the
-/// fragment shader, in the copy `COPY` ([`GENERAL`], [`QUASI`] or
-/// [`AFFINE`]); a triangle that the opaque loops of `QUASI` or `AFFINE`
-/// cannot take goes to `GENERAL`. A function a copy, so that each shader's
-/// loops for the other frames are compiled as they were: one calling
-/// every method had the closures of `shade_spans` called from two places,
-/// and the compiler then left them out of line (x86-64
-/// `demo-textured-lit` 5,975,883 -> 7,047,718 instructions).
+/// The second phase of [`fill_shaded`]: the perspective set-up of the
+/// triangle and its spans shaded through the fragment shader, in the copy
+/// `COPY` ([`GENERAL`], [`QUASI`] or [`AFFINE`]); a triangle that the
+/// opaque loops of `QUASI` or `AFFINE` cannot take goes to `GENERAL`. A
+/// function a copy, so that each shader's loops for the other frames are
+/// compiled as they were: one calling every method had the closures of
+/// `shade_spans` called from two places, and the compiler then left them
+/// out of line (x86-64 `demo-textured-lit` 5,975,883 -> 7,047,718
+/// instructions).
 #[inline(never)]
 pub(super) fn shade_custom<C, F, const TW: usize, const TH: usize, const COPY: u8>(
     tile: &mut TileBuffer<C, TW, TH>,

@@ -249,7 +249,7 @@ fn nearest_span<C: FromTexel, const WEIGHTS: u8>(
     // values `B1`, `B2` change by their steps exactly along a span (their
     // sums stay within `i32`, see `affine_sum`), so the stepped sums are
     // the products' at every pixel. Two 64-bit additions a pixel where
-    // the weights and fractions took six products.
+    // the fractions took four products of the weights.
     let (mut su, mut sv, gu, gv) = if WEIGHTS == AFFINE {
         // `2^20 (d1 b1 + d2 b2)` modulo 2^64.
         let sum = |d1: usize, d2: usize, (b1, b2): (i32, i32)| {

@@ -188,9 +188,9 @@ impl<V: Varyings> PerspectiveSetup<V> {
     /// (a span start is clamped to ±2^29, and along a span of two pixels
     /// or more the plane changes by at most about 2^28, the most a weight
     /// changes between two covered pixels), so each product is below 2^62
-    /// and the sum below 2^63. With `FIT`, from `dvar` (each an `i32`,
-    /// [`fits`](Self::fits)); on ARMv6-M each product then from 16-bit
-    /// pieces ([`mul_wide`]).
+    /// and the sum below 2^63. With `FIT` (where [`FIT_PRODUCTS`]), from
+    /// `dvar` (each an `i32`, [`fits`](Self::fits)): one 32x32 to 64-bit
+    /// product each ([`mul_wide`]); else from the vertex values in `i64`.
     #[inline(always)]
     fn affine_sum<const FIT: bool>(&self, k: usize, (b1, b2): (i32, i32)) -> i64 {
         if FIT {
