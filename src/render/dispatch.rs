@@ -1,6 +1,7 @@
 //! Which span loop shades a triangle: chosen once per tile from the configuration.
 
-use super::fill::{finder, shade, shade_custom, FindFn, AFFINE, GENERAL, QUASI};
+use super::fill::{shade, shade_custom, AFFINE, GENERAL, QUASI};
+use super::find::{finder, FindFn};
 use super::Config;
 use super::Features;
 use crate::raster::{PixelRect, Span};

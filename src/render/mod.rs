@@ -79,6 +79,7 @@ mod dispatch;
 mod error;
 mod features;
 mod fill;
+mod find;
 mod frame;
 mod state;
 mod stats;

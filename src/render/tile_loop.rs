@@ -43,7 +43,7 @@ where
     // `WALK_INLINE`): its function compared by address, so that any other
     // (or a copy the linker did not merge) keeps the call.
     let scan = WALK_INLINE
-        && find as usize == super::fill::finder::<P>(crate::raster::Rasterizer::Scanline) as usize;
+        && find as usize == super::find::finder::<P>(crate::raster::Rasterizer::Scanline) as usize;
     let job = &mut TileJob {
         frame,
         cache,
