@@ -480,13 +480,13 @@ where
         return shader.shade_spans(triangle_spans(tile, rect, tri, found, setup, texture, out));
     }
     // A triangle whose varyings' differences do not fit `i32`
-    // (`PerspectiveSetup::fits`, `fits_for`: slivers, huge texture
+    // (`PerspectiveSetup::fits`, `fits_affine`: slivers, huge texture
     // coordinates) goes to the general copy, which sets it up again
     // (blended passes never come here: `Shaders::custom`).
     let fits = if COPY == QUASI {
         out.quasi_opaque() && setup.fits()
     } else {
-        out.affine_opaque() && setup.fits_for(Perspective::Affine)
+        out.affine_opaque() && setup.fits_affine()
     };
     if !fits {
         return shade_custom::<C, F, TW, TH, GENERAL>(tile, rect, tri, found, shader, texture, out);

@@ -381,13 +381,13 @@ impl<V: Varyings> PerspectiveSetup<V> {
         V::LEN == 0 || !FIT_PRODUCTS || self.fits
     }
 
-    /// [`fits`](Self::fits) for spans in perspective mode `mode`: in
-    /// [`Perspective::Affine`], every target's opaque loops take the
-    /// differences of `dvar` ([`values_affine`](Self::values_affine)), so
-    /// there they must all be exact.
+    /// [`fits`](Self::fits) for the opaque affine loops, which take the
+    /// differences of `dvar` on every target
+    /// ([`values_affine`](Self::values_affine), `nearest_span`): there
+    /// they must all be exact.
     #[inline(always)]
-    pub(crate) fn fits_for(&self, mode: Perspective) -> bool {
-        self.fits() && (V::LEN == 0 || mode != Perspective::Affine || self.fits)
+    pub(crate) fn fits_affine(&self) -> bool {
+        V::LEN == 0 || self.fits
     }
 
     /// Index of the triangle's draw in the scene.
