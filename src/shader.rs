@@ -88,6 +88,16 @@ use fixed::types::I16F16;
 /// whole triangle: textures bend and swim on surfaces seen at an angle
 /// (the gallery's `affine` picture), which is fine for small or
 /// camera-facing triangles.
+///
+/// A draw whose clip-space `w` is the same at every vertex (its
+/// transform's `w` row is `(0, 0, 0, c)`: an orthographic or 2D camera,
+/// [`DrawSetup::constant_w`](crate::vertex::DrawSetup::constant_w)) has
+/// no perspective to correct: every mode interpolates it as `Affine`
+/// does, the varyings rounded once (within about half a unit of 2^-16),
+/// which the exact weights, truncated to 16 bits before their sum, are
+/// not, and its opaque passes take the affine span loops
+/// ([`FragmentShader::shade_affine_spans`]). The image of such a draw is
+/// the same in all four modes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default, Hash)]
 pub enum Perspective {
     /// Every pixel is a sample: one reciprocal per fragment that passes the
@@ -323,8 +333,9 @@ pub trait FragmentShader<C> {
     }
 
     /// [`shade_spans`](Self::shade_spans) for the spans of an opaque draw
-    /// in an affine frame ([`Perspective::Affine`];
-    /// [`TriangleSpans::affine_opaque`]). The renderer calls it from a
+    /// in an affine frame ([`Perspective::Affine`]), or of an opaque draw
+    /// whose clip-space `w` is the same at every vertex in any frame (see
+    /// [`Perspective`]; [`TriangleSpans::affine_opaque`]). The renderer calls it from a
     /// function of its own, as it calls
     /// [`shade_quasi_spans`](Self::shade_quasi_spans), and
     /// [`SpanInput::shade_with`] colours these spans in the opaque affine

@@ -100,14 +100,36 @@ struct Frame {
     screen: Vec<[f64; 2]>,
 }
 
+/// The floor seen from above through an orthographic camera: every
+/// vertex has the same clip-space `w`.
+fn orthographic_camera() -> Camera {
+    Camera::new(
+        Mat4::look_at(
+            Vec3::new(0.0, 30.0, -10.0),
+            Vec3::new(0.0, 0.0, -30.0),
+            Vec3::new(0.0, 1.0, 0.0),
+        )
+        .unwrap(),
+        Mat4::orthographic(-5.0, 5.0, -27.0, 27.0, 0.25, 100.0).unwrap(),
+    )
+}
+
 fn render<const TW: usize, const TH: usize>(perspective: Perspective, raster: Rasterizer) -> Frame {
+    render_with::<TW, TH>(&camera(), perspective, raster)
+}
+
+fn render_with<const TW: usize, const TH: usize>(
+    camera: &Camera,
+    perspective: Perspective,
+    raster: Rasterizer,
+) -> Frame {
     let (positions, uvs, triangles) = floor();
     let mesh = Mesh::new(&positions, &triangles)
         .unwrap()
         .with_uvs(&uvs)
         .unwrap();
     let draws = [Draw::new(&mesh).shading(Shading::Shader)];
-    let scene = Scene::new(camera(), &draws).shader(&UvOut);
+    let scene = Scene::new(*camera, &draws).shader(&UvOut);
     let config = Config::new(Size::new(W, H), Probe::default())
         .cull(CullMode::None)
         .perspective(perspective)
@@ -135,8 +157,11 @@ struct Reference {
 
 impl Reference {
     fn new(screen: Vec<[f64; 2]>) -> Self {
+        Self::with_camera(screen, &camera())
+    }
+
+    fn with_camera(screen: Vec<[f64; 2]>, cam: &Camera) -> Self {
         let (positions, uvs, _) = floor();
-        let cam = camera();
         let vp = cam.projection * cam.view;
         let inv_w = positions
             .iter()
@@ -317,25 +342,60 @@ fn quasi_perspective_stays_within_its_bound() {
 fn affine_mode_is_linear_in_screen_space() {
     let f = render::<16, 16>(Perspective::Affine, Rasterizer::Scanline);
     let r = Reference::new(f.screen.clone());
+    let (worst, far_from_perspective) =
+        within_affine_tolerance(&f, &r, |t, x, y| r.affine(t, x, y));
+    assert!(far_from_perspective > 100, "the scene shows the difference");
+    eprintln!("affine: worst error {worst:.3} units");
+}
+
+/// Holds every pixel of `f` to affine mode's tolerance of `expected` (its
+/// values at a pixel centre in a triangle of `r`); returns the worst error
+/// and how many coordinates `expected` puts more than 0.5 (half a texture
+/// repeat) from the perspective-correct value.
+fn within_affine_tolerance(
+    f: &Frame,
+    r: &Reference,
+    expected: impl Fn([usize; 3], f64, f64) -> [f64; 2],
+) -> (f64, u32) {
     let mut far_from_perspective = 0;
     let mut worst = 0f64;
-    for (x, y, uv) in pixels(&f) {
+    for (x, y, uv) in pixels(f) {
         let (cx, cy) = (x as f64 + 0.5, y as f64 + 0.5);
         let t = r.triangle(cx, cy);
-        let reference = r.affine(t, cx, cy);
+        let reference = expected(t, cx, cy);
         let (correct, _) = r.at(t, cx, cy);
         for c in 0..2 {
             let err = (uv[c] as f64 - reference[c] * 65_536.0).abs();
             worst = worst.max(err);
             assert!(
-                err <= affine_tolerance(&r, t, c),
+                err <= affine_tolerance(r, t, c),
                 "pixel ({x}, {y}) coordinate {c}: {err} units"
             );
             far_from_perspective += ((correct[c] - reference[c]).abs() > 0.5) as u32;
         }
     }
-    assert!(far_from_perspective > 100, "the scene shows the difference");
-    eprintln!("affine: worst error {worst:.3} units");
+    (worst, far_from_perspective)
+}
+
+/// Through an orthographic camera every vertex has the same `w`, so the
+/// perspective-correct varyings are the affine ones, and every mode
+/// interpolates them affinely: the same values in all four modes, each
+/// within affine mode's tolerance of the `f64` reference (the exact
+/// weights, truncated to 16 bits before their sum, would miss it).
+#[test]
+fn an_orthographic_frame_is_affine_in_every_mode() {
+    let cam = orthographic_camera();
+    let frames = MODES.map(|m| render_with::<16, 16>(&cam, m, Rasterizer::Scanline));
+    for (mode, f) in MODES.iter().zip(&frames).skip(1) {
+        assert!(
+            f.probe.pixels == frames[0].probe.pixels,
+            "{mode:?} draws what Exact draws"
+        );
+    }
+    let r = Reference::with_camera(frames[0].screen.clone(), &cam);
+    assert!(r.inv_w.iter().all(|&q| q == r.inv_w[0]), "one w");
+    let (worst, _) = within_affine_tolerance(&frames[0], &r, |t, x, y| r.at(t, x, y).0);
+    eprintln!("orthographic: worst error {worst:.3} units");
 }
 
 /// Every mode gives the same varyings with either rasterizer and any tile

@@ -85,6 +85,8 @@ struct Case {
     /// Perspective mode (low two bits); bit 2 forces the fast texture.
     mode: u8,
     blend: u8,
+    /// Through an orthographic camera (every vertex's `w` the same).
+    ortho: bool,
 }
 
 prop_compose! {
@@ -109,7 +111,10 @@ prop_compose! {
         mode in 0u8..8,
         blend in 0u8..3,
     ) -> Case {
-        Case { positions, uvs, normals, colors, side, pow2, format, bilinear, wrap, texels, mode, blend }
+        Case {
+            positions, uvs, normals, colors, side, pow2, format, bilinear, wrap, texels, mode,
+            blend, ortho: false,
+        }
     }
 }
 
@@ -117,16 +122,24 @@ fn fx(v: f32) -> I16F16 {
     I16F16::from_num(v)
 }
 
-fn camera() -> Camera {
-    Camera::new(
-        Mat4::look_at(
-            Vec3::new(0.0, 0.0, 0.5),
-            Vec3::new(0.0, 0.0, -3.0),
-            Vec3::new(0.0, 1.0, 0.0),
-        )
-        .unwrap(),
-        Mat4::perspective(1.2, W as f32 / H as f32, 0.2, 20.0).unwrap(),
+fn camera(ortho: bool) -> Camera {
+    let view = Mat4::look_at(
+        Vec3::new(0.0, 0.0, 0.5),
+        Vec3::new(0.0, 0.0, -3.0),
+        Vec3::new(0.0, 1.0, 0.0),
     )
+    .unwrap();
+    if ortho {
+        Camera::new(
+            view,
+            Mat4::orthographic(-1.6, 1.6, -1.3, 1.3, 0.2, 20.0).unwrap(),
+        )
+    } else {
+        Camera::new(
+            view,
+            Mat4::perspective(1.2, W as f32 / H as f32, 0.2, 20.0).unwrap(),
+        )
+    }
 }
 
 /// Renders `c` with shader `s` into a `C` frame.
@@ -208,7 +221,7 @@ where
         .shading(Shading::Shader)
         .texture(&texture)
         .blend(blend)];
-    let scene = Scene::new(camera(), &draws).shader(s);
+    let scene = Scene::new(camera(c.ortho), &draws).shader(s);
     let mode = [
         Perspective::Exact,
         Perspective::Quasi8,
@@ -318,8 +331,24 @@ prop_compose! {
     }
 }
 
+prop_compose! {
+    /// [`case`] through an orthographic camera, in any mode, opaque or
+    /// blended: every mode interpolates such a draw affinely, its opaque
+    /// passes in the affine copy (`FragmentShader::shade_affine_spans`).
+    fn ortho_case()(c in case()) -> Case {
+        Case { ortho: true, ..c }
+    }
+}
+
 proptest! {
     #![proptest_config(ProptestConfig { cases: 96, ..ProptestConfig::default() })]
+
+    #[test]
+    fn orthographic_spans_match_the_per_fragment_path(c in ortho_case()) {
+        every_builtin::<Rgb565>(&c)?;
+        every_builtin::<Rgb888>(&c)?;
+        every_builtin::<Gray8>(&c)?;
+    }
 
     #[test]
     fn span_loops_match_the_per_fragment_path(c in case()) {

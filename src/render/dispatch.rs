@@ -96,32 +96,45 @@ where
         }
     }
 
-    /// The function that shades with the scene's shader `G`: none when the
+    /// The functions that shade with the scene's shader `G`: none when the
     /// paths `P` leave shaders out, so that none is linked; for an opaque
     /// pass (`blend`) of a quasi-perspective or affine frame, the copy
     /// with the opaque quasi-perspective or affine loops where `P` has
     /// them ([`Features::QUASI`], [`Features::AFFINE`]), so that a blended
-    /// pass is not set up there only to be handed on.
+    /// pass is not set up there only to be handed on. The second is for
+    /// draws whose clip-space `w` is the same at every vertex, which every
+    /// frame interpolates affinely ([`ShaderPass::constant_w`]): the
+    /// affine copy for an opaque pass where `P` has it.
     pub(super) fn custom<G: FragmentShader<C>, P: Features>(
         &self,
         blend: Blend,
-    ) -> CustomFn<C, G, TW, TH> {
-        if P::SHADERS && P::QUASI && blend == Blend::Opaque && self.out.quasi_opaque() {
-            shade_custom::<C, G, TW, TH, QUASI>
-        } else if P::SHADERS && P::AFFINE && blend == Blend::Opaque && self.out.affine_opaque() {
+    ) -> [CustomFn<C, G, TW, TH>; 2] {
+        let opaque = blend == Blend::Opaque;
+        let affine = if P::SHADERS && P::AFFINE && opaque {
             shade_custom::<C, G, TW, TH, AFFINE>
         } else if P::SHADERS {
             shade_custom::<C, G, TW, TH, GENERAL>
         } else {
             shade_none::<C, G, TW, TH>
-        }
+        };
+        let frame = if P::SHADERS && P::QUASI && opaque && self.out.quasi_opaque() {
+            shade_custom::<C, G, TW, TH, QUASI>
+        } else if P::SHADERS && P::AFFINE && opaque && self.out.affine_opaque() {
+            shade_custom::<C, G, TW, TH, AFFINE>
+        } else if P::SHADERS {
+            shade_custom::<C, G, TW, TH, GENERAL>
+        } else {
+            shade_none::<C, G, TW, TH>
+        };
+        [frame, affine]
     }
 
-    /// A pass through fragment shader `g` with its function `shade`.
+    /// A pass through fragment shader `g` with its functions `shade` (see
+    /// [`custom`](Self::custom)).
     pub(super) fn pass<'g, G: FragmentShader<C>>(
         &self,
         g: &'g G,
-        shade: CustomFn<C, G, TW, TH>,
+        [shade, affine_shade]: [CustomFn<C, G, TW, TH>; 2],
         blend: Blend,
     ) -> ShaderPass<'g, C, G, TW, TH> {
         let mut out = self.out;
@@ -129,6 +142,7 @@ where
         ShaderPass {
             shader: g,
             shade,
+            affine_shade,
             find: self.find,
             out,
         }
@@ -139,6 +153,9 @@ where
 pub(super) struct ShaderPass<'g, C, G: FragmentShader<C>, const TW: usize, const TH: usize> {
     pub(super) shader: &'g G,
     pub(super) shade: CustomFn<C, G, TW, TH>,
+    /// `shade` for a draw whose clip-space `w` is the same at every vertex
+    /// ([`constant_w`](Self::constant_w)).
+    pub(super) affine_shade: CustomFn<C, G, TW, TH>,
     pub(super) find: FindFn,
     pub(super) out: Output,
 }
@@ -158,6 +175,23 @@ impl<C, G: FragmentShader<C>, const TW: usize, const TH: usize> Copy
 }
 
 impl<'g, C, G: FragmentShader<C>, const TW: usize, const TH: usize> ShaderPass<'g, C, G, TW, TH> {
+    /// The pass for a draw whose clip-space `w` is the same at every
+    /// vertex ([`DrawSetup::constant_w`](crate::vertex::DrawSetup::constant_w)):
+    /// interpolated affinely whatever the frame's mode, in the affine copy
+    /// where the renderer links it ([`affine_shade`](Self::affine_shade)). There
+    /// perspective-correct interpolation is affine, `Q` the constant
+    /// `2^28`, and the affine path rounds each varying once after its sum
+    /// where the exact weights are truncated first. Per run or triangle,
+    /// never per pixel.
+    #[inline(always)]
+    pub(super) fn constant_w(mut self, constant: bool) -> Self {
+        if constant {
+            self.shade = self.affine_shade;
+            self.out.mode = crate::shader::Perspective::Affine;
+        }
+        self
+    }
+
     /// The pass with its output changed by `f`.
     pub(super) fn with(mut self, f: impl FnOnce(Output) -> Output) -> Self {
         self.out = f(self.out);

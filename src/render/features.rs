@@ -93,13 +93,15 @@ pub trait Features {
     /// [`Perspective::Quasi16`]: crate::shader::Perspective::Quasi16
     const QUASI: bool = true;
     /// The opaque affine span loops: in a frame with
-    /// [`Perspective::Affine`], opaque draws' spans go to
+    /// [`Perspective::Affine`], and in any frame for a draw whose
+    /// clip-space `w` is the same at every vertex (an orthographic camera,
+    /// see [`Perspective`]), opaque draws' spans go to
     /// [`FragmentShader::shade_affine_spans`](crate::shader::FragmentShader::shade_affine_spans),
     /// a copy of each shader's shading function of its own. Without it
     /// they take the general loop (the same image, more instructions a
-    /// pixel), and a firmware that never draws affine frames does not link
-    /// that copy.
+    /// pixel), and a firmware does not link that copy.
     ///
+    /// [`Perspective`]: crate::shader::Perspective
     /// [`Perspective::Affine`]: crate::shader::Perspective::Affine
     const AFFINE: bool = true;
     /// Meshes with `u32` vertex indices ([`Mesh::new_u32`]); without it

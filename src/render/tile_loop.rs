@@ -379,7 +379,7 @@ where
                 idx,
                 any,
                 shaders
-                    .pass(&shader::Flat, shaders.flat_t, blend)
+                    .pass(&shader::Flat, [shaders.flat_t; 2], blend)
                     .with(no_write(blend)),
             ),
             Shading::Gouraud => self.shaded(
@@ -387,7 +387,7 @@ where
                 idx,
                 any,
                 shaders
-                    .pass(&shader::Gouraud, shaders.gouraud_t, blend)
+                    .pass(&shader::Gouraud, [shaders.gouraud_t; 2], blend)
                     .with(no_write(blend)),
             ),
             // Never deferred: they have no fill.

@@ -281,6 +281,13 @@ impl<C: From<Rgb888> + 'static> FragmentShader<C> for Gouraud {
             spans.each_quasi(true, Gouraud)
         }
     }
+    span_method! {
+        /// The opaque affine loop, without the colour's clamps where the
+        /// span stays within the triangle.
+        shade_affine_spans(&self, spans: TriangleSpans<0>) {
+            spans.each(|s| s.shade_affine(true, Gouraud))
+        }
+    }
 }
 
 /// Where a textured shader's texels come from, decided once per span:
@@ -489,10 +496,10 @@ where
             if let Some(c) = parts.and_then(|(texels, p)| spans.nearest_constants(texels, p)) {
                 return spans.each(|s| s.run_nearest::<AFFINE>(&c, 0));
             }
-            spans.each(|s| s.shade_with(LIT, TexelPixel::<_, LIT>(Nearest565(t))))
+            spans.each(|s| s.shade_affine(LIT, TexelPixel::<_, LIT>(Nearest565(t))))
         }
         Sampler::BilinearRgb565(t) => {
-            spans.each(|s| s.shade_with(LIT, TexelPixel::<_, LIT>(Bilinear565(t, Quad::NONE))))
+            spans.each(|s| s.shade_affine(LIT, TexelPixel::<_, LIT>(Bilinear565(t, Quad::NONE))))
         }
         Sampler::General(t) => spans.each(|s| s.shade_unspecialised(LIT, TexelPixel::<_, LIT>(t))),
     }

@@ -127,7 +127,9 @@ impl<'a, C, V: Varyings> SpanInput<'a, C, V> {
         self.texture
     }
 
-    /// How the varyings are interpolated along the span.
+    /// How the varyings are interpolated along the span: the frame's mode, or
+    /// [`Perspective::Affine`] for a draw whose clip-space `w` is the same
+    /// at every vertex (see [`Perspective`]).
     #[inline(always)]
     pub fn perspective(&self) -> Perspective {
         self.mode
@@ -165,6 +167,27 @@ impl<'a, C, V: Varyings> SpanInput<'a, C, V> {
         C: Copy + From<Rgb888> + Into<Rgb888>,
     {
         self.shade_with_loops::<true>(interpolate_color, fragment, None)
+    }
+
+    /// [`shade_with`](Self::shade_with) for a span of
+    /// [`FragmentShader::shade_affine_spans`] (an opaque draw, affine):
+    /// with `interpolate_color`, a span whose weights stay within the
+    /// triangle ([`affine_convex`](Self::affine_convex)) in the loop whose
+    /// colour takes no clamp. Only in the affine copy, so that the general
+    /// copy's loops stay as they are.
+    #[inline(always)]
+    pub(crate) fn shade_affine(self, interpolate_color: bool, fragment: impl PixelFn<V, C>) -> u32
+    where
+        C: Copy + From<Rgb888> + Into<Rgb888>,
+    {
+        if !(self.opaque && self.mode == Perspective::Affine) {
+            return self.shade_with(interpolate_color, fragment);
+        }
+        if interpolate_color && self.affine_convex() {
+            self.run_opaque::<AFFINE, true>(interpolate_color, fragment, 0)
+        } else {
+            self.run_opaque::<AFFINE, false>(interpolate_color, fragment, 0)
+        }
     }
 
     /// [`shade_with`](Self::shade_with) for a span that

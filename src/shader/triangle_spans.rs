@@ -59,7 +59,9 @@ impl<'a, C, V: Varyings> TriangleSpans<'a, C, V> {
         self.texture
     }
 
-    /// How the varyings are interpolated along the spans.
+    /// How the varyings are interpolated along the spans: the frame's mode, or
+    /// [`Perspective::Affine`] for a draw whose clip-space `w` is the same
+    /// at every vertex (see [`Perspective`]).
     #[inline(always)]
     pub fn perspective(&self) -> Perspective {
         self.out.mode
@@ -139,7 +141,9 @@ impl<C, V: Varyings> TriangleSpans<'_, C, V> {
     }
 
     /// Whether the spans are an opaque draw's in an affine frame
-    /// ([`Perspective::Affine`]): those that the renderer hands to
+    /// ([`Perspective::Affine`]), or of an opaque draw interpolated
+    /// affinely in any frame (its clip-space `w` the same at every vertex,
+    /// see [`Perspective`]): those that the renderer hands to
     /// [`FragmentShader::shade_affine_spans`](crate::shader::FragmentShader::shade_affine_spans),
     /// and which [`SpanInput::shade_with`] colours in the opaque affine
     /// loop.

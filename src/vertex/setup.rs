@@ -417,6 +417,17 @@ impl DrawSetup {
         }
     }
 
+    /// Whether every vertex of the draw has the same clip-space `w`: its
+    /// transform's `w` row is `(0, 0, 0, c)` (an orthographic or 2D
+    /// camera, no perspective). Fragment shaders interpolate such a draw
+    /// affinely in every perspective mode (see
+    /// [`Perspective`](crate::shader::Perspective)).
+    #[inline(always)]
+    pub fn constant_w(&self) -> bool {
+        let m = &self.mvp.m;
+        m[0][3] | m[1][3] | m[2][3] == 0
+    }
+
     /// The clip-space `w` of vertex `i` of `mesh`, exactly as
     /// [`clip_vertex`](Self::clip_vertex) computes it, for a vertex that
     /// the vertex stage already transformed without error (then the

@@ -116,6 +116,7 @@ where
         // x86-64 6,412,731 -> 6,408,329, M3 7,185,926 -> 7,181,556, M4F
         // 7,147,533 -> 7,145,591, ARMv6-M 23,065,447 -> 22,998,493).
         let mut setup = frame.setup(cur.draw, self.cache).copied();
+        let pass = pass.constant_w(setup.is_some_and(|s| s.constant_w()));
         let mut n = 0;
         loop {
             let [i0, i1, i2] = cur.indices(t);
@@ -185,6 +186,11 @@ where
         let frame = self.frame;
         let draw = &frame.draws[cur.draw];
         let mesh = draw.mesh;
+        // (A draw without a set-up, whose vertices failed, draws nothing.)
+        let Some(constant_w) = frame.setup(cur.draw, self.cache).map(|s| s.constant_w()) else {
+            return 0;
+        };
+        let pass = pass.constant_w(constant_w);
         // Written out rather than `idx.map`: the map was left out of line,
         // a call per triangle and tile.
         let vertex = |i: u32| {

@@ -155,14 +155,7 @@ pub(super) fn span_shift_convex32_in<const NARROW: bool>(
     len: usize,
 ) -> Option<(u32, bool)> {
     let last = i32::try_from(len.saturating_sub(1)).ok()?;
-    let end = |a: i32, g: i32| {
-        if NARROW {
-            checked_mul_short(g, last)
-        } else {
-            g.checked_mul(last)
-        }
-        .and_then(|d| a.checked_add(d))
-    };
+    let end = |a: i32, g: i32| span_end::<NARROW>(a, g, last);
     let [q, b1, b2] = planes;
     let [gq, g1, g2] = steps;
     let qe = end(q, gq)?;
@@ -190,6 +183,45 @@ pub(super) fn span_shift_convex32_in<const NARROW: bool>(
     };
     (within(b1, q) && within(b2, q) && within(b1e, qe) && within(b2e, qe))
         .then(|| (shift(), convex))
+}
+
+/// Whether the affine weights (`B1 >> 12`, `B2 >> 12`,
+/// [`PerspectiveSetup::values_affine`](super::PerspectiveSetup::values_affine))
+/// of every pixel of a span of `len` pixels starting at `planes` (`Q`,
+/// `B1`, `B2`) with `steps` are non-negative and sum to at most `2^16`: at
+/// both ends `B1, B2 >= 0` and `B1 + B2 <= 2^28` (the planes are linear
+/// along the span, and `floor(B1 / 2^12) + floor(B2 / 2^12) <= floor((B1 +
+/// B2) / 2^12)`). Each colour channel is then a convex combination of
+/// the vertices' and needs no clamp. In `i32`, checked (a span whose end
+/// overflows is not convex), the sums in `u32`, where two values of
+/// `0..2^31` cannot overflow.
+#[inline(always)]
+pub(super) fn affine_convex(planes: [i32; 3], steps: [i32; 3], len: usize) -> bool {
+    let Ok(last) = i32::try_from(len.saturating_sub(1)) else {
+        return false;
+    };
+    let end = |a: i32, g: i32| span_end::<NARROW_MULTIPLY>(a, g, last);
+    let [_, b1, b2] = planes;
+    let [_, g1, g2] = steps;
+    let (Some(b1e), Some(b2e)) = (end(b1, g1), end(b2, g2)) else {
+        return false;
+    };
+    let sum = |a: i32, b: i32| (a as u32).wrapping_add(b as u32);
+    const ONE: u32 = super::Q_ONE as u32;
+    (b1 | b2 | b1e | b2e) >= 0 && sum(b1, b2) <= ONE && sum(b1e, b2e) <= ONE
+}
+
+/// A plane's value `a + g last` at a span's last pixel, `None` if it
+/// overflows `i32`; with `NARROW` (ARMv6-M) the product by
+/// [`checked_mul_short`].
+#[inline(always)]
+fn span_end<const NARROW: bool>(a: i32, g: i32, last: i32) -> Option<i32> {
+    if NARROW {
+        checked_mul_short(g, last)
+    } else {
+        g.checked_mul(last)
+    }
+    .and_then(|d| a.checked_add(d))
 }
 
 /// `g.checked_mul(last)` for `last >= 0` in 32-bit products, on ARMv6-M
@@ -405,6 +437,40 @@ mod tests {
             }
         }
         assert!(convex > 2_000, "{convex} convex spans");
+    }
+
+    /// `affine_convex` says a span is convex exactly when every pixel's
+    /// planes have `B1, B2 >= 0` and `B1 + B2 <= 2^28` (a span's `B` in
+    /// affine mode: the weights in units of 2^-28), and then each pixel's
+    /// weights `B >> 12` are non-negative and sum to at most 2^16.
+    #[test]
+    fn affine_convex_spans_keep_their_weights_in_the_triangle() {
+        let mut next = crate::testing::rng();
+        let one = 1i64 << 28;
+        let (mut convex, mut not) = (0, 0);
+        for _ in 0..40_000 {
+            let len = 1 + next(64) as usize;
+            let b1 = next(1 << 28) as i32 - (1 << 14);
+            let b2 = next((one - b1.max(0) as i64) as u64 + (1 << 14)) as i32 - (1 << 14);
+            let mut g = || (next(1 << 24) as i32 - (1 << 23)) >> next(12);
+            let steps = [0, g(), g()];
+            let said = affine_convex([1 << 28, b1, b2], steps, len);
+            let (mut b1, mut b2) = (b1 as i64, b2 as i64);
+            let mut inside = true;
+            for _ in 0..len {
+                inside &= b1 >= 0 && b2 >= 0 && b1 + b2 <= one;
+                if said {
+                    let (w1, w2) = (b1 >> 12, b2 >> 12);
+                    assert!(w1 >= 0 && w2 >= 0 && w1 + w2 <= 1 << 16, "{b1} {b2}");
+                }
+                b1 += steps[1] as i64;
+                b2 += steps[2] as i64;
+            }
+            assert_eq!(said, inside, "{b1} {b2} {steps:?} {len}");
+            convex += said as u32;
+            not += !said as u32;
+        }
+        assert!(convex > 5_000 && not > 5_000, "{convex} convex, {not} not");
     }
 
     /// `span_shift_convex` (in `i64`; with `CONVEX_ONLY`, its convex

@@ -8,7 +8,7 @@ use super::barycentric::span_shift_convex;
 #[cfg(microraster_narrow_multiply)]
 use super::barycentric::span_shift_convex32;
 use super::barycentric::{
-    flat_weights, shifted_weights, span_reciprocal, span_shift, weights_guessed,
+    affine_convex, flat_weights, shifted_weights, span_reciprocal, span_shift, weights_guessed,
 };
 use super::quasi::{quasi_segments, segment_length, segment_step, RECIPROCAL};
 use super::*;
@@ -302,6 +302,13 @@ impl<C, V: Varyings> SpanInput<'_, C, V> {
         span_shift_convex32(self.planes, self.steps, self.color.len())
     }
 
+    /// Whether the span's affine weights stay within the triangle at
+    /// every pixel, so that its colour needs no clamp ([`affine_convex`]).
+    #[inline(always)]
+    pub(crate) fn affine_convex(&self) -> bool {
+        affine_convex(self.planes, self.steps, self.color.len())
+    }
+
     /// The span loop of an opaque draw with the default depth test
     /// (`LessEqual`) and depth writes: [`run`](Self::run) with the test,
     /// the write and the blend known, so nothing but the depth comparison
@@ -362,6 +369,14 @@ impl<C, V: Varyings> SpanInput<'_, C, V> {
                     // of the renderer's copies it is in, the test was not
                     // folded away: ARMv6-M's `demo-textured-lit` +7 %.)
                     let (v, c, f) = p.values_affine::<FIT_PRODUCTS>((b1, b2), ic);
+                    // A convex span's colour on a 64-bit host: red and
+                    // green from one product pair (`color_convex`).
+                    #[cfg(target_pointer_width = "64")]
+                    let c = if CONVEX && ic {
+                        p.color_convex((b1 >> 12, b2 >> 12))
+                    } else {
+                        c
+                    };
                     (v, c, Some(f))
                 } else if WEIGHTS == SHIFTED {
                     p.values_fit(shifted_weights(q, b1, b2, sh), ic, false, CONVEX)

@@ -123,7 +123,7 @@ impl<V: Varyings> PerspectiveSetup<V> {
     /// three.
     #[cfg(target_pointer_width = "64")]
     #[inline(always)]
-    fn color_convex(&self, (b1, b2): (i32, i32)) -> [i32; 3] {
+    pub(super) fn color_convex(&self, (b1, b2): (i32, i32)) -> [i32; 3] {
         let [base, d1, d2] = self.color_rg;
         let rg = base
             .wrapping_add(d1.wrapping_mul(b1 as u64))
