@@ -13,10 +13,13 @@
 //! * `fill/flat_depth_8_layers`: 8 flat-shaded, depth-tested 320x240 quads
 //!   drawn back to front (every fragment passes and is written), into
 //!   `NullSink`; the throughput is in shaded pixels.
-//! * `fill_shader/{flat,gouraud,textured_nearest,textured_bilinear,textured_lit}/{exact,quasi8,quasi16,affine}`:
+//! * `fill_shader/{flat,gouraud,textured_nearest,textured_bilinear,textured_lit}/{exact,quasi8,quasi16,affine}[_facing]`:
 //!   the same 8 layers through each built-in fragment shader (32x32
 //!   Rgb565 checker texture, repeated 4 x 3 times per quad) in each
-//!   perspective mode.
+//!   perspective mode; their clip-space `w` is one constant, so every
+//!   mode draws them affinely, but with `_facing` (a camera whose `w`
+//!   depends on depth, each quad still of one `w`: quads facing a
+//!   perspective camera), where the mode's own loops draw them.
 //! * `demo_320x240/*`: frame 0 of the demo (4,000-triangle lit torus knot
 //!   plus a cube), Gouraud, depth-tested, `Renderer<Rgb565, 32, 32>` and
 //!   `Workspace<2048, 4096, 80>`, into `NullSink` or into a full frame
@@ -95,20 +98,30 @@ fn fill_shaders(c: &mut Criterion) {
     let scene = FillScene::new(FILL_LAYERS);
     let nearest = scene.texture;
     let bilinear = nearest.filter(Filter::Bilinear);
-    for (mode_name, mode) in PERSPECTIVE_MODES {
+    for ((mode_name, mode), facing) in PERSPECTIVE_MODES
+        .into_iter()
+        .flat_map(|m| [(m, false), (m, true)])
+    {
         let mut r = BenchRenderer::new(renderer().config().perspective(mode));
+        let id = if facing {
+            format!("{mode_name}_facing")
+        } else {
+            mode_name.to_string()
+        };
         macro_rules! bench {
             ($name:literal, $shader:expr, $tex:expr) => {{
-                let stats = scene.render_shader(&mut r, &mut ws, &$shader, $tex, &mut NullSink);
+                let stats =
+                    scene.render_shader(&mut r, &mut ws, &$shader, $tex, facing, &mut NullSink);
                 assert_eq!(stats.pixels_shaded, FILL_LAYERS as u32 * WIDTH * HEIGHT);
                 g.throughput(Throughput::Elements(stats.pixels_shaded as u64));
-                g.bench_function(BenchmarkId::new($name, mode_name), |b| {
+                g.bench_function(BenchmarkId::new($name, &id), |b| {
                     b.iter(|| {
                         black_box(scene.render_shader(
                             &mut r,
                             &mut ws,
                             &$shader,
                             $tex,
+                            facing,
                             &mut NullSink,
                         ))
                     })

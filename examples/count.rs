@@ -12,7 +12,11 @@
 //! the euc crate), or `fill-SHADER-MODE`: the fill scene through a
 //! fragment shader, `SHADER` one of `flat`, `gouraud`, `nearest`,
 //! `bilinear` (textured) and `lit` (textured and lit), `MODE` one of
-//! `exact`, `quasi8`, `quasi16` and `affine`; `terrain` (a terrain of
+//! `exact`, `quasi8`, `quasi16` and `affine` (the quads' clip-space `w`
+//! is one constant, so every mode draws them through the affine loops),
+//! or `fill-SHADER-MODE-facing`: the same through a camera whose `w`
+//! depends on depth (each quad still of one `w`), as quads facing a
+//! perspective camera, which take the mode's own loops; `terrain` (a terrain of
 //! 18,432 triangles imported in clusters of 64, mostly outside the view)
 //! and `terrain-whole` (the same terrain imported without clusters),
 //! `rock` (a 3,920-triangle mesh of small, uneven triangles) and
@@ -53,6 +57,8 @@ enum Job {
         scene: FillScene,
         ws: Box<DemoWorkspace>,
         shader: FillShader,
+        /// Through `facing_camera` (the `-facing` scenes).
+        facing: bool,
     },
     Terrain {
         scene: Box<TerrainScene>,
@@ -98,24 +104,35 @@ fn frame(job: &mut Job, r: &mut BenchRenderer) -> Option<FrameStats> {
             e.render();
             None
         }
-        Job::Shaded { scene, ws, shader } => {
+        Job::Shaded {
+            scene,
+            ws,
+            shader,
+            facing,
+        } => {
+            let f = *facing;
             use microraster::shader::{Flat, Gouraud, Textured, TexturedLit};
             let nearest = scene.texture;
             let bilinear = nearest.filter(microraster::texture::Filter::Bilinear);
             Some(match shader {
-                FillShader::Flat => scene.render_shader(r, ws, &Flat, &nearest, sink),
-                FillShader::Gouraud => scene.render_shader(r, ws, &Gouraud, &nearest, sink),
-                FillShader::Nearest => scene.render_shader(r, ws, &Textured, &nearest, sink),
-                FillShader::Bilinear => scene.render_shader(r, ws, &Textured, &bilinear, sink),
-                FillShader::Lit => scene.render_shader(r, ws, &TexturedLit, &nearest, sink),
+                FillShader::Flat => scene.render_shader(r, ws, &Flat, &nearest, f, sink),
+                FillShader::Gouraud => scene.render_shader(r, ws, &Gouraud, &nearest, f, sink),
+                FillShader::Nearest => scene.render_shader(r, ws, &Textured, &nearest, f, sink),
+                FillShader::Bilinear => scene.render_shader(r, ws, &Textured, &bilinear, f, sink),
+                FillShader::Lit => scene.render_shader(r, ws, &TexturedLit, &nearest, f, sink),
             })
         }
     }
 }
 
-/// The job and perspective mode of a `fill-SHADER-MODE` scene name.
+/// The job and perspective mode of a `fill-SHADER-MODE` or
+/// `fill-SHADER-MODE-facing` scene name.
 fn shaded(name: &str) -> Option<(Job, Perspective)> {
     let rest = name.strip_prefix("fill-")?;
+    let (rest, facing) = match rest.strip_suffix("-facing") {
+        Some(rest) => (rest, true),
+        None => (rest, false),
+    };
     let (shader, mode) = rest.split_once('-')?;
     let shader = match shader {
         "flat" => FillShader::Flat,
@@ -137,6 +154,7 @@ fn shaded(name: &str) -> Option<(Job, Perspective)> {
             scene: FillScene::new(FILL_LAYERS),
             ws: Box::default(),
             shader,
+            facing,
         },
         mode,
     ))
@@ -218,7 +236,7 @@ fn main() {
             eprintln!(
                 "count: unknown scene {other:?} \
                  (demo, demo-flat, fill, tri4, tri32, tri100, tri1000, tri10000, euc, \
-                 fill-SHADER-MODE, terrain, terrain-whole, rock, demo-textured-lit, knot1k-textured-lit)"
+                 fill-SHADER-MODE[-facing], terrain, terrain-whole, rock, demo-textured-lit, knot1k-textured-lit)"
             );
             std::process::exit(2);
         }

@@ -44,8 +44,8 @@
 # the linked ELF) and peak stack (which the firmware measures). SCENES (names separated by spaces) is passed to the
 # build as MICRORASTER_ICOUNT_SCENES; the scenes are demo, demo-flat, fill,
 # grid4 and the fragment-shader fills fill-gouraud-exact,
-# fill-nearest-exact, fill-nearest-affine, fill-nearest-quasi16,
-# fill-gouraud-quasi16, fill-lit-quasi16, fill-bilinear-exact and
+# fill-nearest-exact, fill-nearest-affine, fill-nearest-quasi16-facing,
+# fill-gouraud-quasi16-facing, fill-lit-quasi16-facing, fill-bilinear-exact and
 # fill-lit-exact, the small-triangle rock and
 # demo-textured-lit (examples/icount_scenes/mod.rs). Without SCENES, the
 # LM3S6965 gets seven builds (demo demo-flat fill; grid4; rock; the exact
@@ -104,7 +104,7 @@ for board in $BOARDS; do
     if [ -n "$SCENES" ]; then
         groups=("$SCENES")
     elif [ "$board" = lm3s6965evb ]; then
-        groups=("demo demo-flat fill" "grid4" "rock" "$SHADER_SCENES" "fill-nearest-quasi16 fill-gouraud-quasi16" "fill-lit-quasi16" "demo-textured-lit")
+        groups=("demo demo-flat fill" "grid4" "rock" "$SHADER_SCENES" "fill-nearest-quasi16-facing fill-gouraud-quasi16-facing" "fill-lit-quasi16-facing" "demo-textured-lit")
     else
         groups=("")
     fi

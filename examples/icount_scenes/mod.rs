@@ -17,11 +17,16 @@
 //!   separate triangles, whose 24,000 vertices fit neither the LM3S6965's
 //!   RAM nor its flash).
 //! * `fill-gouraud-exact`, `fill-nearest-exact`, `fill-nearest-affine`,
-//!   `fill-nearest-quasi16`, `fill-gouraud-quasi16`, `fill-lit-quasi16`,
 //!   `fill-bilinear-exact`, `fill-lit-exact`: the fill quads through the
 //!   `Gouraud`, `Textured` (nearest or bilinear) and `TexturedLit` fragment
 //!   shaders, with the host's 32x32 checker texture, as the host's
-//!   `fill-SHADER-MODE` scenes;
+//!   `fill-SHADER-MODE` scenes (their clip-space `w` is one constant, so
+//!   every mode draws them through the affine loops);
+//! * `fill-nearest-quasi16-facing`, `fill-gouraud-quasi16-facing`,
+//!   `fill-lit-quasi16-facing`: the same quads through a camera whose `w`
+//!   depends on depth, each quad still of one `w` (as quads facing a
+//!   perspective camera), quasi-perspective every 16 columns: the opaque
+//!   quasi-perspective loops, as the host's `fill-SHADER-quasi16-facing`;
 //! * `rock`: the host's small-triangle mesh (`examples/rock_scene`, 3,920
 //!   triangles of 5 to 20 pixels), lit, Gouraud; in this workspace's 4,096
 //!   bin entries (the host's has 6,144), so it may take more bin passes;
@@ -89,10 +94,11 @@ const TEXTURED_ALONE: bool = {
 /// (the other depth tests' copies of the shader span loops above all) no
 /// longer fits the LM3S6965's 256 KiB of flash beside the knot's 88,000
 /// bytes of mesh data; the frame's work is the same, as the image is.
-/// Every build but those with the `*-quasi16` fills leaves out the
+/// Every build but those with the `*-quasi16-facing` fills leaves out the
 /// opaque quasi-perspective loops ([`Features::QUASI`]), which no other
-/// scene takes, and every build but that with `fill-nearest-affine` the
-/// opaque affine loops ([`Features::AFFINE`]).
+/// scene takes, and every build but those with the other shader fills
+/// (of constant `w`, drawn affinely in every mode) the opaque affine loops
+/// ([`Features::AFFINE`]).
 ///
 /// [`Features::QUASI`]: microraster::Features::QUASI
 /// [`Features::AFFINE`]: microraster::Features::AFFINE
@@ -109,7 +115,11 @@ impl microraster::Features for BenchFeatures {
     const QUASI: bool = SceneId::FillNearestQuasi16.built()
         || SceneId::FillGouraudQuasi16.built()
         || SceneId::FillLitQuasi16.built();
-    const AFFINE: bool = SceneId::FillNearestAffine.built();
+    const AFFINE: bool = SceneId::FillNearestAffine.built()
+        || SceneId::FillGouraud.built()
+        || SceneId::FillNearest.built()
+        || SceneId::FillBilinear.built()
+        || SceneId::FillLit.built();
 }
 /// The workspace of every scene: 2,048 vertices, 4,096 bin entries, all 80
 /// tiles in one pass (33,088 bytes); `MICRORASTER_BENCH_BINS` bin entries
@@ -305,13 +315,14 @@ pub enum SceneId {
     FillNearest,
     /// Textured, nearest texel, affine.
     FillNearestAffine,
-    /// Textured, nearest texel, quasi-perspective every 16 columns.
+    /// Textured, nearest texel, quasi-perspective every 16 columns,
+    /// through the facing camera ([`facing_camera`]).
     FillNearestQuasi16,
     /// The fill quads through the `Gouraud` fragment shader,
-    /// quasi-perspective every 16 columns.
+    /// quasi-perspective every 16 columns, through the facing camera.
     FillGouraudQuasi16,
     /// Textured and lit, nearest texel, quasi-perspective every 16
-    /// columns.
+    /// columns, through the facing camera.
     FillLitQuasi16,
     /// Textured, bilinear, exact perspective.
     FillBilinear,
@@ -352,9 +363,9 @@ impl SceneId {
             Self::FillGouraud => "fill-gouraud-exact",
             Self::FillNearest => "fill-nearest-exact",
             Self::FillNearestAffine => "fill-nearest-affine",
-            Self::FillNearestQuasi16 => "fill-nearest-quasi16",
-            Self::FillGouraudQuasi16 => "fill-gouraud-quasi16",
-            Self::FillLitQuasi16 => "fill-lit-quasi16",
+            Self::FillNearestQuasi16 => "fill-nearest-quasi16-facing",
+            Self::FillGouraudQuasi16 => "fill-gouraud-quasi16-facing",
+            Self::FillLitQuasi16 => "fill-lit-quasi16-facing",
             Self::FillBilinear => "fill-bilinear-exact",
             Self::FillLit => "fill-lit-exact",
             Self::Rock => "rock",
@@ -569,6 +580,16 @@ fn ndc_camera() -> Camera {
     Camera::new(Mat4::IDENTITY, Mat4::IDENTITY)
 }
 
+/// [`ndc_camera`] whose clip-space `w` grows by 2^-12 a unit of depth,
+/// as the host's `facing_camera` (`examples/common/scenes`): each fill
+/// quad still has one `w`, but the transform's is not constant, so the
+/// shaders take the mode's own loops.
+fn facing_camera() -> Camera {
+    let mut projection = Mat4::IDENTITY;
+    projection.m[2][3] = 1.0 / 4096.0;
+    Camera::new(Mat4::IDENTITY, projection)
+}
+
 /// A renderer with the benchmark settings.
 pub fn renderer() -> BenchRenderer {
     BenchRenderer::new(Config::new(Size::new(WIDTH, HEIGHT), CLEAR))
@@ -678,6 +699,9 @@ pub fn frame<P: Profiler>(
     // A shader fill: the frame's result, returned from its arm.
     macro_rules! fill {
         ($shader:expr, $filter:expr, $mode:expr) => {
+            fill!($shader, $filter, $mode, ndc_camera())
+        };
+        ($shader:expr, $filter:expr, $mode:expr, $camera:expr) => {
             return fill_shader(
                 meshes,
                 renderer,
@@ -685,7 +709,7 @@ pub fn frame<P: Profiler>(
                 profiler,
                 sink,
                 $shader,
-                ($filter, $mode),
+                ($filter, $mode, $camera),
             )
         };
     }
@@ -730,11 +754,15 @@ pub fn frame<P: Profiler>(
         SceneId::FillGouraud if GOURAUD => fill!(&Gouraud, Filter::Nearest, EXACT),
         SceneId::FillNearest if NEAREST => fill!(&Textured, Filter::Nearest, EXACT),
         SceneId::FillNearestAffine if AFFINE => fill!(&Textured, Filter::Nearest, AFFINE_MODE),
-        SceneId::FillNearestQuasi16 if QUASI => fill!(&Textured, Filter::Nearest, QUASI_MODE),
-        SceneId::FillGouraudQuasi16 if GOURAUD_QUASI => {
-            fill!(&Gouraud, Filter::Nearest, QUASI_MODE)
+        SceneId::FillNearestQuasi16 if QUASI => {
+            fill!(&Textured, Filter::Nearest, QUASI_MODE, facing_camera())
         }
-        SceneId::FillLitQuasi16 if LIT_QUASI => fill!(&TexturedLit, Filter::Nearest, QUASI_MODE),
+        SceneId::FillGouraudQuasi16 if GOURAUD_QUASI => {
+            fill!(&Gouraud, Filter::Nearest, QUASI_MODE, facing_camera())
+        }
+        SceneId::FillLitQuasi16 if LIT_QUASI => {
+            fill!(&TexturedLit, Filter::Nearest, QUASI_MODE, facing_camera())
+        }
         SceneId::FillBilinear if BILINEAR => fill!(&Textured, Filter::Bilinear, EXACT),
         SceneId::FillLit if LIT => fill!(&TexturedLit, Filter::Nearest, EXACT),
         _ => return Err(FrameError::NotBuilt),
@@ -743,8 +771,9 @@ pub fn frame<P: Profiler>(
 }
 
 /// The fill quads through fragment shader `shader`, sampling the checker
-/// texture with `filter`, with perspective `mode`: the host's
-/// `fill-SHADER-MODE` scenes.
+/// texture with `filter`, with perspective `mode`, through `camera`: the
+/// host's `fill-SHADER-MODE` scenes ([`ndc_camera`]) and
+/// `fill-SHADER-MODE-facing` ones ([`facing_camera`]).
 fn fill_shader<P: Profiler, F: FragmentShader<Rgb565>>(
     meshes: &Meshes,
     renderer: &mut BenchRenderer,
@@ -752,14 +781,14 @@ fn fill_shader<P: Profiler, F: FragmentShader<Rgb565>>(
     profiler: &mut P,
     sink: &mut FrameSink,
     shader: &F,
-    (filter, mode): (Filter, Perspective),
+    (filter, mode, camera): (Filter, Perspective, Camera),
 ) -> Result<FrameStats, FrameError> {
     let texture = meshes.texture.ok_or(FrameError::NotBuilt)?.filter(filter);
     renderer.config_mut().perspective = mode;
     let draws = [Draw::new(&meshes.fill)
         .shading(Shading::Shader)
         .texture(&texture)];
-    let s = Scene::new(ndc_camera(), &draws).shader(shader);
+    let s = Scene::new(camera, &draws).shader(shader);
     renderer
         .render_profiled(ws, &s, sink, profiler)
         .map_err(FrameError::Render)

@@ -1,7 +1,9 @@
 //! [`FillScene`]: full-frame quads drawn back to front, every fragment
 //! written.
 
-use super::{fx, leak, ndc, ndc_camera, BenchRenderer, DemoWorkspace, HEIGHT, WIDTH};
+use super::{
+    facing_camera, fx, leak, ndc, ndc_camera, BenchRenderer, DemoWorkspace, HEIGHT, WIDTH,
+};
 use embedded_graphics::pixelcolor::{Rgb565, Rgb888};
 use microraster::prelude::*;
 
@@ -57,13 +59,17 @@ impl FillScene {
     }
 
     /// Renders the quads through fragment shader `shader` (every draw
-    /// [`Shading::Shader`], sampling `texture`), with the depth test.
+    /// [`Shading::Shader`], sampling `texture`), with the depth test;
+    /// through [`facing_camera`] if `facing`, else [`ndc_camera`] (whose
+    /// constant `w` every perspective mode interpolates affinely).
+    #[allow(clippy::too_many_arguments)]
     pub fn render_shader<S, F>(
         &self,
         r: &mut BenchRenderer,
         ws: &mut DemoWorkspace,
         shader: &F,
         texture: &microraster::texture::Texture<'_>,
+        facing: bool,
         sink: &mut S,
     ) -> FrameStats
     where
@@ -74,7 +80,12 @@ impl FillScene {
         let draws = [Draw::new(&self.mesh)
             .shading(Shading::Shader)
             .texture(texture)];
-        let scene = Scene::new(ndc_camera(), &draws).shader(shader);
+        let camera = if facing {
+            facing_camera()
+        } else {
+            ndc_camera()
+        };
+        let scene = Scene::new(camera, &draws).shader(shader);
         r.render(ws, &scene, sink).expect("fill frame renders")
     }
 
