@@ -44,7 +44,7 @@
 
 use crate::scene::Blend;
 use crate::shade::perspective::{
-    colour_constants, PerspectiveSetup, AFFINE, CLAMPED, COLOUR_LOOP, FLAT_Q, SHIFTED,
+    colour_constants, PerspectiveSetup, AFFINE, AFFINE_SUMS, CLAMPED, COLOUR_LOOP, FLAT_Q, SHIFTED,
 };
 use crate::shade::DepthTest;
 use crate::shader::{Fragment, FragmentShader, Perspective, Varyings};
@@ -184,9 +184,9 @@ impl<'a, C, V: Varyings> SpanInput<'a, C, V> {
             return self.shade_with(interpolate_color, fragment);
         }
         if interpolate_color && self.affine_convex() {
-            self.run_opaque::<AFFINE, true>(interpolate_color, fragment, 0)
+            self.run_opaque::<AFFINE_SUMS, true>(interpolate_color, fragment, 0)
         } else {
-            self.run_opaque::<AFFINE, false>(interpolate_color, fragment, 0)
+            self.run_opaque::<AFFINE_SUMS, false>(interpolate_color, fragment, 0)
         }
     }
 

@@ -46,9 +46,12 @@ mod quasi;
 mod span;
 mod values;
 
+use values::{STEPPED, STEP_AFFINE};
+
 pub(crate) use barycentric::{signed_weights, weights};
 pub(crate) use span::{
-    colour_constants, span_input, Output, AFFINE, CLAMPED, COLOUR_LOOP, FLAT_Q, LOOPS32, SHIFTED,
+    colour_constants, span_input, Output, AFFINE, AFFINE_SUMS, CLAMPED, COLOUR_LOOP, FLAT_Q,
+    LOOPS32, SHIFTED,
 };
 
 use lerp::{FIT_PRODUCTS, NARROW_MULTIPLY};

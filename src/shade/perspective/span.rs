@@ -39,6 +39,11 @@ pub(crate) const LOOPS32: bool = cfg!(any(not(target_pointer_width = "64"), micr
 pub(crate) const AFFINE: u8 = 0;
 /// See [`AFFINE`].
 pub(crate) const SHIFTED: u8 = 1;
+/// [`AFFINE`] with each varying's sum stepped where [`STEP_AFFINE`]
+/// (ARMv6-M; [`PerspectiveSetup::affine_sums`]), else the same loop: for
+/// the affine copy's spans
+/// ([`SpanInput::shade_affine`](crate::shader::SpanInput::shade_affine)).
+pub(crate) const AFFINE_SUMS: u8 = 4;
 /// See [`AFFINE`].
 pub(crate) const CLAMPED: u8 = 2;
 /// [`SHIFTED`] for a span whose `Q` does not change along it (its step is
@@ -332,7 +337,8 @@ impl<C, V: Varyings> SpanInput<'_, C, V> {
         // `knot1k-textured-lit` took +44 K).
         let fails_counted = (COLOUR_LOOP
             || (CONVEX && V::LEN == 0 && cfg!(target_pointer_width = "64")))
-            && WEIGHTS != AFFINE;
+            && WEIGHTS != AFFINE
+            && WEIGHTS != AFFINE_SUMS;
         let (x0, p, gz) = (self.x0, self.setup, self.gz);
         let [mut q, mut b1, mut b2] = self.planes;
         let [gq, g1, g2] = self.steps;
@@ -354,6 +360,17 @@ impl<C, V: Varyings> SpanInput<'_, C, V> {
         } else {
             0
         };
+        // Where `STEP_AFFINE` (ARMv6-M), each varying's affine sum stepped
+        // by one 64-bit addition a pixel, its products taken once a span.
+        // Only in the affine copy (`AFFINE_SUMS`): in the general one's
+        // affine loop it moved the exact loops' registers (ARMv6-M
+        // `demo-textured-lit` 12,469,072 -> 12,882,252).
+        let stepped = WEIGHTS == AFFINE_SUMS && STEP_AFFINE && V::LEN > 0 && V::LEN <= STEPPED;
+        let (mut sums, dsums) = if stepped {
+            p.affine_sums::<FIT_PRODUCTS>((b1, b2), (g1, g2))
+        } else {
+            ([0; STEPPED], [0; STEPPED])
+        };
         let mut fails = 0;
         let mut n = 0;
         for (k, (c, d)) in self.color.iter_mut().zip(self.depth.iter_mut()).enumerate() {
@@ -361,14 +378,18 @@ impl<C, V: Varyings> SpanInput<'_, C, V> {
             if zz <= *d {
                 let (varyings, color, fine) = if !weighted {
                     (V::zeroed(), [0; 3], None)
-                } else if WEIGHTS == AFFINE {
+                } else if WEIGHTS == AFFINE || WEIGHTS == AFFINE_SUMS {
                     // The sums from the differences of `dvar` where `fits`
                     // tested them ([`FIT_PRODUCTS`]: the opaque loops take
                     // only such triangles there), else from the vertex
                     // values. (Chosen by a flag in each span saying which
                     // of the renderer's copies it is in, the test was not
                     // folded away: ARMv6-M's `demo-textured-lit` +7 %.)
-                    let (v, c, f) = p.values_affine::<FIT_PRODUCTS>((b1, b2), ic);
+                    let (v, c, f) = if stepped {
+                        p.values_stepped(&sums, (b1, b2), ic)
+                    } else {
+                        p.values_affine::<FIT_PRODUCTS>((b1, b2), ic)
+                    };
                     // A convex span's colour on a 64-bit host: red and
                     // green from one product pair (`color_convex`).
                     #[cfg(target_pointer_width = "64")]
@@ -410,6 +431,11 @@ impl<C, V: Varyings> SpanInput<'_, C, V> {
             }
             b1 = b1.wrapping_add(g1);
             b2 = b2.wrapping_add(g2);
+            if stepped {
+                for (s, d) in sums.iter_mut().zip(&dsums).take(V::LEN) {
+                    *s = s.wrapping_add(*d);
+                }
+            }
         }
         if fails_counted {
             len - fails

@@ -13,6 +13,19 @@ use crate::math::mul_wide;
 use crate::shader::Varyings;
 use fixed::types::I16F16;
 
+/// Whether the opaque affine loop steps each varying's sum
+/// ([`PerspectiveSetup::affine_sums`]) rather than taking its products at
+/// every pixel: on ARMv6-M, whose 64-bit products are library calls
+/// (about 40 instructions each, four a pixel for two varyings where the
+/// triangle's differences are not all 32-bit, two 16-bit splits each
+/// where they are); and on a host built with `MICRORASTER_LOOPS32=1`
+/// (`build.rs`), so that CI's span-shader tests run it.
+pub(crate) const STEP_AFFINE: bool = cfg!(any(microraster_narrow_multiply, microraster_loops32));
+
+/// The most varyings whose sums the opaque affine loop steps (see
+/// [`STEP_AFFINE`]); a shader with more takes the products.
+pub(crate) const STEPPED: usize = 4;
+
 impl<V: Varyings> PerspectiveSetup<V> {
     /// [`values`](Self::values) for weights from [`weights`] (in
     /// `0..=2^16`). Where the core has a 32x32 to 64-bit multiply that is
@@ -160,6 +173,18 @@ impl<V: Varyings> PerspectiveSetup<V> {
     #[inline(always)]
     pub(crate) fn values_affine<const FIT: bool>(
         &self,
+        b: (i32, i32),
+        interpolate_color: bool,
+    ) -> (V, [i32; 3], V) {
+        self.values_of_sums(|k| self.affine_sum::<FIT>(k, b), b, interpolate_color)
+    }
+
+    /// [`values_affine`](Self::values_affine) from each varying's sum
+    /// `sum(k)`, the colour from the planes' values `(b1, b2)`.
+    #[inline(always)]
+    fn values_of_sums(
+        &self,
+        sum: impl Fn(usize) -> i64,
         (b1, b2): (i32, i32),
         interpolate_color: bool,
     ) -> (V, [i32; 3], V) {
@@ -172,7 +197,7 @@ impl<V: Varyings> PerspectiveSetup<V> {
             .zip(fine.as_mut_slice())
             .enumerate()
         {
-            let s = self.affine_sum::<FIT>(k, (b1, b2));
+            let s = sum(k);
             *o = I16F16::from_bits(a0[k].to_bits().wrapping_add(((s + (1 << 27)) >> 28) as i32));
             *f = I16F16::from_bits(f0[k].to_bits().wrapping_add((s >> 12) as i32));
         }
@@ -181,6 +206,49 @@ impl<V: Varyings> PerspectiveSetup<V> {
             self.color_at((b1 >> 12, b2 >> 12), interpolate_color),
             fine,
         )
+    }
+
+    /// Each varying's affine sum `d1 B1 + d2 B2` at the planes' values
+    /// `b` (as [`affine_sum`](Self::affine_sum)) and its change for a
+    /// step `g` of the planes, modulo 2^64: along a span the planes change
+    /// by their steps exactly, so the sum at each pixel is the first plus
+    /// as many changes, exactly where it fits `i64` (every covered pixel,
+    /// see `affine_sum`). For the first [`STEPPED`] varyings (zeros
+    /// beyond), once a span; the loop then takes
+    /// [`values_stepped`](Self::values_stepped) and adds the changes.
+    #[inline(always)]
+    pub(crate) fn affine_sums<const FIT: bool>(
+        &self,
+        b: (i32, i32),
+        (g1, g2): (i32, i32),
+    ) -> ([i64; STEPPED], [i64; STEPPED]) {
+        let (mut sums, mut steps) = ([0; STEPPED], [0; STEPPED]);
+        let [a0, a1, a2] = self.vertex_values();
+        for k in 0..V::LEN.min(STEPPED) {
+            sums[k] = self.affine_sum::<FIT>(k, b);
+            // The differences in `i64` (exact), their products wrapping:
+            // a step's change may not fit, the sums it reaches do.
+            let base = a0[k].to_bits() as i64;
+            let (d1, d2) = (a1[k].to_bits() as i64 - base, a2[k].to_bits() as i64 - base);
+            steps[k] = d1
+                .wrapping_mul(g1 as i64)
+                .wrapping_add(d2.wrapping_mul(g2 as i64));
+        }
+        (sums, steps)
+    }
+
+    /// [`values_affine`](Self::values_affine) from each varying's sum
+    /// `sums` (from [`affine_sums`](Self::affine_sums), stepped), the
+    /// colour from the planes' values `(b1, b2)`.
+    #[inline(always)]
+    pub(crate) fn values_stepped(
+        &self,
+        sums: &[i64; STEPPED],
+        b: (i32, i32),
+        interpolate_color: bool,
+    ) -> (V, [i32; 3], V) {
+        // Only `V::LEN <= STEPPED` comes here (`run_opaque`).
+        self.values_of_sums(|k| sums.get(k).copied().unwrap_or(0), b, interpolate_color)
     }
 
     /// `d1 B1 + d2 B2` for varying `k` ([`values_affine`](Self::values_affine)),
