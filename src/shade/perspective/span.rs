@@ -317,12 +317,16 @@ impl<C, V: Varyings> SpanInput<'_, C, V> {
     /// The span loop of an opaque draw with the default depth test
     /// (`LessEqual`) and depth writes: [`run`](Self::run) with the test,
     /// the write and the blend known, so nothing but the depth comparison
-    /// branches per pixel. `WEIGHTS` is [`AFFINE`], or for exact mode
+    /// branches per pixel. `WEIGHTS` is [`AFFINE`] (or [`AFFINE_SUMS`], its
+    /// sums stepped where [`STEP_AFFINE`]), or for exact mode
     /// [`SHIFTED`], the weights with the span's shift `sh`
     /// ([`opaque_shift`](Self::opaque_shift): the bits of [`weights`],
     /// without its clamps and normalisation), or [`CLAMPED`], [`weights`]
     /// itself (spans too short for the test, or that fail it). A shader
-    /// that reads neither varyings nor colour runs with `AFFINE`.
+    /// that reads neither varyings nor colour runs with `AFFINE`. With
+    /// `CONVEX`, the colour takes no clamp (the caller checked the span's
+    /// weights: `span_shift_convex` and its 32-bit form,
+    /// [`affine_convex`]).
     #[inline(always)]
     pub(crate) fn run_opaque<const WEIGHTS: u8, const CONVEX: bool>(
         self,
