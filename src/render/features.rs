@@ -82,7 +82,8 @@ pub trait Features {
     const GOURAUD: bool = true;
     /// The opaque quasi-perspective span loops: in a frame with
     /// [`Perspective::Quasi8`] or [`Perspective::Quasi16`], opaque draws'
-    /// spans go to
+    /// spans (but those of draws of constant `w`, see [`Features::AFFINE`])
+    /// go to
     /// [`FragmentShader::shade_quasi_spans`](crate::shader::FragmentShader::shade_quasi_spans),
     /// a second copy of each shader's shading function. Without it they
     /// take the general loop (the same image, more instructions a pixel),
