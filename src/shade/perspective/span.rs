@@ -371,7 +371,7 @@ impl<C, V: Varyings> SpanInput<'_, C, V> {
         // `demo-textured-lit` 12,469,072 -> 12,882,252).
         let stepped = WEIGHTS == AFFINE_SUMS && STEP_AFFINE && V::LEN > 0 && V::LEN <= STEPPED;
         let (mut sums, dsums) = if stepped {
-            p.affine_sums::<FIT_PRODUCTS>((b1, b2), (g1, g2))
+            p.affine_sums((b1, b2), (g1, g2))
         } else {
             ([0; STEPPED], [0; STEPPED])
         };

@@ -209,27 +209,30 @@ impl<V: Varyings> PerspectiveSetup<V> {
     }
 
     /// Each varying's affine sum `d1 B1 + d2 B2` at the planes' values
-    /// `b` (as [`affine_sum`](Self::affine_sum)) and its change for a
-    /// step `g` of the planes, modulo 2^64: along a span the planes change
-    /// by their steps exactly, so the sum at each pixel is the first plus
-    /// as many changes, exactly where it fits `i64` (every covered pixel,
-    /// see `affine_sum`). For the first [`STEPPED`] varyings (zeros
-    /// beyond), once a span; the loop then takes
-    /// [`values_stepped`](Self::values_stepped) and adds the changes.
+    /// `(b1, b2)` (as [`affine_sum`](Self::affine_sum) from the vertex
+    /// values) and its change for a step `(g1, g2)` of the planes, modulo
+    /// 2^64: along a span the planes change by their steps exactly, so the
+    /// sum at each pixel is the first plus as many changes, exactly where
+    /// it fits `i64` (every covered pixel, see `affine_sum`). For the
+    /// first [`STEPPED`] varyings (zeros beyond), once a span; the loop
+    /// then takes [`values_stepped`](Self::values_stepped) and adds the
+    /// changes. (Only where [`STEP_AFFINE`], whose targets take the sums
+    /// from the vertex values, not `dvar`: no `FIT_PRODUCTS` there.)
     #[inline(always)]
-    pub(crate) fn affine_sums<const FIT: bool>(
+    pub(crate) fn affine_sums(
         &self,
-        b: (i32, i32),
+        (b1, b2): (i32, i32),
         (g1, g2): (i32, i32),
     ) -> ([i64; STEPPED], [i64; STEPPED]) {
         let (mut sums, mut steps) = ([0; STEPPED], [0; STEPPED]);
         let [a0, a1, a2] = self.vertex_values();
         for k in 0..V::LEN.min(STEPPED) {
-            sums[k] = self.affine_sum::<FIT>(k, b);
-            // The differences in `i64` (exact), their products wrapping:
-            // a step's change may not fit, the sums it reaches do.
+            // The differences in `i64` (exact); the sum's products exact
+            // (`affine_sum`), the change's wrapping: a step's change may
+            // not fit, the sums it reaches do.
             let base = a0[k].to_bits() as i64;
             let (d1, d2) = (a1[k].to_bits() as i64 - base, a2[k].to_bits() as i64 - base);
+            sums[k] = d1 * b1 as i64 + d2 * b2 as i64;
             steps[k] = d1
                 .wrapping_mul(g1 as i64)
                 .wrapping_add(d2.wrapping_mul(g2 as i64));
