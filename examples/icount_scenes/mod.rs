@@ -59,8 +59,11 @@ mod demo_scene;
 use demo_scene::{checker, fx};
 #[path = "../bench_tile/mod.rs"]
 mod bench_tile;
+#[path = "../fill_camera/mod.rs"]
+mod fill_camera;
 #[path = "../rock_scene/mod.rs"]
 mod rock_scene;
+use fill_camera::{facing_camera, ndc_camera};
 
 /// Frame width.
 pub const WIDTH: u32 = 320;
@@ -574,21 +577,6 @@ impl core::fmt::Display for FrameError {
 }
 
 use demo_scene::{camera as demo_camera, draws as demo_draws, light as demo_light};
-
-/// A camera whose clip space is the model space.
-fn ndc_camera() -> Camera {
-    Camera::new(Mat4::IDENTITY, Mat4::IDENTITY)
-}
-
-/// [`ndc_camera`] whose clip-space `w` grows by 2^-12 a unit of depth,
-/// as the host's `facing_camera` (`examples/common/scenes`): each fill
-/// quad still has one `w`, but the transform's is not constant, so the
-/// shaders take the mode's own loops.
-fn facing_camera() -> Camera {
-    let mut projection = Mat4::IDENTITY;
-    projection.m[2][3] = 1.0 / 4096.0;
-    Camera::new(Mat4::IDENTITY, projection)
-}
 
 /// A renderer with the benchmark settings.
 pub fn renderer() -> BenchRenderer {

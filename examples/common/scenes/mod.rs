@@ -88,22 +88,10 @@ pub fn parse_rasterizer(name: &str) -> Option<Rasterizer> {
     }
 }
 
-/// A camera whose clip space is the model space: x, y, z in `[-1, 1]` are
-/// the frame, z = -1 nearest.
-pub fn ndc_camera() -> Camera {
-    Camera::new(Mat4::IDENTITY, Mat4::IDENTITY)
-}
-
-/// [`ndc_camera`] whose clip-space `w` grows by 2^-12 a unit of depth:
-/// each fill quad (one depth) still has one `w`, but the transform's is
-/// not constant ([`DrawSetup::constant_w`](microraster::vertex::DrawSetup::constant_w)),
-/// so fragment shaders take their exact or quasi-perspective loops, as
-/// for a quad facing a perspective camera (the `fill-*-*-facing` scenes).
-pub fn facing_camera() -> Camera {
-    let mut projection = Mat4::IDENTITY;
-    projection.m[2][3] = 1.0 / 4096.0;
-    Camera::new(Mat4::IDENTITY, projection)
-}
+/// The fill scenes' cameras, shared with the Cortex-M firmware's.
+#[path = "../../fill_camera/mod.rs"]
+mod fill_camera;
+pub use fill_camera::{facing_camera, ndc_camera};
 
 fn fx(v: f32) -> I16F16 {
     I16F16::from_num(v)
