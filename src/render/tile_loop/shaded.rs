@@ -187,10 +187,10 @@ where
         let draw = &frame.draws[cur.draw];
         let mesh = draw.mesh;
         // (A draw without a set-up, whose vertices failed, draws nothing.)
-        let Some(constant_w) = frame.setup(cur.draw, self.cache).map(|s| s.constant_w()) else {
+        let Some(setup) = frame.setup(cur.draw, self.cache) else {
             return 0;
         };
-        let pass = pass.constant_w(constant_w);
+        let pass = pass.constant_w(setup.constant_w());
         // Written out rather than `idx.map`: the map was left out of line,
         // a call per triangle and tile.
         let vertex = |i: u32| {
@@ -226,9 +226,6 @@ where
             });
             return n;
         }
-        let Some(setup) = frame.setup(cur.draw, self.cache) else {
-            return 0;
-        };
         let tri = ShaderTriangle {
             draw: cur.draw,
             corners: Corners(sv),
