@@ -385,3 +385,56 @@ proptest! {
         every_builtin::<Gray8>(&c)?;
     }
 }
+
+/// Textures of one texel's width, of 2^20 texels (the most whose affine
+/// spans take `Textured`'s nearest loop with the texel's index from
+/// shifted sums on a 64-bit host) and of more (the general affine loop
+/// there): through an orthographic camera, every built-in shader's spans
+/// match its per-fragment path, pixel for pixel.
+#[test]
+fn affine_spans_of_narrow_and_large_textures_match_the_per_fragment_path() {
+    // Fibonacci hashing: texels and colours that vary from one to the next.
+    let hash = |i: usize| (i as u32).wrapping_mul(0x9e37_79b9) >> 7;
+    for side in [[0, 4], [5, 0], [10, 10], [11, 10]] {
+        let n = 1usize << (side[0] + side[1]);
+        let case = Case {
+            // Two triangles covering most of the frame, the texture
+            // repeated a few times over them.
+            positions: vec![
+                [-1.5, -1.2, -2.0],
+                [1.5, -1.2, -2.5],
+                [1.4, 1.2, -3.0],
+                [-1.5, -1.2, -2.0],
+                [1.4, 1.2, -3.0],
+                [-1.3, 1.1, -2.2],
+            ],
+            uvs: vec![
+                [-1.3, -1.7],
+                [2.6, -1.1],
+                [2.9, 2.7],
+                [-1.3, -1.7],
+                [2.9, 2.7],
+                [-1.9, 2.2],
+            ],
+            normals: vec![[0.2, 0.3, 1.0]; 6],
+            colors: (0..6)
+                .map(|i| {
+                    let c = hash(i + 1);
+                    [c as u8, (c >> 8) as u8, (c >> 16) as u8]
+                })
+                .collect(),
+            side,
+            pow2: true,
+            format: 0,
+            bilinear: false,
+            wrap: [0, 0],
+            texels: (0..n.max(1024)).map(|i| hash(i) as u16).collect(),
+            // Affine, the specialised loops' texture.
+            mode: 3 | 4,
+            blend: 0,
+            ortho: true,
+        };
+        every_builtin::<Rgb565>(&case).unwrap();
+        every_builtin::<Rgb888>(&case).unwrap();
+    }
+}

@@ -11,7 +11,7 @@ use super::{
     VertexInput,
 };
 use crate::scene::Draw;
-use crate::shade::perspective::{AFFINE, FLAT_Q, LOOPS32, SHIFTED};
+use crate::shade::perspective::{AFFINE, FLAT_Q, LOOPS32, MASKED_INDEX, MASKED_TEXELS, SHIFTED};
 use crate::texture::{rgb565_to_rgb888, FromTexel, Pow2Rgb565, Quad, Sampler, Texture};
 use embedded_graphics::pixelcolor::Rgb888;
 use fixed::types::I16F16;
@@ -492,7 +492,10 @@ where
     };
     match texture.sampler() {
         Sampler::NearestRgb565(t) => {
-            let parts = t.fine_parts().filter(|_| !LIT && spans.affine_opaque());
+            // Where `MASKED_INDEX`, textures of `MASKED_TEXELS` at most.
+            let parts = t.fine_parts().filter(|&(_, [_, _, last])| {
+                !LIT && spans.affine_opaque() && (!MASKED_INDEX || last < MASKED_TEXELS)
+            });
             if let Some(c) = parts.and_then(|(texels, p)| spans.nearest_constants(texels, p)) {
                 return spans.each(|s| s.run_nearest::<AFFINE>(&c, 0));
             }
