@@ -450,7 +450,7 @@ where
             // `Textured`'s opaque spans take a loop of their own
             // (`run_nearest`), whose constants are gathered once here.
             let near = match t.fine_parts() {
-                Some((texels, parts)) if !LIT => spans.nearest_constants(texels, parts),
+                Some((texels, parts)) if !LIT => spans.nearest_constants(texels, parts, false),
                 _ => None,
             };
             match near {
@@ -496,7 +496,8 @@ where
             let parts = t.fine_parts().filter(|&(_, [_, _, last])| {
                 !LIT && spans.affine_opaque() && (!MASKED_INDEX || last < MASKED_TEXELS)
             });
-            if let Some(c) = parts.and_then(|(texels, p)| spans.nearest_constants(texels, p)) {
+            if let Some(c) = parts.and_then(|(texels, p)| spans.nearest_constants(texels, p, true))
+            {
                 return spans.each(|s| s.run_nearest::<AFFINE>(&c, 0));
             }
             spans.each(|s| s.shade_affine(LIT, TexelPixel::<_, LIT>(Nearest565(t))))
@@ -537,7 +538,8 @@ where
             // [`LIT_QUASI_LOOP`] says.
             let own = !LIT || LIT_QUASI_LOOP;
             let parts = t.fine_parts().filter(|_| own && spans.quasi_opaque());
-            if let Some(c) = parts.and_then(|(texels, p)| spans.nearest_constants(texels, p)) {
+            if let Some(c) = parts.and_then(|(texels, p)| spans.nearest_constants(texels, p, false))
+            {
                 return spans.each(|s| s.run_nearest_quasi::<LIT>(&c));
             }
             spans.each_quasi(LIT, TexelPixel::<_, LIT>(Nearest565(t)))

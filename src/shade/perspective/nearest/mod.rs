@@ -23,7 +23,8 @@ impl<C> TriangleSpans<'_, C, [I16F16; 2]> {
     /// span of the triangle in the tile, for a repeated power-of-two
     /// `Rgb565` texture (`texels` and `parts`, the width, height and texel
     /// count less one, from `Pow2Rgb565::fine_parts`; on ARMv6-M the
-    /// shifts of `fu` and `fv` in place of the width and height): gathered once per
+    /// shifts of `fu` and `fv` in place of the width and height), with the
+    /// affine loop's steps if `affine`: gathered once per
     /// triangle and tile rather than copied into each span's record (about
     /// 30 instructions a span on the Cortex-M3). `None` if the texels are
     /// short of the count (never, by `Texture::new`).
@@ -32,6 +33,7 @@ impl<C> TriangleSpans<'_, C, [I16F16; 2]> {
         &self,
         texels: &'t [u16],
         parts: [u32; 3],
+        affine: bool,
     ) -> Option<NearestConstants<'t>> {
         let p = self.setup;
         let [f0u, f0v] = p.fine0;
@@ -40,7 +42,7 @@ impl<C> TriangleSpans<'_, C, [I16F16; 2]> {
         // The texels hold the count (`Pow2Rgb565::fine_parts`; never short,
         // by `Texture::new`).
         let texels = texels.get(..=parts[2] as usize)?;
-        let mut k = [0; at::LAST + 1];
+        let mut k = [0; at::LEN];
         k[at::F0U] = f0u.to_bits() as u32;
         k[at::D1U] = d1u.to_bits() as u32;
         k[at::D2U] = d2u.to_bits() as u32;
@@ -52,6 +54,36 @@ impl<C> TriangleSpans<'_, C, [I16F16; 2]> {
         k[at::DB1] = p1.step() as u32;
         k[at::DB2] = p2.step() as u32;
         [k[at::WIDTH], k[at::HEIGHT], k[at::LAST]] = parts;
+        if !(affine && TRIANGLE_STEPS) {
+            return Some(NearestConstants { texels, k });
+        }
+        // With `affine`, where `TRIANGLE_STEPS`, the affine loop's steps
+        // of its sums (`nearest_span`), the same for every span: `2^20 (d1
+        // g1 + d2 g2)` modulo 2^64 for `u` and `v`, or where
+        // `MASKED_INDEX` `2^0` of that, shifted up by `log2(w)` and
+        // `log2(w h)` (stored too).
+        let (scale, [lu, lv]) = if MASKED_INDEX {
+            let lw = parts[0].trailing_zeros();
+            (0, [lw & 63, (lw + parts[1].trailing_zeros()) & 63])
+        } else {
+            (20, [0, 0])
+        };
+        let (g1, g2) = (p1.step(), p2.step());
+        let step = |d1: I16F16, d2: I16F16, shift: u32| {
+            (((mul_wide(d1.to_bits(), g1) + mul_wide(d2.to_bits(), g2)) as u64) << scale) << shift
+        };
+        let (gu, gv) = (step(d1u, d2u, lu), step(d1v, d2v, lv));
+        // (None where `at::LEN` leaves the words out.)
+        if let [a, b, c, d, e, f] = &mut k[at::GU..] {
+            [*a, *b, *c, *d, *e, *f] = [
+                gu as u32,
+                (gu >> 32) as u32,
+                gv as u32,
+                (gv >> 32) as u32,
+                lu,
+                lv,
+            ];
+        }
         Some(NearestConstants { texels, k })
     }
 }
@@ -93,6 +125,16 @@ mod at {
     pub(super) const WIDTH: usize = 10;
     pub(super) const HEIGHT: usize = 11;
     pub(super) const LAST: usize = 12;
+    /// The affine loop's steps of its sums, low word first (two words
+    /// each), and where `MASKED_INDEX` the sums' shifts (`u`'s, `v`'s).
+    pub(super) const GU: usize = 13;
+    pub(super) const GV: usize = 15;
+    pub(super) const SHIFTS: usize = 17;
+    /// The words: those after `LAST` only where `TRIANGLE_STEPS` (on
+    /// ARMv7-M, six words more to clear and copy per triangle and tile
+    /// cost the Cortex-M3's `fill-nearest-affine` 36.74 -> 36.81
+    /// instructions a fragment).
+    pub(super) const LEN: usize = if super::TRIANGLE_STEPS { 19 } else { LAST + 1 };
 }
 
 /// What [`nearest_span`] reads that is the same for all of a triangle's
@@ -102,7 +144,7 @@ mod at {
 /// less one (`Pow2Rgb565::fine_parts`).
 pub(crate) struct NearestConstants<'a> {
     texels: &'a [u16],
-    k: [u32; at::LAST + 1],
+    k: [u32; at::LEN],
 }
 
 /// What [`nearest_span`] reads: the triangle's constants, the span's
@@ -127,7 +169,7 @@ fn top_bits(f: u32, m: u32) -> u32 {
 /// shifts there, masked so that the shifts by them need no mask of their
 /// own, and the row's bits come from `LAST`. Zeros elsewhere.
 #[inline(always)]
-fn narrow_shifts(k: &[u32; at::LAST + 1]) -> (u32, u32, u32) {
+fn narrow_shifts(k: &[u32; at::LEN]) -> (u32, u32, u32) {
     if NARROW_MULTIPLY {
         let (su, sv) = (k[at::WIDTH] & 31, k[at::HEIGHT] & 31);
         (su, sv, k[at::LAST] & !(u32::MAX >> su))
@@ -163,6 +205,14 @@ fn texel_index(w: u32, h: u32, fu: u32, fv: u32, shifts: (u32, u32, u32)) -> u32
 /// 46.49 -> 45.38). The affine loop's for textures of at most
 /// [`MASKED_TEXELS`] texels; the others take the general affine loop.
 pub(crate) const MASKED_INDEX: bool = cfg!(target_pointer_width = "64");
+
+/// Whether [`nearest_span`]'s affine loop takes the steps of its sums
+/// from [`NearestConstants`], computed once per triangle and tile, rather
+/// than at every span: per fragment, `fill-nearest-affine` x86-64 31.39
+/// -> 30.67, Cortex-M4F 40.37 -> 39.12, ARMv6-M 68.74 -> 63.61; not on
+/// ARMv7-M (the build script's `microraster_armv7m`), whose Cortex-M3
+/// took 36.74 -> 37.10 (37.34 with the steps read before the loop).
+const TRIANGLE_STEPS: bool = !cfg!(microraster_armv7m);
 
 /// The most texels of a texture whose affine spans [`MASKED_INDEX`]
 /// draws: 2^20, whose sums shifted by `log2(w h)` keep every bit the
@@ -241,26 +291,39 @@ fn nearest_span<C: FromTexel, const WEIGHTS: u8>(
     // hold the column in their low `log2(w)` bits, those of `v`'s the row
     // times `w` in theirs from `log2(w)` to `log2(w h)`, and the texel's
     // index is a few shifts and masks (no product, see `texel_index`).
+    // The steps, the same for every span: from the constants
+    // (`nearest_constants`) where `TRIANGLE_STEPS`.
     let (scale, (lu, lv)) = if WEIGHTS == AFFINE && MASKED_INDEX {
-        let lw = k[at::WIDTH].trailing_zeros();
-        (0, (lw & 63, (lw + k[at::HEIGHT].trailing_zeros()) & 63))
+        // Through a function of the index: written `k[at::SHIFTS]`, the
+        // lint of out-of-bounds indexing would see ARMv7-M's shorter `k`
+        // (where `MASKED_INDEX` never holds).
+        let word = |k: &[u32; at::LEN], at: usize| k[at];
+        (0, (word(k, at::SHIFTS) & 63, word(k, at::SHIFTS + 1) & 63))
     } else {
         (20, (0, 0))
     };
-    let (mut su, mut sv, gu, gv) = if WEIGHTS == AFFINE {
-        // `2^20 (d1 b1 + d2 b2)` modulo 2^64 (`2^0` where `MASKED_INDEX`).
-        let sum = |d1: usize, d2: usize, (b1, b2): (i32, i32)| {
-            ((mul_wide(k[d1] as i32, b1) + mul_wide(k[d2] as i32, b2)) as u64) << scale
-        };
-        let (b, g) = ((b1, b2), (k[at::DB1] as i32, k[at::DB2] as i32));
+    let sum = |d1: usize, d2: usize, (b1, b2): (i32, i32)| {
+        ((mul_wide(k[d1] as i32, b1) + mul_wide(k[d2] as i32, b2)) as u64) << scale
+    };
+    let step = |k: &[u32; at::LEN], at: usize| (k[at + 1] as u64) << 32 | k[at] as u64;
+    let (gu, gv) = if WEIGHTS == AFFINE && !TRIANGLE_STEPS {
+        let g = (k[at::DB1] as i32, k[at::DB2] as i32);
         (
-            sum(at::D1U, at::D2U, b).wrapping_add((k[at::F0U] as u64) << (scale + 12)) << lu,
-            sum(at::D1V, at::D2V, b).wrapping_add((k[at::F0V] as u64) << (scale + 12)) << lv,
             sum(at::D1U, at::D2U, g) << lu,
             sum(at::D1V, at::D2V, g) << lv,
         )
     } else {
-        (0, 0, 0, 0)
+        (0, 0)
+    };
+    let (mut su, mut sv) = if WEIGHTS == AFFINE {
+        // `2^20 (d1 b1 + d2 b2)` modulo 2^64 (`2^0` where `MASKED_INDEX`).
+        let b = (b1, b2);
+        (
+            sum(at::D1U, at::D2U, b).wrapping_add((k[at::F0U] as u64) << (scale + 12)) << lu,
+            sum(at::D1V, at::D2V, b).wrapping_add((k[at::F0V] as u64) << (scale + 12)) << lv,
+        )
+    } else {
+        (0, 0)
     };
     // The column's mask (the exact loops keep `texel_index`: with their
     // fractions' constants in 64 bits, shifted so, x86-64
@@ -322,8 +385,13 @@ fn nearest_span<C: FromTexel, const WEIGHTS: u8>(
             fails[0] += 1;
         }
         if WEIGHTS == AFFINE {
-            su = su.wrapping_add(gu);
-            sv = sv.wrapping_add(gv);
+            if TRIANGLE_STEPS {
+                su = su.wrapping_add(step(k, at::GU));
+                sv = sv.wrapping_add(step(k, at::GV));
+            } else {
+                su = su.wrapping_add(gu);
+                sv = sv.wrapping_add(gv);
+            }
         }
         z = z.wrapping_add(k[at::DZ]);
         if WEIGHTS != FLAT_Q {

@@ -194,7 +194,7 @@ impl<C: FromTexel> Segments<C> for LitSegments<'_> {
 /// [`narrow_shifts`].
 struct SegmentConstants<'a> {
     texels: &'a [u16],
-    k: &'a [u32; at::LAST + 1],
+    k: &'a [u32; at::LEN],
     shifts: (u32, u32, u32),
 }
 
