@@ -196,20 +196,21 @@ fn texel_index(w: u32, h: u32, fu: u32, fv: u32, shifts: (u32, u32, u32)) -> u32
     }
 }
 
-/// Whether [`nearest_span`]'s affine loop and [`quasi`]'s `nearest_pixels` take
-/// the texel's index from 64-bit sums shifted by the texture's sides
-/// (see there) rather than from the fractions by [`texel_index`]: 64-bit
-/// hosts, where the index took two products, two shifts and an addition
-/// (x86-64 `fill-nearest-affine` 34.63 -> 31.39 instructions a fragment,
-/// its loop 27 -> 23 a written pixel; `fill-nearest-quasi16-facing`
-/// 46.49 -> 45.38). The affine loop's for textures of at most
-/// [`MASKED_TEXELS`] texels; the others take the general affine loop.
+/// Whether [`nearest_span`]'s affine loop and [`quasi`]'s
+/// `nearest_pixels` take the texel's index from 64-bit sums shifted by
+/// the texture's sides (see there) rather than from the fractions by
+/// [`texel_index`]: 64-bit hosts, where the index took two products, two
+/// shifts and an addition (x86-64 `fill-nearest-affine` 34.63 -> 31.39
+/// instructions a fragment, its loop 27 -> 23 a written pixel;
+/// `fill-nearest-quasi16-facing` 46.49 -> 45.38). The affine loop's for
+/// textures of at most [`MASKED_TEXELS`] texels; the others take the
+/// general affine loop.
 pub(crate) const MASKED_INDEX: bool = cfg!(target_pointer_width = "64");
 
 /// Whether [`nearest_span`]'s affine loop takes the steps of its sums
 /// from [`NearestConstants`], computed once per triangle and tile, rather
 /// than at every span: per fragment, `fill-nearest-affine` x86-64 31.39
-/// -> 30.67, Cortex-M4F 40.37 -> 39.12, ARMv6-M 68.74 -> 63.61; not on
+/// -> 30.67, Cortex-M4F 40.37 -> 39.12, ARMv6-M 68.74 -> 63.60; not on
 /// ARMv7-M (the build script's `microraster_armv7m`), whose Cortex-M3
 /// took 36.74 -> 37.10 (37.34 with the steps read before the loop).
 const TRIANGLE_STEPS: bool = !cfg!(microraster_armv7m);
@@ -351,32 +352,30 @@ fn nearest_span<C: FromTexel, const WEIGHTS: u8>(
     for (c, d) in color.iter_mut().zip(depth.iter_mut()) {
         let zz = depth16(z);
         if zz <= *d {
-            let (fu, fv) = if WEIGHTS == AFFINE && MASKED_INDEX {
-                // The column's bits from `u`'s sum, the row's from `v`'s
-                // (cut to them by the mask below, `LAST`); `fv` unused.
-                let v = (sv >> 44) as u32;
-                (v ^ (((su ^ sv) >> 44) as u32 & column), 0)
-            } else if WEIGHTS == AFFINE {
-                ((su >> 32) as u32, (sv >> 32) as u32)
-            } else {
-                let (w1, w2) = if WEIGHTS == FLAT_Q {
-                    flat_weights(b1, b2, sh, r)
-                } else {
-                    shifted_weights(q, b1, b2, sh)
-                };
-                let (w1, w2) = (w1 as u32, w2 as u32);
-                (
-                    k[at::F0U]
-                        .wrapping_add(k[at::D1U].wrapping_mul(w1))
-                        .wrapping_add(k[at::D2U].wrapping_mul(w2)),
-                    k[at::F0V]
-                        .wrapping_add(k[at::D1V].wrapping_mul(w1))
-                        .wrapping_add(k[at::D2V].wrapping_mul(w2)),
-                )
-            };
             let at = if WEIGHTS == AFFINE && MASKED_INDEX {
-                fu
+                // The column's bits from `u`'s sum, the others from `v`'s
+                // (cut to the row's by the mask below, `LAST`).
+                let v = (sv >> 44) as u32;
+                v ^ (((su ^ sv) >> 44) as u32 & column)
             } else {
+                let (fu, fv) = if WEIGHTS == AFFINE {
+                    ((su >> 32) as u32, (sv >> 32) as u32)
+                } else {
+                    let (w1, w2) = if WEIGHTS == FLAT_Q {
+                        flat_weights(b1, b2, sh, r)
+                    } else {
+                        shifted_weights(q, b1, b2, sh)
+                    };
+                    let (w1, w2) = (w1 as u32, w2 as u32);
+                    (
+                        k[at::F0U]
+                            .wrapping_add(k[at::D1U].wrapping_mul(w1))
+                            .wrapping_add(k[at::D2U].wrapping_mul(w2)),
+                        k[at::F0V]
+                            .wrapping_add(k[at::D1V].wrapping_mul(w1))
+                            .wrapping_add(k[at::D2V].wrapping_mul(w2)),
+                    )
+                };
                 texel_index(k[at::WIDTH], k[at::HEIGHT], fu, fv, shifts)
             };
             *c = C::from_rgb565(texels[at as usize & m]);
