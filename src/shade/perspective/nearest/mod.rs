@@ -62,17 +62,14 @@ impl<C> TriangleSpans<'_, C, [I16F16; 2]> {
         // g1 + d2 g2)` modulo 2^64 for `u` and `v`, or where
         // `MASKED_INDEX` `2^0` of that, shifted up by `log2(w)` and
         // `log2(w h)` (stored too).
-        let (scale, [lu, lv]) = if MASKED_INDEX {
-            let lw = parts[0].trailing_zeros();
-            (0, [lw & 63, (lw + parts[1].trailing_zeros()) & 63])
+        let (lu, lv) = if MASKED_INDEX {
+            index_shifts(parts[0], parts[1])
         } else {
-            (20, [0, 0])
+            (0, 0)
         };
-        let (g1, g2) = (p1.step(), p2.step());
-        let step = |d1: I16F16, d2: I16F16, shift: u32| {
-            (((mul_wide(d1.to_bits(), g1) + mul_wide(d2.to_bits(), g2)) as u64) << scale) << shift
-        };
-        let (gu, gv) = (step(d1u, d2u, lu), step(d1v, d2v, lv));
+        let g = (p1.step(), p2.step());
+        let step = |d1: I16F16, d2: I16F16| affine_sum((d1.to_bits(), d2.to_bits()), g);
+        let (gu, gv) = (step(d1u, d2u) << lu, step(d1v, d2v) << lv);
         // (None where `at::LEN` leaves the words out.)
         if let [a, b, c, d, e, f] = &mut k[at::GU..] {
             [*a, *b, *c, *d, *e, *f] = [
@@ -215,6 +212,29 @@ pub(crate) const MASKED_INDEX: bool = cfg!(target_pointer_width = "64");
 /// took 36.74 -> 37.10 (37.34 with the steps read before the loop).
 const TRIANGLE_STEPS: bool = !cfg!(microraster_armv7m);
 
+/// The shifts of the sums and fractions where [`MASKED_INDEX`]:
+/// `log2(w)` for `u` and `log2(w h)` for `v`, of a texture `w` by `h`
+/// (powers of two, `Pow2Rgb565::fine_parts`).
+#[inline(always)]
+fn index_shifts(w: u32, h: u32) -> (u32, u32) {
+    let lw = w.trailing_zeros() & 31;
+    (lw, (lw + h.trailing_zeros()) & 63)
+}
+
+/// The scale of [`nearest_span`]'s affine sums: `2^20` of `d1 b1 + d2
+/// b2`, the fraction in the high word, or where [`MASKED_INDEX`] `2^0`
+/// (the fraction in bits 12 to 43, see there).
+const SUM_SCALE: u32 = if MASKED_INDEX { 0 } else { 20 };
+
+/// `d1 b1 + d2 b2` of `d = (d1, d2)` and `b = (b1, b2)` (32x32 to 64-bit
+/// products), times [`SUM_SCALE`], modulo 2^64: an affine loop's sum of a
+/// texture coordinate at the planes' values `b`, or its step for the
+/// planes' steps.
+#[inline(always)]
+fn affine_sum((d1, d2): (i32, i32), (b1, b2): (i32, i32)) -> u64 {
+    ((mul_wide(d1, b1) + mul_wide(d2, b2)) as u64) << SUM_SCALE
+}
+
 /// The most texels of a texture whose affine spans [`MASKED_INDEX`]
 /// draws: 2^20, whose sums shifted by `log2(w h)` keep every bit the
 /// index reads.
@@ -294,18 +314,16 @@ fn nearest_span<C: FromTexel, const WEIGHTS: u8>(
     // index is a few shifts and masks (no product, see `texel_index`).
     // The steps, the same for every span: from the constants
     // (`nearest_constants`) where `TRIANGLE_STEPS`.
-    let (scale, (lu, lv)) = if WEIGHTS == AFFINE && MASKED_INDEX {
+    let (lu, lv) = if WEIGHTS == AFFINE && MASKED_INDEX {
         // Through a function of the index: written `k[at::SHIFTS]`, the
         // lint of out-of-bounds indexing would see ARMv7-M's shorter `k`
         // (where `MASKED_INDEX` never holds).
         let word = |k: &[u32; at::LEN], at: usize| k[at];
-        (0, (word(k, at::SHIFTS) & 63, word(k, at::SHIFTS + 1) & 63))
+        (word(k, at::SHIFTS) & 63, word(k, at::SHIFTS + 1) & 63)
     } else {
-        (20, (0, 0))
+        (0, 0)
     };
-    let sum = |d1: usize, d2: usize, (b1, b2): (i32, i32)| {
-        ((mul_wide(k[d1] as i32, b1) + mul_wide(k[d2] as i32, b2)) as u64) << scale
-    };
+    let sum = |d1: usize, d2: usize, b: (i32, i32)| affine_sum((k[d1] as i32, k[d2] as i32), b);
     let step = |k: &[u32; at::LEN], at: usize| (k[at + 1] as u64) << 32 | k[at] as u64;
     let (gu, gv) = if WEIGHTS == AFFINE && !TRIANGLE_STEPS {
         let g = (k[at::DB1] as i32, k[at::DB2] as i32);
@@ -320,8 +338,8 @@ fn nearest_span<C: FromTexel, const WEIGHTS: u8>(
         // `2^20 (d1 b1 + d2 b2)` modulo 2^64 (`2^0` where `MASKED_INDEX`).
         let b = (b1, b2);
         (
-            sum(at::D1U, at::D2U, b).wrapping_add((k[at::F0U] as u64) << (scale + 12)) << lu,
-            sum(at::D1V, at::D2V, b).wrapping_add((k[at::F0V] as u64) << (scale + 12)) << lv,
+            sum(at::D1U, at::D2U, b).wrapping_add((k[at::F0U] as u64) << (SUM_SCALE + 12)) << lu,
+            sum(at::D1V, at::D2V, b).wrapping_add((k[at::F0V] as u64) << (SUM_SCALE + 12)) << lv,
         )
     } else {
         (0, 0)

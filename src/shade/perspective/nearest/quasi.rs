@@ -9,7 +9,7 @@
 
 use super::super::quasi::{quasi_span, segment_step, Segments};
 use super::super::{depth16, signed_weights, PerspectiveSetup, SpanInput};
-use super::{at, narrow_shifts, texel_index, NearestConstants, MASKED_INDEX};
+use super::{at, index_shifts, narrow_shifts, texel_index, NearestConstants, MASKED_INDEX};
 use crate::shader::interpolated::byte;
 use crate::texture::FromTexel;
 use fixed::types::I16F16;
@@ -251,8 +251,7 @@ fn nearest_pixels<C: FromTexel, L: Light>(
     // 32-bit ones do), and the index is a few shifts and masks, without
     // `texel_index`'s products.
     let (mut su, mut sv, dsu, dsv, column) = if MASKED_INDEX {
-        let lw = k[3].trailing_zeros() & 31;
-        let lv = (lw + k[4].trailing_zeros()) & 63;
+        let (lw, lv) = index_shifts(k[3], k[4]);
         (
             (fu as u64) << lw,
             (fv as u64) << lv,
