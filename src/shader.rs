@@ -27,7 +27,8 @@
 //! (with `λ` the screen-space barycentrics), whatever the number of
 //! varyings. At a pixel, `b1 = B1 / Q` and `b2 = B2 / Q` are the weights of
 //! vertices 1 and 2 in the triangle itself, and every varying is
-//! `a0 + b1 (a1 - a0) + b2 (a2 - a0)`, colour included. The division is one
+//! `a0 + b1 (a1 - a0) + b2 (a2 - a0)`, colour included (but for an opaque
+//! draw in affine mode, see [`Perspective`]). The division is one
 //! 32-bit reciprocal after normalising `Q` to 16 significant bits, so the
 //! weights are within 7/65,536 of exact while `Q >= 2^15` (see
 //! [`Perspective`]; `Q` is smaller only where the triangle's `w` vary by
@@ -55,6 +56,7 @@ pub(crate) mod interpolated;
 mod set;
 pub mod span;
 mod triangle_spans;
+mod with_planes;
 
 pub(crate) use builtin::modulate;
 pub use builtin::{mul255, DepthShade, Flat, Gouraud, Normals, Textured, TexturedLit};
@@ -98,6 +100,16 @@ use fixed::types::I16F16;
 /// not, and its opaque passes take the affine span loops
 /// ([`FragmentShader::shade_affine_spans`]). The image of such a draw is
 /// the same in all four modes.
+///
+/// In affine mode (and so for such a draw) the colour
+/// ([`Fragment::color`]) of an opaque draw is
+/// [`Shading::Gouraud`](crate::scene::Shading::Gouraud)'s, from the same
+/// colour planes, stepped along each span: the [`Gouraud`] shader then
+/// draws what that shading draws, in its span loops. A blended draw's
+/// (and that of the rare triangle whose varyings' differences do not fit
+/// 32 bits) keeps the weights' colour, `c0 + b1 (c1 - c0) + b2 (c2 - c0)`
+/// with the weights truncated to 16 bits: within a unit of a channel of
+/// the planes'.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default, Hash)]
 pub enum Perspective {
     /// Every pixel is a sample: one reciprocal per fragment that passes the
@@ -111,7 +123,8 @@ pub enum Perspective {
     /// All `1 / w` treated as equal: varyings are linear in screen space
     /// (textures swim on planes seen at an angle), each rounded once from
     /// its exact linear value (within about half a unit of 2^-16), so that
-    /// span loops step them by one addition a pixel.
+    /// span loops step them by one addition a pixel; an opaque draw's
+    /// colour is the Gouraud shading's (see above).
     Affine,
 }
 
@@ -209,8 +222,10 @@ pub struct Fragment<'t, V> {
     pub y: i32,
     /// Its depth, 0 (near) to 65535 (far).
     pub depth: u16,
-    /// The lit vertex colours interpolated (perspective-correct), or the
-    /// provoking vertex's colour under
+    /// The lit vertex colours interpolated (perspective-correct; in an
+    /// opaque draw in [`Perspective::Affine`] as
+    /// [`Shading::Gouraud`](crate::scene::Shading::Gouraud) interpolates
+    /// them), or the provoking vertex's colour under
     /// [`FragmentShader::INTERPOLATE_COLOR`]` = false`.
     pub color: [u8; 3],
     /// The varyings, interpolated.

@@ -148,6 +148,16 @@ where
     C: PixelColor + From<Rgb888> + Into<Rgb888> + Default + core::fmt::Debug + 'static,
     S: FragmentShader<C>,
 {
+    render_as(c, s, Shading::Shader)
+}
+
+/// [`render`] with the draw's `shading` (the scene's shader `s` unused
+/// unless it is [`Shading::Shader`]).
+fn render_as<C, S>(c: &Case, s: &S, shading: Shading) -> Vec<C>
+where
+    C: PixelColor + From<Rgb888> + Into<Rgb888> + Default + core::fmt::Debug + 'static,
+    S: FragmentShader<C>,
+{
     // Half the cases take the specialised loops' texture: `Rgb565`,
     // power-of-two sides, repeated.
     let mut c = c.clone();
@@ -218,7 +228,7 @@ where
         _ => Blend::Additive,
     };
     let draws = [Draw::new(&mesh)
-        .shading(Shading::Shader)
+        .shading(shading)
         .texture(&texture)
         .blend(blend)];
     let scene = Scene::new(camera(c.ortho), &draws).shader(s);
@@ -348,6 +358,26 @@ proptest! {
         every_builtin::<Rgb565>(&c)?;
         every_builtin::<Rgb888>(&c)?;
         every_builtin::<Gray8>(&c)?;
+    }
+
+    /// An opaque affine triangle's colour is the Gouraud shading's
+    /// (`ColourPlanes::start`): through an orthographic camera, in any
+    /// mode, the `Gouraud` shader draws what `Shading::Gouraud` draws (a
+    /// blended Gouraud draw is drawn by that shader: the same too).
+    #[test]
+    fn affine_gouraud_shader_draws_the_gouraud_shading(c in ortho_case()) {
+        fn check<C>(c: &Case) -> Result<(), TestCaseError>
+        where
+            C: PixelColor + From<Rgb888> + Into<Rgb888> + Default + core::fmt::Debug + 'static,
+        {
+            same(
+                &render::<C, _>(c, &Gouraud),
+                &render_as::<C, _>(c, &Gouraud, Shading::Gouraud),
+            )
+        }
+        check::<Rgb565>(&c)?;
+        check::<Rgb888>(&c)?;
+        check::<Gray8>(&c)?;
     }
 
     #[test]

@@ -65,7 +65,7 @@ pub(crate) use gouraud::{
     span_gouraud, FIXED_GOURAUD, OPAQUE_FLAT, OPAQUE_TABLE, SPLIT_INTERIOR, STEPS_IN_PLACE,
 };
 use plane::Basis;
-pub(crate) use setup::{Corners, TriangleSetup, OFFSET_SETUP, SMALL_INLINE};
+pub(crate) use setup::{ColourPlanes, Corners, TriangleSetup, OFFSET_SETUP, SMALL_INLINE};
 
 /// Fraction bits of interpolated depth.
 pub const Z_FRAC: u32 = 14;

@@ -87,6 +87,35 @@ pub(crate) const SHIFTED_COLOR: bool = super::VECTOR_LOOPS || SHIFTED_TOP;
 /// ([`TriangleSetup::start_tested_shifted`]).
 pub(crate) const SHIFTED_TOP: bool = cfg!(microraster_narrow_multiply);
 
+/// An affine triangle's colour planes for a fragment shader that reads
+/// the colour, with its corners: the colour at a pixel of a span is the
+/// built-in Gouraud shading's ([`ColourPlanes::start`]). Set up by the
+/// renderer's affine copy of its shading function (opaque draws) alone:
+/// see `render::fill::shade_custom`.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct ColourPlanes<'a> {
+    pub(crate) setup: TriangleSetup,
+    pub(crate) corners: &'a Corners<'a>,
+}
+
+impl ColourPlanes<'_> {
+    /// Red, green and blue (8.16 a channel, rounding bias included) at
+    /// the first pixel `(i, j)` of a span, and their steps along it: the
+    /// Gouraud span loops' values, the planes' at the span's start, tested
+    /// and clamped there ([`TriangleSetup::start_tested_as`]), then
+    /// stepped by their `gx`, so that along the span each channel stays
+    /// within `0..2^24` and its byte is bits 16 to 23 (see the
+    /// [`Plane`] bounds), no clamp needed. Out of line: inlined into each
+    /// of the shaders' span loops that read the colour, it took about
+    /// 3 KB of a Cortex-M3 firmware holding five shader fills.
+    #[inline(never)]
+    pub(crate) fn start(&self, i: i32, j: i32) -> ([i32; 3], [i32; 3]) {
+        let [_, r, g, b] = self.setup.start_tested_as(self.corners, i, j, false);
+        let [_, gr, gg, gb] = self.setup.steps();
+        ([r, g, b], [gr, gg, gb])
+    }
+}
+
 /// A triangle ready to shade: its attribute planes (depth, then red,
 /// green and blue for Gouraud shading).
 #[derive(Clone, Copy, Debug)]
@@ -193,9 +222,10 @@ impl TriangleSetup {
     /// that the small set-up does not take (about 1 % of `demo`'s): inline,
     /// the general path's values (the edge vectors, their signs and
     /// magnitudes) were computed and spilled on the small set-up's way
-    /// in.
+    /// in. Also the colour planes of a fragment shader's affine triangle
+    /// (`PerspectiveSetup::new`).
     #[inline(never)]
-    fn general(t: &Corners<'_>, gouraud: bool) -> Self {
+    pub(crate) fn general(t: &Corners<'_>, gouraud: bool) -> Self {
         Self::with_basis(&Basis::new(&t.points()), t, gouraud)
     }
 
@@ -365,7 +395,7 @@ impl TriangleSetup {
     /// 67.86 -> 73.02), though it took the M3's `fill` from 15.06 to
     /// 14.32.
     #[inline(always)]
-    pub(super) fn for_gouraud_spans(mut self, t: &Corners<'_>) -> Self {
+    pub(crate) fn for_gouraud_spans(mut self, t: &Corners<'_>) -> Self {
         #[cfg(microraster_interior)]
         {
             self.interior = ScreenVertex::all_interior(t.0) && !self.wide;

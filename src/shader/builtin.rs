@@ -265,7 +265,7 @@ impl<C: From<Rgb888> + 'static> FragmentShader<C> for Gouraud {
     span_method! {
         /// The weights and the colour, no varyings.
         shade_span(&self, span: SpanInput<0>) {
-            span.shade_with(true, Gouraud)
+            span.shade_plain(true, Gouraud)
         }
     }
     span_method! {
@@ -282,10 +282,10 @@ impl<C: From<Rgb888> + 'static> FragmentShader<C> for Gouraud {
         }
     }
     span_method! {
-        /// The opaque affine loop, without the colour's clamps where the
-        /// span stays within the triangle.
+        /// The built-in Gouraud shading's span loops: an affine
+        /// triangle's colour is its colour planes'.
         shade_affine_spans(&self, spans: TriangleSpans<0>) {
-            spans.each(|s| s.shade_affine(true, Gouraud))
+            spans.each_gouraud(Gouraud)
         }
     }
 }
@@ -427,9 +427,9 @@ where
         return 0;
     };
     match texture.sampler() {
-        Sampler::NearestRgb565(t) => span.shade_with(LIT, TexelPixel::<_, LIT>(Nearest565(t))),
+        Sampler::NearestRgb565(t) => span.shade_plain(LIT, TexelPixel::<_, LIT>(Nearest565(t))),
         Sampler::BilinearRgb565(t) => {
-            span.shade_with(LIT, TexelPixel::<_, LIT>(Bilinear565(t, Quad::NONE)))
+            span.shade_plain(LIT, TexelPixel::<_, LIT>(Bilinear565(t, Quad::NONE)))
         }
         Sampler::General(t) => span.shade_unspecialised(LIT, TexelPixel::<_, LIT>(t)),
     }
@@ -463,11 +463,11 @@ where
                     }
                     s.shade_unshifted(LIT, TexelPixel::<_, LIT>(Nearest565(t)))
                 }),
-                None => spans.each(|s| s.shade_with(LIT, TexelPixel::<_, LIT>(Nearest565(t)))),
+                None => spans.each(|s| s.shade_plain(LIT, TexelPixel::<_, LIT>(Nearest565(t)))),
             }
         }
         Sampler::BilinearRgb565(t) => {
-            spans.each(|s| s.shade_with(LIT, TexelPixel::<_, LIT>(Bilinear565(t, Quad::NONE))))
+            spans.each(|s| s.shade_plain(LIT, TexelPixel::<_, LIT>(Bilinear565(t, Quad::NONE))))
         }
         Sampler::General(t) => spans.each(|s| s.shade_unspecialised(LIT, TexelPixel::<_, LIT>(t))),
     }

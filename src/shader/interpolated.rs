@@ -11,10 +11,14 @@ pub struct Interpolated<V> {
     pub depth: u16,
     /// The varyings, interpolated.
     pub varyings: V,
-    /// The lit vertex colour, interpolated (perspective-correct): each
-    /// channel in 8.16 fixed point, rounding bias included, not yet
-    /// clamped (see [`Interpolated::rgb`]). Zeros unless the span was
-    /// shaded with colour interpolation on.
+    /// The lit vertex colour, interpolated (perspective-correct; in an
+    /// opaque draw in [`Perspective::Affine`](super::Perspective::Affine)
+    /// as the Gouraud shading interpolates it): each channel in 8.16 fixed
+    /// point, rounding bias included, not yet clamped (see
+    /// [`Interpolated::rgb`]). Zeros unless the span was shaded with colour
+    /// interpolation on (in an opaque affine span, also unless the
+    /// shader's [`INTERPOLATE_COLOR`](super::FragmentShader::INTERPOLATE_COLOR)
+    /// is true: only then are the colour planes set up).
     pub color: [i32; 3],
     /// Where the span loop has them (the opaque loops): each varying's
     /// fraction to 32

@@ -46,13 +46,14 @@ use crate::scene::Blend;
 use crate::shade::perspective::{
     colour_constants, PerspectiveSetup, AFFINE, AFFINE_SUMS, CLAMPED, COLOUR_LOOP, FLAT_Q, SHIFTED,
 };
-use crate::shade::DepthTest;
+use crate::shade::{ColourPlanes, DepthTest};
 use crate::shader::{Fragment, FragmentShader, Perspective, Varyings};
 use crate::texture::Texture;
 use embedded_graphics::pixelcolor::{Rgb888, RgbColor};
 
 pub use super::interpolated::Interpolated;
 pub use super::triangle_spans::TriangleSpans;
+use super::with_planes::WithPlanes;
 
 /// One span of a triangle in a tile row, handed to
 /// [`FragmentShader::shade_span`]: the pixels `x()..x() + len()` of row
@@ -79,6 +80,9 @@ pub struct SpanInput<'a, C, V> {
     /// `Q`, `B1`, `B2` at the first pixel, and their steps.
     pub(crate) planes: [i32; 3],
     pub(crate) steps: [i32; 3],
+    /// An affine triangle's colour planes, where its shader reads the
+    /// colour (`ColourPlanes::start`).
+    pub(crate) colour: Option<&'a ColourPlanes<'a>>,
     pub(crate) mode: Perspective,
     pub(crate) blend: Blend,
     pub(crate) test: DepthTest,
@@ -166,28 +170,43 @@ impl<'a, C, V: Varyings> SpanInput<'a, C, V> {
     where
         C: Copy + From<Rgb888> + Into<Rgb888>,
     {
+        // An opaque affine span (of the renderer's affine copy, whose
+        // shader reads the colour): the colour planes' colour.
+        match WithPlanes::of(&self, interpolate_color, fragment) {
+            Ok(planes) => self.shade_plain(false, planes),
+            Err(fragment) => self.shade_plain(interpolate_color, fragment),
+        }
+    }
+
+    /// [`shade_with`](Self::shade_with) for a span without colour planes:
+    /// the built-in shaders' spans of every copy of the renderer's
+    /// shading function but the affine one (which gives them their own
+    /// loops). Where the planes are not known absent at compile time, a
+    /// test for them in `shade_with` made a copy of every loop for them
+    /// (in the general copy, where ARMv6-M's `demo-textured-lit` took
+    /// +7 %, the exact loops' registers).
+    #[inline(always)]
+    pub(crate) fn shade_plain(self, interpolate_color: bool, fragment: impl PixelFn<V, C>) -> u32
+    where
+        C: Copy + From<Rgb888> + Into<Rgb888>,
+    {
         self.shade_with_loops::<true>(interpolate_color, fragment, None)
     }
 
     /// [`shade_with`](Self::shade_with) for a span of
-    /// [`FragmentShader::shade_affine_spans`] (an opaque draw, affine):
-    /// with `interpolate_color`, a span whose weights stay within the
-    /// triangle ([`affine_convex`](Self::affine_convex)) in the loop whose
-    /// colour takes no clamp. Only in the affine copy, so that the general
-    /// copy's loops stay as they are.
+    /// [`FragmentShader::shade_affine_spans`] (an opaque draw, affine), in
+    /// the loop that steps the varyings' sums where [`AFFINE_SUMS`] says.
+    /// Only in the affine copy, so that the general copy's loops stay as
+    /// they are.
     #[inline(always)]
     pub(crate) fn shade_affine(self, interpolate_color: bool, fragment: impl PixelFn<V, C>) -> u32
     where
         C: Copy + From<Rgb888> + Into<Rgb888>,
     {
         if !(self.opaque && self.mode == Perspective::Affine) {
-            return self.shade_with(interpolate_color, fragment);
+            return self.shade_plain(interpolate_color, fragment);
         }
-        if interpolate_color && self.affine_convex() {
-            self.run_opaque::<AFFINE_SUMS, true>(interpolate_color, fragment, 0)
-        } else {
-            self.run_opaque::<AFFINE_SUMS, false>(interpolate_color, fragment, 0)
-        }
+        self.run_opaque::<AFFINE_SUMS, false>(interpolate_color, fragment, 0)
     }
 
     /// [`shade_with`](Self::shade_with) for a span that
@@ -379,7 +398,15 @@ impl<'a, C, V: Varyings> SpanInput<'a, C, V> {
     where
         C: Copy + From<Rgb888> + Into<Rgb888>,
     {
-        self.run_put(interpolate_color, fragment)
+        // An affine span of the renderer's affine copy, the only spans
+        // with colour planes: the colour theirs, given to `fragment`, so
+        // that the general loop, which the other copies' exact spans
+        // share, is the same code in every copy (with the planes' colour
+        // in it, x86-64 `demo-textured-lit` +1.1 %).
+        match WithPlanes::of(&self, interpolate_color, fragment) {
+            Ok(planes) => self.run_put(false, planes),
+            Err(fragment) => self.run_put(interpolate_color, fragment),
+        }
     }
 
     /// [`run`](Self::run) with the draw's blend and depth write decided

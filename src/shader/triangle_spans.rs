@@ -7,7 +7,10 @@ use crate::raster::Span;
 use crate::shade::perspective::{
     colour_constants, span_input, Output, PerspectiveSetup, COLOUR_LOOP,
 };
-use crate::shade::{Corners, SpanPos};
+use crate::shade::{
+    span_gouraud, ColourPlanes, Corners, DLessEqual, SpanPos, To565, FIXED_GOURAUD, NEGATED_OX,
+    OPAQUE_TABLE, SPLIT_INTERIOR,
+};
 use crate::shader::{Perspective, Varyings};
 use crate::texture::Texture;
 use embedded_graphics::pixelcolor::Rgb888;
@@ -35,6 +38,9 @@ pub struct TriangleSpans<'a, C, V> {
     /// The spans, at most one per row, inside the tile.
     pub(crate) found: &'a [Span],
     pub(crate) setup: &'a PerspectiveSetup<V>,
+    /// An affine triangle's colour planes, where its shader reads the
+    /// colour ([`ColourPlanes::start`]).
+    pub(crate) colour: Option<&'a ColourPlanes<'a>>,
     pub(crate) corners: &'a Corners<'a>,
     pub(crate) texture: Option<&'a Texture<'a>>,
     pub(crate) out: Output,
@@ -100,6 +106,7 @@ impl<'a, C, V: Varyings> TriangleSpans<'a, C, V> {
             oy,
             found,
             setup,
+            colour,
             corners,
             texture,
             out,
@@ -116,6 +123,7 @@ impl<'a, C, V: Varyings> TriangleSpans<'a, C, V> {
             let sp = SpanPos { ox, j, x0, x1 };
             n += shade(span_input(
                 setup,
+                colour,
                 corners,
                 texture,
                 out,
@@ -164,9 +172,64 @@ impl<C, V: Varyings> TriangleSpans<'_, C, V> {
         C: Copy + From<Rgb888> + Into<Rgb888>,
     {
         if !self.quasi_opaque() {
-            return self.each(|s| s.shade_with(interpolate_color, fragment));
+            return self.each(|s| s.shade_plain(interpolate_color, fragment));
         }
         self.each(|s| s.run_quasi_opaque(interpolate_color, Opaque(fragment)))
+    }
+
+    /// `Gouraud`'s spans of an affine opaque draw
+    /// ([`affine_opaque`](Self::affine_opaque)): the colour planes'
+    /// values ([`ColourPlanes::start`]) are those of the
+    /// built-in Gouraud shading, so its span loops
+    /// ([`span_gouraud`]) colour them, with the depth test and writes of
+    /// an opaque draw and the same bits as [`SpanInput::shade_affine`];
+    /// the others there.
+    #[inline(always)]
+    pub(crate) fn each_gouraud<F: PixelFn<V, C> + Copy>(self, fragment: F) -> u32
+    where
+        C: Copy + From<Rgb888> + Into<Rgb888> + 'static,
+    {
+        let Some(planes) = self.colour.filter(|_| self.affine_opaque) else {
+            return self.each(|s| s.shade_affine(true, fragment));
+        };
+        let (color, depth, corners) = (self.color, self.depth, self.corners);
+        // Made ready for the Gouraud span loops, which then step the
+        // values of `ColourPlanes::start` and `span_input`'s depth as the
+        // shader's loops do.
+        let s = &planes.setup.for_gouraud_spans(corners);
+        // As `render::fill`'s span loops: the tile's first element's
+        // screen column on row 0 (within the tile and the guard band, far
+        // below 2^31), less the span's row, negated where `NEGATED_OX`.
+        let width = self.width as i32;
+        let base = self.ox + self.oy * width;
+        let pos = |&Span { j, x0, x1 }: &Span| SpanPos {
+            ox: if NEGATED_OX {
+                j * width - base
+            } else {
+                base - j * width
+            },
+            j,
+            x0,
+            x1,
+        };
+        let mut n = 0;
+        if SPLIT_INTERIOR && s.interior() {
+            for span in self.found {
+                let t = (DLessEqual, To565::fixed());
+                n = span_gouraud::<C, _, true, true>(t, s, corners, color, depth, pos(span), n);
+            }
+            return n;
+        }
+        let table = if OPAQUE_TABLE && !FIXED_GOURAUD {
+            To565::opaque()
+        } else {
+            To565::fixed()
+        };
+        for span in self.found {
+            let t = (DLessEqual, table);
+            n = span_gouraud::<C, _, true, false>(t, s, corners, color, depth, pos(span), n);
+        }
+        n
     }
 
     /// [`each`](Self::each) with [`SpanInput::shade_with`]`(true,
@@ -185,7 +248,7 @@ impl<C, V: Varyings> TriangleSpans<'_, C, V> {
             let k = colour_constants(self.setup);
             self.each(|s| s.shade_with_loops::<true>(true, fragment, Some(&k)))
         } else {
-            self.each(|s| s.shade_with(true, fragment))
+            self.each(|s| s.shade_plain(true, fragment))
         }
     }
 }

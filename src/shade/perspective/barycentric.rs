@@ -192,42 +192,6 @@ pub(super) fn span_shift_convex32_in<const NARROW: bool>(
         .then(|| (shift(), convex))
 }
 
-/// Whether the affine weights (`B1 >> 12`, `B2 >> 12`,
-/// [`PerspectiveSetup::values_affine`](super::PerspectiveSetup::values_affine))
-/// of every pixel of a span of `len` pixels starting at `planes` (`Q`,
-/// `B1`, `B2`) with `steps` are non-negative and sum to at most `2^16`: at
-/// both ends `B1, B2 >= 0` and `B1 + B2 <= 2^28` (the planes are linear
-/// along the span, and `floor(B1 / 2^12) + floor(B2 / 2^12) <= floor((B1 +
-/// B2) / 2^12)`). Each colour channel is then a convex combination of
-/// the vertices' and needs no clamp. In `i32`, checked (a span whose end
-/// overflows is not convex), the sums in `u32`, where two values of
-/// `0..2^31` cannot overflow.
-#[inline(always)]
-pub(super) fn affine_convex(planes: [i32; 3], steps: [i32; 3], len: usize) -> bool {
-    let Ok(last) = i32::try_from(len.saturating_sub(1)) else {
-        return false;
-    };
-    // `span_shift_convex32_in`'s closure written again: shared through
-    // one function (inlined, generic over `NARROW`), ARMv6-M's textured
-    // frame took 12,469,072 -> 13,389,883 instructions.
-    let end = |a: i32, g: i32| {
-        if NARROW_MULTIPLY {
-            checked_mul_short(g, last)
-        } else {
-            g.checked_mul(last)
-        }
-        .and_then(|d| a.checked_add(d))
-    };
-    let [_, b1, b2] = planes;
-    let [_, g1, g2] = steps;
-    let (Some(b1e), Some(b2e)) = (end(b1, g1), end(b2, g2)) else {
-        return false;
-    };
-    let sum = |a: i32, b: i32| (a as u32).wrapping_add(b as u32);
-    const ONE: u32 = super::Q_ONE as u32;
-    (b1 | b2 | b1e | b2e) >= 0 && sum(b1, b2) <= ONE && sum(b1e, b2e) <= ONE
-}
-
 /// `g.checked_mul(last)` for `last >= 0` in 32-bit products, on ARMv6-M
 /// (whose `checked_mul` is a 64-bit library product): for `last <
 /// 2^16` (a span's length, always), with `g = gh 2^16 + gl` (`0 <= gl <
@@ -441,40 +405,6 @@ mod tests {
             }
         }
         assert!(convex > 2_000, "{convex} convex spans");
-    }
-
-    /// `affine_convex` says a span is convex exactly when every pixel's
-    /// planes have `B1, B2 >= 0` and `B1 + B2 <= 2^28` (a span's `B` in
-    /// affine mode: the weights in units of 2^-28), and then each pixel's
-    /// weights `B >> 12` are non-negative and sum to at most 2^16.
-    #[test]
-    fn affine_convex_spans_keep_their_weights_in_the_triangle() {
-        let mut next = crate::testing::rng();
-        let one = 1i64 << 28;
-        let (mut convex, mut not) = (0, 0);
-        for _ in 0..40_000 {
-            let len = 1 + next(64) as usize;
-            let b1 = next(1 << 28) as i32 - (1 << 14);
-            let b2 = next((one - b1.max(0) as i64) as u64 + (1 << 14)) as i32 - (1 << 14);
-            let mut g = || (next(1 << 24) as i32 - (1 << 23)) >> next(12);
-            let steps = [0, g(), g()];
-            let said = affine_convex([1 << 28, b1, b2], steps, len);
-            let (mut b1, mut b2) = (b1 as i64, b2 as i64);
-            let mut inside = true;
-            for _ in 0..len {
-                inside &= b1 >= 0 && b2 >= 0 && b1 + b2 <= one;
-                if said {
-                    let (w1, w2) = (b1 >> 12, b2 >> 12);
-                    assert!(w1 >= 0 && w2 >= 0 && w1 + w2 <= 1 << 16, "{b1} {b2}");
-                }
-                b1 += steps[1] as i64;
-                b2 += steps[2] as i64;
-            }
-            assert_eq!(said, inside, "{b1} {b2} {steps:?} {len}");
-            convex += said as u32;
-            not += !said as u32;
-        }
-        assert!(convex > 5_000 && not > 5_000, "{convex} convex, {not} not");
     }
 
     /// `span_shift_convex` (in `i64`; with `CONVEX_ONLY`, its convex

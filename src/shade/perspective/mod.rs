@@ -19,7 +19,10 @@
 //! planes `B1`, `B2` are the weights, in units of 2^-28, and each varying
 //! is `a0 + (B1 (a1 - a0) + B2 (a2 - a0)) / 2^28` rounded once
 //! ([`PerspectiveSetup::values_affine`]): linear along a span, so a loop may
-//! step its sum. Between samples (quasi-perspective modes)
+//! step its sum; the colour of an opaque draw there is the Gouraud
+//! shading's, from colour planes set up beside
+//! ([`ColourPlanes`](crate::shade::ColourPlanes)).
+//! Between samples (quasi-perspective modes)
 //! varyings and colour step linearly in wrapping `i32`, exact modulo 2^32,
 //! with steps from a table of reciprocals of the segment length; the next
 //! sample starts again from exact values, so nothing drifts past a

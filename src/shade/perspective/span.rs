@@ -8,10 +8,11 @@ use super::barycentric::span_shift_convex;
 #[cfg(microraster_narrow_multiply)]
 use super::barycentric::span_shift_convex32;
 use super::barycentric::{
-    affine_convex, flat_weights, shifted_weights, span_reciprocal, span_shift, weights_guessed,
+    flat_weights, shifted_weights, span_reciprocal, span_shift, weights_guessed,
 };
 use super::quasi::{quasi_segments, segment_length, segment_step, RECIPROCAL};
 use super::*;
+use crate::shade::ColourPlanes;
 
 /// Whether an opaque exact span of a shader that reads only the colour
 /// takes [`SpanInput::run_colour_shifted`]: on Thumb-2 cores (32-bit Arm
@@ -40,8 +41,8 @@ pub(crate) const AFFINE: u8 = 0;
 /// See [`AFFINE`].
 pub(crate) const SHIFTED: u8 = 1;
 /// [`AFFINE`] with each varying's sum stepped where [`STEP_AFFINE`]
-/// (ARMv6-M; [`PerspectiveSetup::affine_sums`]), else the same loop: for
-/// the affine copy's spans
+/// (ARMv6-M; [`PerspectiveSetup::affine_sums`]) and the colour from the
+/// colour planes: for the affine copy's spans
 /// ([`SpanInput::shade_affine`](crate::shader::SpanInput::shade_affine)).
 pub(crate) const AFFINE_SUMS: u8 = 4;
 /// See [`AFFINE`].
@@ -91,6 +92,7 @@ impl Output {
 #[inline(always)]
 pub(crate) fn span_input<'a, C, V: Varyings>(
     p: &'a PerspectiveSetup<V>,
+    colour: Option<&'a ColourPlanes<'a>>,
     t: &Corners<'_>,
     texture: Option<&'a Texture<'a>>,
     out: Output,
@@ -143,6 +145,7 @@ pub(crate) fn span_input<'a, C, V: Varyings>(
             ]
         },
         steps: [pq.step(), p1.step(), p2.step()],
+        colour,
         mode: out.mode,
         blend: out.blend,
         test: out.test,
@@ -307,13 +310,6 @@ impl<C, V: Varyings> SpanInput<'_, C, V> {
         span_shift_convex32(self.planes, self.steps, self.color.len())
     }
 
-    /// Whether the span's affine weights stay within the triangle at
-    /// every pixel, so that its colour needs no clamp ([`affine_convex`]).
-    #[inline(always)]
-    pub(crate) fn affine_convex(&self) -> bool {
-        affine_convex(self.planes, self.steps, self.color.len())
-    }
-
     /// The span loop of an opaque draw with the default depth test
     /// (`LessEqual`) and depth writes: [`run`](Self::run) with the test,
     /// the write and the blend known, so nothing but the depth comparison
@@ -325,8 +321,9 @@ impl<C, V: Varyings> SpanInput<'_, C, V> {
     /// itself (spans too short for the test, or that fail it). A shader
     /// that reads neither varyings nor colour runs with `AFFINE`. With
     /// `CONVEX`, the colour takes no clamp (the caller checked the span's
-    /// weights: `span_shift_convex` and its 32-bit form,
-    /// [`affine_convex`]).
+    /// weights: `span_shift_convex` and its 32-bit form); an affine
+    /// span's colour, from its planes, never does
+    /// ([`ColourPlanes::start`]).
     #[inline(always)]
     pub(crate) fn run_opaque<const WEIGHTS: u8, const CONVEX: bool>(
         self,
@@ -375,6 +372,14 @@ impl<C, V: Varyings> SpanInput<'_, C, V> {
         } else {
             ([0; STEPPED], [0; STEPPED])
         };
+        // With `AFFINE_SUMS` (the affine copy's `shade_affine`, whose
+        // spans have them) the colour planes' colour, stepped: a constant
+        // (tested at run time, ARMv6-M's `demo-textured-lit` took +7 %).
+        let planes = ic && WEIGHTS == AFFINE_SUMS;
+        let (mut col, gcol) = match self.colour.filter(|_| planes) {
+            Some(c) => c.start(x0, self.y),
+            None => ([0; 3], [0; 3]),
+        };
         let mut fails = 0;
         let mut n = 0;
         for (k, (c, d)) in self.color.iter_mut().zip(self.depth.iter_mut()).enumerate() {
@@ -390,19 +395,19 @@ impl<C, V: Varyings> SpanInput<'_, C, V> {
                     // of the renderer's copies it is in, the test was not
                     // folded away: ARMv6-M's `demo-textured-lit` +7 %.)
                     let (v, c, f) = if stepped {
-                        p.values_stepped(&sums, (b1, b2), ic)
+                        p.values_stepped(&sums, (b1, b2), ic && !planes)
                     } else {
-                        p.values_affine::<FIT_PRODUCTS>((b1, b2), ic)
+                        p.values_affine::<FIT_PRODUCTS>((b1, b2), ic && !planes)
                     };
                     // A convex span's colour on a 64-bit host: red and
                     // green from one product pair (`color_convex`).
                     #[cfg(target_pointer_width = "64")]
-                    let c = if CONVEX && ic {
+                    let c = if CONVEX && ic && !planes {
                         p.color_convex((b1 >> 12, b2 >> 12))
                     } else {
                         c
                     };
-                    (v, c, Some(f))
+                    (v, if planes { col } else { c }, Some(f))
                 } else if WEIGHTS == SHIFTED {
                     p.values_fit(shifted_weights(q, b1, b2, sh), ic, false, CONVEX)
                 } else if WEIGHTS == FLAT_Q {
@@ -416,7 +421,9 @@ impl<C, V: Varyings> SpanInput<'_, C, V> {
                     varyings,
                     color,
                     fine,
-                    convex: CONVEX,
+                    // The colour planes' bytes need no clamp (see
+                    // `ColourPlanes::start`).
+                    convex: CONVEX || planes,
                 };
                 match fragment.pixel(&it) {
                     Some(out) => {
@@ -435,6 +442,11 @@ impl<C, V: Varyings> SpanInput<'_, C, V> {
             }
             b1 = b1.wrapping_add(g1);
             b2 = b2.wrapping_add(g2);
+            if planes {
+                for (c, g) in col.iter_mut().zip(gcol) {
+                    *c = c.wrapping_add(g);
+                }
+            }
             if stepped {
                 for (s, d) in sums.iter_mut().zip(&dsums).take(V::LEN) {
                     *s = s.wrapping_add(*d);

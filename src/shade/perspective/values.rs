@@ -157,8 +157,10 @@ impl<V: Varyings> PerspectiveSetup<V> {
     }
 
     /// The varyings, the colour (8.16 a channel, at the weights `B >> 12`,
-    /// as [`values`](Self::values) takes it) and each varying's fraction
-    /// to 32 bits in [`Perspective::Affine`], where the planes' values
+    /// as [`values`](Self::values) takes it: where the triangle has no
+    /// colour planes, see [`ColourPlanes`](crate::shade::ColourPlanes))
+    /// and each varying's fraction to 32 bits in [`Perspective::Affine`],
+    /// where the planes' values
     /// `B1`, `B2` are the weights themselves in units of 2^-28: each
     /// varying is `a0 + floor((d1 B1 + d2 B2 + 2^27) / 2^28)`, the sum
     /// rounded once ([`affine_sum`](Self::affine_sum)), so that it is
