@@ -321,9 +321,8 @@ impl<C, V: Varyings> SpanInput<'_, C, V> {
     /// itself (spans too short for the test, or that fail it). A shader
     /// that reads neither varyings nor colour runs with `AFFINE`. With
     /// `CONVEX`, the colour takes no clamp (the caller checked the span's
-    /// weights: `span_shift_convex` and its 32-bit form); an affine
-    /// span's colour, from its planes, never does
-    /// ([`ColourPlanes::start`]).
+    /// weights: `span_shift_convex` and its 32-bit form); nor does the
+    /// colour planes' ([`ColourPlanes::start`]).
     #[inline(always)]
     pub(crate) fn run_opaque<const WEIGHTS: u8, const CONVEX: bool>(
         self,
@@ -374,8 +373,9 @@ impl<C, V: Varyings> SpanInput<'_, C, V> {
         };
         // With `AFFINE_SUMS` (the affine copy's `shade_affine`, whose
         // spans have them) the colour planes' colour, stepped: a constant
-        // (tested at run time, ARMv6-M's `demo-textured-lit` took +7 %).
+        // (tested at run time, ARMv6-M's `demo-textured-lit` +7 %).
         let planes = ic && WEIGHTS == AFFINE_SUMS;
+        debug_assert!(!planes || self.colour.is_some(), "no colour planes");
         let (mut col, gcol) = match self.colour.filter(|_| planes) {
             Some(c) => c.start(x0, self.y),
             None => ([0; 3], [0; 3]),
