@@ -81,7 +81,7 @@ pub struct SpanInput<'a, C, V> {
     pub(crate) planes: [i32; 3],
     pub(crate) steps: [i32; 3],
     /// An affine triangle's colour planes, where its shader reads the
-    /// colour (`ColourPlanes::start`).
+    /// colour, in the renderer's affine copy alone (`ColourPlanes::start`).
     pub(crate) colour: Option<&'a ColourPlanes<'a>>,
     pub(crate) mode: Perspective,
     pub(crate) blend: Blend,

@@ -39,7 +39,8 @@ pub struct TriangleSpans<'a, C, V> {
     pub(crate) found: &'a [Span],
     pub(crate) setup: &'a PerspectiveSetup<V>,
     /// An affine triangle's colour planes, where its shader reads the
-    /// colour ([`ColourPlanes::start`]).
+    /// colour, in the renderer's affine copy alone
+    /// ([`ColourPlanes::start`]).
     pub(crate) colour: Option<&'a ColourPlanes<'a>>,
     pub(crate) corners: &'a Corners<'a>,
     pub(crate) texture: Option<&'a Texture<'a>>,
