@@ -5,8 +5,8 @@ use crate::raster::{PixelRect, Span};
 use crate::shade::perspective::{Output, PerspectiveSetup, ShaderTriangle};
 use crate::shade::{
     span_flat, span_gouraud, ColourPlanes, Corners, DepthFn, DepthTest, SpanPos, To565,
-    TriangleSetup, FIXED_GOURAUD, NEGATED_OX, OFFSET_SETUP, OPAQUE_FLAT, OPAQUE_TABLE,
-    SMALL_INLINE, SPLIT_INTERIOR,
+    TriangleSetup, FIXED_GOURAUD, OFFSET_SETUP, OPAQUE_FLAT, OPAQUE_TABLE, SMALL_INLINE,
+    SPLIT_INTERIOR,
 };
 use crate::shader::{FragmentShader, Perspective, ShaderSet, TriangleSpans};
 use crate::texture::Texture;
@@ -395,7 +395,7 @@ fn one_colour(sv: &[&ScreenVertex; 3]) -> bool {
 ///
 /// With `BASE`, `ox` is the column of the tile's first element on screen
 /// row 0, computed once per pair, less the span's row (negated where
-/// [`NEGATED_OX`]; only the Gouraud span loops take `BASE`): one shifted
+/// [`NEGATED_OX`](crate::shade::NEGATED_OX); only the Gouraud span loops take `BASE`): one shifted
 /// subtraction a span, where `ox` had been the tile's column less the
 /// span's row within the tile (the Cortex-M3's Gouraud span starts
 /// then keep fewer values in stack slots: `demo` 4,069,639 -> 4,035,521
@@ -420,22 +420,20 @@ fn each_span<C, const BASE: bool, const TW: usize, const TH: usize>(
         // Within the tile (the walk clips the spans to it): at most
         // `TW * TH`, far below 2^31.
         let row = (j - rect.y0) * TW as i32;
-        let sp = SpanPos {
-            // Where `NEGATED_OX` (64-bit hosts), the negated form, which the
-            // Gouraud span loop adds (see `SpanPos::ox`): one shift and one
-            // subtraction for both ends rather than a copy of the base
-            // and three (x86-64 `demo` 3,268,079 -> 3,235,954
-            // instructions, `rock` 2,728,649 -> 2,703,865).
-            ox: if BASE && NEGATED_OX {
-                j * TW as i32 - base
-            } else if BASE {
-                base - j * TW as i32
-            } else {
-                rect.x0 - row
-            },
-            j,
-            x0,
-            x1,
+        // Where `NEGATED_OX` (64-bit hosts), the negated form, which the
+        // Gouraud span loop adds (see `SpanPos::ox`): one shift and one
+        // subtraction for both ends rather than a copy of the base and
+        // three (x86-64 `demo` 3,268,079 -> 3,235,954 instructions, `rock`
+        // 2,728,649 -> 2,703,865).
+        let sp = if BASE {
+            SpanPos::in_tile(base, TW as i32, j, x0, x1)
+        } else {
+            SpanPos {
+                ox: rect.x0 - row,
+                j,
+                x0,
+                x1,
+            }
         };
         n = shade(color, depth, sp, n);
     }

@@ -93,6 +93,23 @@ pub(crate) struct SpanPos {
 /// 3,277,579 -> 3,388,717).
 pub(crate) const NEGATED_OX: bool = VECTOR_LOOPS;
 
+impl SpanPos {
+    /// The position of span `(j, x0, x1)` for the Gouraud span loops in a
+    /// tile `width` pixels wide whose first element is screen column
+    /// `base` on row 0 (the tile's left column plus its top row times
+    /// `width`): `ox` is `base` less the span's row start, negated where
+    /// [`NEGATED_OX`] (see `render::fill::each_span`).
+    #[inline(always)]
+    pub(crate) fn in_tile(base: i32, width: i32, j: i32, x0: i32, x1: i32) -> Self {
+        let ox = if NEGATED_OX {
+            j * width - base
+        } else {
+            base - j * width
+        };
+        Self { ox, j, x0, x1 }
+    }
+}
+
 /// Flat spans shorter than this are shaded by a plain loop; longer ones,
 /// on targets with SIMD, by a branch-free loop the compiler can vectorize
 /// (out of line, so its vector set-up is paid per long span, not hoisted
