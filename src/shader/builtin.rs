@@ -474,10 +474,13 @@ where
 }
 
 /// [`textured_spans`] for an opaque draw's spans in an affine frame
-/// ([`FragmentShader::shade_affine_spans`]): `Textured`'s nearest texels
-/// on a repeated power-of-two `Rgb565` texture in a loop of their own
-/// (`run_nearest::<AFFINE>`, the texture coordinates' sums stepped), the
-/// others in the opaque affine loop with the shader's pixel. Its own
+/// ([`FragmentShader::shade_affine_spans`]): the nearest texels on a
+/// repeated power-of-two `Rgb565` texture in a loop of their own
+/// (`run_nearest::<AFFINE>`, the texture coordinates' sums stepped;
+/// `TexturedLit`'s in `run_nearest_lit`, lit by the colour planes'
+/// colour, which the renderer's affine copy sets up for every triangle
+/// of a shader that reads the colour), the others in the opaque affine
+/// loop with the shader's pixel. Its own
 /// `match` rather than a call of `textured_spans` for the other samplers:
 /// called from two shading functions, that one's span closures went out
 /// of line (x86-64 `demo-textured-lit` 5,976,296 -> 7,049,062
@@ -492,13 +495,19 @@ where
     };
     match texture.sampler() {
         Sampler::NearestRgb565(t) => {
-            // Where `MASKED_INDEX`, textures of `MASKED_TEXELS` at most.
+            // Where `MASKED_INDEX`, textures of `MASKED_TEXELS` at most;
+            // `TexturedLit`'s colour from the triangle's colour planes.
             let parts = t.fine_parts().filter(|&(_, [_, _, last])| {
-                !LIT && spans.affine_opaque() && (!MASKED_INDEX || last < MASKED_TEXELS)
+                spans.affine_opaque() && (!MASKED_INDEX || last < MASKED_TEXELS)
             });
+            let planes = spans.colour;
             if let Some(c) = parts.and_then(|(texels, p)| spans.nearest_constants(texels, p, true))
             {
-                return spans.each(|s| s.run_nearest::<AFFINE>(&c, 0));
+                match planes {
+                    _ if !LIT => return spans.each(|s| s.run_nearest::<AFFINE>(&c, 0)),
+                    Some(planes) => return spans.each(|s| s.run_nearest_lit(&c, planes)),
+                    None => {}
+                }
             }
             spans.each(|s| s.shade_affine(LIT, TexelPixel::<_, LIT>(Nearest565(t))))
         }

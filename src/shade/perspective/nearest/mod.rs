@@ -1,21 +1,30 @@
 //! The nearest-texel span loops of [`Textured`](crate::shader::Textured)
-//! on a repeated power-of-two `Rgb565` texture: their per-triangle
-//! constants ([`TriangleSpans::nearest_constants`]) and the loops
-//! themselves, out of line: [`nearest_span`], with affine, shifted or
-//! constant-`Q` weights, and, in [`quasi`], `nearest_quasi_span`,
-//! quasi-perspective (the same bits as the general loop's), which also
-//! draws [`TexturedLit`](crate::shader::TexturedLit)'s texels lit by the
-//! interpolated colour.
+//! and [`TexturedLit`](crate::shader::TexturedLit) on a repeated
+//! power-of-two `Rgb565` texture: their per-triangle constants
+//! ([`TriangleSpans::nearest_constants`]) and the loops themselves, out of
+//! line: [`nearest_span`], with affine, shifted or constant-`Q` weights
+//! (and with affine ones `TexturedLit`'s texels lit by the colour planes'
+//! colour), and, in [`quasi`], `nearest_quasi_span`, quasi-perspective
+//! (the same bits as the general loop's), which also draws
+//! `TexturedLit`'s texels lit by the interpolated colour. How a loop
+//! colours its texel is [`light`]'s.
 
 use super::barycentric::{flat_weights, shifted_weights, span_reciprocal};
 use super::lerp::NARROW_MULTIPLY;
 use super::span::{AFFINE, FLAT_Q};
 use super::{depth16, SpanInput, Z_FRAC};
 use crate::math::mul_wide;
+use crate::shade::ColourPlanes;
 use crate::shader::TriangleSpans;
 use crate::texture::FromTexel;
 use fixed::types::I16F16;
+#[cfg(not(target_pointer_width = "64"))]
+use light::Lit;
+#[cfg(target_pointer_width = "64")]
+use light::LitPacked;
+use light::{Light, Unlit};
 
+mod light;
 mod quasi;
 
 impl<C> TriangleSpans<'_, C, [I16F16; 2]> {
@@ -100,7 +109,31 @@ impl<C: FromTexel> SpanInput<'_, C, [I16F16; 2]> {
             z: self.z,
             planes: self.planes,
         };
-        nearest_span::<C, WEIGHTS>(self.color, self.depth, &s)
+        nearest_span::<C, _, WEIGHTS>(self.color, self.depth, &s, Unlit)
+    }
+
+    /// [`run_nearest`](Self::run_nearest) with [`AFFINE`] weights for
+    /// [`TexturedLit`](crate::shader::TexturedLit): the texel modulated
+    /// by the colour of the triangle's colour `planes`
+    /// ([`ColourPlanes::start`], as the opaque affine loop takes it),
+    /// stepped beside the texture coordinates: the same bits as that
+    /// loop's. Per fragment, where the opaque affine loop with the
+    /// shader's pixel took `fill-lit-exact` x86-64 79.79 -> 64.72
+    /// (red and green packed in one `u64`, `LitPacked`; 69.68 with three
+    /// channels), Cortex-M4F 94.77 -> 91.16, ARMv6-M 148.92 -> 132.09.
+    #[inline(always)]
+    pub(crate) fn run_nearest_lit(self, c: &NearestConstants<'_>, planes: &ColourPlanes) -> u32 {
+        let (col, dc) = planes.start(self.x0, self.y);
+        let s = NearestSpan {
+            c,
+            sh: 0,
+            z: self.z,
+            planes: self.planes,
+        };
+        #[cfg(target_pointer_width = "64")]
+        return nearest_span::<C, _, AFFINE>(self.color, self.depth, &s, LitPacked::new(col, dc));
+        #[cfg(not(target_pointer_width = "64"))]
+        nearest_span::<C, _, AFFINE>(self.color, self.depth, &s, Lit::<false> { col, dc })
     }
 }
 
@@ -249,16 +282,20 @@ pub(crate) const MASKED_TEXELS: u32 = 1 << 20;
 /// in memory; 62.6, 49.5 without the bounds check; 59.9, 47.1 with the
 /// index by one multiply-add; 53.45, 45.14 -> 51.73, 42.91 with the
 /// constants read in the loop on ARMv7-M (see there) rather than copied
-/// to stack slots at every call. The same loop for `TexturedLit` (its colour
-/// beside the texel) was slower (`fill-lit-exact` 112.2 -> 116.3; again
-/// at `20d410c`, 111.33 -> 114.28, and 117.93 with its constants read in
-/// the loop: its two tables' addresses are rebuilt at every pixel), and
-/// one for bilinear sampling too (162.1 -> 192.2).
+/// to stack slots at every call. The texel as `light` colours it: as it
+/// is, or with [`AFFINE`] weights lit by `TexturedLit`'s colour, stepped
+/// beside the texture coordinates (`run_nearest_lit`). With the colour
+/// from the weights (six products a pixel, before the colour planes) the
+/// lit loop had been slower than the general one (`fill-lit-exact`
+/// 112.2 -> 116.3; again at `20d410c`, 111.33 -> 114.28); with the
+/// planes' three additions, faster (see `run_nearest_lit`). The same loop
+/// for bilinear sampling was slower too (162.1 -> 192.2).
 #[inline(never)]
-fn nearest_span<C: FromTexel, const WEIGHTS: u8>(
+fn nearest_span<C: FromTexel, L: Light, const WEIGHTS: u8>(
     color: &mut [C],
     depth: &mut [u16],
     s: &NearestSpan,
+    light: L,
 ) -> u32 {
     // The constants read where they are used, through a pointer that
     // `black_box` hides: the count of failed pixels is stored through
@@ -278,6 +315,14 @@ fn nearest_span<C: FromTexel, const WEIGHTS: u8>(
         &copied
     };
     let last = k[at::LAST];
+    // The light's values in locals and its steps (`TexturedLit`'s
+    // colour), the steps read as the constants are.
+    let (mut light, light_steps) = light.start();
+    let light_steps = if cfg!(microraster_armv7m) {
+        core::hint::black_box(&light_steps)
+    } else {
+        &light_steps
+    };
     let [mut q, mut b1, mut b2] = s.planes;
     let mut z = s.z;
     // At most 15 (`span_shift`): masked, the shifts by it need no mask.
@@ -396,7 +441,7 @@ fn nearest_span<C: FromTexel, const WEIGHTS: u8>(
                 };
                 texel_index(k[at::WIDTH], k[at::HEIGHT], fu, fv, shifts)
             };
-            *c = C::from_rgb565(texels[at as usize & m]);
+            *c = light.texel(texels[at as usize & m]);
             *d = zz;
         } else {
             fails[0] += 1;
@@ -416,6 +461,7 @@ fn nearest_span<C: FromTexel, const WEIGHTS: u8>(
         }
         b1 = b1.wrapping_add(k[at::DB1] as i32);
         b2 = b2.wrapping_add(k[at::DB2] as i32);
+        light.step(light_steps);
     }
     len - fails[0]
 }

@@ -9,8 +9,8 @@
 
 use super::super::quasi::{quasi_span, segment_step, Segments};
 use super::super::{depth16, signed_weights, PerspectiveSetup, SpanInput};
+use super::light::{Light, Lit, Unlit};
 use super::{at, index_shifts, narrow_shifts, texel_index, NearestConstants, MASKED_INDEX};
-use crate::shader::interpolated::byte;
 use crate::texture::FromTexel;
 use fixed::types::I16F16;
 
@@ -186,7 +186,7 @@ impl<C: FromTexel> Segments<C> for LitSegments<'_> {
         (duv, dc): Self::Values,
     ) -> (u32, u32) {
         let (f, df) = fractions(uv, duv);
-        nearest_pixels(color, depth, &self.t, z, f, df, Lit { col, dc })
+        nearest_pixels(color, depth, &self.t, z, f, df, Lit::<true> { col, dc })
     }
 }
 
@@ -212,7 +212,7 @@ fn nearest_pixels<C: FromTexel, L: Light>(
     mut z: u32,
     f: [u32; 2],
     df: [u32; 2],
-    mut light: L,
+    light: L,
 ) -> (u32, u32) {
     // The constants in locals: read through `t`, they were read again at
     // every pixel (the stores might have changed them, for all the
@@ -233,9 +233,10 @@ fn nearest_pixels<C: FromTexel, L: Light>(
     let Some(texels) = t.texels.get(..=m) else {
         return (color.len() as u32, z);
     };
+    let (mut light, light_steps) = light.start();
     let consts = (
         [t.k[at::DZ], df[0], df[1], t.k[at::WIDTH], t.k[at::HEIGHT]],
-        light.steps(),
+        light_steps,
     );
     let (k, steps) = if cfg!(microraster_armv7m) || cfg!(microraster_armv7em) {
         core::hint::black_box(&consts)
@@ -298,65 +299,4 @@ fn nearest_pixels<C: FromTexel, L: Light>(
         light.step(steps);
     }
     (fails[0], z)
-}
-
-/// How [`nearest_pixels`] colours a texel: as it is ([`Unlit`],
-/// `Textured`), or lit ([`Lit`], `TexturedLit`).
-trait Light {
-    /// What the light steps by at each pixel.
-    type Steps;
-    /// The steps, read in the loop beside its other constants.
-    fn steps(&self) -> Self::Steps;
-    /// The pixel's colour of the texel's `Rgb565` bits `raw`.
-    fn texel<C: FromTexel>(&self, raw: u16) -> C;
-    /// To the next pixel.
-    fn step(&mut self, steps: &Self::Steps);
-}
-
-/// `Textured`'s texel, in the target's format.
-struct Unlit;
-
-impl Light for Unlit {
-    type Steps = ();
-
-    #[inline(always)]
-    fn steps(&self) {}
-
-    #[inline(always)]
-    fn texel<C: FromTexel>(&self, raw: u16) -> C {
-        C::from_rgb565(raw)
-    }
-
-    #[inline(always)]
-    fn step(&mut self, _: &()) {}
-}
-
-/// `TexturedLit`'s texel, modulated by the colour (8.16 a channel,
-/// clamped to a byte as
-/// [`Interpolated::rgb`](crate::shader::span::Interpolated::rgb) clamps
-/// it), stepped by `dc` a pixel.
-struct Lit {
-    col: [i32; 3],
-    dc: [i32; 3],
-}
-
-impl Light for Lit {
-    type Steps = [i32; 3];
-
-    #[inline(always)]
-    fn steps(&self) -> [i32; 3] {
-        self.dc
-    }
-
-    #[inline(always)]
-    fn texel<C: FromTexel>(&self, raw: u16) -> C {
-        C::from_lit_rgb565(raw, self.col.map(byte))
-    }
-
-    #[inline(always)]
-    fn step(&mut self, dc: &[i32; 3]) {
-        for (c, d) in self.col.iter_mut().zip(dc) {
-            *c = c.wrapping_add(*d);
-        }
-    }
 }
