@@ -120,7 +120,9 @@ impl<C: FromTexel> SpanInput<'_, C, [I16F16; 2]> {
     /// loop's. Per fragment, where the opaque affine loop with the
     /// shader's pixel took `fill-lit-exact` x86-64 79.79 -> 64.72
     /// (red and green packed in one `u64`, `LitPacked`; 69.68 with three
-    /// channels), Cortex-M4F 94.77 -> 91.16, ARMv6-M 148.92 -> 132.09.
+    /// channels), Cortex-M3 90.91 -> 85.86 (its loop spilled and
+    /// unrolled by two: more values than registers), Cortex-M4F 94.77 ->
+    /// 91.16, ARMv6-M 148.92 -> 132.09.
     #[inline(always)]
     pub(crate) fn run_nearest_lit(self, c: &NearestConstants<'_>, planes: &ColourPlanes) -> u32 {
         let (col, dc) = planes.start(self.x0, self.y);
