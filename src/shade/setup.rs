@@ -114,6 +114,15 @@ impl ColourPlanes<'_> {
         let [_, gr, gg, gb] = self.setup.steps();
         ([r, g, b], [gr, gg, gb])
     }
+
+    /// Whether a gradient was beyond the planes' limit
+    /// ([`TriangleSetup::wide`]): a sliver whose steps the loops that pack
+    /// two channels in one word (as the 64-bit Gouraud loop) leave alone.
+    #[cfg(target_pointer_width = "64")]
+    #[inline(always)]
+    pub(crate) fn wide(&self) -> bool {
+        self.setup.wide
+    }
 }
 
 /// A triangle ready to shade: its attribute planes (depth, then red,

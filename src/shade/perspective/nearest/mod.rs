@@ -18,11 +18,9 @@ use crate::shade::ColourPlanes;
 use crate::shader::TriangleSpans;
 use crate::texture::FromTexel;
 use fixed::types::I16F16;
-#[cfg(not(target_pointer_width = "64"))]
-use light::Lit;
 #[cfg(target_pointer_width = "64")]
 use light::LitPacked;
-use light::{Light, Unlit};
+use light::{Light, Lit, Unlit};
 
 mod light;
 mod quasi;
@@ -118,9 +116,9 @@ impl<C: FromTexel> SpanInput<'_, C, [I16F16; 2]> {
     /// ([`ColourPlanes::start`], as the opaque affine loop takes it),
     /// stepped beside the texture coordinates: the same bits as that
     /// loop's. Per fragment, where the opaque affine loop with the
-    /// shader's pixel took `fill-lit-exact` x86-64 79.79 -> 64.72
-    /// (red and green packed in one `u64`, `LitPacked`; 69.68 with three
-    /// channels), Cortex-M3 90.91 -> 85.86 (its loop spilled and
+    /// shader's pixel took `fill-lit-exact` x86-64 79.79 -> 64.99
+    /// (red and green packed in one `u64`, `LitPacked`, 64.72 without the
+    /// test for slivers; 69.68 with three channels), Cortex-M3 90.91 -> 85.86 (its loop spilled and
     /// unrolled by two: more values than registers), Cortex-M4F 94.77 ->
     /// 91.16, ARMv6-M 148.92 -> 132.09.
     #[inline(always)]
@@ -132,9 +130,17 @@ impl<C: FromTexel> SpanInput<'_, C, [I16F16; 2]> {
             z: self.z,
             planes: self.planes,
         };
+        // Red and green packed, but for a sliver's planes ([`ColourPlanes::wide`]),
+        // as the 64-bit Gouraud loop packs them.
         #[cfg(target_pointer_width = "64")]
-        return nearest_span::<C, _, AFFINE>(self.color, self.depth, &s, LitPacked::new(col, dc));
-        #[cfg(not(target_pointer_width = "64"))]
+        if !planes.wide() {
+            return nearest_span::<C, _, AFFINE>(
+                self.color,
+                self.depth,
+                &s,
+                LitPacked::new(col, dc),
+            );
+        }
         nearest_span::<C, _, AFFINE>(self.color, self.depth, &s, Lit::<false> { col, dc })
     }
 }
