@@ -32,7 +32,10 @@
 //! three planes and `lerp` the 32-bit forms of a varying's value;
 //! `barycentric` turns the planes into the weights of a pixel; `span` is the
 //! loop that walks a span's pixels with them ([`SpanInput`]'s methods and
-//! the [`Output`] that says how fragments are tested and written).
+//! the [`Output`] that says how fragments are tested and written);
+//! `nearest` and `bilinear` are the built-in textured shaders' loops of
+//! their own (nearest texels in every mode, bilinear ones in affine
+//! spans, the texture coordinates' sums stepped there).
 
 use super::{depth16, Basis, Corners, DepthTest, SpanPos, TriangleSetup, Z_FRAC};
 use crate::scene::Blend;
@@ -42,6 +45,7 @@ use crate::texture::Texture;
 use fixed::types::I16F16;
 
 mod barycentric;
+mod bilinear;
 mod lerp;
 mod nearest;
 mod plane;
