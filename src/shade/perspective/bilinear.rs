@@ -4,47 +4,55 @@
 //! sample by [`Pow2Rgb565::bilinear_fine`] from the fractions, the last
 //! four texels kept across the span ([`Quad`]).
 
+use super::nearest::scaled_sum;
 use super::{depth16, SpanInput};
-use crate::math::mul_wide;
+use crate::shader::TriangleSpans;
 use crate::texture::{FromTexel, Pow2Rgb565, Quad};
 use fixed::types::I16F16;
+
+impl<C> TriangleSpans<'_, C, [I16F16; 2]> {
+    /// The steps of the texture coordinates' sums of
+    /// [`SpanInput::run_bilinear_affine`], the same for every span of the
+    /// triangle in the tile: taken once for them.
+    #[inline(always)]
+    pub(crate) fn bilinear_steps(&self) -> [u64; 2] {
+        let p = self.setup;
+        let [[d1u, d1v], [d2u, d2v]] = p.dvar.map(|d| d.map(I16F16::to_bits));
+        let [_, p1, p2] = &p.planes;
+        let g = (p1.step(), p2.step());
+        [
+            scaled_sum::<20>((d1u, d2u), g, 0),
+            scaled_sum::<20>((d1v, d2v), g, 0),
+        ]
+    }
+}
 
 impl<C: FromTexel> SpanInput<'_, C, [I16F16; 2]> {
     /// The opaque affine loop ([`run_opaque`](Self::run_opaque) with
     /// affine weights) for [`Textured`](crate::shader::Textured) with
     /// bilinear filtering on a repeated power-of-two `Rgb565` texture
-    /// `t`: the same bits, in a loop of its own ([`bilinear_span`]).
+    /// `t`, the sums' `steps` from
+    /// [`TriangleSpans::bilinear_steps`]: the same bits, in a loop of its
+    /// own ([`bilinear_span`]). Each sum is `2^20 (d1 B1 + d2 B2) + 2^32
+    /// f0` modulo 2^64, whose high word is the coordinate's fraction to
+    /// 32 bits, as `nearest_span`'s affine loop takes it.
     #[inline(always)]
-    pub(crate) fn run_bilinear_affine(self, t: &Pow2Rgb565<'_>) -> u32 {
+    pub(crate) fn run_bilinear_affine(self, t: &Pow2Rgb565<'_>, steps: [u64; 2]) -> u32 {
         let p = self.setup;
         let [f0u, f0v] = p.fine0.map(|f| f.to_bits() as u32);
         let [[d1u, d1v], [d2u, d2v]] = p.dvar.map(|d| d.map(I16F16::to_bits));
         let [_, b1, b2] = self.planes;
-        let [_, g1, g2] = self.steps;
         let s = BilinearSpan {
             sums: [
-                affine_fraction((d1u, d2u), (b1, b2), f0u),
-                affine_fraction((d1v, d2v), (b1, b2), f0v),
+                scaled_sum::<20>((d1u, d2u), (b1, b2), f0u),
+                scaled_sum::<20>((d1v, d2v), (b1, b2), f0v),
             ],
-            steps: [
-                affine_fraction((d1u, d2u), (g1, g2), 0),
-                affine_fraction((d1v, d2v), (g1, g2), 0),
-            ],
+            steps,
             z: self.z,
             gz: self.gz,
         };
         bilinear_span(self.color, self.depth, t, &s)
     }
-}
-
-/// `2^20 (d1 b1 + d2 b2) + 2^32 f0` modulo 2^64, of `d = (d1, d2)`, the
-/// planes' values `b = (b1, b2)` and the fraction `f0` to 32 bits at the
-/// first vertex: the affine loop's sum of a texture coordinate, whose
-/// high word is the coordinate's fraction to 32 bits (see
-/// `nearest_span`), or with the planes' steps and no `f0`, its step.
-#[inline(always)]
-fn affine_fraction((d1, d2): (i32, i32), (b1, b2): (i32, i32), f0: u32) -> u64 {
-    (((mul_wide(d1, b1) + mul_wide(d2, b2)) as u64) << 20).wrapping_add((f0 as u64) << 32)
 }
 
 /// What [`bilinear_span`] reads: the texture coordinates' sums at the

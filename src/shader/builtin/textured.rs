@@ -242,7 +242,8 @@ where
         // `Textured`'s bilinear texels in a loop of their own too
         // (`run_bilinear_affine`), where [`BILINEAR_LOOP`].
         Sampler::BilinearRgb565(t) if BILINEAR_LOOP && !LIT && spans.affine_opaque() => {
-            spans.each(|s| s.run_bilinear_affine(&t))
+            let steps = spans.bilinear_steps();
+            spans.each(|s| s.run_bilinear_affine(&t, steps))
         }
         Sampler::BilinearRgb565(t) => {
             spans.each(|s| s.shade_affine(LIT, TexelPixel::<_, LIT>(Bilinear565(t, Quad::NONE))))

@@ -273,7 +273,18 @@ const SUM_SCALE: u32 = if MASKED_INDEX { 0 } else { 20 };
 /// planes' steps.
 #[inline(always)]
 fn affine_sum((d1, d2): (i32, i32), (b1, b2): (i32, i32)) -> u64 {
-    ((mul_wide(d1, b1) + mul_wide(d2, b2)) as u64) << SUM_SCALE
+    scaled_sum::<SUM_SCALE>((d1, d2), (b1, b2), 0)
+}
+
+/// `2^S (d1 b1 + d2 b2) + 2^(S + 12) f0` modulo 2^64, of `d = (d1, d2)`,
+/// the planes' values `b = (b1, b2)` (32x32 to 64-bit products) and a
+/// texture coordinate's fraction to 32 bits `f0` at the first vertex:
+/// the affine loops' sum of that coordinate ([`nearest_span`], the
+/// bilinear loop), whose fraction is its high word for `S = 20`; with
+/// the planes' steps and no `f0`, its step.
+#[inline(always)]
+pub(super) fn scaled_sum<const S: u32>((d1, d2): (i32, i32), (b1, b2): (i32, i32), f0: u32) -> u64 {
+    (((mul_wide(d1, b1) + mul_wide(d2, b2)) as u64) << S).wrapping_add((f0 as u64) << (S + 12))
 }
 
 /// The most texels of a texture whose affine spans [`MASKED_INDEX`]
@@ -391,8 +402,8 @@ fn nearest_span<C: FromTexel, L: Light, const WEIGHTS: u8>(
         // `2^20 (d1 b1 + d2 b2)` modulo 2^64 (`2^0` where `MASKED_INDEX`).
         let b = (b1, b2);
         (
-            sum(at::D1U, at::D2U, b).wrapping_add((k[at::F0U] as u64) << (SUM_SCALE + 12)) << lu,
-            sum(at::D1V, at::D2V, b).wrapping_add((k[at::F0V] as u64) << (SUM_SCALE + 12)) << lv,
+            scaled_sum::<SUM_SCALE>((k[at::D1U] as i32, k[at::D2U] as i32), b, k[at::F0U]) << lu,
+            scaled_sum::<SUM_SCALE>((k[at::D1V] as i32, k[at::D2V] as i32), b, k[at::F0V]) << lv,
         )
     } else {
         (0, 0)
