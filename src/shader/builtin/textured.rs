@@ -256,8 +256,8 @@ where
 /// `Rgb565` texture with bilinear filtering take a loop of their own
 /// (`run_bilinear_affine`, the texture coordinates' sums stepped) rather
 /// than the opaque affine loop with the shader's pixel: per fragment,
-/// `fill-bilinear-exact` x86-64 153.68 -> 146.45, Cortex-M4F 147.26 ->
-/// 143.42, ARMv6-M 215.12 -> 207.78; not on ARMv7-M (the build script's
+/// `fill-bilinear-exact` x86-64 153.68 -> 146.49, Cortex-M4F 147.26 ->
+/// 143.36, ARMv6-M 215.12 -> 207.83; not on ARMv7-M (the build script's
 /// `microraster_armv7m`), whose Cortex-M3 took 142.93 -> 144.86.
 const BILINEAR_LOOP: bool = !cfg!(microraster_armv7m);
 
