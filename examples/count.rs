@@ -22,7 +22,9 @@
 //! `rock` (a 3,920-triangle mesh of small, uneven triangles) and
 //! `demo-textured-lit` (the demo frame through `TexturedLit`: the checker
 //! texture, nearest, times the Lambert-lit vertex colour) and
-//! `knot1k-textured-lit` (the same frame with a 1,024-triangle knot).
+//! `knot1k-textured-lit` (the same frame with a 1,024-triangle knot), in
+//! exact perspective, or with `-MODE` (`demo-textured-lit-affine`) in
+//! another.
 //! `RASTERIZER` is `scanline` (default), `hilbert` or `auto`.
 //! Every frame of a run is identical; each is rendered by the function
 //! `count::frame`, so `valgrind --tool=callgrind
@@ -142,13 +144,7 @@ fn shaded(name: &str) -> Option<(Job, Perspective)> {
         "lit" => FillShader::Lit,
         _ => return None,
     };
-    let mode = match mode {
-        "exact" => Perspective::Exact,
-        "quasi8" => Perspective::Quasi8,
-        "quasi16" => Perspective::Quasi16,
-        "affine" => Perspective::Affine,
-        _ => return None,
-    };
+    let mode = perspective_mode(mode)?;
     Some((
         Job::Shaded {
             scene: FillScene::new(FILL_LAYERS),
@@ -158,6 +154,40 @@ fn shaded(name: &str) -> Option<(Job, Perspective)> {
         },
         mode,
     ))
+}
+
+/// The job and perspective mode of a `demo-textured-lit[-MODE]` or
+/// `knot1k-textured-lit[-MODE]` scene name (`MODE` as in
+/// `fill-SHADER-MODE`, exact without one).
+fn textured(name: &str) -> Option<(Job, Perspective)> {
+    let (scene, mode) = match name.split_once("-lit") {
+        Some((scene, "")) => (scene, Perspective::Exact),
+        Some((scene, mode)) => (scene, perspective_mode(mode.strip_prefix('-')?)?),
+        None => return None,
+    };
+    let scene = match scene {
+        "demo-textured" => TexturedDemoScene::new(),
+        "knot1k-textured" => TexturedDemoScene::with_knot(64, 8),
+        _ => return None,
+    };
+    Some((
+        Job::TexturedDemo {
+            scene,
+            ws: Box::default(),
+        },
+        mode,
+    ))
+}
+
+/// A perspective mode by name: `exact`, `quasi8`, `quasi16` or `affine`.
+fn perspective_mode(name: &str) -> Option<Perspective> {
+    Some(match name {
+        "exact" => Perspective::Exact,
+        "quasi8" => Perspective::Quasi8,
+        "quasi16" => Perspective::Quasi16,
+        "affine" => Perspective::Affine,
+        _ => return None,
+    })
 }
 
 fn main() {
@@ -219,14 +249,11 @@ fn main() {
             scene: RockScene::new(),
             ws: Box::default(),
         },
-        "demo-textured-lit" => Job::TexturedDemo {
-            scene: TexturedDemoScene::new(),
-            ws: Box::default(),
-        },
-        "knot1k-textured-lit" => Job::TexturedDemo {
-            scene: TexturedDemoScene::with_knot(64, 8),
-            ws: Box::default(),
-        },
+        other if textured(other).is_some() => {
+            let (job, mode) = textured(other).expect("just checked");
+            perspective = mode;
+            job
+        }
         other if shaded(other).is_some() => {
             let (job, mode) = shaded(other).expect("just checked");
             perspective = mode;
@@ -236,7 +263,7 @@ fn main() {
             eprintln!(
                 "count: unknown scene {other:?} \
                  (demo, demo-flat, fill, tri4, tri32, tri100, tri1000, tri10000, euc, \
-                 fill-SHADER-MODE[-facing], terrain, terrain-whole, rock, demo-textured-lit, knot1k-textured-lit)"
+                 fill-SHADER-MODE[-facing], terrain, terrain-whole, rock, demo-textured-lit[-MODE], knot1k-textured-lit[-MODE])"
             );
             std::process::exit(2);
         }
