@@ -110,6 +110,13 @@ impl ColourPlanes<'_> {
     /// 3 KB of a Cortex-M3 firmware holding five shader fills.
     #[inline(never)]
     pub(crate) fn start(&self, i: i32, j: i32) -> ([i32; 3], [i32; 3]) {
+        self.start_inline(i, j)
+    }
+
+    /// [`start`](Self::start) inlined, for a caller that takes one
+    /// triangle's spans in a loop of its own (one copy a shader).
+    #[inline(always)]
+    pub(crate) fn start_inline(&self, i: i32, j: i32) -> ([i32; 3], [i32; 3]) {
         let [_, r, g, b] = self.setup.start_tested_as(self.corners, i, j, false);
         let [_, gr, gg, gb] = self.setup.steps();
         ([r, g, b], [gr, gg, gb])

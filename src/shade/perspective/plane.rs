@@ -5,11 +5,12 @@
 //! scaled `1 / w` ([`scale_q`]).
 
 use super::lerp::NARROW_MULTIPLY;
-use super::{Q_MAX, Q_ONE};
+use super::{PerspectiveSetup, COLOUR_LOOP, Q_MAX, Q_ONE};
 use crate::math::{mul_wide, mul_wide_by_narrow, Recip16};
 use crate::raster::SUBPIXEL_BITS;
 use crate::shade::small::Small;
 use crate::shade::{Basis, GRADIENT_LIMIT};
+use crate::shader::Varyings;
 
 /// One plane in `i64`, gradients clamped to ±2^40: the value at the
 /// centre of pixel `(i, j)` is `gx i + gy j + k`.
@@ -107,6 +108,49 @@ impl WidePlane {
     #[inline(always)]
     pub(super) fn step(&self) -> i32 {
         self.gx.clamp(-Q_MAX, Q_MAX) as i32
+    }
+}
+
+impl<V: Varyings> PerspectiveSetup<V> {
+    /// The planes `Q`, `B1` and `B2` at the centre of pixel `(x0, j)`, the
+    /// first of a span: in `i64`, clamped to their ranges (`Q` to
+    /// `1..=Q_MAX`, the others to `±Q_MAX`), or on a 32-bit target, for a
+    /// triangle none of whose gradients was clamped
+    /// ([`narrow`](PerspectiveSetup::narrow)), the same values in `i32`.
+    #[inline(always)]
+    pub(crate) fn plane_starts(&self, x0: i32, j: i32) -> [i32; 3] {
+        let [pq, p1, p2] = &self.planes;
+        if self.narrow() && (V::LEN > 0 || COLOUR_LOOP) {
+            // The clamps that cannot change a value left out
+            // (`WidePlane::at32_unclamped`): Cortex-M3 `demo-textured-lit`
+            // -1.8 %, `fill-nearest-exact` 58.61 -> 58.04,
+            // `fill-nearest-affine` 46.05 -> 45.37, but `fill-bilinear-exact`
+            // 161.82 -> 162.80 and `fill-lit-exact` 112.19 -> 112.67 (their
+            // loops' registers). For shaders without varyings only on
+            // Thumb-2 ([`COLOUR_LOOP`]), where `Gouraud`'s loop for spans
+            // of constant `Q` is out of line (`colour_span_flat`): there
+            // Cortex-M3 `fill-gouraud-exact` 57.23 -> 56.90 instructions a
+            // fragment, Cortex-M4F 67.74 -> 67.12 (when that loop was
+            // inlined, the M3's took 67.86 -> 70.23 with it).
+            [
+                pq.at32_unclamped(x0, j).max(1),
+                p1.at32_unclamped(x0, j),
+                p2.at32_unclamped(x0, j),
+            ]
+        } else if self.narrow() {
+            const M: i32 = Q_MAX as i32;
+            [
+                pq.at32(x0, j, 1, M),
+                p1.at32(x0, j, -M, M),
+                p2.at32(x0, j, -M, M),
+            ]
+        } else {
+            [
+                pq.at(x0, j, 1, Q_MAX),
+                p1.at(x0, j, -Q_MAX, Q_MAX),
+                p2.at(x0, j, -Q_MAX, Q_MAX),
+            ]
+        }
     }
 }
 

@@ -113,37 +113,7 @@ pub(crate) fn span_input<'a, C, V: Varyings>(
         setup: p,
         z: (p.depth.z_start(t, x0, j) as u32) << (16 - Z_FRAC),
         gz: (p.depth.steps()[0] as u32) << (16 - Z_FRAC),
-        planes: if p.narrow() && (V::LEN > 0 || COLOUR_LOOP) {
-            // The clamps that cannot change a value left out
-            // (`WidePlane::at32_unclamped`): Cortex-M3 `demo-textured-lit`
-            // -1.8 %, `fill-nearest-exact` 58.61 -> 58.04,
-            // `fill-nearest-affine` 46.05 -> 45.37, but `fill-bilinear-exact`
-            // 161.82 -> 162.80 and `fill-lit-exact` 112.19 -> 112.67 (their
-            // loops' registers). For shaders without varyings only on
-            // Thumb-2 ([`COLOUR_LOOP`]), where `Gouraud`'s loop for spans
-            // of constant `Q` is out of line (`colour_span_flat`): there
-            // Cortex-M3 `fill-gouraud-exact` 57.23 -> 56.90 instructions a
-            // fragment, Cortex-M4F 67.74 -> 67.12 (when that loop was
-            // inlined, the M3's took 67.86 -> 70.23 with it).
-            [
-                pq.at32_unclamped(x0, j).max(1),
-                p1.at32_unclamped(x0, j),
-                p2.at32_unclamped(x0, j),
-            ]
-        } else if p.narrow() {
-            const M: i32 = Q_MAX as i32;
-            [
-                pq.at32(x0, j, 1, M),
-                p1.at32(x0, j, -M, M),
-                p2.at32(x0, j, -M, M),
-            ]
-        } else {
-            [
-                pq.at(x0, j, 1, Q_MAX),
-                p1.at(x0, j, -Q_MAX, Q_MAX),
-                p2.at(x0, j, -Q_MAX, Q_MAX),
-            ]
-        },
+        planes: p.plane_starts(x0, j),
         steps: [pq.step(), p1.step(), p2.step()],
         colour,
         mode: out.mode,

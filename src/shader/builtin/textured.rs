@@ -9,7 +9,7 @@
 //! ([`textured_quasi_spans`]).
 
 use super::modulate;
-use crate::shade::perspective::{AFFINE, FLAT_Q, LOOPS32, MASKED_INDEX, MASKED_TEXELS, SHIFTED};
+use crate::shade::perspective::{FLAT_Q, LOOPS32, MASKED_INDEX, MASKED_TEXELS, SHIFTED};
 use crate::shader::{Interpolated, PixelFn, SpanInput, TriangleSpans};
 use crate::texture::{rgb565_to_rgb888, FromTexel, Pow2Rgb565, Quad, Sampler, Texture};
 use embedded_graphics::pixelcolor::Rgb888;
@@ -201,12 +201,13 @@ where
 
 /// [`textured_spans`] for an opaque draw's spans in an affine frame
 /// ([`FragmentShader::shade_affine_spans`](crate::shader::FragmentShader::shade_affine_spans)): the nearest texels on a
-/// repeated power-of-two `Rgb565` texture in a loop of their own
-/// (`run_nearest::<AFFINE>`, the texture coordinates' sums stepped;
-/// `TexturedLit`'s in `run_nearest_lit`, lit by the colour planes'
-/// colour, which the renderer's affine copy sets up for every triangle
-/// of a shader that reads the colour), the others in the opaque affine
-/// loop with the shader's pixel. Its own
+/// repeated power-of-two `Rgb565` texture in a loop of their own, the
+/// triangle's spans at once (`run_nearest_affine`, the texture
+/// coordinates' sums stepped; `TexturedLit`'s in
+/// `run_nearest_affine_lit`, lit by the colour planes' colour, which the
+/// renderer's affine copy sets up for every triangle of a shader that
+/// reads the colour), the others in the opaque affine loop with the
+/// shader's pixel. Its own
 /// `match` rather than a call of `textured_spans` for the other samplers:
 /// called from two shading functions, that one's span closures went out
 /// of line (x86-64 `demo-textured-lit` 5,976,296 -> 7,049,062
@@ -232,8 +233,8 @@ where
             if let Some(c) = parts.and_then(|(texels, p)| spans.nearest_constants(texels, p, true))
             {
                 match planes {
-                    _ if !LIT => return spans.each(|s| s.run_nearest::<AFFINE>(&c, 0)),
-                    Some(planes) => return spans.each(|s| s.run_nearest_lit(&c, planes)),
+                    _ if !LIT => return spans.run_nearest_affine(&c),
+                    Some(planes) => return spans.run_nearest_affine_lit(&c, planes),
                     None => {}
                 }
             }

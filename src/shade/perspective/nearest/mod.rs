@@ -4,24 +4,24 @@
 //! ([`TriangleSpans::nearest_constants`]) and the loops themselves, out of
 //! line: [`nearest_span`], with affine, shifted or constant-`Q` weights
 //! (and with affine ones `TexturedLit`'s texels lit by the colour planes'
-//! colour), and, in [`quasi`], `nearest_quasi_span`, quasi-perspective
-//! (the same bits as the general loop's), which also draws
-//! `TexturedLit`'s texels lit by the interpolated colour. How a loop
-//! colours its texel is [`light`]'s.
+//! colour); in [`affine`], a triangle's affine spans at once (on 64-bit
+//! hosts with the pixel loop of their own, elsewhere through
+//! `nearest_span`); and, in [`quasi`], `nearest_quasi_span`,
+//! quasi-perspective (the same bits as the general loop's), which also
+//! draws `TexturedLit`'s texels lit by the interpolated colour. How a
+//! loop colours its texel is [`light`]'s.
 
 use super::barycentric::{flat_weights, shifted_weights, span_reciprocal};
 use super::lerp::NARROW_MULTIPLY;
 use super::span::{AFFINE, FLAT_Q};
 use super::{depth16, SpanInput, Z_FRAC};
 use crate::math::mul_wide;
-use crate::shade::ColourPlanes;
 use crate::shader::TriangleSpans;
 use crate::texture::FromTexel;
 use fixed::types::I16F16;
-#[cfg(target_pointer_width = "64")]
-use light::LitPacked;
-use light::{Light, Lit, Unlit};
+use light::{Light, Unlit};
 
+mod affine;
 mod light;
 mod quasi;
 
@@ -96,9 +96,11 @@ impl<C: FromTexel> SpanInput<'_, C, [I16F16; 2]> {
     /// [`run_opaque`](Self::run_opaque) for
     /// [`Textured`](crate::shader::Textured) on a repeated power-of-two
     /// `Rgb565` texture, nearest (its constants `c`, from
-    /// [`TriangleSpans::nearest_constants`]), with [`AFFINE`] weights (`sh`
-    /// unused) or [`SHIFTED`](super::span::SHIFTED) ones with the span's shift `sh`: the same
-    /// bits, in a function of its own ([`nearest_span`]).
+    /// [`TriangleSpans::nearest_constants`]), with
+    /// [`SHIFTED`](super::span::SHIFTED) weights of the span's shift `sh`
+    /// or [`FLAT_Q`] ones: the same bits, in a function of its own
+    /// ([`nearest_span`]). (Affine spans go through
+    /// [`TriangleSpans::run_nearest_affine`], a triangle's at once.)
     #[inline(always)]
     pub(crate) fn run_nearest<const WEIGHTS: u8>(self, c: &NearestConstants<'_>, sh: u32) -> u32 {
         let s = NearestSpan {
@@ -108,40 +110,6 @@ impl<C: FromTexel> SpanInput<'_, C, [I16F16; 2]> {
             planes: self.planes,
         };
         nearest_span::<C, _, WEIGHTS>(self.color, self.depth, &s, Unlit)
-    }
-
-    /// [`run_nearest`](Self::run_nearest) with [`AFFINE`] weights for
-    /// [`TexturedLit`](crate::shader::TexturedLit): the texel modulated
-    /// by the colour of the triangle's colour `planes`
-    /// ([`ColourPlanes::start`], as the opaque affine loop takes it),
-    /// stepped beside the texture coordinates: the same bits as that
-    /// loop's. Per fragment, where the opaque affine loop with the
-    /// shader's pixel took `fill-lit-exact` x86-64 79.79 -> 64.99
-    /// (red and green packed in one `u64`, `LitPacked`, 64.72 without the
-    /// test for slivers; 69.68 with three channels), Cortex-M3 90.91 -> 85.86 (its loop spilled and
-    /// unrolled by two: more values than registers), Cortex-M4F 94.77 ->
-    /// 91.16, ARMv6-M 148.92 -> 132.09.
-    #[inline(always)]
-    pub(crate) fn run_nearest_lit(self, c: &NearestConstants<'_>, planes: &ColourPlanes) -> u32 {
-        let (col, dc) = planes.start(self.x0, self.y);
-        let s = NearestSpan {
-            c,
-            sh: 0,
-            z: self.z,
-            planes: self.planes,
-        };
-        // Red and green packed, but for a sliver's planes ([`ColourPlanes::wide`]),
-        // as the 64-bit Gouraud loop packs them.
-        #[cfg(target_pointer_width = "64")]
-        if !planes.wide() {
-            return nearest_span::<C, _, AFFINE>(
-                self.color,
-                self.depth,
-                &s,
-                LitPacked::new(col, dc),
-            );
-        }
-        nearest_span::<C, _, AFFINE>(self.color, self.depth, &s, Lit::<false> { col, dc })
     }
 }
 
@@ -245,6 +213,16 @@ fn texel_index(w: u32, h: u32, fu: u32, fv: u32, shifts: (u32, u32, u32)) -> u32
 /// general affine loop.
 pub(crate) const MASKED_INDEX: bool = cfg!(target_pointer_width = "64");
 
+/// Where [`MASKED_INDEX`], the texel's index from the sums `su` and `sv`
+/// shifted right by `shift` (see there): the column's bits from `u`'s,
+/// the others from `v`'s (cut to the row's by the mask by `LAST` that
+/// the loops apply); `column` is the texture's width less one.
+#[inline(always)]
+fn masked_index(su: u64, sv: u64, shift: u32, column: u32) -> u32 {
+    let v = (sv >> shift) as u32;
+    v ^ (((su ^ sv) >> shift) as u32 & column)
+}
+
 /// Whether [`nearest_span`]'s affine loop takes the steps of its sums
 /// from [`NearestConstants`], computed once per triangle and tile, rather
 /// than at every span: per fragment, `fill-nearest-affine` x86-64 31.39
@@ -301,13 +279,16 @@ pub(crate) const MASKED_TEXELS: u32 = 1 << 20;
 /// in memory; 62.6, 49.5 without the bounds check; 59.9, 47.1 with the
 /// index by one multiply-add; 53.45, 45.14 -> 51.73, 42.91 with the
 /// constants read in the loop on ARMv7-M (see there) rather than copied
-/// to stack slots at every call. The texel as `light` colours it: as it
-/// is, or with [`AFFINE`] weights lit by `TexturedLit`'s colour, stepped
-/// beside the texture coordinates (`run_nearest_lit`). With the colour
-/// from the weights (six products a pixel, before the colour planes) the
-/// lit loop had been slower than the general one (`fill-lit-exact`
-/// 112.2 -> 116.3; again at `20d410c`, 111.33 -> 114.28); with the
-/// planes' three additions, faster (see `run_nearest_lit`). The same loop
+/// to stack slots at every call. Also the loop of a span of
+/// [`affine`]'s spans on 32-bit targets. The texel as `light` colours
+/// it: as it is, or with [`AFFINE`] weights lit by `TexturedLit`'s
+/// colour, stepped beside the texture coordinates
+/// (`TriangleSpans::run_nearest_affine_lit`). With the colour from the
+/// weights (six products a pixel, before the colour planes) the lit loop
+/// had been slower than the general one (`fill-lit-exact` 112.2 ->
+/// 116.3; again at `20d410c`, 111.33 -> 114.28); with the planes' three
+/// additions, faster (Cortex-M3 `fill-lit-exact` 90.91 -> 85.86, x86-64
+/// 79.79 -> 64.99 with red and green packed in one `u64`). The same loop
 /// for bilinear sampling was slower too (162.1 -> 192.2).
 #[inline(never)]
 fn nearest_span<C: FromTexel, L: Light, const WEIGHTS: u8>(
@@ -361,85 +342,37 @@ fn nearest_span<C: FromTexel, L: Light, const WEIGHTS: u8>(
     };
     let shifts = narrow_shifts(k);
     let len = color.len() as u32;
-    // Affine: each fraction is the high word of `2^20 T` modulo 2^64
-    // (`PerspectiveSetup::values_affine`'s `T`, whose low 44 bits it
-    // keeps), which changes by the same step at every pixel: the plane
-    // values `B1`, `B2` change by their steps exactly along a span (their
-    // sums stay within `i32`, see `affine_sum`), so the stepped sums are
-    // the products' at every pixel. Two 64-bit additions a pixel where
-    // the fractions took four products of the weights.
-    //
-    // Where `MASKED_INDEX`, each sum is `2^-20` of that, its fraction in
-    // bits 12 to 43 (the sum's low 20 bits are zeros: the same bits,
-    // modulo 2^44), shifted up by `log2(w)` for `u` and `log2(w h)` for
-    // `v` (at most 20, `MASKED_TEXELS`): bits 44 and up of `u`'s then
-    // hold the column in their low `log2(w)` bits, those of `v`'s the row
-    // times `w` in theirs from `log2(w)` to `log2(w h)`, and the texel's
-    // index is a few shifts and masks (no product, see `texel_index`).
-    // The steps, the same for every span: from the constants
-    // (`nearest_constants`) where `TRIANGLE_STEPS`.
-    let (lu, lv) = if WEIGHTS == AFFINE && MASKED_INDEX {
-        // Through a function of the index: written `k[at::SHIFTS]`, the
-        // lint of out-of-bounds indexing would see ARMv7-M's shorter `k`
-        // (where `MASKED_INDEX` never holds).
-        let word = |k: &[u32; at::LEN], at: usize| k[at];
-        (word(k, at::SHIFTS) & 63, word(k, at::SHIFTS + 1) & 63)
-    } else {
-        (0, 0)
-    };
+    // Affine (on 32-bit targets: 64-bit hosts take `affine`'s loop): the
+    // sums stepped as `affine::affine_spans` steps them (see there); the
+    // steps from the constants (`nearest_constants`) where
+    // `TRIANGLE_STEPS`, else made here.
     let sum = |d1: usize, d2: usize, b: (i32, i32)| affine_sum((k[d1] as i32, k[d2] as i32), b);
     let step = |k: &[u32; at::LEN], at: usize| (k[at + 1] as u64) << 32 | k[at] as u64;
     let (gu, gv) = if WEIGHTS == AFFINE && !TRIANGLE_STEPS {
         let g = (k[at::DB1] as i32, k[at::DB2] as i32);
-        (
-            sum(at::D1U, at::D2U, g) << lu,
-            sum(at::D1V, at::D2V, g) << lv,
-        )
+        (sum(at::D1U, at::D2U, g), sum(at::D1V, at::D2V, g))
     } else {
         (0, 0)
     };
     let (mut su, mut sv) = if WEIGHTS == AFFINE {
-        // `2^20 (d1 b1 + d2 b2)` modulo 2^64 (`2^0` where `MASKED_INDEX`).
+        // `2^20 (d1 b1 + d2 b2)` modulo 2^64.
         let b = (b1, b2);
         (
-            scaled_sum::<SUM_SCALE>((k[at::D1U] as i32, k[at::D2U] as i32), b, k[at::F0U]) << lu,
-            scaled_sum::<SUM_SCALE>((k[at::D1V] as i32, k[at::D2V] as i32), b, k[at::F0V]) << lv,
+            scaled_sum::<SUM_SCALE>((k[at::D1U] as i32, k[at::D2U] as i32), b, k[at::F0U]),
+            scaled_sum::<SUM_SCALE>((k[at::D1V] as i32, k[at::D2V] as i32), b, k[at::F0V]),
         )
     } else {
         (0, 0)
     };
-    // The column's mask (the exact loops keep `texel_index`: with their
-    // fractions' constants in 64 bits, shifted so, x86-64
-    // `fill-nearest-exact-facing` took 55.67 -> 58.08 instructions a
-    // fragment).
-    let column = if WEIGHTS == AFFINE && MASKED_INDEX {
-        k[at::WIDTH].wrapping_sub(1)
-    } else {
-        0
-    };
     // The pixels that fail, counted in memory: the common path holds no
     // count (a register fewer; it had been spilled around every pixel
-    // written). But in a 64-bit host's affine loop a local, which LLVM
-    // keeps in a register there with the pixel loop as it was, and the
-    // span's start and end no longer store, hide and reload it (about 15
-    // instructions a span): x86-64 `fill-nearest-affine` 35.11 -> 34.63
-    // instructions a fragment (in the other loops a local cost
-    // `fill-nearest-exact-facing` 55.67 -> 56.50).
+    // written).
     let mut fails = [0u32];
-    let fails = if cfg!(target_pointer_width = "64") && WEIGHTS == AFFINE {
-        &mut fails
-    } else {
-        core::hint::black_box(&mut fails)
-    };
+    let fails = core::hint::black_box(&mut fails);
     for (c, d) in color.iter_mut().zip(depth.iter_mut()) {
         let zz = depth16(z);
         if zz <= *d {
-            let at = if WEIGHTS == AFFINE && MASKED_INDEX {
-                // The column's bits from `u`'s sum, the others from `v`'s
-                // (cut to the row's by the mask below, `LAST`).
-                let v = (sv >> 44) as u32;
-                v ^ (((su ^ sv) >> 44) as u32 & column)
-            } else {
+            let at = {
                 let (fu, fv) = if WEIGHTS == AFFINE {
                     ((su >> 32) as u32, (sv >> 32) as u32)
                 } else {

@@ -10,7 +10,9 @@
 use super::super::quasi::{quasi_span, segment_step, Segments};
 use super::super::{depth16, signed_weights, PerspectiveSetup, SpanInput};
 use super::light::{Light, Lit, Unlit};
-use super::{at, index_shifts, narrow_shifts, texel_index, NearestConstants, MASKED_INDEX};
+use super::{
+    at, index_shifts, masked_index, narrow_shifts, texel_index, NearestConstants, MASKED_INDEX,
+};
 use crate::texture::FromTexel;
 use fixed::types::I16F16;
 
@@ -276,10 +278,7 @@ fn nearest_pixels<C: FromTexel, L: Light>(
         let zz = depth16(z);
         if zz <= *d {
             let i = if MASKED_INDEX {
-                // The column's bits from `u`, the others from `v` (cut to
-                // the row's by the mask below, `LAST`).
-                let v = (sv >> 32) as u32;
-                v ^ (((su ^ sv) >> 32) as u32 & column)
+                masked_index(su, sv, 32, column)
             } else {
                 texel_index(k[3], k[4], fu, fv, shifts)
             };
