@@ -46,12 +46,13 @@
 # grid4 and the fragment-shader fills fill-gouraud-exact,
 # fill-nearest-exact, fill-nearest-affine, fill-nearest-quasi16-facing,
 # fill-gouraud-quasi16-facing, fill-lit-quasi16-facing, fill-bilinear-exact and
-# fill-lit-exact, the small-triangle rock and
-# demo-textured-lit (examples/icount_scenes/mod.rs). Without SCENES, the
-# LM3S6965 gets seven builds (demo demo-flat fill; grid4; rock; the exact
-# and affine shader fills; the nearest and Gouraud quasi-perspective
-# fills, whose builds link the shaders' quasi-perspective copies too; the
-# lit one; demo-textured-lit): its flash
+# fill-lit-exact, the small-triangle rock,
+# demo-textured-lit and demo-textured-lit-affine
+# (examples/icount_scenes/mod.rs). Without SCENES, the LM3S6965 gets eight
+# builds (demo demo-flat fill; grid4; rock; the exact and affine shader
+# fills; the nearest and Gouraud quasi-perspective fills, whose builds
+# link the shaders' quasi-perspective copies too; the lit one;
+# demo-textured-lit; demo-textured-lit-affine): its flash
 # holds only part of the scenes at a time.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -104,7 +105,7 @@ for board in $BOARDS; do
     if [ -n "$SCENES" ]; then
         groups=("$SCENES")
     elif [ "$board" = lm3s6965evb ]; then
-        groups=("demo demo-flat fill" "grid4" "rock" "$SHADER_SCENES" "fill-nearest-quasi16-facing fill-gouraud-quasi16-facing" "fill-lit-quasi16-facing" "demo-textured-lit")
+        groups=("demo demo-flat fill" "grid4" "rock" "$SHADER_SCENES" "fill-nearest-quasi16-facing fill-gouraud-quasi16-facing" "fill-lit-quasi16-facing" "demo-textured-lit" "demo-textured-lit-affine")
     else
         groups=("")
     fi

@@ -32,7 +32,8 @@
 //!   bin entries (the host's has 6,144), so it may take more bin passes;
 //! * `demo-textured-lit`: demo frame 0 through `TexturedLit` with the
 //!   checker texture (nearest, exact perspective) and the demo's light, as
-//!   the host's `demo-textured-lit`.
+//!   the host's `demo-textured-lit`; `demo-textured-lit-affine` the same
+//!   in affine mode.
 //!
 //! A build holds only the scenes named in `MICRORASTER_ICOUNT_SCENES` (all
 //! without it): their meshes, and through [`frame`]'s constant guards,
@@ -77,13 +78,16 @@ pub const HEIGHT: u32 = 240;
 pub type BenchRenderer =
     Renderer<Rgb565, { bench_tile::TILE_W }, { bench_tile::TILE_H }, BenchFeatures>;
 
-/// Whether the build holds `demo-textured-lit` and no other scene.
+/// Whether the build holds the textured frame (`demo-textured-lit`, its
+/// affine form or both) and no other scene.
 const TEXTURED_ALONE: bool = {
-    let mut alone = SceneId::DemoTexturedLit.built();
+    let mut alone = SceneId::DemoTexturedLit.built() || SceneId::DemoTexturedLitAffine.built();
     let mut i = 0;
     while i < SceneId::ALL.len() {
         let s = SceneId::ALL[i];
-        alone &= s as usize == SceneId::DemoTexturedLit as usize || !s.built();
+        alone &= s as usize == SceneId::DemoTexturedLit as usize
+            || s as usize == SceneId::DemoTexturedLitAffine as usize
+            || !s.built();
         i += 1;
     }
     alone
@@ -119,6 +123,7 @@ impl microraster::Features for BenchFeatures {
         || SceneId::FillGouraudQuasi16.built()
         || SceneId::FillLitQuasi16.built();
     const AFFINE: bool = SceneId::FillNearestAffine.built()
+        || SceneId::DemoTexturedLitAffine.built()
         || SceneId::FillGouraud.built()
         || SceneId::FillNearest.built()
         || SceneId::FillBilinear.built()
@@ -335,11 +340,13 @@ pub enum SceneId {
     Rock,
     /// The demo frame, textured and lit.
     DemoTexturedLit,
+    /// The demo frame, textured and lit, in affine mode.
+    DemoTexturedLitAffine,
 }
 
 impl SceneId {
     /// Every scene, in the order of the tables.
-    pub const ALL: [SceneId; 14] = [
+    pub const ALL: [SceneId; 15] = [
         Self::Demo,
         Self::DemoFlat,
         Self::Fill,
@@ -354,6 +361,7 @@ impl SceneId {
         Self::FillLit,
         Self::Rock,
         Self::DemoTexturedLit,
+        Self::DemoTexturedLitAffine,
     ];
 
     /// The scene's name, as in the host benchmarks.
@@ -373,6 +381,7 @@ impl SceneId {
             Self::FillLit => "fill-lit-exact",
             Self::Rock => "rock",
             Self::DemoTexturedLit => "demo-textured-lit",
+            Self::DemoTexturedLitAffine => "demo-textured-lit-affine",
         }
     }
 
@@ -411,6 +420,7 @@ pub const BUILT_SCENES: usize = {
 
 /// Whether any fragment-shader scene is built in (they need the texture).
 pub const SHADER_SCENES: bool = SceneId::DemoTexturedLit.built()
+    || SceneId::DemoTexturedLitAffine.built()
     || SceneId::FillGouraud.built()
     || SceneId::FillNearest.built()
     || SceneId::FillNearestAffine.built()
@@ -524,7 +534,8 @@ impl Meshes {
         // Constants, so that the branches not taken are gone at compile time.
         const DEMO: bool = built_in("demo") || built_in("demo-flat");
         const GRID4: bool = built_in("grid4");
-        const TEXTURED: bool = built_in("demo-textured-lit");
+        const TEXTURED: bool =
+            built_in("demo-textured-lit") || built_in("demo-textured-lit-affine");
         const ROCK_SCENE: bool = built_in("rock");
         let empty = || Mesh::new(&[], &[]);
         let cube = Mesh::new(&CUBE_POSITIONS, &CUBE_TRIANGLES)?.with_normals(&CUBE_NORMALS)?;
@@ -680,7 +691,8 @@ pub fn frame<P: Profiler>(
     const BILINEAR: bool = SceneId::FillBilinear.built();
     const LIT: bool = SceneId::FillLit.built();
     const ROCK_SCENE: bool = SceneId::Rock.built();
-    const TEXTURED: bool = SceneId::DemoTexturedLit.built();
+    const TEXTURED: bool =
+        SceneId::DemoTexturedLit.built() || SceneId::DemoTexturedLitAffine.built();
     const EXACT: Perspective = Perspective::Exact;
     const AFFINE_MODE: Perspective = Perspective::Affine;
     const QUASI_MODE: Perspective = Perspective::Quasi16;
@@ -729,9 +741,13 @@ pub fn frame<P: Profiler>(
             let s = Scene::new(camera, &draws).light(demo_light());
             renderer.render_profiled(ws, &s, sink, profiler)
         }
-        SceneId::DemoTexturedLit if TEXTURED => {
+        SceneId::DemoTexturedLit | SceneId::DemoTexturedLitAffine if TEXTURED && scene.built() => {
             let texture = meshes.texture.as_ref().ok_or(FrameError::NotBuilt)?;
-            renderer.config_mut().perspective = EXACT;
+            renderer.config_mut().perspective = if scene == SceneId::DemoTexturedLit {
+                EXACT
+            } else {
+                AFFINE_MODE
+            };
             let draws = demo_scene::textured_draws(&meshes.knot_uv, &meshes.cube_uv, texture, t);
             let camera = demo_camera(width, height).ok_or(FrameError::Camera)?;
             let s = Scene::new(camera, &draws)
