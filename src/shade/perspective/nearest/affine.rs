@@ -1,9 +1,9 @@
-//! The nearest-texel loop of opaque affine spans on a repeated
-//! power-of-two `Rgb565` texture, a triangle's spans in a tile at once
-//! ([`affine_spans`]): what is the same for all of them read once, each
-//! span's start from the planes, then its pixels, the texture
-//! coordinates' sums stepped (as `nearest_span`'s exact loops step
-//! their planes).
+//! The nearest-texel loops of opaque affine spans on a repeated
+//! power-of-two `Rgb565` texture: on 64-bit hosts a triangle's spans in a
+//! tile at once ([`affine_spans`]: what is the same for all of them read
+//! once, each span's start from the planes, then its pixels, the texture
+//! coordinates' sums stepped), on 32-bit targets each span through
+//! `nearest_span`'s affine loop.
 
 #[cfg(target_pointer_width = "64")]
 use super::light::LitPacked;
@@ -19,13 +19,23 @@ use crate::texture::FromTexel;
 use fixed::types::I16F16;
 
 impl<C: FromTexel> TriangleSpans<'_, C, [I16F16; 2]> {
-    /// Every span through [`affine_spans`], `Textured`'s texels as they
-    /// are: the same bits as the opaque affine loop with `Textured`'s
-    /// pixel. `c` from [`nearest_constants`](Self::nearest_constants)
-    /// with `affine`.
+    /// `Textured`'s opaque affine spans, the texels as they are: the same
+    /// bits as the opaque affine loop with `Textured`'s pixel. `c` from
+    /// [`nearest_constants`](Self::nearest_constants) with `affine`.
     #[inline(always)]
     pub(crate) fn run_nearest_affine(self, c: &NearestConstants<'_>) -> u32 {
-        affine_spans(Spans::of(self), c, |_, _| Unlit)
+        if PER_PAIR {
+            return affine_spans(Spans::of(self), c, |_, _| Unlit);
+        }
+        self.each(|s| {
+            let sp = NearestSpan {
+                c,
+                sh: 0,
+                z: s.z,
+                planes: s.planes,
+            };
+            nearest_span::<C, _, AFFINE>(s.color, s.depth, &sp, Unlit)
+        })
     }
 
     /// [`run_nearest_affine`](Self::run_nearest_affine) for
@@ -47,20 +57,37 @@ impl<C: FromTexel> TriangleSpans<'_, C, [I16F16; 2]> {
                 LitPacked::new(col, dc)
             });
         }
-        affine_spans(Spans::of(self), c, |x0, j| {
-            let (col, dc) = planes.start_inline(x0, j);
-            Lit::<false> { col, dc }
+        if PER_PAIR {
+            return affine_spans(Spans::of(self), c, |x0, j| {
+                let (col, dc) = planes.start_inline(x0, j);
+                Lit::<false> { col, dc }
+            });
+        }
+        self.each(|s| {
+            let (col, dc) = planes.start(s.x0, s.y);
+            let sp = NearestSpan {
+                c,
+                sh: 0,
+                z: s.z,
+                planes: s.planes,
+            };
+            nearest_span::<C, _, AFFINE>(s.color, s.depth, &sp, Lit::<false> { col, dc })
         })
     }
 }
 
-/// Whether [`affine_spans`] holds the pixel loop itself (64-bit hosts);
-/// on 32-bit targets it calls `nearest_span`'s for each span, whose
-/// constants it reads through a pointer: there the loop inlined beside
-/// the spans' took more registers than the cores have (Cortex-M3
-/// `fill-nearest-affine` 36.84 -> 39.30 instructions a fragment,
-/// `fill-lit-exact` 85.86 -> 87.25).
-const INLINE_PIXELS: bool = cfg!(target_pointer_width = "64");
+/// Whether a triangle's affine spans go through [`affine_spans`] at once
+/// (64-bit hosts), or each through `nearest_span`, as on 32-bit targets:
+/// there the pixel loop inlined beside the spans' took more registers
+/// than the cores have, and `nearest_span` called from it (a call a span,
+/// its constants read through a pointer) cost more a pair than it spared
+/// a span. Per textured frame in affine mode (`demo-textured-lit-affine`),
+/// with the per-pair function calling `nearest_span`: Cortex-M3 7,533,562
+/// -> 7,723,662 instructions, Cortex-M4F 7,524,811 -> 7,771,535, ARMv6-M
+/// 13,419,958 -> 13,749,777 (the lit fill 86.09 -> 85.20, 91.25 -> 90.56,
+/// 132.30 -> 131.68 a fragment); with the pixel loop inlined, the
+/// Cortex-M3's `fill-nearest-affine` 36.84 -> 39.30 a fragment.
+const PER_PAIR: bool = cfg!(target_pointer_width = "64");
 
 /// What [`affine_spans`] reads of a [`TriangleSpans`]: its fields, taken
 /// out in the caller (given the whole record, which a call out of line
@@ -172,15 +199,8 @@ fn affine_spans<C: FromTexel, L: Light>(
         0
     };
     let (w, h) = (k[at::WIDTH], k[at::HEIGHT]);
-    // The pixels that fail, counted in memory on 32-bit targets (as
-    // `nearest_span` counts them): the common path then holds no count.
-    let mut fails = [0u32];
-    let fails = if cfg!(target_pointer_width = "64") {
-        &mut fails
-    } else {
-        core::hint::black_box(&mut fails)
-    };
-    let mut pixels = 0;
+    // The pixels that fail: the common path holds no count.
+    let (mut pixels, mut fails) = (0, 0);
     for &Span { j, x0, x1 } in found {
         // The spans lie inside the tile (the walk clips them to it).
         let row = (j - oy) as usize * width;
@@ -190,16 +210,6 @@ fn affine_spans<C: FromTexel, L: Light>(
         };
         let mut z = (p.depth.z_start(corners, x0, j) as u32) << (16 - Z_FRAC);
         let [_, b1, b2] = p.plane_starts(x0, j);
-        if !INLINE_PIXELS {
-            let s = NearestSpan {
-                c,
-                sh: 0,
-                z,
-                planes: [0, b1, b2],
-            };
-            pixels += nearest_span::<C, _, AFFINE>(color, depth, &s, light(x0, j));
-            continue;
-        }
         let (mut su, mut sv) = (
             sum(at::D1U, at::D2U, (b1, b2), k[at::F0U]) << lu,
             sum(at::D1V, at::D2V, (b1, b2), k[at::F0V]) << lv,
@@ -218,7 +228,7 @@ fn affine_spans<C: FromTexel, L: Light>(
                 *c = light.texel(texels[at as usize & m]);
                 *d = zz;
             } else {
-                fails[0] += 1;
+                fails += 1;
             }
             su = su.wrapping_add(gu);
             sv = sv.wrapping_add(gv);
@@ -226,5 +236,5 @@ fn affine_spans<C: FromTexel, L: Light>(
             light.step(&light_steps);
         }
     }
-    pixels - fails[0]
+    pixels - fails
 }
