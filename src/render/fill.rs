@@ -510,7 +510,7 @@ where
     // fit) keep the perspective weights' colour.
     let colour = if COPY == AFFINE && F::INTERPOLATE_COLOR {
         Some(ColourPlanes {
-            setup: TriangleSetup::general(&tri.corners, true),
+            setup: TriangleSetup::colour_planes(&tri.corners),
             corners: &tri.corners,
         })
     } else {

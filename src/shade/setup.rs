@@ -488,6 +488,17 @@ impl TriangleSetup {
         Self::general(t, true).for_gouraud_spans(t)
     }
 
+    /// [`TriangleSetup::new`] of a Gouraud triangle, out of line: the
+    /// colour planes of a fragment shader's affine triangle
+    /// ([`ColourPlanes`], `render::fill::shade_custom`), by the small
+    /// triangles' 32-bit divisions on 32-bit cores and the offset set-up
+    /// on 64-bit hosts where the triangle allows (the same planes as the
+    /// general set-up's).
+    #[inline(never)]
+    pub(crate) fn colour_planes(t: &Corners<'_>) -> Self {
+        Self::new(t, true)
+    }
+
     /// [`TriangleSetup::new`] of a flat triangle.
     #[cfg_attr(target_pointer_width = "64", inline(always))]
     #[cfg_attr(not(target_pointer_width = "64"), inline(never))]
