@@ -239,7 +239,8 @@ impl TriangleSetup {
     /// the general path's values (the edge vectors, their signs and
     /// magnitudes) were computed and spilled on the small set-up's way
     /// in. Also the colour planes of a fragment shader's affine triangle
-    /// (`PerspectiveSetup::new`).
+    /// that the small and offset set-ups decline
+    /// ([`TriangleSetup::colour_planes`]).
     #[inline(never)]
     pub(crate) fn general(t: &Corners<'_>, gouraud: bool) -> Self {
         Self::with_basis(&Basis::new(&t.points()), t, gouraud)
