@@ -147,16 +147,7 @@ fn affine_spans<C: FromTexel, L: Light>(
     c: &NearestConstants<'_>,
     light: impl Fn(i32, i32) -> L,
 ) -> u32 {
-    let Spans {
-        color,
-        depth,
-        width,
-        ox,
-        oy,
-        found,
-        setup: p,
-        corners,
-    } = spans;
+    let (color, depth, p) = (spans.color, spans.depth, spans.setup);
     let k = &c.k;
     // The texels cut to the count, a power of two (`nearest_constants`
     // checked that the slice holds them), here, so that the compiler
@@ -201,14 +192,17 @@ fn affine_spans<C: FromTexel, L: Light>(
     let (w, h) = (k[at::WIDTH], k[at::HEIGHT]);
     // The pixels that fail: the common path holds no count.
     let (mut pixels, mut fails) = (0, 0);
-    for &Span { j, x0, x1 } in found {
+    for &Span { j, x0, x1 } in spans.found {
         // The spans lie inside the tile (the walk clips them to it).
-        let row = (j - oy) as usize * width;
-        let (a, b) = (row + (x0 - ox) as usize, row + (x1 - ox) as usize);
+        let row = (j - spans.oy) as usize * spans.width;
+        let (a, b) = (
+            row + (x0 - spans.ox) as usize,
+            row + (x1 - spans.ox) as usize,
+        );
         let (Some(color), Some(depth)) = (color.get_mut(a..b), depth.get_mut(a..b)) else {
             continue;
         };
-        let mut z = (p.depth.z_start(corners, x0, j) as u32) << (16 - Z_FRAC);
+        let mut z = (p.depth.z_start(spans.corners, x0, j) as u32) << (16 - Z_FRAC);
         let [_, b1, b2] = p.plane_starts(x0, j);
         let (mut su, mut sv) = (
             sum(at::D1U, at::D2U, (b1, b2), k[at::F0U]) << lu,
