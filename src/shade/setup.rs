@@ -117,7 +117,7 @@ impl ColourPlanes<'_> {
     /// triangle's spans in a loop of its own (one copy a shader).
     #[inline(always)]
     pub(crate) fn start_inline(&self, i: i32, j: i32) -> ([i32; 3], [i32; 3]) {
-        let [_, r, g, b] = self.setup.start_tested_as(self.corners, i, j, false);
+        let [r, g, b] = self.setup.colour_start(self.corners, i, j);
         let [_, gr, gg, gb] = self.setup.steps();
         ([r, g, b], [gr, gg, gb])
     }

@@ -198,6 +198,33 @@ impl TriangleSetup {
         }
     }
 
+    /// Red, green and blue at the centre of pixel `(i, j)`: the colour of
+    /// [`TriangleSetup::start_tested_as`] (not interior), without its
+    /// depth, whose plane and test that start took for colour planes
+    /// alone ([`ColourPlanes`](super::ColourPlanes)). The same values: a
+    /// channel inside its range is left by the clamp, and a wide
+    /// triangle's come from [`wide_start`] either way.
+    #[inline(always)]
+    pub(super) fn colour_start(&self, t: &Corners<'_>, i: i32, j: i32) -> [i32; 3] {
+        if self.wide {
+            let [_, r, g, b] = wide_start(t, i, j);
+            return [r, g, b];
+        }
+        let v = [
+            self.planes[1].at(i, j),
+            self.planes[2].at(i, j),
+            self.planes[3].at(i, j),
+        ];
+        if c_inside(v[0]) && c_inside(v[1]) && c_inside(v[2]) {
+            v
+        } else {
+            // Rare, as in `start_tested_as`.
+            #[cfg(not(microraster_narrow_multiply))]
+            crate::hint::cold();
+            v.map(|c| c.clamp(C_LO, C_HI))
+        }
+    }
+
     /// Depth, red, green and blue at the centre of pixel `(i, j)` of an
     /// [`interior`](Self::interior) triangle, depth shifted left by
     /// `16 - Z_FRAC` (wrapping) as the Gouraud span loop steps it: the
