@@ -5,15 +5,13 @@
 //! coordinates' sums stepped), on 32-bit targets each span through
 //! `nearest_span`'s affine loop.
 
-#[cfg(target_pointer_width = "64")]
-use super::light::LitPacked;
-use super::light::{Light, Lit, Unlit};
-use super::{at, masked_index, narrow_shifts, nearest_span, scaled_sum, texel_index};
-use super::{NearestConstants, NearestSpan, MASKED_INDEX, SUM_SCALE, TRIANGLE_STEPS};
-use crate::raster::Span;
+use super::light::{Lit, Unlit};
+use super::NearestConstants;
+#[cfg(not(target_pointer_width = "64"))]
+use super::{nearest_span, NearestSpan};
+#[cfg(not(target_pointer_width = "64"))]
 use crate::shade::perspective::span::AFFINE;
-use crate::shade::perspective::{depth16, PerspectiveSetup, Z_FRAC};
-use crate::shade::{ColourPlanes, Corners};
+use crate::shade::ColourPlanes;
 use crate::shader::TriangleSpans;
 use crate::texture::FromTexel;
 use fixed::types::I16F16;
@@ -24,9 +22,9 @@ impl<C: FromTexel> TriangleSpans<'_, C, [I16F16; 2]> {
     /// [`nearest_constants`](Self::nearest_constants) with `affine`.
     #[inline(always)]
     pub(crate) fn run_nearest_affine(self, c: &NearestConstants<'_>) -> u32 {
-        if PER_PAIR {
-            return affine_spans(Spans::of(self), c, |_, _| Unlit);
-        }
+        #[cfg(target_pointer_width = "64")]
+        return per_pair::affine_spans(per_pair::Spans::of(self), c, |_, _| Unlit);
+        #[cfg(not(target_pointer_width = "64"))]
         self.each(|s| {
             let sp = NearestSpan {
                 c,
@@ -51,18 +49,20 @@ impl<C: FromTexel> TriangleSpans<'_, C, [I16F16; 2]> {
         // Red and green packed, but for a sliver's planes
         // ([`ColourPlanes::wide`]), as the 64-bit Gouraud loop packs them.
         #[cfg(target_pointer_width = "64")]
-        if !planes.wide() {
-            return affine_spans(Spans::of(self), c, |x0, j| {
-                let (col, dc) = planes.start_inline(x0, j);
-                LitPacked::new(col, dc)
-            });
-        }
-        if PER_PAIR {
-            return affine_spans(Spans::of(self), c, |x0, j| {
+        {
+            use per_pair::{affine_spans, Spans};
+            if !planes.wide() {
+                return affine_spans(Spans::of(self), c, |x0, j| {
+                    let (col, dc) = planes.start_inline(x0, j);
+                    super::light::LitPacked::new(col, dc)
+                });
+            }
+            affine_spans(Spans::of(self), c, |x0, j| {
                 let (col, dc) = planes.start_inline(x0, j);
                 Lit::<false> { col, dc }
-            });
+            })
         }
+        #[cfg(not(target_pointer_width = "64"))]
         self.each(|s| {
             let (col, dc) = planes.start(s.x0, s.y);
             let sp = NearestSpan {
@@ -76,159 +76,146 @@ impl<C: FromTexel> TriangleSpans<'_, C, [I16F16; 2]> {
     }
 }
 
-/// Whether a triangle's affine spans go through [`affine_spans`] at once
-/// (64-bit hosts), or each through `nearest_span`, as on 32-bit targets:
-/// there the pixel loop inlined beside the spans' took more registers
-/// than the cores have, and `nearest_span` called from it (a call a span,
-/// its constants read through a pointer) cost more a pair than it spared
-/// a span. Per textured frame in affine mode (`demo-textured-lit-affine`),
+/// A triangle's affine spans at once ([`affine_spans`]), on 64-bit
+/// hosts. 32-bit targets take each span through `nearest_span`: there
+/// the pixel loop inlined beside the spans' took more registers than the
+/// cores have, and `nearest_span` called from it (a call a span, its
+/// constants read through a pointer) cost more a pair than it spared a
+/// span. Per textured frame in affine mode (`demo-textured-lit-affine`),
 /// with the per-pair function calling `nearest_span`: Cortex-M3 7,533,562
 /// -> 7,723,662 instructions, Cortex-M4F 7,524,811 -> 7,771,535, ARMv6-M
 /// 13,419,958 -> 13,749,777 (the lit fill 86.09 -> 85.20, 91.25 -> 90.56,
 /// 132.30 -> 131.68 a fragment); with the pixel loop inlined, the
 /// Cortex-M3's `fill-nearest-affine` 36.84 -> 39.30 a fragment.
-const PER_PAIR: bool = cfg!(target_pointer_width = "64");
+#[cfg(target_pointer_width = "64")]
+mod per_pair {
+    use super::super::light::Light;
+    #[cfg(doc)]
+    use super::super::MASKED_INDEX;
+    use super::super::{at, masked_index, scaled_sum, NearestConstants};
+    use crate::raster::Span;
+    use crate::shade::perspective::{depth16, PerspectiveSetup, Z_FRAC};
+    use crate::shade::Corners;
+    use crate::shader::TriangleSpans;
+    use crate::texture::FromTexel;
+    use fixed::types::I16F16;
 
-/// What [`affine_spans`] reads of a [`TriangleSpans`]: its fields, taken
-/// out in the caller (given the whole record, which a call out of line
-/// keeps in memory, the renderer's affine copy of its shading function no
-/// longer knew that its other spans are opaque, and kept the general
-/// loops: 20 KB more of a Cortex-M4F firmware).
-struct Spans<'a, C> {
-    color: &'a mut [C],
-    depth: &'a mut [u16],
-    width: usize,
-    ox: i32,
-    oy: i32,
-    found: &'a [Span],
-    setup: &'a PerspectiveSetup<[I16F16; 2]>,
-    corners: &'a Corners<'a>,
-}
-
-impl<'a, C> Spans<'a, C> {
-    #[inline(always)]
-    fn of(s: TriangleSpans<'a, C, [I16F16; 2]>) -> Self {
-        Self {
-            color: s.color,
-            depth: s.depth,
-            width: s.width,
-            ox: s.ox,
-            oy: s.oy,
-            found: s.found,
-            setup: s.setup,
-            corners: s.corners,
-        }
+    /// What [`affine_spans`] reads of a [`TriangleSpans`]: its fields, taken
+    /// out in the caller (given the whole record, which a call out of line
+    /// keeps in memory, the renderer's affine copy of its shading function no
+    /// longer knew that its other spans are opaque, and kept the general
+    /// loops: 20 KB more of a Cortex-M4F firmware).
+    pub(super) struct Spans<'a, C> {
+        color: &'a mut [C],
+        depth: &'a mut [u16],
+        width: usize,
+        ox: i32,
+        oy: i32,
+        found: &'a [Span],
+        setup: &'a PerspectiveSetup<[I16F16; 2]>,
+        corners: &'a Corners<'a>,
     }
-}
 
-/// The spans of `spans` on the texture of `c` (its
-/// [`NearestConstants`], made with `affine`), each texel coloured by the
-/// light `light(x0, j)` gives for the span starting at `(x0, j)`. Out of
-/// line, one call a triangle and tile: a call a span (with its record of
-/// the span, the constants copied, the light's start in a call of its
-/// own) took about 250 x86-64 instructions a span of `knot1k-textured-lit`
-/// in affine mode, more than its pixels.
-///
-/// Each fraction is the high word of `2^20 T` modulo 2^64
-/// (`PerspectiveSetup::values_affine`'s `T`, whose low 44 bits it keeps),
-/// which changes by the same step at every pixel: the plane values `B1`,
-/// `B2` change by their steps exactly along a span (their sums stay
-/// within `i32`, see `affine_sum`), so the stepped sums are the
-/// products' at every pixel. Where [`MASKED_INDEX`], each sum is `2^-20`
-/// of that, its fraction in bits 12 to 43 (the sum's low 20 bits are
-/// zeros: the same bits, modulo 2^44), shifted up by `log2(w)` for `u`
-/// and `log2(w h)` for `v` (at most 20, `MASKED_TEXELS`): bits 44 and up
-/// of `u`'s then hold the column in their low `log2(w)` bits, those of
-/// `v`'s the row times `w` in theirs from `log2(w)` to `log2(w h)`, and
-/// the texel's index is a few shifts and masks.
-#[inline(never)]
-fn affine_spans<C: FromTexel, L: Light>(
-    spans: Spans<'_, C>,
-    c: &NearestConstants<'_>,
-    light: impl Fn(i32, i32) -> L,
-) -> u32 {
-    let (color, depth, p) = (spans.color, spans.depth, spans.setup);
-    let k = &c.k;
-    // The texels cut to the count, a power of two (`nearest_constants`
-    // checked that the slice holds them), here, so that the compiler
-    // knows the length: an index masked by `m` then needs no bounds
-    // check, `at & m <= m < m + 1`.
-    let m = k[at::LAST] as usize;
-    let Some(texels) = c.texels.get(..=m) else {
-        return 0;
-    };
-    let shifts = narrow_shifts(k);
-    let (lu, lv) = if MASKED_INDEX {
-        // Through a function of the index: written `k[at::SHIFTS]`, the
-        // lint of out-of-bounds indexing would see ARMv7-M's shorter `k`
-        // (where `MASKED_INDEX` never holds).
-        let word = |k: &[u32; at::LEN], at: usize| k[at];
-        (word(k, at::SHIFTS) & 63, word(k, at::SHIFTS + 1) & 63)
-    } else {
-        (0, 0)
-    };
-    let sum = |d1: usize, d2: usize, b: (i32, i32), f0: u32| {
-        scaled_sum::<SUM_SCALE>((k[d1] as i32, k[d2] as i32), b, f0)
-    };
-    // The sums' steps, the same for every span: from the constants where
-    // `TRIANGLE_STEPS`, else here.
-    let (gu, gv) = if TRIANGLE_STEPS {
-        let step = |k: &[u32; at::LEN], at: usize| (k[at + 1] as u64) << 32 | k[at] as u64;
-        (step(k, at::GU), step(k, at::GV))
-    } else {
-        let g = (k[at::DB1] as i32, k[at::DB2] as i32);
-        (
-            sum(at::D1U, at::D2U, g, 0) << lu,
-            sum(at::D1V, at::D2V, g, 0) << lv,
-        )
-    };
-    let gz = k[at::DZ];
-    // The column's mask.
-    let column = if MASKED_INDEX {
-        k[at::WIDTH].wrapping_sub(1)
-    } else {
-        0
-    };
-    let (w, h) = (k[at::WIDTH], k[at::HEIGHT]);
-    // The pixels that fail: the common path holds no count.
-    let (mut pixels, mut fails) = (0, 0);
-    for &Span { j, x0, x1 } in spans.found {
-        // The spans lie inside the tile (the walk clips them to it).
-        let row = (j - spans.oy) as usize * spans.width;
-        let (a, b) = (
-            row + (x0 - spans.ox) as usize,
-            row + (x1 - spans.ox) as usize,
-        );
-        let (Some(color), Some(depth)) = (color.get_mut(a..b), depth.get_mut(a..b)) else {
-            continue;
-        };
-        let mut z = (p.depth.z_start(spans.corners, x0, j) as u32) << (16 - Z_FRAC);
-        let [_, b1, b2] = p.plane_starts(x0, j);
-        let (mut su, mut sv) = (
-            sum(at::D1U, at::D2U, (b1, b2), k[at::F0U]) << lu,
-            sum(at::D1V, at::D2V, (b1, b2), k[at::F0V]) << lv,
-        );
-        let (mut light, light_steps) = light(x0, j).start();
-        pixels += color.len() as u32;
-        for (c, d) in color.iter_mut().zip(depth.iter_mut()) {
-            let zz = depth16(z);
-            if zz <= *d {
-                let at = if MASKED_INDEX {
-                    masked_index(su, sv, 44, column)
-                } else {
-                    let (fu, fv) = ((su >> 32) as u32, (sv >> 32) as u32);
-                    texel_index(w, h, fu, fv, shifts)
-                };
-                *c = light.texel(texels[at as usize & m]);
-                *d = zz;
-            } else {
-                fails += 1;
+    impl<'a, C> Spans<'a, C> {
+        #[inline(always)]
+        pub(super) fn of(s: TriangleSpans<'a, C, [I16F16; 2]>) -> Self {
+            Self {
+                color: s.color,
+                depth: s.depth,
+                width: s.width,
+                ox: s.ox,
+                oy: s.oy,
+                found: s.found,
+                setup: s.setup,
+                corners: s.corners,
             }
-            su = su.wrapping_add(gu);
-            sv = sv.wrapping_add(gv);
-            z = z.wrapping_add(gz);
-            light.step(&light_steps);
         }
     }
-    pixels - fails
+
+    /// The spans of `spans` on the texture of `c` (its
+    /// [`NearestConstants`], made with `affine`), each texel coloured by the
+    /// light `light(x0, j)` gives for the span starting at `(x0, j)`. Out of
+    /// line, one call a triangle and tile: a call a span (with its record of
+    /// the span, the constants copied, the light's start in a call of its
+    /// own) took about 250 x86-64 instructions a span of `knot1k-textured-lit`
+    /// in affine mode, more than its pixels.
+    ///
+    /// Each fraction is the high word of `2^20 T` modulo 2^64
+    /// (`PerspectiveSetup::values_affine`'s `T`, whose low 44 bits it keeps),
+    /// which changes by the same step at every pixel: the plane values `B1`,
+    /// `B2` change by their steps exactly along a span (their sums stay
+    /// within `i32`, see `affine_sum`), so the stepped sums are the
+    /// products' at every pixel. As [`MASKED_INDEX`] has it, each sum is `2^-20`
+    /// of that, its fraction in bits 12 to 43 (the sum's low 20 bits are
+    /// zeros: the same bits, modulo 2^44), shifted up by `log2(w)` for `u`
+    /// and `log2(w h)` for `v` (at most 20, `MASKED_TEXELS`): bits 44 and up
+    /// of `u`'s then hold the column in their low `log2(w)` bits, those of
+    /// `v`'s the row times `w` in theirs from `log2(w)` to `log2(w h)`, and
+    /// the texel's index is a few shifts and masks.
+    #[inline(never)]
+    pub(super) fn affine_spans<C: FromTexel, L: Light>(
+        spans: Spans<'_, C>,
+        c: &NearestConstants<'_>,
+        light: impl Fn(i32, i32) -> L,
+    ) -> u32 {
+        let (color, depth, p) = (spans.color, spans.depth, spans.setup);
+        let k = &c.k;
+        // The texels cut to the count, a power of two (`nearest_constants`
+        // checked that the slice holds them), here, so that the compiler
+        // knows the length: an index masked by `m` then needs no bounds
+        // check, `at & m <= m < m + 1`.
+        let m = k[at::LAST] as usize;
+        let Some(texels) = c.texels.get(..=m) else {
+            return 0;
+        };
+        // The sums' shifts (`nearest_constants`): `log2(w)` for `u`,
+        // `log2(w h)` for `v`.
+        let (lu, lv) = (k[at::SHIFTS] & 63, k[at::SHIFTS + 1] & 63);
+        // The sums' steps, the same for every span (`nearest_constants`).
+        let step = |at: usize| (k[at + 1] as u64) << 32 | k[at] as u64;
+        let (gu, gv, gz) = (step(at::GU), step(at::GV), k[at::DZ]);
+        // The column's mask.
+        let column = k[at::WIDTH].wrapping_sub(1);
+        // `2^0 (d1 b1 + d2 b2) + 2^12 f0` modulo 2^64 (`MASKED_INDEX`'s
+        // scale), shifted.
+        let sum = |d1: usize, d2: usize, b: (i32, i32), f0: u32, l: u32| {
+            scaled_sum::<0>((k[d1] as i32, k[d2] as i32), b, f0) << l
+        };
+        // The pixels that fail: the common path holds no count.
+        let (mut pixels, mut fails) = (0, 0);
+        for &Span { j, x0, x1 } in spans.found {
+            // The spans lie inside the tile (the walk clips them to it).
+            let row = (j - spans.oy) as usize * spans.width;
+            let (a, b) = (
+                row + (x0 - spans.ox) as usize,
+                row + (x1 - spans.ox) as usize,
+            );
+            let (Some(color), Some(depth)) = (color.get_mut(a..b), depth.get_mut(a..b)) else {
+                continue;
+            };
+            let mut z = (p.depth.z_start(spans.corners, x0, j) as u32) << (16 - Z_FRAC);
+            let [_, b1, b2] = p.plane_starts(x0, j);
+            let (mut su, mut sv) = (
+                sum(at::D1U, at::D2U, (b1, b2), k[at::F0U], lu),
+                sum(at::D1V, at::D2V, (b1, b2), k[at::F0V], lv),
+            );
+            let (mut light, light_steps) = light(x0, j).start();
+            pixels += color.len() as u32;
+            for (c, d) in color.iter_mut().zip(depth.iter_mut()) {
+                let zz = depth16(z);
+                if zz <= *d {
+                    let at = masked_index(su, sv, 44, column);
+                    *c = light.texel(texels[at as usize & m]);
+                    *d = zz;
+                } else {
+                    fails += 1;
+                }
+                su = su.wrapping_add(gu);
+                sv = sv.wrapping_add(gv);
+                z = z.wrapping_add(gz);
+                light.step(&light_steps);
+            }
+        }
+        pixels - fails
+    }
 }

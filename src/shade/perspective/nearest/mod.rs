@@ -135,6 +135,7 @@ mod at {
     /// each), and where `MASKED_INDEX` the sums' shifts (`u`'s, `v`'s).
     pub(super) const GU: usize = 13;
     pub(super) const GV: usize = 15;
+    #[cfg_attr(not(target_pointer_width = "64"), allow(dead_code))]
     pub(super) const SHIFTS: usize = 17;
     /// The words: those after `LAST` only where `TRIANGLE_STEPS` (on
     /// ARMv7-M, six words more to clear and copy per triangle and tile
@@ -372,27 +373,25 @@ fn nearest_span<C: FromTexel, L: Light, const WEIGHTS: u8>(
     for (c, d) in color.iter_mut().zip(depth.iter_mut()) {
         let zz = depth16(z);
         if zz <= *d {
-            let at = {
-                let (fu, fv) = if WEIGHTS == AFFINE {
-                    ((su >> 32) as u32, (sv >> 32) as u32)
+            let (fu, fv) = if WEIGHTS == AFFINE {
+                ((su >> 32) as u32, (sv >> 32) as u32)
+            } else {
+                let (w1, w2) = if WEIGHTS == FLAT_Q {
+                    flat_weights(b1, b2, sh, r)
                 } else {
-                    let (w1, w2) = if WEIGHTS == FLAT_Q {
-                        flat_weights(b1, b2, sh, r)
-                    } else {
-                        shifted_weights(q, b1, b2, sh)
-                    };
-                    let (w1, w2) = (w1 as u32, w2 as u32);
-                    (
-                        k[at::F0U]
-                            .wrapping_add(k[at::D1U].wrapping_mul(w1))
-                            .wrapping_add(k[at::D2U].wrapping_mul(w2)),
-                        k[at::F0V]
-                            .wrapping_add(k[at::D1V].wrapping_mul(w1))
-                            .wrapping_add(k[at::D2V].wrapping_mul(w2)),
-                    )
+                    shifted_weights(q, b1, b2, sh)
                 };
-                texel_index(k[at::WIDTH], k[at::HEIGHT], fu, fv, shifts)
+                let (w1, w2) = (w1 as u32, w2 as u32);
+                (
+                    k[at::F0U]
+                        .wrapping_add(k[at::D1U].wrapping_mul(w1))
+                        .wrapping_add(k[at::D2U].wrapping_mul(w2)),
+                    k[at::F0V]
+                        .wrapping_add(k[at::D1V].wrapping_mul(w1))
+                        .wrapping_add(k[at::D2V].wrapping_mul(w2)),
+                )
             };
+            let at = texel_index(k[at::WIDTH], k[at::HEIGHT], fu, fv, shifts);
             *c = light.texel(texels[at as usize & m]);
             *d = zz;
         } else {
