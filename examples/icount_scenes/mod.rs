@@ -79,9 +79,13 @@ pub type BenchRenderer =
     Renderer<Rgb565, { bench_tile::TILE_W }, { bench_tile::TILE_H }, BenchFeatures>;
 
 /// Whether the build holds the textured frame (`demo-textured-lit`, its
-/// affine form or both) and no other scene.
+/// affine form or both).
+const TEXTURED: bool = SceneId::DemoTexturedLit.built() || SceneId::DemoTexturedLitAffine.built();
+
+/// Whether the build holds the textured frame ([`TEXTURED`]) and no other
+/// scene.
 const TEXTURED_ALONE: bool = {
-    let mut alone = SceneId::DemoTexturedLit.built() || SceneId::DemoTexturedLitAffine.built();
+    let mut alone = TEXTURED;
     let mut i = 0;
     while i < SceneId::ALL.len() {
         let s = SceneId::ALL[i];
@@ -419,8 +423,7 @@ pub const BUILT_SCENES: usize = {
 };
 
 /// Whether any fragment-shader scene is built in (they need the texture).
-pub const SHADER_SCENES: bool = SceneId::DemoTexturedLit.built()
-    || SceneId::DemoTexturedLitAffine.built()
+pub const SHADER_SCENES: bool = TEXTURED
     || SceneId::FillGouraud.built()
     || SceneId::FillNearest.built()
     || SceneId::FillNearestAffine.built()
@@ -534,8 +537,6 @@ impl Meshes {
         // Constants, so that the branches not taken are gone at compile time.
         const DEMO: bool = built_in("demo") || built_in("demo-flat");
         const GRID4: bool = built_in("grid4");
-        const TEXTURED: bool =
-            built_in("demo-textured-lit") || built_in("demo-textured-lit-affine");
         const ROCK_SCENE: bool = built_in("rock");
         let empty = || Mesh::new(&[], &[]);
         let cube = Mesh::new(&CUBE_POSITIONS, &CUBE_TRIANGLES)?.with_normals(&CUBE_NORMALS)?;
@@ -691,8 +692,6 @@ pub fn frame<P: Profiler>(
     const BILINEAR: bool = SceneId::FillBilinear.built();
     const LIT: bool = SceneId::FillLit.built();
     const ROCK_SCENE: bool = SceneId::Rock.built();
-    const TEXTURED: bool =
-        SceneId::DemoTexturedLit.built() || SceneId::DemoTexturedLitAffine.built();
     const EXACT: Perspective = Perspective::Exact;
     const AFFINE_MODE: Perspective = Perspective::Affine;
     const QUASI_MODE: Perspective = Perspective::Quasi16;
