@@ -1,9 +1,9 @@
 //! The nearest-texel loops of opaque affine spans on a repeated
 //! power-of-two `Rgb565` texture: on 64-bit hosts a triangle's spans in a
-//! tile at once ([`affine_spans`]: what is the same for all of them read
-//! once, each span's start from the planes, then its pixels, the texture
-//! coordinates' sums stepped), on 32-bit targets each span through
-//! `nearest_span`'s affine loop.
+//! tile at once (`per_pair::affine_spans`: what is the same for all of
+//! them read once, each span's start from the planes, then its pixels,
+//! the texture coordinates' sums stepped), on 32-bit targets each span
+//! through `nearest_span`'s affine loop.
 
 use super::light::{Lit, Unlit};
 use super::NearestConstants;
@@ -76,7 +76,7 @@ impl<C: FromTexel> TriangleSpans<'_, C, [I16F16; 2]> {
     }
 }
 
-/// A triangle's affine spans at once ([`affine_spans`]), on 64-bit
+/// A triangle's affine spans at once ([`affine_spans`](per_pair::affine_spans)), on 64-bit
 /// hosts. 32-bit targets take each span through `nearest_span`: there
 /// the pixel loop inlined beside the spans' took more registers than the
 /// cores have, and `nearest_span` called from it (a call a span, its
