@@ -133,6 +133,8 @@ use std::{string::ToString, vec::Vec};
 mod tests;
 
 use axis::Axis;
+#[cfg(target_pointer_width = "64")]
+pub(crate) use bilinear::PackedQuad;
 use fixed::types::I16F16;
 #[cfg(any(test, not(target_pointer_width = "64")))]
 pub(crate) use sampler::expanded257;

@@ -252,11 +252,11 @@ pub enum Sampler<'t> {
 /// shifts and masks.
 #[derive(Clone, Copy, Debug)]
 pub struct Pow2Rgb565<'t> {
-    texels: &'t [u16],
+    pub(super) texels: &'t [u16],
     /// `16 - log2` of each side: `raw >> shift` is the texel coordinate.
     shift: [u32; 2],
     /// `log2` of each side.
-    log2: [u32; 2],
+    pub(super) log2: [u32; 2],
     /// `side - 1`.
     mask: [u32; 2],
     /// For [`nearest_fine`](Self::nearest_fine): `32 - log2` of the
@@ -266,7 +266,7 @@ pub struct Pow2Rgb565<'t> {
     /// count, so an index masked by it needs no check
     /// ([`nearest_fine`](Self::nearest_fine)).
     #[cfg(target_pointer_width = "64")]
-    last: usize,
+    pub(super) last: usize,
 }
 
 impl<'t> Texture<'t> {
@@ -317,7 +317,7 @@ impl Pow2Rgb565<'_> {
     /// The texel `(x, y)`'s bits, coordinates already masked; black only
     /// if the slice were short, which `Texture::new` rules out.
     #[inline(always)]
-    fn at(&self, x: u32, y: u32) -> u16 {
+    pub(super) fn at(&self, x: u32, y: u32) -> u16 {
         match self.texels.get(((y << self.log2[0]) | x) as usize) {
             Some(&c) => c,
             None => 0,
@@ -395,6 +395,46 @@ impl Pow2Rgb565<'_> {
         self.bilinear_reusing(u, v, &mut quad)
     }
 
+    /// This sampler with its texels cut to their count in the caller: a
+    /// loop that reads them by [`bilinear_packed`](Self::bilinear_packed)
+    /// then knows their number and reads them with no check. `None` if
+    /// the slice were shorter, which `Texture::new` rules out.
+    #[cfg(target_pointer_width = "64")]
+    #[inline(always)]
+    pub(crate) fn cut(&self) -> Option<Self> {
+        Some(Self {
+            texels: self.texels.get(..=self.last)?,
+            ..*self
+        })
+    }
+
+    /// The taps of the bilinear sample at `(u, v)` (raw 16.16): the
+    /// columns and rows of the four texels, the weights' fractions (12
+    /// bits) and the top left texel's index.
+    #[inline(always)]
+    pub(super) fn taps(&self, u: i32, v: i32) -> Taps {
+        let taps = |raw: i32, axis: usize| {
+            let s = ((raw as u32) << self.log2[axis]).wrapping_add(HALF);
+            let j = s >> 16;
+            let m = self.mask[axis];
+            (
+                [j.wrapping_sub(1) & m, j & m],
+                (s & 0xFFFF) >> (16 - WEIGHT_BITS),
+            )
+        };
+        let (x, fx) = taps(u, 0);
+        let (y, fy) = taps(v, 1);
+        // `(x0, y0)` decides the other three, and is below the texel
+        // count, so below `Quad::NONE`'s.
+        let at = (y[0] << self.log2[0]) | x[0];
+        Taps {
+            x,
+            y,
+            f: [fx, fy],
+            at,
+        }
+    }
+
     /// [`bilinear`](Self::bilinear), reading the four texels only if they
     /// are not those of `quad`, and leaving them there: along a span of a
     /// magnified texture, consecutive pixels mostly fall between the same
@@ -402,21 +442,13 @@ impl Pow2Rgb565<'_> {
     /// sample.
     #[inline(always)]
     pub(crate) fn bilinear_reusing(&self, u: i32, v: i32, quad: &mut Quad) -> [u8; 3] {
-        let taps = |raw: i32, axis: usize| {
-            let s = ((raw as u32) << self.log2[axis]).wrapping_add(HALF);
-            let j = s >> 16;
-            let m = self.mask[axis];
-            (
-                j.wrapping_sub(1) & m,
-                j & m,
-                (s & 0xFFFF) >> (16 - WEIGHT_BITS),
-            )
-        };
-        let (x0, x1, fx) = taps(u, 0);
-        let (y0, y1, fy) = taps(v, 1);
-        // `(x0, y0)` decides the other three, and is below the texel
-        // count, so below `Quad::NONE`'s.
-        let at = (y0 << self.log2[0]) | x0;
+        let Taps {
+            x,
+            y,
+            f: [fx, fy],
+            at,
+        } = self.taps(u, v);
+        let ([x0, x1], [y0, y1]) = (x, y);
         if at != quad.at {
             quad.at = at;
             // Written out: `map` over the four was left out of line.
@@ -489,6 +521,18 @@ impl Pow2Rgb565<'_> {
     }
 }
 
+/// Where a bilinear sample reads ([`Pow2Rgb565::taps`]).
+pub(super) struct Taps {
+    /// The left and right columns.
+    pub(super) x: [u32; 2],
+    /// The top and bottom rows.
+    pub(super) y: [u32; 2],
+    /// The weights' fractions across and down, in `0..2^12`.
+    pub(super) f: [u32; 2],
+    /// The top left texel's index.
+    pub(super) at: u32,
+}
+
 /// [`rgb565_to_rgb888`] for every 5-bit channel value (at `c`) and 6-bit
 /// one (at `32 + c`).
 static EXPANDED: [u8; 96] = {
@@ -508,7 +552,7 @@ static EXPANDED: [u8; 96] = {
 /// [`rgb565_to_rgb888`] by [`EXPANDED`]: a load per channel rather than a
 /// shift and an or.
 #[inline(always)]
-fn expand(raw: u16) -> [u8; 3] {
+pub(super) fn expand(raw: u16) -> [u8; 3] {
     [
         EXPANDED[(raw >> 11) as usize],
         EXPANDED[32 + ((raw >> 5) & 63) as usize],

@@ -1,13 +1,18 @@
 //! `Textured`'s bilinear span loop for opaque affine spans on a repeated
 //! power-of-two `Rgb565` texture: the texture coordinates' sums stepped
 //! as [`nearest`](super::nearest)'s affine loop steps them, each pixel's
-//! sample by [`Pow2Rgb565::bilinear_fine`] from the fractions, the last
-//! four texels kept across the span ([`Quad`]).
+//! sample by [`Pow2Rgb565::bilinear_fine`] from the fractions (on a
+//! 64-bit host `bilinear_packed`, red and green blended together), the
+//! last four texels kept across the span (`Quad`, `PackedQuad`).
 
 use super::nearest::scaled_sum;
 use super::{depth16, SpanInput};
 use crate::shader::TriangleSpans;
-use crate::texture::{FromTexel, Pow2Rgb565, Quad};
+#[cfg(target_pointer_width = "64")]
+use crate::texture::PackedQuad;
+#[cfg(not(target_pointer_width = "64"))]
+use crate::texture::Quad;
+use crate::texture::{FromTexel, Pow2Rgb565};
 use fixed::types::I16F16;
 
 impl<C> TriangleSpans<'_, C, [I16F16; 2]> {
@@ -74,16 +79,27 @@ fn bilinear_span<C: FromTexel>(
     t: &Pow2Rgb565<'_>,
     s: &BilinearSpan,
 ) -> u32 {
+    // On a 64-bit host, the texels cut to their count (read unchecked)
+    // and the blend with red and green packed.
+    #[cfg(target_pointer_width = "64")]
+    let (Some(t), mut quad) = (&t.cut(), PackedQuad::NONE) else {
+        return 0;
+    };
+    #[cfg(not(target_pointer_width = "64"))]
+    let mut quad = Quad::NONE;
     let [mut su, mut sv] = s.sums;
     let [gu, gv] = s.steps;
     let (mut z, gz) = (s.z, s.gz);
-    let mut quad = Quad::NONE;
     let mut n = 0;
     for (c, d) in color.iter_mut().zip(depth.iter_mut()) {
         let zz = depth16(z);
         if zz <= *d {
             let (fu, fv) = ((su >> 32) as u32, (sv >> 32) as u32);
-            *c = C::from_rgb888(t.bilinear_fine(fu, fv, &mut quad));
+            #[cfg(target_pointer_width = "64")]
+            let rgb = t.bilinear_packed(fu, fv, &mut quad);
+            #[cfg(not(target_pointer_width = "64"))]
+            let rgb = t.bilinear_fine(fu, fv, &mut quad);
+            *c = C::from_rgb888(rgb);
             *d = zz;
             n += 1;
         }

@@ -159,8 +159,17 @@ fn bilinear_at_texel_centres_is_nearest() {
 #[test]
 fn pow2_rgb565_bilinear_matches_sample() {
     let mut rng = XorShift(0x0BAD_F00D);
-    for (w, h) in [(1, 1), (1, 8), (2, 2), (4, 1), (8, 32), (32, 32), (64, 16)] {
-        let texels: Vec<u16> = (0..w * h).map(|_| rng.next() as u16).collect();
+    let sizes = [(1, 1), (1, 8), (2, 2), (4, 1), (8, 32), (32, 32), (64, 16)];
+    // Random texels, and black and white ones in a checker (the largest
+    // differences, of both signs, in every channel).
+    for ((w, h), checker) in sizes.into_iter().flat_map(|s| [(s, false), (s, true)]) {
+        let texels: Vec<u16> = (0..w * h)
+            .map(|i| match checker {
+                false => rng.next() as u16,
+                true if (i % w + i / w) % 2 == 0 => 0xFFFF,
+                true => 0,
+            })
+            .collect();
         let t = Texture::new(w, h, Texels::Rgb565(&texels))
             .unwrap()
             .filter(Filter::Bilinear);
@@ -168,6 +177,9 @@ fn pow2_rgb565_bilinear_matches_sample() {
             panic!("{w}x{h} not on the fast path");
         };
         let mut quad = Quad::NONE;
+        // The 64-bit own loop's blend, on the texels cut to their count.
+        #[cfg(target_pointer_width = "64")]
+        let (cut, mut packed) = (p.cut().unwrap(), crate::texture::PackedQuad::NONE);
         for _ in 0..200 {
             let (mut u, mut v) = (rng.coordinate(), rng.coordinate());
             let step = [rng.next() as i32 % 3_000, rng.next() as i32 % 3_000];
@@ -184,6 +196,12 @@ fn pow2_rgb565_bilinear_matches_sample() {
                 let (fu, fv) = ((u as u32) << 16 | rng.next() >> 16, (v as u32) << 16);
                 assert_eq!(
                     p.bilinear_fine(fu, fv, &mut quad),
+                    expected,
+                    "{w}x{h} {u} {v}"
+                );
+                #[cfg(target_pointer_width = "64")]
+                assert_eq!(
+                    cut.bilinear_packed(fu, fv, &mut packed),
                     expected,
                     "{w}x{h} {u} {v}"
                 );
