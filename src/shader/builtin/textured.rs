@@ -9,7 +9,9 @@
 //! ([`textured_quasi_spans`]).
 
 use super::modulate;
-use crate::shade::perspective::{FLAT_Q, LOOPS32, MASKED_INDEX, MASKED_TEXELS, SHIFTED};
+use crate::shade::perspective::{
+    FLAT_Q, LOOPS32, MASKED_INDEX, MASKED_TEXELS, SHIFTED, SHORT_SPANS,
+};
 use crate::shader::{Interpolated, PixelFn, SpanInput, TriangleSpans};
 use crate::texture::{rgb565_to_rgb888, FromTexel, Pow2Rgb565, Quad, Sampler, Texture};
 use embedded_graphics::pixelcolor::Rgb888;
@@ -232,10 +234,25 @@ where
             let planes = spans.colour;
             if let Some(c) = parts.and_then(|(texels, p)| spans.nearest_constants(texels, p, true))
             {
-                match planes {
-                    _ if !LIT => return spans.run_nearest_affine(&c),
-                    Some(planes) => return spans.run_nearest_affine_lit(&c, planes),
-                    None => {}
+                // `TexturedLit`'s texels lit by the colour planes (which
+                // the renderer's affine copy sets up for every triangle of
+                // a shader that reads the colour).
+                let lit = if LIT { planes } else { None };
+                if !LIT || lit.is_some() {
+                    // The short spans in the opaque affine loop
+                    // ([`SHORT_SPANS`]).
+                    if let Some(short) = SHORT_SPANS {
+                        return spans.each(|s| {
+                            if s.color.len() <= short {
+                                return s.shade_affine(LIT, TexelPixel::<_, LIT>(Nearest565(t)));
+                            }
+                            s.run_nearest_affine(&c, lit)
+                        });
+                    }
+                    return match lit {
+                        Some(planes) => spans.run_nearest_affine_lit(&c, planes),
+                        None => spans.run_nearest_affine(&c),
+                    };
                 }
             }
             spans.each(|s| s.shade_affine(LIT, TexelPixel::<_, LIT>(Nearest565(t))))

@@ -6,15 +6,38 @@
 //! through `nearest_span`'s affine loop.
 
 use super::light::{Lit, Unlit};
-use super::NearestConstants;
-#[cfg(not(target_pointer_width = "64"))]
-use super::{nearest_span, NearestSpan};
-#[cfg(not(target_pointer_width = "64"))]
+use super::{nearest_span, NearestConstants, NearestSpan};
 use crate::shade::perspective::span::AFFINE;
 use crate::shade::ColourPlanes;
-use crate::shader::TriangleSpans;
+use crate::shader::{SpanInput, TriangleSpans};
 use crate::texture::FromTexel;
 use fixed::types::I16F16;
+
+/// The longest of `Textured`'s and `TexturedLit`'s opaque affine spans
+/// on a repeated power-of-two `Rgb565` texture that take the shader's
+/// opaque affine loop (`SpanInput::shade_affine`, inline in the renderer's
+/// affine copy of its shading function) rather than their own
+/// (`nearest_span`, out of line): the same bits, but a short span's
+/// set-up for the call (its constants, sums and steps, the light's start)
+/// cost more than the own loop saves on its pixels. On a mesh's spans of
+/// 2.3 pixels on average, the textured frame in affine mode
+/// (`demo-textured-lit-affine`) took on the Cortex-M3, with spans of at
+/// most 4, 8, 16 and 1,000 pixels there, 7,410,927 -> 6,683,051,
+/// 6,641,650, 6,637,165 and 6,640,150 instructions, the lit fill (spans of
+/// up to 32) 85.64 -> 85.50 a fragment with 16, 88.66 with 1,000. With
+/// 16: the Cortex-M4F's frame 7,438,626 -> 6,723,636 (its fill 90.94 ->
+/// 90.99); with `Textured` in that frame, 5,215,333 -> 4,721,121 on the
+/// M3 and 5,157,631 -> 4,777,409 on the M4F, the nearest fill 36.81 ->
+/// 36.94 and 39.15 -> 39.42. None on ARMv6-M, where the frame took
+/// 13,332,152 -> 14,000,279 even with spans of at most 2, as the opaque
+/// affine loop takes more there a pixel; nor on 64-bit hosts, which take
+/// a triangle's spans at once (`per_pair`).
+pub(crate) const SHORT_SPANS: Option<usize> =
+    if cfg!(target_pointer_width = "64") || cfg!(microraster_narrow_multiply) {
+        None
+    } else {
+        Some(16)
+    };
 
 impl<C: FromTexel> TriangleSpans<'_, C, [I16F16; 2]> {
     /// `Textured`'s opaque affine spans, the texels as they are: the same
@@ -25,15 +48,7 @@ impl<C: FromTexel> TriangleSpans<'_, C, [I16F16; 2]> {
         #[cfg(target_pointer_width = "64")]
         return per_pair::affine_spans(per_pair::Spans::of(self), c, |_, _| Unlit);
         #[cfg(not(target_pointer_width = "64"))]
-        self.each(|s| {
-            let sp = NearestSpan {
-                c,
-                sh: 0,
-                z: s.z,
-                planes: s.planes,
-            };
-            nearest_span::<C, _, AFFINE>(s.color, s.depth, &sp, Unlit)
-        })
+        self.each(|s| s.run_nearest_affine(c, None))
     }
 
     /// [`run_nearest_affine`](Self::run_nearest_affine) for
@@ -63,16 +78,41 @@ impl<C: FromTexel> TriangleSpans<'_, C, [I16F16; 2]> {
             })
         }
         #[cfg(not(target_pointer_width = "64"))]
-        self.each(|s| {
-            let (col, dc) = planes.start(s.x0, s.y);
+        self.each(|s| s.run_nearest_affine(c, Some(planes)))
+    }
+}
+
+impl<C: FromTexel> SpanInput<'_, C, [I16F16; 2]> {
+    /// One span of [`TriangleSpans::run_nearest_affine`] (`planes`
+    /// `None`) or of [`TriangleSpans::run_nearest_affine_lit`], through
+    /// `nearest_span`'s affine loop: for 32-bit targets, whose longer
+    /// spans [`SHORT_SPANS`] sends here (64-bit hosts take a triangle's
+    /// spans at once). The light's start before the span's record: the
+    /// other way round, the record was kept across its call (Cortex-M3
+    /// `demo-textured-lit-affine` 6,637,163 -> 6,723,603 instructions).
+    #[inline(always)]
+    pub(crate) fn run_nearest_affine(
+        self,
+        c: &NearestConstants<'_>,
+        planes: Option<&ColourPlanes>,
+    ) -> u32 {
+        let Some(planes) = planes else {
             let sp = NearestSpan {
                 c,
                 sh: 0,
-                z: s.z,
-                planes: s.planes,
+                z: self.z,
+                planes: self.planes,
             };
-            nearest_span::<C, _, AFFINE>(s.color, s.depth, &sp, Lit::<false> { col, dc })
-        })
+            return nearest_span::<C, _, AFFINE>(self.color, self.depth, &sp, Unlit);
+        };
+        let (col, dc) = planes.start(self.x0, self.y);
+        let sp = NearestSpan {
+            c,
+            sh: 0,
+            z: self.z,
+            planes: self.planes,
+        };
+        nearest_span::<C, _, AFFINE>(self.color, self.depth, &sp, Lit::<false> { col, dc })
     }
 }
 

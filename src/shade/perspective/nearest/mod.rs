@@ -22,6 +22,7 @@ use fixed::types::I16F16;
 use light::{Light, Unlit};
 
 mod affine;
+pub(crate) use affine::SHORT_SPANS;
 mod light;
 mod quasi;
 
