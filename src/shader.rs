@@ -91,6 +91,18 @@ use fixed::types::I16F16;
 /// (the gallery's `affine` picture), which is fine for small or
 /// camera-facing triangles.
 ///
+/// Which mode is fastest depends on the spans more than on the
+/// divisions. On a mesh of small triangles (spans of two or three pixels)
+/// the quasi-perspective modes are the slowest, as each span samples
+/// both its ends (x86-64's textured demo frame, BENCHMARKS.md's
+/// `demo-textured-lit`: 290 instructions a shaded pixel exact, 308
+/// affine, 367 quasi16); affine mode is the fastest there on the
+/// Cortex-M3 and M4F (6.64 M and 6.73 M instructions a frame against
+/// exact's 6.98 M and 6.97 M), exact on ARMv6-M (12.48 M against 13.33 M).
+/// Long spans of a surface seen at an angle are where quasi-perspective
+/// pays (x86-64's nearest `-facing` fill: 45.4 instructions a fragment
+/// against exact's 55.7).
+///
 /// A draw whose clip-space `w` is the same at every vertex (its
 /// transform's `w` row is `(0, 0, 0, c)`: an orthographic or 2D camera,
 /// [`DrawSetup::constant_w`](crate::vertex::DrawSetup::constant_w)) has
