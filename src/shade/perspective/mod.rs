@@ -56,7 +56,9 @@ mod values;
 use values::{STEPPED, STEP_AFFINE};
 
 pub(crate) use barycentric::{signed_weights, weights};
-pub(crate) use nearest::{MASKED_INDEX, MASKED_TEXELS, SHORT_SPANS};
+#[cfg(not(target_pointer_width = "64"))]
+pub(crate) use nearest::SHORT_SPANS;
+pub(crate) use nearest::{MASKED_INDEX, MASKED_TEXELS};
 pub(crate) use span::{
     colour_constants, span_input, Output, AFFINE, AFFINE_SUMS, CLAMPED, COLOUR_LOOP, FLAT_Q,
     LOOPS32, SHIFTED,

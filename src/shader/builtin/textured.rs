@@ -9,9 +9,9 @@
 //! ([`textured_quasi_spans`]).
 
 use super::modulate;
-use crate::shade::perspective::{
-    FLAT_Q, LOOPS32, MASKED_INDEX, MASKED_TEXELS, SHIFTED, SHORT_SPANS,
-};
+#[cfg(not(target_pointer_width = "64"))]
+use crate::shade::perspective::SHORT_SPANS;
+use crate::shade::perspective::{FLAT_Q, LOOPS32, MASKED_INDEX, MASKED_TEXELS, SHIFTED};
 use crate::shader::{Interpolated, PixelFn, SpanInput, TriangleSpans};
 use crate::texture::{rgb565_to_rgb888, FromTexel, Pow2Rgb565, Quad, Sampler, Texture};
 use embedded_graphics::pixelcolor::Rgb888;
@@ -239,8 +239,9 @@ where
                 // a shader that reads the colour).
                 let lit = if LIT { planes } else { None };
                 if !LIT || lit.is_some() {
-                    // The short spans in the opaque affine loop
-                    // ([`SHORT_SPANS`]).
+                    // On 32-bit targets, the short spans in the opaque
+                    // affine loop (`SHORT_SPANS`).
+                    #[cfg(not(target_pointer_width = "64"))]
                     if let Some(short) = SHORT_SPANS {
                         return spans.each(|s| {
                             if s.color.len() <= short {

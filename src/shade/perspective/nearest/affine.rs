@@ -6,10 +6,15 @@
 //! through `nearest_span`'s affine loop.
 
 use super::light::{Lit, Unlit};
-use super::{nearest_span, NearestConstants, NearestSpan};
+use super::NearestConstants;
+#[cfg(not(target_pointer_width = "64"))]
+use super::{nearest_span, NearestSpan};
+#[cfg(not(target_pointer_width = "64"))]
 use crate::shade::perspective::span::AFFINE;
 use crate::shade::ColourPlanes;
-use crate::shader::{SpanInput, TriangleSpans};
+#[cfg(not(target_pointer_width = "64"))]
+use crate::shader::SpanInput;
+use crate::shader::TriangleSpans;
 use crate::texture::FromTexel;
 use fixed::types::I16F16;
 
@@ -30,14 +35,15 @@ use fixed::types::I16F16;
 /// M3 and 5,157,631 -> 4,777,409 on the M4F, the nearest fill 36.81 ->
 /// 36.94 and 39.15 -> 39.42. None on ARMv6-M, where the frame took
 /// 13,332,152 -> 14,000,279 even with spans of at most 2, as the opaque
-/// affine loop takes more there a pixel; nor on 64-bit hosts, which take
-/// a triangle's spans at once (`per_pair`).
-pub(crate) const SHORT_SPANS: Option<usize> =
-    if cfg!(target_pointer_width = "64") || cfg!(microraster_narrow_multiply) {
-        None
-    } else {
-        Some(16)
-    };
+/// affine loop takes more there a pixel. Not built for 64-bit hosts,
+/// which take a triangle's spans at once (`per_pair`): their constants
+/// are laid out for that function, not for `nearest_span`.
+#[cfg(not(target_pointer_width = "64"))]
+pub(crate) const SHORT_SPANS: Option<usize> = if cfg!(microraster_narrow_multiply) {
+    None
+} else {
+    Some(16)
+};
 
 impl<C: FromTexel> TriangleSpans<'_, C, [I16F16; 2]> {
     /// `Textured`'s opaque affine spans, the texels as they are: the same
@@ -82,12 +88,12 @@ impl<C: FromTexel> TriangleSpans<'_, C, [I16F16; 2]> {
     }
 }
 
+#[cfg(not(target_pointer_width = "64"))]
 impl<C: FromTexel> SpanInput<'_, C, [I16F16; 2]> {
     /// One span of [`TriangleSpans::run_nearest_affine`] (`planes`
     /// `None`) or of [`TriangleSpans::run_nearest_affine_lit`], through
-    /// `nearest_span`'s affine loop: for 32-bit targets, whose longer
-    /// spans [`SHORT_SPANS`] sends here (64-bit hosts take a triangle's
-    /// spans at once). The light's start before the span's record: the
+    /// `nearest_span`'s affine loop, on 32-bit targets, whose longer spans
+    /// [`SHORT_SPANS`] sends here. The light's start before the span's record: the
     /// other way round, the record was kept across its call (Cortex-M3
     /// `demo-textured-lit-affine` 6,637,163 -> 6,723,603 instructions).
     #[inline(always)]

@@ -22,6 +22,7 @@ use fixed::types::I16F16;
 use light::{Light, Unlit};
 
 mod affine;
+#[cfg(not(target_pointer_width = "64"))]
 pub(crate) use affine::SHORT_SPANS;
 mod light;
 mod quasi;
