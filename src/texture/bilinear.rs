@@ -5,7 +5,7 @@
 
 #[cfg(target_pointer_width = "64")]
 use super::{
-    sampler::{expand, Taps},
+    sampler::{blend_sum, blend_terms, expand, Taps},
     Pow2Rgb565,
 };
 use super::{Texture, WEIGHT_BITS};
@@ -106,18 +106,15 @@ impl Pow2Rgb565<'_> {
         } = self.taps((fu >> 16) as i32, (fv >> 16) as i32);
         if at != quad.at {
             quad.at = at;
-            // Masked by the count, which changes nothing but lets a
-            // caller that has `cut` the texels read them unchecked.
-            let texel = |x: u32, y: u32| {
-                let i = ((y << self.log2[0]) | x) as usize & self.last;
-                expand(self.texels.get(i).copied().unwrap_or(0))
-            };
+            let texel = |x: u32, y: u32| expand(self.at_cut(x, y));
             let [c00, c10, c01, c11] = [
                 texel(x[0], y[0]),
                 texel(x[1], y[0]),
                 texel(x[0], y[1]),
                 texel(x[1], y[1]),
             ];
+            // Red's and green's terms as `blend_terms` makes blue's, in
+            // the lanes of one `u64`.
             let rg = |c: [u8; 3]| (c[1] as u64) << 32 | c[0] as u64;
             let [a, b, c, d] = [rg(c00), rg(c10), rg(c01), rg(c11)];
             quad.rg = [
@@ -127,12 +124,7 @@ impl Pow2Rgb565<'_> {
                 d.wrapping_sub(b).wrapping_sub(c).wrapping_add(a),
             ];
             let [a, b, c, d] = [c00[2], c10[2], c01[2], c11[2]].map(u32::from);
-            quad.b = [
-                (a << (2 * WEIGHT_BITS)) + (1 << (2 * WEIGHT_BITS - 1)),
-                b.wrapping_sub(a),
-                c.wrapping_sub(a),
-                d.wrapping_sub(b).wrapping_sub(c).wrapping_add(a),
-            ];
+            quad.b = blend_terms(a, b, c, d);
         }
         let (wx, wy, wxy) = (fx << WEIGHT_BITS, fy << WEIGHT_BITS, fx * fy);
         let [c, dx, dy, dxy] = quad.rg;
@@ -140,11 +132,7 @@ impl Pow2Rgb565<'_> {
             .wrapping_add((wx as u64).wrapping_mul(dx))
             .wrapping_add((wy as u64).wrapping_mul(dy))
             .wrapping_add((wxy as u64).wrapping_mul(dxy));
-        let [c, dx, dy, dxy] = quad.b;
-        let b = c
-            .wrapping_add(wx.wrapping_mul(dx))
-            .wrapping_add(wy.wrapping_mul(dy))
-            .wrapping_add(wxy.wrapping_mul(dxy));
+        let b = blend_sum(quad.b, [wx, wy, wxy]);
         [
             (rg >> (2 * WEIGHT_BITS)) as u8,
             (rg >> (32 + 2 * WEIGHT_BITS)) as u8,

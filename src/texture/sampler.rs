@@ -252,11 +252,11 @@ pub enum Sampler<'t> {
 /// shifts and masks.
 #[derive(Clone, Copy, Debug)]
 pub struct Pow2Rgb565<'t> {
-    pub(super) texels: &'t [u16],
+    texels: &'t [u16],
     /// `16 - log2` of each side: `raw >> shift` is the texel coordinate.
     shift: [u32; 2],
     /// `log2` of each side.
-    pub(super) log2: [u32; 2],
+    log2: [u32; 2],
     /// `side - 1`.
     mask: [u32; 2],
     /// For [`nearest_fine`](Self::nearest_fine): `32 - log2` of the
@@ -266,7 +266,7 @@ pub struct Pow2Rgb565<'t> {
     /// count, so an index masked by it needs no check
     /// ([`nearest_fine`](Self::nearest_fine)).
     #[cfg(target_pointer_width = "64")]
-    pub(super) last: usize,
+    last: usize,
 }
 
 impl<'t> Texture<'t> {
@@ -317,7 +317,7 @@ impl Pow2Rgb565<'_> {
     /// The texel `(x, y)`'s bits, coordinates already masked; black only
     /// if the slice were short, which `Texture::new` rules out.
     #[inline(always)]
-    pub(super) fn at(&self, x: u32, y: u32) -> u16 {
+    fn at(&self, x: u32, y: u32) -> u16 {
         match self.texels.get(((y << self.log2[0]) | x) as usize) {
             Some(&c) => c,
             None => 0,
@@ -408,6 +408,16 @@ impl Pow2Rgb565<'_> {
         })
     }
 
+    /// [`at`](Self::at) with the index masked by the count, which changes
+    /// nothing but lets a caller that has [`cut`](Self::cut) the texels
+    /// read them unchecked (64-bit hosts).
+    #[cfg(target_pointer_width = "64")]
+    #[inline(always)]
+    pub(super) fn at_cut(&self, x: u32, y: u32) -> u16 {
+        let i = ((y << self.log2[0]) | x) as usize & self.last;
+        self.texels.get(i).copied().unwrap_or(0)
+    }
+
     /// The taps of the bilinear sample at `(u, v)` (raw 16.16): the
     /// columns and rows of the four texels, the weights' fractions (12
     /// bits) and the top left texel's index.
@@ -467,12 +477,7 @@ impl Pow2Rgb565<'_> {
                 let [c00, c10, c01, c11] = texels;
                 let term = |k: usize| {
                     let [a, b, c, d] = [c00[k], c10[k], c01[k], c11[k]].map(u32::from);
-                    [
-                        (a << (2 * WEIGHT_BITS)) + (1 << (2 * WEIGHT_BITS - 1)),
-                        b.wrapping_sub(a),
-                        c.wrapping_sub(a),
-                        d.wrapping_sub(b).wrapping_sub(c).wrapping_add(a),
-                    ]
+                    blend_terms(a, b, c, d)
                 };
                 quad.terms = [term(0), term(1), term(2)];
             }
@@ -491,13 +496,7 @@ impl Pow2Rgb565<'_> {
         #[cfg(target_pointer_width = "64")]
         {
             let (wx, wy, wxy) = (fx << WEIGHT_BITS, fy << WEIGHT_BITS, fx * fy);
-            let blend = |[c, dx, dy, dxy]: [u32; 4]| {
-                let v = c
-                    .wrapping_add(wx.wrapping_mul(dx))
-                    .wrapping_add(wy.wrapping_mul(dy))
-                    .wrapping_add(wxy.wrapping_mul(dxy));
-                (v >> (2 * WEIGHT_BITS)) as u8
-            };
+            let blend = |t: [u32; 4]| (blend_sum(t, [wx, wy, wxy]) >> (2 * WEIGHT_BITS)) as u8;
             let t = &quad.terms;
             [blend(t[0]), blend(t[1]), blend(t[2])]
         }
@@ -531,6 +530,32 @@ pub(super) struct Taps {
     pub(super) f: [u32; 2],
     /// The top left texel's index.
     pub(super) at: u32,
+}
+
+/// On a 64-bit host, one channel's terms of the expanded bilinear blend
+/// (see [`Pow2Rgb565::bilinear_reusing`]) from its four texels' 8-bit
+/// values `a` (top left), `b` (top right), `c` (bottom left) and `d`:
+/// `a · 2^24 + 2^23`, `b - a`, `c - a` and `d - b - c + a`, wrapping.
+#[cfg(target_pointer_width = "64")]
+#[inline(always)]
+pub(super) fn blend_terms(a: u32, b: u32, c: u32, d: u32) -> [u32; 4] {
+    [
+        (a << (2 * WEIGHT_BITS)) + (1 << (2 * WEIGHT_BITS - 1)),
+        b.wrapping_sub(a),
+        c.wrapping_sub(a),
+        d.wrapping_sub(b).wrapping_sub(c).wrapping_add(a),
+    ]
+}
+
+/// On a 64-bit host, the blend's sum from a channel's
+/// [`blend_terms`] and the weights `2^12 fx`, `2^12 fy` and `fx fy`:
+/// exact, below 2^32 (see [`Pow2Rgb565::bilinear_reusing`]).
+#[cfg(target_pointer_width = "64")]
+#[inline(always)]
+pub(super) fn blend_sum([c, dx, dy, dxy]: [u32; 4], [wx, wy, wxy]: [u32; 3]) -> u32 {
+    c.wrapping_add(wx.wrapping_mul(dx))
+        .wrapping_add(wy.wrapping_mul(dy))
+        .wrapping_add(wxy.wrapping_mul(dxy))
 }
 
 /// [`rgb565_to_rgb888`] for every 5-bit channel value (at `c`) and 6-bit
