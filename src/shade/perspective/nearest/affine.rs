@@ -102,23 +102,18 @@ impl<C: FromTexel> SpanInput<'_, C, [I16F16; 2]> {
         c: &NearestConstants<'_>,
         planes: Option<&ColourPlanes>,
     ) -> u32 {
-        let Some(planes) = planes else {
-            let sp = NearestSpan {
-                c,
-                sh: 0,
-                z: self.z,
-                planes: self.planes,
-            };
-            return nearest_span::<C, _, AFFINE>(self.color, self.depth, &sp, Unlit);
-        };
-        let (col, dc) = planes.start(self.x0, self.y);
-        let sp = NearestSpan {
+        let record = || NearestSpan {
             c,
             sh: 0,
             z: self.z,
             planes: self.planes,
         };
-        nearest_span::<C, _, AFFINE>(self.color, self.depth, &sp, Lit::<false> { col, dc })
+        let Some(planes) = planes else {
+            return nearest_span::<C, _, AFFINE>(self.color, self.depth, &record(), Unlit);
+        };
+        let (col, dc) = planes.start(self.x0, self.y);
+        let light = Lit::<false> { col, dc };
+        nearest_span::<C, _, AFFINE>(self.color, self.depth, &record(), light)
     }
 }
 
