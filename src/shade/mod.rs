@@ -55,6 +55,7 @@ mod start;
 
 #[cfg(microraster_armv7m)]
 pub(crate) use convert::lit565_bits;
+pub(crate) use convert::LitTables;
 pub(crate) use convert::To565;
 pub(crate) use convert::{rgb, rgb565_bits};
 use convert::{rgb16_green_up, GREEN_UP};

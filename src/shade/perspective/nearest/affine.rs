@@ -80,7 +80,7 @@ impl<C: FromTexel> TriangleSpans<'_, C, [I16F16; 2]> {
             }
             affine_spans(Spans::of(self), c, |x0, j| {
                 let (col, dc) = planes.start_inline(x0, j);
-                Lit::<false> { col, dc }
+                Lit::<false>::new(col, dc)
             })
         }
         #[cfg(not(target_pointer_width = "64"))]
@@ -112,7 +112,7 @@ impl<C: FromTexel> SpanInput<'_, C, [I16F16; 2]> {
             return nearest_span::<C, _, AFFINE>(self.color, self.depth, &record(), Unlit);
         };
         let (col, dc) = planes.start(self.x0, self.y);
-        let light = Lit::<false> { col, dc };
+        let light = Lit::<false>::new(col, dc);
         nearest_span::<C, _, AFFINE>(self.color, self.depth, &record(), light)
     }
 }

@@ -2,6 +2,7 @@
 //! `Textured`), or modulated by the interpolated colour ([`Lit`],
 //! `TexturedLit`), which the loop steps beside its other values.
 
+use crate::shade::LitTables;
 use crate::shader::interpolated::byte;
 use crate::texture::FromTexel;
 
@@ -57,8 +58,25 @@ impl Light for Unlit {
 /// as they are, for the colour planes' values, which stay in range along
 /// a span (`ColourPlanes::start`).
 pub(super) struct Lit<const CLAMP: bool> {
-    pub(super) col: [i32; 3],
-    pub(super) dc: [i32; 3],
+    col: [i32; 3],
+    dc: [i32; 3],
+    /// The tables that light the texel: where the loop's [`start`]
+    /// makes them for its span ([`LitTables::for_span`]).
+    ///
+    /// [`start`]: Light::start
+    t: LitTables,
+}
+
+impl<const CLAMP: bool> Lit<CLAMP> {
+    /// The light of colour `col` (8.16 a channel), stepped by `dc`.
+    #[inline(always)]
+    pub(super) fn new(col: [i32; 3], dc: [i32; 3]) -> Self {
+        Self {
+            col,
+            dc,
+            t: LitTables::fixed(),
+        }
+    }
 }
 
 impl<const CLAMP: bool> Light for Lit<CLAMP> {
@@ -67,7 +85,14 @@ impl<const CLAMP: bool> Light for Lit<CLAMP> {
     #[inline(always)]
     fn start(&self) -> (Self, [i32; 3]) {
         let col = self.col;
-        (Self { col, dc: [0; 3] }, self.dc)
+        (
+            Self {
+                col,
+                dc: [0; 3],
+                t: LitTables::for_span(),
+            },
+            self.dc,
+        )
     }
 
     #[inline(always)]
@@ -77,7 +102,7 @@ impl<const CLAMP: bool> Light for Lit<CLAMP> {
         } else {
             self.col.map(|c| (c >> 16) as u8)
         };
-        C::from_lit_rgb565(raw, light)
+        self.t.texel(raw, light)
     }
 
     #[inline(always)]

@@ -188,7 +188,7 @@ impl<C: FromTexel> Segments<C> for LitSegments<'_> {
         (duv, dc): Self::Values,
     ) -> (u32, u32) {
         let (f, df) = fractions(uv, duv);
-        nearest_pixels(color, depth, &self.t, z, f, df, Lit::<true> { col, dc })
+        nearest_pixels(color, depth, &self.t, z, f, df, Lit::<true>::new(col, dc))
     }
 }
 
