@@ -122,6 +122,7 @@
 mod axis;
 mod bilinear;
 mod fetch;
+mod from_texel;
 mod sampler;
 // The tests (in a file of their own) run on the host, with std: its
 // names they use are imported here, under the same `cfg(test)`.
@@ -137,11 +138,12 @@ use axis::Axis;
 pub(crate) use bilinear::PackedQuad;
 use fixed::types::I16F16;
 #[cfg(any(test, not(target_pointer_width = "64")))]
-pub(crate) use sampler::expanded257;
+pub(crate) use from_texel::expanded257;
 #[cfg(microraster_armv7m)]
-pub(crate) use sampler::lit_channel;
+pub(crate) use from_texel::lit_channel;
+pub use from_texel::FromTexel;
 pub(crate) use sampler::Quad;
-pub use sampler::{FromTexel, Pow2Rgb565, Sampler};
+pub use sampler::{Pow2Rgb565, Sampler};
 
 /// The largest width or height accepted by [`Texture::new`]: 32,768 texels.
 ///
