@@ -187,50 +187,42 @@ fn lit565_bits(raw: u16, light: [u8; 3]) -> u16 {
         | at(light[2], LIT_BLUE | (raw & 0x1F))
 }
 
-impl FromTexel for Rgb565 {
-    const RGB565_BITS: bool = true;
-    /// The bits as they are: `Rgb888`'s rounding conversion of an
-    /// expanded channel gives the channel back.
-    #[inline(always)]
-    fn from_rgb565(raw: u16) -> Self {
-        Rgb565::from(RawU16::new(raw))
-    }
+/// [`FromTexel`] for a colour type that holds `Rgb565` bits (`Rgb565`
+/// and `Rgb565Be`, whose wire order is the sink's concern): built from
+/// `RawU16`, the texel's bits as they are ([`FromTexel::RGB565_BITS`]).
+macro_rules! rgb565_bits_texel {
+    ($t:ty) => {
+        impl FromTexel for $t {
+            const RGB565_BITS: bool = true;
 
-    /// By the 512-byte table of embedded-graphics' rounding
-    /// (`shade::convert`), rather than its three multiplies.
-    #[inline(always)]
-    fn from_rgb888([r, g, b]: [u8; 3]) -> Self {
-        Rgb565::from(RawU16::new(crate::shade::rgb565_bits(r, g, b)))
-    }
+            /// The bits as they are: `Rgb888`'s rounding conversion of an
+            /// expanded channel gives the channel back.
+            #[inline(always)]
+            fn from_rgb565(raw: u16) -> Self {
+                Self::from(RawU16::new(raw))
+            }
 
-    /// Each channel expanded and multiplied by the light in one step and
-    /// rounded as the default does, then put in place by the 512-byte
-    /// table (the crate's `lit565_bits`), without the `Rgb888` round trip.
-    #[inline(always)]
-    fn from_lit_rgb565(raw: u16, light: [u8; 3]) -> Self {
-        Rgb565::from(RawU16::new(lit565_bits(raw, light)))
-    }
+            /// By the 512-byte table of embedded-graphics' rounding
+            /// (`shade::convert`), rather than its three multiplies.
+            #[inline(always)]
+            fn from_rgb888([r, g, b]: [u8; 3]) -> Self {
+                Self::from(RawU16::new(crate::shade::rgb565_bits(r, g, b)))
+            }
+
+            /// Each channel expanded and multiplied by the light in one
+            /// step and rounded as the default does, then put in place by
+            /// the 512-byte table (the crate's `lit565_bits`), without the
+            /// `Rgb888` round trip.
+            #[inline(always)]
+            fn from_lit_rgb565(raw: u16, light: [u8; 3]) -> Self {
+                Self::from(RawU16::new(lit565_bits(raw, light)))
+            }
+        }
+    };
 }
 
-impl FromTexel for crate::sink::Rgb565Be {
-    const RGB565_BITS: bool = true;
-    #[inline(always)]
-    fn from_rgb565(raw: u16) -> Self {
-        Self::from(RawU16::new(raw))
-    }
-
-    /// As `Rgb565`'s.
-    #[inline(always)]
-    fn from_rgb888([r, g, b]: [u8; 3]) -> Self {
-        Self::from(RawU16::new(crate::shade::rgb565_bits(r, g, b)))
-    }
-
-    /// As `Rgb565`'s.
-    #[inline(always)]
-    fn from_lit_rgb565(raw: u16, light: [u8; 3]) -> Self {
-        Self::from(RawU16::new(lit565_bits(raw, light)))
-    }
-}
+rgb565_bits_texel!(Rgb565);
+rgb565_bits_texel!(crate::sink::Rgb565Be);
 
 impl FromTexel for Rgb888 {}
 impl FromTexel for Bgr888 {}
