@@ -226,14 +226,9 @@ pub(super) fn small_planes_wide(f: &Basis, s: &Small, q: [i64; 3]) -> Option<[Wi
     // kept on the stack). Cortex-M3 `demo-textured-lit` 6,979,259 ->
     // 6,923,492 instructions, its affine frame 6,638,486 -> 6,631,957;
     // Cortex-M4F 6,969,821 -> 6,898,851 and 6,723,468 -> 6,719,053 (a
-    // build of the two). Not on ARMv6-M, which never calls this but
-    // whose textured frame the `black_box` here moved (12,470,500 ->
-    // 12,491,646 instructions).
-    #[cfg(not(microraster_narrow_multiply))]
+    // build of the two).
     let [x1, y1, x2, y2] =
         core::hint::black_box([f.x1 as i32, f.y1 as i32, f.x2 as i32, f.y2 as i32]);
-    #[cfg(microraster_narrow_multiply)]
-    let [x1, y1, x2, y2] = [f.x1 as i32, f.y1 as i32, f.x2 as i32, f.y2 as i32];
     let [q0, q1, q2] = [q[0] as i32, q[1] as i32, q[2] as i32];
     let (d1, d2) = (q1 - q0, q2 - q0);
     let g = |n: i64| small_gradient(s, n);
@@ -285,21 +280,6 @@ pub(super) fn small_planes_split_by(
     q: [i64; 3],
 ) -> Option<[WidePlane; 3]> {
     debug_assert!(q.iter().all(|v| (0..=Q_ONE).contains(v)));
-    // The edge vectors through a `black_box`, so that each numerator's
-    // products are 32x32 to 64-bit ones (one `SMULL`): the optimiser,
-    // knowing from `Small` that the `i64` edge vectors fit `i32`, had
-    // dropped their truncation and sign extension and multiplied in 64
-    // bits (`UMULL` and two `MLA`s a product, the vectors' high words
-    // kept on the stack). Cortex-M3 `demo-textured-lit` 6,979,259 ->
-    // 6,923,492 instructions, its affine frame 6,638,486 -> 6,631,957;
-    // Cortex-M4F 6,969,821 -> 6,898,851 and 6,723,468 -> 6,719,053 (a
-    // build of the two). Not on ARMv6-M, which never calls this but
-    // whose textured frame the `black_box` here moved (12,470,500 ->
-    // 12,491,646 instructions).
-    #[cfg(not(microraster_narrow_multiply))]
-    let [x1, y1, x2, y2] =
-        core::hint::black_box([f.x1 as i32, f.y1 as i32, f.x2 as i32, f.y2 as i32]);
-    #[cfg(microraster_narrow_multiply)]
     let [x1, y1, x2, y2] = [f.x1 as i32, f.y1 as i32, f.x2 as i32, f.y2 as i32];
     let [q0, q1, q2] = [q[0] as i32, q[1] as i32, q[2] as i32];
     let (d1, d2) = (q1 - q0, q2 - q0);
