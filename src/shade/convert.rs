@@ -240,8 +240,9 @@ impl LitTables {
     }
 }
 
-/// [`lit565_bits`] from the tables at `t`.
-#[cfg(microraster_armv7m)]
+/// [`lit565_bits`] from the tables at `t` (built for the tests too, which
+/// hold it to the host's lit texels).
+#[cfg(any(test, microraster_armv7m))]
 #[inline(always)]
 // `Entry` is a byte in some builds: not always the same type.
 #[allow(clippy::useless_conversion)]
@@ -424,6 +425,24 @@ mod tests {
         }
         for r in [0, 255] {
             assert_eq!(rgb::<Rgb565>(r, 255, 255).r(), r >> 3);
+        }
+    }
+
+    /// The Cortex-M3's lit texel bits ([`lit565_bits_in`], which its
+    /// nearest loops reach through [`LitTables`]) are the host's
+    /// `Rgb565::from_lit_rgb565`, for every texel and a spread of lights.
+    #[test]
+    fn tables_light_texels_as_the_host() {
+        use crate::texture::FromTexel;
+        for l in [0u8, 1, 2, 77, 127, 128, 200, 254, 255] {
+            let light = [l, 255 - l, l ^ 0x5A];
+            for raw in 0..=u16::MAX {
+                assert_eq!(
+                    lit565_bits_in(&TABLES, raw, light),
+                    Rgb565::from_lit_rgb565(raw, light).into_storage(),
+                    "{raw:04x} {light:?}"
+                );
+            }
         }
     }
 

@@ -92,7 +92,7 @@ static EXPANDED257: [u16; 96] = expanded257();
 /// one) times the light `l`, rounded by `mul255`'s identity (see
 /// `lit565_bits`); 0 for an index beyond the table, which a texel's
 /// channels never give.
-#[cfg(not(target_pointer_width = "64"))]
+#[cfg(any(test, not(target_pointer_width = "64")))]
 #[inline(always)]
 pub(crate) fn lit_channel(e257: &[u16; 96], i: usize, l: u8) -> u8 {
     // At most 65,535 · 255 + 32,896 < 2^24: no overflow.

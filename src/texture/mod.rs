@@ -139,7 +139,7 @@ pub(crate) use bilinear::PackedQuad;
 use fixed::types::I16F16;
 #[cfg(any(test, not(target_pointer_width = "64")))]
 pub(crate) use from_texel::expanded257;
-#[cfg(microraster_armv7m)]
+#[cfg(any(test, microraster_armv7m))]
 pub(crate) use from_texel::lit_channel;
 pub use from_texel::FromTexel;
 pub(crate) use sampler::Quad;
