@@ -97,8 +97,8 @@ use fixed::types::I16F16;
 /// both its ends (x86-64's textured demo frame, BENCHMARKS.md's
 /// `demo-textured-lit`: 290 instructions a shaded pixel exact, 308
 /// affine, 367 quasi16); affine mode is the fastest there on the
-/// Cortex-M3 and M4F (6.64 M and 6.73 M instructions a frame against
-/// exact's 6.98 M and 6.97 M), exact on ARMv6-M (12.48 M against 13.33 M).
+/// Cortex-M3 and M4F (6.63 M and 6.72 M instructions a frame against
+/// exact's 6.92 M and 6.90 M), exact on ARMv6-M (12.48 M against 13.33 M).
 /// Long spans of a surface seen at an angle are where quasi-perspective
 /// pays (x86-64's nearest `-facing` fill: 45.4 instructions a fragment
 /// against exact's 55.7).
