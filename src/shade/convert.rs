@@ -227,17 +227,30 @@ impl LitTables {
         )
     }
 
-    /// `C::from_lit_rgb565(raw, light)`: on the Cortex-M3, where `C`
-    /// keeps an `Rgb565` texel's bits ([`FromTexel::RGB565_BITS`]), the
-    /// lit bits built from these tables.
+    /// `C::from_lit_rgb565(raw, light)`: on the Cortex-M3 the lit bits
+    /// built from these tables where `C` holds `Rgb565` bits.
     #[inline(always)]
     pub(crate) fn texel<C: FromTexel>(self, raw: u16, light: [u8; 3]) -> C {
         #[cfg(microraster_armv7m)]
-        if C::RGB565_BITS {
-            return C::from_rgb565(lit565_bits_in(self.0, raw, light));
+        {
+            lit_texel_in(self.0, raw, light)
         }
-        C::from_lit_rgb565(raw, light)
+        #[cfg(not(microraster_armv7m))]
+        {
+            C::from_lit_rgb565(raw, light)
+        }
     }
+}
+
+/// `C::from_lit_rgb565(raw, light)`, the lit bits built from the tables
+/// at `t` ([`lit565_bits_in`]) where `C` is `Rgb565` or [`Rgb565Be`]
+/// (the type test folds away in each instance): what
+/// [`LitTables::texel`] gives on the Cortex-M3, built for the tests too,
+/// which hold it to every colour type's own lit texel.
+#[cfg(any(test, microraster_armv7m))]
+#[inline(always)]
+fn lit_texel_in<C: FromTexel>(t: &Tables, raw: u16, light: [u8; 3]) -> C {
+    from_bits(|| lit565_bits_in(t, raw, light)).unwrap_or_else(|| C::from_lit_rgb565(raw, light))
 }
 
 /// [`lit565_bits`] from the tables at `t` (built for the tests too, which
@@ -428,12 +441,21 @@ mod tests {
         }
     }
 
-    /// The Cortex-M3's lit texel bits ([`lit565_bits_in`], which its
-    /// nearest loops reach through [`LitTables`]) are the host's
-    /// `Rgb565::from_lit_rgb565`, for every texel and a spread of lights.
+    /// The Cortex-M3's lit texels ([`lit_texel_in`], which its nearest
+    /// loops reach through [`LitTables`]) are the host's
+    /// `from_lit_rgb565`, for every texel and a spread of lights, in the
+    /// two formats that take the tables' bits and in others, which do not.
     #[test]
     fn tables_light_texels_as_the_host() {
         use crate::texture::FromTexel;
+        use embedded_graphics::pixelcolor::{Bgr565, Gray8};
+        fn same<C: FromTexel + PartialEq + core::fmt::Debug>(raw: u16, light: [u8; 3]) {
+            assert_eq!(
+                lit_texel_in::<C>(&TABLES, raw, light),
+                C::from_lit_rgb565(raw, light),
+                "{raw:04x} {light:?}"
+            );
+        }
         for l in [0u8, 1, 2, 77, 127, 128, 200, 254, 255] {
             let light = [l, 255 - l, l ^ 0x5A];
             for raw in 0..=u16::MAX {
@@ -442,6 +464,13 @@ mod tests {
                     Rgb565::from_lit_rgb565(raw, light).into_storage(),
                     "{raw:04x} {light:?}"
                 );
+                same::<Rgb565>(raw, light);
+                same::<Rgb565Be>(raw, light);
+                if raw % 61 == 0 {
+                    same::<Rgb888>(raw, light);
+                    same::<Bgr565>(raw, light);
+                    same::<Gray8>(raw, light);
+                }
             }
         }
     }

@@ -29,14 +29,7 @@ use embedded_graphics::pixelcolor::{
 /// }
 /// impl FromTexel for Mine {}
 /// ```
-pub trait FromTexel: From<Rgb888> {
-    /// Whether [`from_rgb565`](Self::from_rgb565) is the texel's bits as
-    /// they are, as for the `Rgb565` targets (`Rgb565`, `Rgb565Be`): the
-    /// built-in shaders may then light an `Rgb565` texel in those bits
-    /// themselves and pass the lit bits to `from_rgb565`, which must then
-    /// equal [`from_lit_rgb565`](Self::from_lit_rgb565). `false` unless a
-    /// type says otherwise.
-    const RGB565_BITS: bool = false;
+pub trait FromTexel: From<Rgb888> + 'static {
     /// The colour of an `Rgb565` texel with bits `raw` (red in the top
     /// five): must equal `Self::from` of its `Rgb888` expansion.
     #[inline(always)]
@@ -189,12 +182,10 @@ fn lit565_bits(raw: u16, light: [u8; 3]) -> u16 {
 
 /// [`FromTexel`] for a colour type that holds `Rgb565` bits (`Rgb565`
 /// and `Rgb565Be`, whose wire order is the sink's concern): built from
-/// `RawU16`, the texel's bits as they are ([`FromTexel::RGB565_BITS`]).
+/// `RawU16`, the texel's bits as they are.
 macro_rules! rgb565_bits_texel {
     ($t:ty) => {
         impl FromTexel for $t {
-            const RGB565_BITS: bool = true;
-
             /// The bits as they are: `Rgb888`'s rounding conversion of an
             /// expanded channel gives the channel back.
             #[inline(always)]
@@ -258,34 +249,14 @@ mod tests {
         }
     }
 
-    /// The colour types that say [`FromTexel::RGB565_BITS`] take a
-    /// texel's bits as they are, and their lit texel is the lit bits so
-    /// taken (what the Cortex-M3's nearest loops build); the others say
-    /// no.
+    /// `Rgb565` and `Rgb565Be` take a texel's bits as they are.
     #[test]
-    fn rgb565_bits_types_keep_the_bits() {
+    fn rgb565_types_keep_the_bits() {
         use crate::sink::Rgb565Be;
         use embedded_graphics::pixelcolor::IntoStorage;
-        const { assert!(Rgb565::RGB565_BITS && Rgb565Be::RGB565_BITS) };
-        const { assert!(!Rgb888::RGB565_BITS && !Gray8::RGB565_BITS && !Bgr565::RGB565_BITS) };
         for raw in 0..=u16::MAX {
             assert_eq!(Rgb565::from_rgb565(raw).into_storage(), raw);
             assert_eq!(Rgb565Be::from_rgb565(raw), Rgb565Be::from(RawU16::new(raw)));
-        }
-        for l in [0u8, 1, 77, 128, 254, 255] {
-            let light = [l, 255 - l, l ^ 0x5A];
-            for raw in (0..=u16::MAX).step_by(7) {
-                let lit = Rgb565::from_lit_rgb565(raw, light).into_storage();
-                assert_eq!(
-                    Rgb565::from_rgb565(lit),
-                    Rgb565::from_lit_rgb565(raw, light)
-                );
-                assert_eq!(
-                    Rgb565Be::from_rgb565(lit),
-                    Rgb565Be::from_lit_rgb565(raw, light),
-                    "{raw:04x} {light:?}"
-                );
-            }
         }
     }
 }
