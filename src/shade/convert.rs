@@ -217,16 +217,6 @@ impl LitTables {
         )
     }
 
-    /// The tables at their constant address, for a light that the loop
-    /// starts with [`for_span`](Self::for_span).
-    #[inline(always)]
-    pub(crate) fn fixed() -> Self {
-        Self(
-            #[cfg(microraster_armv7m)]
-            &TABLES,
-        )
-    }
-
     /// `C::from_lit_rgb565(raw, light)`: on the Cortex-M3 the lit bits
     /// built from these tables where `C` holds `Rgb565` bits.
     #[inline(always)]

@@ -130,7 +130,7 @@ impl<C: FromTexel> SpanInput<'_, C, [I16F16; 2]> {
 /// Cortex-M3's `fill-nearest-affine` 36.84 -> 39.30 a fragment.
 #[cfg(target_pointer_width = "64")]
 mod per_pair {
-    use super::super::light::Light;
+    use super::super::light::{Light, SpanLight};
     #[cfg(doc)]
     use super::super::MASKED_INDEX;
     use super::super::{at, masked_index, scaled_sum, NearestConstants};

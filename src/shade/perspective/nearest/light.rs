@@ -7,23 +7,30 @@ use crate::shader::interpolated::byte;
 use crate::texture::FromTexel;
 
 /// How a nearest-texel loop (`nearest_span`, `nearest_pixels`) colours a
-/// texel: as it is ([`Unlit`], `Textured`), or lit ([`Lit`],
-/// `TexturedLit`).
+/// texel, as its caller gives it: as it is ([`Unlit`], `Textured`), or
+/// lit ([`Lit`], `TexturedLit`).
 pub(super) trait Light {
     /// What the light steps by at each pixel.
     type Steps;
+    /// The light as the loop steps it along its span.
+    type Span: SpanLight<Steps = Self::Steps>;
     /// The light's values at the first pixel, as a new value for the
     /// loop to step, and its steps, which the loop reads beside its other
-    /// constants. The loop steps the copy, not its argument: a light of
-    /// more than two words is passed by reference to the caller's copy,
-    /// which LLVM had updated in memory at every pixel where a compiler
-    /// barrier is in the loop (`nearest_pixels`: the Cortex-M4F's
+    /// constants. The loop steps the new value, not its argument: a light
+    /// of more than two words is passed by reference to the caller's
+    /// copy, which LLVM had updated in memory at every pixel where a
+    /// compiler barrier is in the loop (`nearest_pixels`: the Cortex-M4F's
     /// `fill-lit-quasi16-facing` 102.68 -> 96.68 instructions a fragment
-    /// with the copy, ARMv6-M's 198.45 -> 196.39, the Cortex-M3's 97.26
-    /// -> 97.87, whose build's layout changed with the affine lit loop).
-    fn start(&self) -> (Self, Self::Steps)
-    where
-        Self: Sized;
+    /// with a copy, ARMv6-M's 198.45 -> 196.39, the Cortex-M3's 97.26 ->
+    /// 97.87, whose build's layout changed with the affine lit loop).
+    fn start(&self) -> (Self::Span, Self::Steps);
+}
+
+/// A [`Light`] started on a span ([`Light::start`]): each pixel's colour
+/// of its texel, and the step to the next pixel.
+pub(super) trait SpanLight {
+    /// What the light steps by at each pixel.
+    type Steps;
     /// The pixel's colour of the texel's `Rgb565` bits `raw`.
     fn texel<C: FromTexel>(&self, raw: u16) -> C;
     /// To the next pixel.
@@ -35,11 +42,16 @@ pub(super) struct Unlit;
 
 impl Light for Unlit {
     type Steps = ();
+    type Span = Unlit;
 
     #[inline(always)]
-    fn start(&self) -> (Self, ()) {
+    fn start(&self) -> (Unlit, ()) {
         (Unlit, ())
     }
+}
+
+impl SpanLight for Unlit {
+    type Steps = ();
 
     #[inline(always)]
     fn texel<C: FromTexel>(&self, raw: u16) -> C {
@@ -57,43 +69,57 @@ impl Light for Unlit {
 /// it (the quasi-perspective loop's samples); without, its bits 16 to 23
 /// as they are, for the colour planes' values, which stay in range along
 /// a span (`ColourPlanes::start`).
+///
+/// The steps are declared first but on ARMv7E-M: the fields' order moves
+/// the loops' registers. Against the colour first, per fragment: the
+/// Cortex-M3's
+/// `fill-lit-quasi16-facing` 99.66 -> 96.47, `fill-lit-exact` 83.33 ->
+/// 83.39, its `demo-textured-lit-affine` 6,627,064 -> 6,627,234;
+/// ARMv6-M's 196.39 -> 193.39, 131.99 -> 130.52 and 13,332,152 ->
+/// 13,278,287; x86-64 the same; but the Cortex-M4F's `fill-lit-exact`
+/// 90.93 -> 92.33 (the build script's `microraster_armv7em`).
 pub(super) struct Lit<const CLAMP: bool> {
-    col: [i32; 3],
+    #[cfg(not(microraster_armv7em))]
     dc: [i32; 3],
-    /// The tables that light the texel: where the loop's [`start`]
-    /// makes them for its span ([`LitTables::for_span`]).
-    ///
-    /// [`start`]: Light::start
-    t: LitTables,
+    col: [i32; 3],
+    #[cfg(microraster_armv7em)]
+    dc: [i32; 3],
 }
 
 impl<const CLAMP: bool> Lit<CLAMP> {
     /// The light of colour `col` (8.16 a channel), stepped by `dc`.
     #[inline(always)]
     pub(super) fn new(col: [i32; 3], dc: [i32; 3]) -> Self {
-        Self {
-            col,
-            dc,
-            t: LitTables::fixed(),
-        }
+        Self { col, dc }
     }
 }
 
 impl<const CLAMP: bool> Light for Lit<CLAMP> {
     type Steps = [i32; 3];
+    type Span = LitSpan<CLAMP>;
 
     #[inline(always)]
-    fn start(&self) -> (Self, [i32; 3]) {
+    fn start(&self) -> (LitSpan<CLAMP>, [i32; 3]) {
         let col = self.col;
         (
-            Self {
+            LitSpan {
                 col,
-                dc: [0; 3],
                 t: LitTables::for_span(),
             },
             self.dc,
         )
     }
+}
+
+/// [`Lit`] started on a span: the colour at the pixel, and the tables
+/// that light the texel, made for the span ([`LitTables::for_span`]).
+pub(super) struct LitSpan<const CLAMP: bool> {
+    col: [i32; 3],
+    t: LitTables,
+}
+
+impl<const CLAMP: bool> SpanLight for LitSpan<CLAMP> {
+    type Steps = [i32; 3];
 
     #[inline(always)]
     fn texel<C: FromTexel>(&self, raw: u16) -> C {
@@ -144,19 +170,26 @@ impl LitPacked {
 #[cfg(target_pointer_width = "64")]
 impl Light for LitPacked {
     type Steps = (u64, u32);
+    type Span = PackedSpan;
 
     #[inline(always)]
-    fn start(&self) -> (Self, (u64, u32)) {
+    fn start(&self) -> (PackedSpan, (u64, u32)) {
         let (rg, b) = (self.rg, self.b);
-        (
-            Self {
-                rg,
-                b,
-                steps: (0, 0),
-            },
-            self.steps,
-        )
+        (PackedSpan { rg, b }, self.steps)
     }
+}
+
+/// [`LitPacked`] started on a span: red and green at the pixel in one
+/// `u64`, blue in a `u32`.
+#[cfg(target_pointer_width = "64")]
+pub(super) struct PackedSpan {
+    rg: u64,
+    b: u32,
+}
+
+#[cfg(target_pointer_width = "64")]
+impl SpanLight for PackedSpan {
+    type Steps = (u64, u32);
 
     #[inline(always)]
     fn texel<C: FromTexel>(&self, raw: u16) -> C {

@@ -19,7 +19,7 @@ use crate::math::mul_wide;
 use crate::shader::TriangleSpans;
 use crate::texture::FromTexel;
 use fixed::types::I16F16;
-use light::{Light, Unlit};
+use light::{Light, SpanLight, Unlit};
 
 mod affine;
 #[cfg(not(target_pointer_width = "64"))]

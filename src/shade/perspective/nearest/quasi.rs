@@ -9,7 +9,7 @@
 
 use super::super::quasi::{quasi_span, segment_step, Segments};
 use super::super::{depth16, signed_weights, PerspectiveSetup, SpanInput};
-use super::light::{Light, Lit, Unlit};
+use super::light::{Light, Lit, SpanLight, Unlit};
 use super::{
     at, index_shifts, masked_index, narrow_shifts, texel_index, NearestConstants, MASKED_INDEX,
 };
