@@ -6,8 +6,10 @@
 //! ESP32-C3's instruction set), and requires of each that every frame
 //! completes, that its wire bytes' checksum equals the host's render of
 //! the same frame through the same code, and that the peak stack, painted
-//! and read back, stays within the firmwares' budget. Prints the figures
-//! (`-- --nocapture`).
+//! and read back, stays within the firmwares' budget. On RISC-V, run with
+//! `-icount shift=0`, it also requires each frame's count of instructions
+//! (the probe's `minstret` readings, its own checksum taken off). Prints
+//! the figures (`-- --nocapture`).
 //!
 //! The probe splits the peak at the call of `Frames::draw`: below it the
 //! boards' own code, above it the probe's `main`. The depth at that call
@@ -517,13 +519,35 @@ fn esp32c3_frame_code_on_qemu_riscv32_stack_within_budget() {
     }
     let elf = build_probe(target, &[]);
     let mut qemu = Command::new("qemu-system-riscv32");
+    // `-icount shift=0`: QEMU's `minstret` then counts exactly the
+    // instructions executed, which the probe reports per frame.
     qemu.args([
         "-M", "virt", "-bios", "none", "-display", "none", "-serial", "stdio",
     ])
-    .args(["-monitor", "none", "-kernel"])
+    .args(["-icount", "shift=0", "-monitor", "none", "-kernel"])
     .arg(&elf);
     let name = "qemu_stack virt (RV32IMC)";
-    let report = check(name, &run(qemu));
+    let out = run(qemu);
+    let report = check(name, &out);
+    let counts: Vec<usize> = out
+        .lines()
+        .filter(|l| l.contains("instructions without the checksum"))
+        // "stack_probe: frame I: N instructions without the checksum ..."
+        .filter_map(|l| l.rsplit(": ").next()?.split(' ').next()?.parse().ok())
+        .collect();
+    // Each frame counted, and plausibly: a 240x240 frame of about 2,000
+    // triangles takes millions of instructions, and none takes a billion.
+    assert_eq!(
+        counts.len(),
+        FRAME_TIMES.len(),
+        "{name}: a count a frame:\n{out}"
+    );
+    for c in counts {
+        assert!(
+            (1_000_000..1_000_000_000).contains(&c),
+            "{name}: implausible count of a frame's instructions, {c}:\n{out}"
+        );
+    }
     // The probe's `_start` and esp-riscv-rt's set the stack pointer and
     // call these, pushing nothing.
     static_depths(

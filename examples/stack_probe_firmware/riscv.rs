@@ -82,3 +82,28 @@ extern "C" fn probe_main() -> ! {
     crate::stack_gauge::paint();
     crate::firmware::run()
 }
+
+/// The instructions executed since reset: the `minstret` counter (with
+/// `minstreth`, read until the high word holds still), which QEMU counts
+/// exactly under `-icount shift=0`.
+pub fn instructions() -> Option<u64> {
+    loop {
+        let (high, low, again): (u32, u32, u32);
+        // SAFETY: reads of the machine-mode counters, which the probe
+        // (in machine mode from reset) may read; nothing is written.
+        unsafe {
+            core::arch::asm!(
+                "csrr {0}, minstreth",
+                "csrr {1}, minstret",
+                "csrr {2}, minstreth",
+                out(reg) high,
+                out(reg) low,
+                out(reg) again,
+                options(nomem, nostack),
+            );
+        }
+        if high == again {
+            return Some(u64::from(high) << 32 | u64::from(low));
+        }
+    }
+}
