@@ -72,9 +72,8 @@ impl SpanLight for Unlit {
 ///
 /// The steps are declared first but on ARMv7E-M: the fields' order moves
 /// the loops' registers. Against the colour first, per fragment: the
-/// Cortex-M3's
-/// `fill-lit-quasi16-facing` 99.66 -> 96.47, `fill-lit-exact` 83.33 ->
-/// 83.39, its `demo-textured-lit-affine` 6,627,064 -> 6,627,234;
+/// Cortex-M3's `fill-lit-quasi16-facing` 99.66 -> 96.47, `fill-lit-exact`
+/// 83.33 -> 83.39, its `demo-textured-lit-affine` 6,627,064 -> 6,627,234;
 /// ARMv6-M's 196.39 -> 193.39, 131.99 -> 130.52 and 13,332,152 ->
 /// 13,278,287; x86-64 the same; but the Cortex-M4F's `fill-lit-exact`
 /// 90.93 -> 92.33 (the build script's `microraster_armv7em`).
