@@ -17,9 +17,11 @@
 //! (`examples/stack_gauge`), sets the scene up as the boards do, reports
 //! the start-up's peak, paints again and draws the frames of
 //! `FRAME_TIMES`, printing each one's checksum (the test compares them
-//! with the host's), on RISC-V its count of instructions (`minstret`,
-//! exact under QEMU's `-icount shift=0`, less what the probe's checksum
-//! took), and the frames' peak stack, split at the call of
+//! with the host's), its count of instructions (each frame drawn again
+//! with its tiles packed but not checksummed, between two readings of
+//! RISC-V's `minstret` or the Cortex-M33's SysTick, which count
+//! instructions under QEMU's `-icount shift=0`), and the frames' peak
+//! stack, split at the call of
 //! `Frames::draw`: above it, the probe's `main` and runtime; below it, the
 //! boards' code. What the boards add is their own `main`'s frame and their
 //! SPI/DMA drivers' frames under `TileTransfer::start` and `wait`, which

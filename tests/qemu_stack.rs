@@ -6,10 +6,11 @@
 //! ESP32-C3's instruction set), and requires of each that every frame
 //! completes, that its wire bytes' checksum equals the host's render of
 //! the same frame through the same code, and that the peak stack, painted
-//! and read back, stays within the firmwares' budget. On RISC-V, run with
-//! `-icount shift=0`, it also requires each frame's count of instructions
-//! (the probe's `minstret` readings, its own checksum taken off). Prints
-//! the figures (`-- --nocapture`).
+//! and read back, stays within the firmwares' budget. Run with `-icount
+//! shift=0`, it also requires each frame's count of instructions, drawn
+//! again with its tiles packed but not checksummed (the probe's readings
+//! of RISC-V's `minstret`, exact, or of the Cortex-M33's SysTick, to a
+//! tick). Prints the figures (`-- --nocapture`).
 //!
 //! The probe splits the peak at the call of `Frames::draw`: below it the
 //! boards' own code, above it the probe's `main`. The depth at that call
@@ -429,6 +430,29 @@ fn check(name: &str, out: &str) -> Report {
     Report { above, below }
 }
 
+/// Requires a count of instructions for each frame, and a plausible one:
+/// a 240x240 frame of about 2,000 triangles takes millions, and none a
+/// billion.
+fn counted(name: &str, out: &str) {
+    let counts: Vec<usize> = out
+        .lines()
+        .filter(|l| l.contains("its tiles packed but not checksummed"))
+        // "stack_probe: frame I: N instructions (counted to ...), ..."
+        .filter_map(|l| l.split(": ").nth(2)?.split(' ').next()?.parse().ok())
+        .collect();
+    assert_eq!(
+        counts.len(),
+        FRAME_TIMES.len(),
+        "{name}: a count a frame:\n{out}"
+    );
+    for c in counts {
+        assert!(
+            (1_000_000..1_000_000_000).contains(&c),
+            "{name}: implausible count of a frame's instructions, {c}:\n{out}"
+        );
+    }
+}
+
 /// Reads the depth at the call of `Frames::draw` from the probe's
 /// disassembly, which must equal the measured one, and from the board's
 /// ELF named by `board_var` if set: the board's peak is that depth plus
@@ -482,8 +506,12 @@ fn pico2_frame_code_on_qemu_cortex_m33_stack_within_budget() {
         return;
     }
     let elf = build_probe(target, &ARM_CONFIG);
+    // `-icount shift=0`: SysTick then counts instructions, by which the
+    // probe reports each frame's.
     let mut qemu = Command::new("qemu-system-arm");
     qemu.args([
+        "-icount",
+        "shift=0",
         "-M",
         "mps2-an505",
         "-display",
@@ -496,7 +524,9 @@ fn pico2_frame_code_on_qemu_cortex_m33_stack_within_budget() {
     .args(["-semihosting-config", "enable=on,target=native", "-kernel"])
     .arg(&elf);
     let name = "qemu_stack mps2-an505 (Cortex-M33)";
-    let report = check(name, &run(qemu));
+    let out = run(qemu);
+    let report = check(name, &out);
+    counted(name, &out);
     // cortex-m-rt's Reset calls `main` from the top of the stack, pushing
     // nothing.
     static_depths(
@@ -529,25 +559,7 @@ fn esp32c3_frame_code_on_qemu_riscv32_stack_within_budget() {
     let name = "qemu_stack virt (RV32IMC)";
     let out = run(qemu);
     let report = check(name, &out);
-    let counts: Vec<usize> = out
-        .lines()
-        .filter(|l| l.contains("instructions without the checksum"))
-        // "stack_probe: frame I: N instructions without the checksum ..."
-        .filter_map(|l| l.rsplit(": ").next()?.split(' ').next()?.parse().ok())
-        .collect();
-    // Each frame counted, and plausibly: a 240x240 frame of about 2,000
-    // triangles takes millions of instructions, and none takes a billion.
-    assert_eq!(
-        counts.len(),
-        FRAME_TIMES.len(),
-        "{name}: a count a frame:\n{out}"
-    );
-    for c in counts {
-        assert!(
-            (1_000_000..1_000_000_000).contains(&c),
-            "{name}: implausible count of a frame's instructions, {c}:\n{out}"
-        );
-    }
+    counted(name, &out);
     // The probe's `_start` and esp-riscv-rt's set the stack pointer and
     // call these, pushing nothing.
     static_depths(

@@ -7,6 +7,7 @@
 //! from flash) before its `main`, none of it on the frame's stack.
 
 use core::arch::global_asm;
+use core::sync::atomic::{AtomicBool, Ordering};
 
 /// The 16550 UART's registers.
 const UART: usize = 0x1000_0000;
@@ -80,13 +81,53 @@ fn panic(info: &core::panic::PanicInfo) -> ! {
 extern "C" fn probe_main() -> ! {
     // First, before anything has used the stack.
     crate::stack_gauge::paint();
+    start_counting();
     crate::firmware::run()
 }
 
-/// The instructions executed since reset: the `minstret` counter (with
-/// `minstreth`, read until the high word holds still), which QEMU counts
-/// exactly under `-icount shift=0`.
+/// Whether `minstret` counts instructions: [`start_counting`] found it so.
+static COUNTING: AtomicBool = AtomicBool::new(false);
+
+/// Checks that `minstret` counts exactly the instructions executed, as
+/// QEMU's does under `-icount shift=0` (without it, QEMU derives it from
+/// the host's clock): a loop of 200,000 instructions between two readings
+/// must count as that, give or take the readings' own. Once, before
+/// [`instructions`], which counts nothing otherwise.
+pub fn start_counting() {
+    const TURNS: u32 = 100_000;
+    let before = read_instret();
+    // Two instructions a turn.
+    // SAFETY: a counted loop on one scratch register, nothing else.
+    unsafe {
+        core::arch::asm!(
+            "2:",
+            "addi {n}, {n}, -1",
+            "bnez {n}, 2b",
+            n = inout(reg) TURNS => _,
+            options(nomem, nostack),
+        );
+    }
+    let counted = read_instret().wrapping_sub(before);
+    COUNTING.store(
+        counted.abs_diff(u64::from(2 * TURNS)) < 32,
+        Ordering::Relaxed,
+    );
+}
+
+/// The instructions a reading of [`instructions`] may be off by: none.
+pub fn resolution() -> u32 {
+    1
+}
+
+/// The instructions executed since reset, where [`start_counting`] found
+/// `minstret` counting them.
 pub fn instructions() -> Option<u64> {
+    COUNTING.load(Ordering::Relaxed).then(read_instret)
+}
+
+/// The `minstret` counter, with `minstreth` read until the high word
+/// holds still.
+fn read_instret() -> u64 {
     loop {
         let (high, low, again): (u32, u32, u32);
         // SAFETY: reads of the machine-mode counters, which the probe
@@ -103,7 +144,7 @@ pub fn instructions() -> Option<u64> {
             );
         }
         if high == again {
-            return Some(u64::from(high) << 32 | u64::from(low));
+            return u64::from(high) << 32 | u64::from(low);
         }
     }
 }
