@@ -189,8 +189,6 @@ static TO565_PLACED: [u16; 768] = {
 /// converted by its first, both from one address.
 #[cfg(microraster_armv7m)]
 #[inline(always)]
-// `Entry` is a byte in some builds: not always the same type.
-#[allow(clippy::useless_conversion)]
 pub(crate) fn lit565_bits(raw: u16, light: [u8; 3]) -> u16 {
     lit565_bits_in(&TABLES, raw, light)
 }

@@ -10,10 +10,8 @@ use crate::texture::FromTexel;
 /// texel, as its caller gives it: as it is ([`Unlit`], `Textured`), or
 /// lit ([`Lit`], `TexturedLit`).
 pub(super) trait Light {
-    /// What the light steps by at each pixel.
-    type Steps;
     /// The light as the loop steps it along its span.
-    type Span: SpanLight<Steps = Self::Steps>;
+    type Span: SpanLight;
     /// The light's values at the first pixel, as a new value for the
     /// loop to step, and its steps, which the loop reads beside its other
     /// constants. The loop steps the new value, not its argument: a light
@@ -23,7 +21,7 @@ pub(super) trait Light {
     /// `fill-lit-quasi16-facing` 102.68 -> 96.68 instructions a fragment
     /// with a copy, ARMv6-M's 198.45 -> 196.39, the Cortex-M3's 97.26 ->
     /// 97.87, whose build's layout changed with the affine lit loop).
-    fn start(&self) -> (Self::Span, Self::Steps);
+    fn start(&self) -> (Self::Span, <Self::Span as SpanLight>::Steps);
 }
 
 /// A [`Light`] started on a span ([`Light::start`]): each pixel's colour
@@ -41,7 +39,6 @@ pub(super) trait SpanLight {
 pub(super) struct Unlit;
 
 impl Light for Unlit {
-    type Steps = ();
     type Span = Unlit;
 
     #[inline(always)]
@@ -94,7 +91,6 @@ impl<const CLAMP: bool> Lit<CLAMP> {
 }
 
 impl<const CLAMP: bool> Light for Lit<CLAMP> {
-    type Steps = [i32; 3];
     type Span = LitSpan<CLAMP>;
 
     #[inline(always)]
@@ -168,7 +164,6 @@ impl LitPacked {
 
 #[cfg(target_pointer_width = "64")]
 impl Light for LitPacked {
-    type Steps = (u64, u32);
     type Span = PackedSpan;
 
     #[inline(always)]
