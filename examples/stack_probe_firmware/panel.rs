@@ -47,7 +47,7 @@ pub struct ChecksumPanel<B> {
     in_flight: Option<B>,
     /// Whether the bytes are folded into the checksum: not by a panel
     /// that only packs them ([`packing_only`](Self::packing_only)).
-    fold: bool,
+    checksum: bool,
 }
 
 impl<B> ChecksumPanel<B> {
@@ -57,7 +57,7 @@ impl<B> ChecksumPanel<B> {
             hash: FNV_OFFSET,
             tiles: 0,
             in_flight: None,
-            fold: true,
+            checksum: true,
         }
     }
 
@@ -68,7 +68,7 @@ impl<B> ChecksumPanel<B> {
     #[allow(dead_code)] // The host's test checksums every frame.
     pub const fn packing_only() -> Self {
         let mut panel = Self::new();
-        panel.fold = false;
+        panel.checksum = false;
         panel
     }
 
@@ -82,7 +82,7 @@ impl<B> ChecksumPanel<B> {
     }
 
     fn fold(&mut self, bytes: &[u8]) {
-        if !self.fold {
+        if !self.checksum {
             // What the board would send, kept from the optimiser.
             core::hint::black_box(bytes);
             return;
