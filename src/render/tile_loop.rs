@@ -499,11 +499,12 @@ pub const MAX_TRANSPARENT: usize = 128;
 
 /// Whether the common path of the tile loop walks a triangle's rows
 /// itself, the scanline walk inlined (`scanline::find_spans_inline`),
-/// where the tile's rasterizer is the scanline one: on 64-bit hosts, whose
-/// tile loop then keeps its values in registers and stack slots across
-/// the walk, and the walk its own, without the call, the out-of-line
-/// walk's saved registers and its reloads of the vertices' words (about
-/// 15 instructions a pair). The test of a tall triangle stays out of
+/// where the tile's rasterizer is the scanline one: on every core with a
+/// long multiply, whose tile loop then keeps its values in registers and
+/// stack slots across the walk, and the walk its own, without the call,
+/// the out-of-line walk's saved registers and its reloads of the
+/// vertices' words (about 15 instructions a pair on x86-64, 13 on the
+/// Cortex-M3). The test of a tall triangle stays out of
 /// line (`misses_apart`): inline, or marked cold, the tile loop's
 /// registers fell worse for the large triangles (`fill` up to 9.20 a
 /// pixel, `tri10000` +63 K). x86-64 `demo` 2,920,341 -> 2,879,993
@@ -511,5 +512,15 @@ pub const MAX_TRANSPARENT: usize = 128;
 /// 2,388,313, `demo-flat` 2,531,604 -> 2,491,256, `tri4` -147 K, `tri100`
 /// -73 K, `tri10000` -13 K, `fill` 5,414,298 -> 5,412,342 (8.81 a pixel);
 /// the shader draws, which take the call, +340 (`demo-textured-lit`,
-/// `knot1k-textured-lit`).
-const WALK_INLINE: bool = cfg!(target_pointer_width = "64");
+/// `knot1k-textured-lit`). On the Cortex-M3 `demo` 2,897,539 ->
+/// 2,864,008, `rock` 2,381,154 -> 2,353,523, `grid4` -11.6 K, `fill`
+/// 13.83 -> 13.89 a pixel, the shader scenes +500 to +1,300 and each
+/// build's flash about +2.9 KB (the five shader fills' +8.7 KB); the
+/// Cortex-M4F `demo` 2,897,613 -> 2,866,227, `rock` 2,400,457 ->
+/// 2,376,397, `fill` +0.13 %; the boards' scene (the stack probe's
+/// frame 0) on the Pico 2's Cortex-M33 2,241,000 -> 2,221,600 and on
+/// the ESP32-C3's RV32IMC 2,661,429 -> 2,584,513. Not on ARMv6-M
+/// (`SPLIT`), whose seven low registers hold less of the tile loop
+/// across the walk: `demo` 5,844,263 -> 5,852,321. Builds optimised for
+/// size never take the common path (`microraster_size`).
+const WALK_INLINE: bool = !crate::math::SPLIT;
