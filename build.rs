@@ -145,20 +145,38 @@ fn main() {
     if target.starts_with("thumbv7em-") {
         println!("cargo:rustc-cfg=microraster_armv7em");
     }
+    // ARMv8-M Mainline (`thumbv8m.main`: the Cortex-M33 of the Pico 2's
+    // RP2350), for the choices measured faster on it (its frame code's
+    // instructions counted on QEMU's MPS2-AN505 by the stack probe,
+    // `tests/qemu_stack.rs`).
+    println!("cargo::rustc-check-cfg=cfg(microraster_armv8m)");
+    if target.starts_with("thumbv8m.main-") {
+        println!("cargo:rustc-cfg=microraster_armv8m");
+    }
     // Builds optimised for size: code that buys speed with flash (the
     // binning loop's single-tile push) is left out of them.
     println!("cargo::rustc-check-cfg=cfg(microraster_size)");
     if size {
         println!("cargo:rustc-cfg=microraster_size");
     }
-    // Arm cores without an FPU (`f32` in library calls), not optimised
-    // for size: the per-draw set-up's short cuts around soft-float
-    // arithmetic (`math::SOFT_FLOAT`), whose tests cost more than they
-    // save where an FPU does the arithmetic, and flash where size counts.
+    // Cores without an FPU (`f32` in library calls), not optimised for
+    // size: Arm's soft-float ABIs, and RISC-V without the F extension
+    // (the ESP32-C3's RV32IMC, whose frames of the boards' scene took
+    // about 18,000 instructions fewer each with them). The per-draw
+    // set-up's short cuts around soft-float arithmetic
+    // (`math::SOFT_FLOAT`) cost more than they save where an FPU does the
+    // arithmetic, and flash where size counts.
     println!("cargo::rustc-check-cfg=cfg(microraster_soft_float)");
-    let arm = env::var("CARGO_CFG_TARGET_ARCH").is_ok_and(|a| a == "arm");
+    let arch = env::var("CARGO_CFG_TARGET_ARCH").unwrap_or_default();
     let hard_float = env::var("CARGO_CFG_TARGET_ABI").is_ok_and(|a| a == "eabihf");
-    if arm && !hard_float && !size {
+    let f_extension = env::var("CARGO_CFG_TARGET_FEATURE")
+        .is_ok_and(|f| f.split(',').any(|feature| feature == "f"));
+    let soft_float = match arch.as_str() {
+        "arm" => !hard_float,
+        "riscv32" => !f_extension,
+        _ => false,
+    };
+    if soft_float && !size {
         println!("cargo:rustc-cfg=microraster_soft_float");
     }
     println!("cargo::rustc-check-cfg=cfg(microraster_lm3s6965)");

@@ -217,8 +217,10 @@ pub(crate) const STEPS_IN_PLACE: bool = SHIFTED_TOP;
 /// starts take depth shifted for the loop from the depth step
 /// ([`TriangleSetup::start_interior_depth_shifted`]): on the Cortex-M3
 /// (the build script's `microraster_armv7m`), where the span start then
-/// holds one plane coefficient fewer.
-const DEPTH_BY_STEP: bool = cfg!(microraster_armv7m);
+/// holds one plane coefficient fewer, and on RISC-V (the ESP32-C3's
+/// frame 0 of the boards' scene 2,515,461 -> 2,514,330 instructions);
+/// not on the Pico 2's Cortex-M33 (+21 K).
+const DEPTH_BY_STEP: bool = cfg!(any(microraster_armv7m, target_arch = "riscv32"));
 
 /// The start and step of depth (shifted, see `depth16`), red, green and
 /// blue as [`gouraud_loop`] takes them: the channels shifted left by 8
@@ -431,8 +433,15 @@ const EARLY_END: bool = cfg!(any(microraster_armv7m, microraster_narrow_multiply
 /// 2,610,488 -> 2,604,224), for a load on the rare path of a fragment
 /// that fails. On the Cortex-M3 only with [`COUNT_AFTER`]: alone its
 /// span starts took three instructions more (`demo` 3,091,310 ->
-/// 3,092,626). Not on ARMv6-M, which has no post-indexed store.
-const STORE_AFTER: bool = cfg!(any(microraster_armv7em, microraster_armv7m));
+/// 3,092,626). Not on ARMv6-M, which has no post-indexed store. On
+/// ARMv8-M Mainline too (`microraster_armv8m`: the Pico 2's frame 0 of
+/// the boards' scene 2,221,600 -> 2,204,950 instructions); not on
+/// RISC-V (+2.5 K), which has no post-indexed store either.
+const STORE_AFTER: bool = cfg!(any(
+    microraster_armv7em,
+    microraster_armv7m,
+    microraster_armv8m
+));
 
 /// Whether the Gouraud loop of a triangle that is not
 /// [`interior`](TriangleSetup::interior) reads the colour table through
@@ -451,8 +460,12 @@ const STORE_AFTER: bool = cfg!(any(microraster_armv7em, microraster_armv7m));
 /// script's `microraster_size`: the OLED firmware 43,304 -> 44,020 B).
 /// The interior loop, which keeps the address already, reads the table
 /// at its constant address. (The Cortex-M4F's Gouraud loops now read it
-/// at its constant address in either case: [`FIXED_GOURAUD`].)
-pub(crate) const OPAQUE_TABLE: bool = cfg!(microraster_armv7em);
+/// at its constant address in either case: [`FIXED_GOURAUD`].) On
+/// ARMv8-M Mainline (`microraster_armv8m`) with the table's address used
+/// as it is passed: the Pico 2's frame 0 of the boards' scene 2,175,350
+/// -> 2,155,650 instructions (with [`FIXED_GOURAUD`] or [`OPAQUE_FLAT`]
+/// too: no better).
+pub(crate) const OPAQUE_TABLE: bool = cfg!(any(microraster_armv7em, microraster_armv8m));
 
 /// Whether the table's address is made opaque ([`OPAQUE_TABLE`]) for the
 /// flat span loops too, which never read it: on ARMv7E-M, whose flat loop

@@ -198,11 +198,15 @@ const FAST: bool = !cfg!(microraster_size);
 /// 344,127 -> 338,865 instructions, `rock` -4.6 K, `grid4` -4.5 K,
 /// `demo-textured-lit` -8.7 K (without the cold hint `demo` -2.3 K but
 /// `demo-textured-lit` +21.7 K: that loop copied two registers round
-/// each triangle). (The M3 the same way: `demo` +22 K.)
+/// each triangle). (The M3 the same way: `demo` +22 K.) Nor on RISC-V,
+/// whose one-tile triangles come first too ([`fast`]'s
+/// `ONE_TILE_FIRST`).
 ///
 /// [`FrameState::classify`]: super::state::FrameState::classify
-pub(super) const LOOP_COUNTS_VISIBLE: bool =
-    !crate::math::SPLIT && !cfg!(target_pointer_width = "64") && !cfg!(microraster_armv7em);
+pub(super) const LOOP_COUNTS_VISIBLE: bool = !crate::math::SPLIT
+    && !cfg!(target_pointer_width = "64")
+    && !cfg!(microraster_armv7em)
+    && !cfg!(target_arch = "riscv32");
 
 /// The binning loops count the visible triangles and their pairs in one
 /// sum, `VISIBLE` a triangle above the pairs: one 64-bit add a triangle
@@ -359,8 +363,15 @@ fn push_rows(
 /// the stack, loaded and stored each row): on the Cortex-M3 (`demo`
 /// binning 338,226 -> 334,595, `rock` -2.7 K, `grid4` -1.2 K), not in
 /// its builds optimised for size (their loop as it was); the M4F
-/// +14.8 K, ARMv6-M +8.2 K, x86-64 +5.1 K.
-const ROWS_BY_TILE: bool = cfg!(microraster_armv7m) && !cfg!(microraster_size);
+/// +14.8 K, ARMv6-M +8.2 K, x86-64 +5.1 K. On the cores of the Pico 2
+/// and the ESP32-C3 too (frame 0 of the boards' scene: Cortex-M33
+/// 2,178,150 -> 2,176,400 instructions, RV32IMC 2,519,113 ->
+/// 2,515,461).
+const ROWS_BY_TILE: bool = cfg!(any(
+    microraster_armv7m,
+    microraster_armv8m,
+    target_arch = "riscv32"
+)) && !cfg!(microraster_size);
 
 /// What [`bin_triangles`] needs of the draw it bins.
 pub(super) struct BinDraw<'a, 'f> {
