@@ -62,6 +62,13 @@ where
     // Transparent triangles, drawn after the opaque ones: (depth key,
     // triangle), 4 bytes each on the stack.
     let mut later: heapless::Vec<(u16, u16), MAX_TRANSPARENT> = heapless::Vec::new();
+    // The fragments written. Where the common path records no rows
+    // (`WHOLE_TILE_ROWS`), a tile where it wrote one is cleared whole:
+    // its count is then kept apart from that of the paths that record
+    // their rows (the general path's, clipped and transparent
+    // triangles'), which go to `other`; on 64-bit hosts it is
+    // `job.to.shaded`, elsewhere `n`.
+    let mut other = 0;
     let mut n = 0;
     let mut list = list;
     // The tile's rectangle for the inline walk (`WALK_INLINE`), copied
@@ -77,7 +84,8 @@ where
         // pair down the general path, inline, the loop's code there once
         // (the OLED firmware's flash 44,096 -> 43,316 bytes).
         for t in list {
-            n += job.general_one::<P>(&mut cur, t, &mut later);
+            let m = job.general_one::<P>(&mut cur, t, &mut later);
+            *if WHOLE_TILE_ROWS { &mut other } else { &mut n } += m;
         }
     } else {
         // The loop written twice, for the scanline walk inline and for
@@ -106,7 +114,7 @@ where
                     // them.
                     let Some(&[i0, i1, i2]) = fast.get(t.wrapping_sub(first)) else {
                         let (m, after) = job.general::<P>(&mut cur, t, &mut list, &mut later);
-                        n += m;
+                        *if WHOLE_TILE_ROWS { &mut other } else { &mut n } += m;
                         next = after;
                         (fast, first, verts) = (cur.fast, cur.first, cur.verts);
                         shade = shaders.fill[cur.gouraud as usize];
@@ -123,7 +131,8 @@ where
                     let any = sv[0].xy_words().0 | sv[1].xy_words().0 | sv[2].xy_words().0;
                     if any & MUST_CLIP as i32 != 0 {
                         let idx = [i0 as u32, i1 as u32, i2 as u32];
-                        n += job.clipped(&cur, idx, any as u8, sv[0].color());
+                        let m = job.clipped(&cur, idx, any as u8, sv[0].color());
+                        *if WHOLE_TILE_ROWS { &mut other } else { &mut n } += m;
                     } else {
                         // `fill`, with the tile's rasterizer, the draw's span loop
                         // and the depth test from locals.
@@ -164,14 +173,15 @@ where
         }
     }
     if P::BLEND {
-        n += job.draw_later::<P>(&mut later);
+        let m = job.draw_later::<P>(&mut later);
+        *if WHOLE_TILE_ROWS { &mut other } else { &mut n } += m;
     }
     #[cfg(target_pointer_width = "64")]
     {
         n += job.to.shaded;
     }
-    job.to.finish();
-    n
+    job.to.finish(WHOLE_TILE_ROWS && n > 0);
+    n + other
 }
 
 /// One tile being drawn, and what drawing a triangle into it needs.
