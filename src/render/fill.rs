@@ -366,23 +366,17 @@ const EARLY_INTERIOR: bool = cfg!(microraster_armv7em);
 /// every pair of every path, gave `demo` -45 K, -65 K and -119 K but cost
 /// `rock` +16 K, +5 K and +7 K and the M3's `grid4` +20 K: a test every
 /// pair makes costs more than it saves where few faces are of one colour.
-/// Not on 64-bit hosts (x86-64 `demo` 3,097,082 -> 3,078,652 but `rock`
-/// 2,564,079 -> 2,591,383, tested in `shade`). On the Pico 2's
-/// Cortex-M33 (`microraster_armv8m`) and the ESP32-C3's RV32IMC too,
-/// whose boards' scene has a flat-shaded cube: its four frames
-/// 2,204,950, 2,138,000, 2,007,950 and 2,075,550 -> 2,182,150,
-/// 2,127,750, 2,004,900 and 2,070,150 instructions on the M33,
-/// 2,551,260 ... 2,389,052 -> 2,519,113 ... 2,380,326 on RV32IMC.
-pub(super) const ONE_COLOUR_FLAT: bool = cfg!(all(
-    not(microraster_size),
-    any(
-        microraster_armv7em,
-        microraster_narrow_multiply,
-        microraster_armv7m,
-        microraster_armv8m,
-        target_arch = "riscv32"
-    )
-));
+/// On the Pico 2's Cortex-M33 (`microraster_armv8m`) and the ESP32-C3's
+/// RV32IMC too, whose boards' scene has a flat-shaded cube: its four
+/// frames 2,204,950, 2,138,000, 2,007,950 and 2,075,550 -> 2,182,150,
+/// 2,127,750, 2,004,900 and 2,070,150 instructions on the M33, 2,551,260
+/// ... 2,389,052 -> 2,519,113 ... 2,380,326 on RV32IMC. And on 64-bit
+/// hosts, measured again with the tile loop's walk inline there
+/// (`demo` 2,768,616 -> 2,757,491, `rock` the same, the textured frames
+/// -36; before, with the test in `shade`, `demo` 3,097,082 -> 3,078,652
+/// but `rock` 2,564,079 -> 2,591,383): on every core, in builds not
+/// optimised for size.
+pub(super) const ONE_COLOUR_FLAT: bool = !cfg!(microraster_size);
 
 /// Whether the three vertices `sv` have the same colour. (The Cortex-M3's
 /// words compared whole, which paid where every pair made the test,
