@@ -97,8 +97,9 @@ pub(super) fn drawn<'f>(
 /// their fragments are counted apart so as not to widen the clear):
 /// 64-bit hosts, where a pair's two compares with the rows so far, in
 /// memory, and the load of its last span's row took ten instructions,
-/// and the Cortex-M cores: the Cortex-M3's `demo` 2,864,006 -> 2,835,784 instructions, `rock`
-/// 2,353,523 -> 2,331,109, `fill` 13.89 -> 13.84 a pixel; the M4F's
+/// and the Cortex-M cores: the Cortex-M3's `demo` 2,864,006 ->
+/// 2,835,784 instructions, `rock` 2,353,523 -> 2,331,109, `fill` 13.89
+/// -> 13.84 a pixel; the M4F's
 /// `demo` 2,866,231 -> 2,833,903, `rock` 2,376,393 -> 2,350,182;
 /// ARMv6-M's `demo` 5,844,263 -> 5,827,392, `rock` -16.6 K; the Pico 2's
 /// Cortex-M33 on the boards' scene 2,155,650 -> 2,139,200 (frame 0);
