@@ -523,15 +523,11 @@ fn pico2_frame_code_on_qemu_cortex_m33_stack_within_budget() {
     ])
     .args(["-semihosting-config", "enable=on,target=native", "-kernel"])
     .arg(&elf);
-    let name = "qemu_stack mps2-an505 (Cortex-M33)";
-    let out = run(qemu);
-    let report = check(name, &out);
-    counted(name, &out);
     // cortex-m-rt's Reset calls `main` from the top of the stack, pushing
     // nothing.
-    static_depths(
-        name,
-        &report,
+    measure(
+        "qemu_stack mps2-an505 (Cortex-M33)",
+        qemu,
         &elf,
         "main",
         ("MICRORASTER_RP2350_ELF", "main"),
@@ -556,17 +552,27 @@ fn esp32c3_frame_code_on_qemu_riscv32_stack_within_budget() {
     ])
     .args(["-icount", "shift=0", "-monitor", "none", "-kernel"])
     .arg(&elf);
-    let name = "qemu_stack virt (RV32IMC)";
-    let out = run(qemu);
-    let report = check(name, &out);
-    counted(name, &out);
     // The probe's `_start` and esp-riscv-rt's set the stack pointer and
     // call these, pushing nothing.
-    static_depths(
-        name,
-        &report,
+    measure(
+        "qemu_stack virt (RV32IMC)",
+        qemu,
         &elf,
         "probe_main",
         ("MICRORASTER_ESP32C3_ELF", "_start_rust"),
     );
+}
+
+/// Runs the probe `elf` under `qemu` and holds it to everything above:
+/// each frame's checksum the host's and its stack within the budget
+/// ([`check`]), a count for every frame ([`counted`]), and the probe's
+/// and the board's depths at the call of `Frames::draw`, read from their
+/// disassemblies from `entry` and from the board's (`board`: the
+/// variable naming its ELF, and its entry), within the budget too
+/// ([`static_depths`]).
+fn measure(name: &str, qemu: Command, elf: &Path, entry: &str, board: (&str, &str)) {
+    let out = run(qemu);
+    let report = check(name, &out);
+    counted(name, &out);
+    static_depths(name, &report, elf, entry, board);
 }
