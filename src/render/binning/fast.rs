@@ -308,19 +308,14 @@ fn centres(v: &[SubPoint; 3]) -> PixelRect {
 /// product. On RISC-V too (the ESP32-C3's frame 0 of the boards' scene
 /// 2,556,595 -> 2,551,260 instructions); not on the Pico 2's Cortex-M33
 /// (+8.5 K).
-const ONE_TILE_FIRST: bool = SINGLE_PUSH
-    && (crate::math::SPLIT
-        || cfg!(target_pointer_width = "64")
-        || cfg!(microraster_armv7em)
-        || cfg!(target_arch = "riscv32"));
-
-// Where one-tile triangles come first, the visible triangles are counted
-// in `tally`, not the loop's sum, and each one's first pair once at the
-// loop's end from that count, so that a one-tile triangle adds nothing
-// (ARMv6-M's binning on the `demo` frame 503,361 -> 499,579
-// instructions, `rock` -1.1 K, `grid4` -6.2 K; the frames' pair counts
-// the same): [`bin_fast`] relies on it.
-const _: () = assert!(!(ONE_TILE_FIRST && LOOP_COUNTS_VISIBLE));
+///
+/// So exactly where the loop does not count the visible triangles: they
+/// are then counted in `tally`, not the loop's sum, and each one's first
+/// pair once at the loop's end from that count, so that a one-tile
+/// triangle adds nothing (ARMv6-M's binning on the `demo` frame 503,361
+/// -> 499,579 instructions, `rock` -1.1 K, `grid4` -6.2 K; the frames'
+/// pair counts the same), which [`bin_fast`] relies on.
+const ONE_TILE_FIRST: bool = SINGLE_PUSH && !LOOP_COUNTS_VISIBLE;
 
 /// Whether [`bin_fast`] culls and bounds a triangle from its vertices'
 /// words ([`ScreenVertex::xy_words`](crate::vertex::ScreenVertex::xy_words), [`Edges`]) rather than from their

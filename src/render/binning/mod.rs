@@ -198,9 +198,8 @@ const FAST: bool = !cfg!(microraster_size);
 /// 344,127 -> 338,865 instructions, `rock` -4.6 K, `grid4` -4.5 K,
 /// `demo-textured-lit` -8.7 K (without the cold hint `demo` -2.3 K but
 /// `demo-textured-lit` +21.7 K: that loop copied two registers round
-/// each triangle). (The M3 the same way: `demo` +22 K.) Nor on RISC-V,
-/// whose one-tile triangles come first too ([`fast`]'s
-/// `ONE_TILE_FIRST`).
+/// each triangle). (The M3 the same way: `demo` +22 K.) Nor on RISC-V
+/// (see `fast`'s `ONE_TILE_FIRST`, which takes the cores this leaves).
 ///
 /// [`FrameState::classify`]: super::state::FrameState::classify
 pub(super) const LOOP_COUNTS_VISIBLE: bool = !crate::math::SPLIT
