@@ -85,7 +85,7 @@ where
         // (the OLED firmware's flash 44,096 -> 43,316 bytes).
         for t in list {
             let m = job.general_one::<P>(&mut cur, t, &mut later);
-            *if WHOLE_TILE_ROWS { &mut other } else { &mut n } += m;
+            add_apart(&mut n, &mut other, m);
         }
     } else {
         // The loop written twice, for the scanline walk inline and for
@@ -114,7 +114,7 @@ where
                     // them.
                     let Some(&[i0, i1, i2]) = fast.get(t.wrapping_sub(first)) else {
                         let (m, after) = job.general::<P>(&mut cur, t, &mut list, &mut later);
-                        *if WHOLE_TILE_ROWS { &mut other } else { &mut n } += m;
+                        add_apart(&mut n, &mut other, m);
                         next = after;
                         (fast, first, verts) = (cur.fast, cur.first, cur.verts);
                         shade = shaders.fill[cur.gouraud as usize];
@@ -132,7 +132,7 @@ where
                     if any & MUST_CLIP as i32 != 0 {
                         let idx = [i0 as u32, i1 as u32, i2 as u32];
                         let m = job.clipped(&cur, idx, any as u8, sv[0].color());
-                        *if WHOLE_TILE_ROWS { &mut other } else { &mut n } += m;
+                        add_apart(&mut n, &mut other, m);
                     } else {
                         // `fill`, with the tile's rasterizer, the draw's span loop
                         // and the depth test from locals.
@@ -174,7 +174,7 @@ where
     }
     if P::BLEND {
         let m = job.draw_later::<P>(&mut later);
-        *if WHOLE_TILE_ROWS { &mut other } else { &mut n } += m;
+        add_apart(&mut n, &mut other, m);
     }
     #[cfg(target_pointer_width = "64")]
     {
@@ -182,6 +182,14 @@ where
     }
     job.to.finish(WHOLE_TILE_ROWS && n > 0);
     n + other
+}
+
+/// Adds `m` fragments of a path that records its rows (the general path,
+/// clipped and transparent triangles) to `other` where the common path's
+/// are counted apart ([`WHOLE_TILE_ROWS`]), to `n` with them elsewhere.
+#[inline(always)]
+fn add_apart(n: &mut u32, other: &mut u32, m: u32) {
+    *if WHOLE_TILE_ROWS { other } else { n } += m;
 }
 
 /// One tile being drawn, and what drawing a triangle into it needs.
