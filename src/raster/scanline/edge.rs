@@ -299,10 +299,11 @@ pub(super) fn lower_half(
     );
 }
 
-/// [`half`]'s `REST` where [`find_spans`](super::find_spans) calls it: on 32-bit cores, and
-/// in the unit tests, which thereby walk as those cores do. The tile
-/// loop's inline walk ([`find_spans_inline`](super::find_spans_inline))
-/// takes `REST` on 64-bit hosts too: there its slots left measured faster
+/// Whether [`half`] writes to the slots left where
+/// [`find_spans`](super::find_spans) calls it: on 32-bit cores, and in
+/// the unit tests, which thereby walk as those cores do. The tile loop's
+/// inline walk ([`find_spans_inline`](super::find_spans_inline), `half`'s
+/// `INLINE`) writes so on 64-bit hosts too: there its slots left measured faster
 /// (x86-64 `demo` 2,757,491 -> 2,752,483 instructions, `rock` 2,299,261
 /// -> 2,295,649, `tri4` -14.3 K, `fill` 8.75 -> 8.74 a pixel), where the
 /// out-of-line walk of the shader draws kept its count (with it,
@@ -314,14 +315,15 @@ pub(super) const SLOTS_LEFT: bool = cfg!(any(target_pointer_width = "32", test))
 /// from `out[n]` on; returns the new count. (A triangle within the
 /// columns is walked by [`half_packed`](super::packed::half_packed) instead.)
 ///
-/// With `REST`, a span is written to the first of the slots left, which a
+/// Where [`SLOTS_LEFT`] says, or for the tile loop's inline walk
+/// (`INLINE`), a span is written to the first of the slots left, which a
 /// non-empty one then leaves (a pointer and a length in registers, where
 /// the other way keeps the base, the count and the length): fewer live
 /// values in the loop on a 32-bit core, slower on a 64-bit host where
 /// the walk was out of line (x86-64 `demo` +1.5 %; see [`SLOTS_LEFT`]).
 #[inline(always)]
 #[allow(clippy::too_many_arguments)]
-pub(super) fn half<const REST: bool>(
+pub(super) fn half<const INLINE: bool>(
     out: &mut [Span],
     mut n: usize,
     row: i32,
@@ -335,8 +337,9 @@ pub(super) fn half<const REST: bool>(
     let (mut rc, mut re) = (right.col, right.err);
     let (ls, lse, ld) = (left.step_col, left.step_err, left.den);
     let (rs, rse, rd) = (right.step_col, right.step_err, right.den);
+    let slots = SLOTS_LEFT || INLINE;
     let len = out.len();
-    let (out, mut rest) = out.split_at_mut(if REST { n.min(len) } else { len });
+    let (out, mut rest) = out.split_at_mut(if slots { n.min(len) } else { len });
     for j in row..stop {
         let s = Span {
             j,
@@ -344,7 +347,7 @@ pub(super) fn half<const REST: bool>(
             x1: rc.min(x1),
         };
         // Written whether empty or not, kept only if not: no branch.
-        if REST {
+        if slots {
             let r = core::mem::take(&mut rest);
             let Some(o) = r.first_mut() else {
                 // No slot left: the caller's rows never exceed them.
@@ -373,7 +376,7 @@ pub(super) fn half<const REST: bool>(
         }
     }
     (left.col, left.err, right.col, right.err) = (lc, le, rc, re);
-    if REST {
+    if slots {
         len - rest.len()
     } else {
         n

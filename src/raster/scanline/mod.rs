@@ -50,7 +50,7 @@ use cover::{misses, misses_apart};
 use direct::{half_direct, Direct, BOTH, DIRECT_COLS, DIRECT_DY};
 #[cfg(target_pointer_width = "64")]
 use direct::{LEFT, RIGHT};
-use edge::{half, lower_half, EdgeStepper, SLOTS_LEFT};
+use edge::{half, lower_half, EdgeStepper};
 use packed::{half_packed, Packed, PACKED_COLS, PACKED_DY};
 
 mod cover;
@@ -95,8 +95,9 @@ pub(crate) fn find_spans(v: &[SubPoint; 3], clip: PixelRect, out: &mut [Span]) -
 /// common path on every core with a long multiply): the test of a tall
 /// triangle ([`misses`]) out of line ([`misses_apart`]), so that the
 /// caller's loop keeps its registers for the small triangles, and the
-/// rows' spans written to the slots left ([`SLOTS_LEFT`]'s form) on
-/// 64-bit hosts too. (The call written in the condition itself: bound
+/// rows' spans written to the slots left
+/// ([`SLOTS_LEFT`](edge::SLOTS_LEFT)'s form) on 64-bit hosts too. (The
+/// call written in the condition itself: bound
 /// to a local first, the clip moved the tile loop's registers, x86-64
 /// `demo` +6.9 K, `fill` +4.3 K.)
 #[inline(always)]
@@ -319,24 +320,13 @@ fn find_spans_with<const DIRECT: bool, const APART: bool>(
     // their tile's columns; with it, the two copies: `demo` 4,641,680 ->
     // 4,585,091 instructions, `rock` 3,860,305 -> 3,819,141, `fill` 9.81
     // -> 9.71 per pixel, with `SLOTS_LEFT`.)
-    // The inline walk writes to the slots left everywhere (see
-    // `SLOTS_LEFT`).
-    let slots = SLOTS_LEFT || APART;
-    let n = if slots {
-        half::<true>(out, 0, row_top, stop, &mut left, &mut right, x0, x1)
-    } else {
-        half::<false>(out, 0, row_top, stop, &mut left, &mut right, x0, x1)
-    };
+    let n = half::<APART>(out, 0, row_top, stop, &mut left, &mut right, x0, x1);
     if stop >= row_end {
         return n;
     }
     // The lower half, from `stop == row_mid`.
     lower_half(b, c, stop, long_on_left, &mut left, &mut right);
-    if slots {
-        half::<true>(out, n, stop, row_end, &mut left, &mut right, x0, x1)
-    } else {
-        half::<false>(out, n, stop, row_end, &mut left, &mut right, x0, x1)
-    }
+    half::<APART>(out, n, stop, row_end, &mut left, &mut right, x0, x1)
 }
 
 /// [`first_centre_at_or_after`] as `floor((v + 7) / 16)`, the same
