@@ -354,12 +354,13 @@ where
 const EARLY_INTERIOR: bool = cfg!(microraster_armv7em);
 
 /// Whether [`fill`] sends a Gouraud triangle of one colour to the flat
-/// span loops: on the Cortex-M4F (the build script's
-/// `microraster_armv7em`), ARMv6-M (`microraster_narrow_multiply`) and
-/// the Cortex-M3 (`microraster_armv7m`), but not in builds optimised for
-/// size (`microraster_size`), whose Gouraud-only firmwares (the OLED's)
-/// then link no flat span loop; a Gouraud-only firmware built for speed
-/// links one for it (`rp2040_st7789` +2,088 B of flash). `demo`: Cortex-M3
+/// span loops: in every build but those optimised for size
+/// (`microraster_size`), whose Gouraud-only firmwares (the OLED's) then
+/// link no flat span loop; a Gouraud-only firmware built for speed links
+/// one for it (`rp2040_st7789` +2,088 B of flash). Measured first on the
+/// Cortex-M4F (the build script's `microraster_armv7em`), ARMv6-M
+/// (`microraster_narrow_multiply`) and the Cortex-M3
+/// (`microraster_armv7m`), `demo`: Cortex-M3
 /// 3,104,250 -> 3,091,310 instructions, Cortex-M4F 3,074,997 ->
 /// 3,061,846, ARMv6-M 6,282,412 -> 6,250,433; `rock` and `grid4` the same
 /// counts (their pairs take the tile loop's common path, which calls the
@@ -375,8 +376,7 @@ const EARLY_INTERIOR: bool = cfg!(microraster_armv7em);
 /// hosts, measured again with the tile loop's walk inline there
 /// (`demo` 2,768,616 -> 2,757,491, `rock` the same, the textured frames
 /// -36; before, with the test in `shade`, `demo` 3,097,082 -> 3,078,652
-/// but `rock` 2,564,079 -> 2,591,383): on every core, in builds not
-/// optimised for size.
+/// but `rock` 2,564,079 -> 2,591,383).
 pub(super) const ONE_COLOUR_FLAT: bool = !cfg!(microraster_size);
 
 /// Whether the three vertices `sv` have the same colour. (The Cortex-M3's
