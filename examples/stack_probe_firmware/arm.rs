@@ -64,7 +64,7 @@ pub fn start_counting() {
     syst.enable_counter();
     // SAFETY: SysTick's value register, read-only here.
     let read = || unsafe { core::ptr::read_volatile(SYST_CVR) };
-    const TURNS: u32 = 100_000;
+    const TURNS: u32 = crate::firmware::CALIBRATION_TURNS;
     let before = read();
     // Two instructions a turn: 200,000 instructions, plus the reads'.
     // SAFETY: a counted loop on one scratch register, nothing else.

@@ -15,6 +15,11 @@ use microraster::sink::Rgb565Be;
 pub mod panel;
 use panel::{ChecksumPanel, FRAME_TIMES, STACK_BUDGET};
 
+/// The turns of the loop each runtime times before it counts anything
+/// (`rt::start_counting`): a decrement and a branch a turn, in its
+/// instruction set's own assembly, so 200,000 instructions in all.
+pub const CALIBRATION_TURNS: u32 = 100_000;
+
 // In RAM (.bss), as on the boards: the knot's mesh, the workspace, the two
 // tile buffers (all zeros, `TileBuffer::new_nearest`: never built on the
 // stack). Reached once each, from `run`, through `addr_of_mut!`.

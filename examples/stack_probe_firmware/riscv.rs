@@ -94,7 +94,7 @@ static COUNTING: AtomicBool = AtomicBool::new(false);
 /// must count as that, give or take the readings' own. Once, before
 /// [`instructions`], which counts nothing otherwise.
 pub fn start_counting() {
-    const TURNS: u32 = 100_000;
+    const TURNS: u32 = crate::firmware::CALIBRATION_TURNS;
     let before = read_instret();
     // Two instructions a turn.
     // SAFETY: a counted loop on one scratch register, nothing else.
