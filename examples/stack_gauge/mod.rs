@@ -19,8 +19,10 @@
 //! buffer whole at every tile.
 //!
 //! Only a window of [`WINDOW`] bytes under the top is painted and scanned:
-//! the LM3S6965's whole free RAM, and on the MPS2's 4 MiB far more than the
-//! firmware uses, without painting megabytes at every scene.
+//! the whole free RAM of the LM3S6965 and of the boards' chips, and on the
+//! MPS2's 4 MiB one MiB, room for a renderer whose one tile is a whole
+//! 320x240 frame (about 310 KB of colour and depth, built on the
+//! firmware's stack), without painting megabytes at every scene.
 #![allow(dead_code)]
 
 /// What free stack holds until something writes it. An odd value, so that
@@ -29,7 +31,7 @@
 const PAINT: u32 = 0xC5AC_CE55;
 
 /// The most that is painted and scanned, in bytes below the top of RAM.
-pub const WINDOW: usize = 64 * 1024;
+pub const WINDOW: usize = 1024 * 1024;
 
 /// Left unpainted under the caller's stack pointer, in bytes: room for the
 /// frame of `paint` itself.
