@@ -43,6 +43,9 @@ fn check_all_tile_sizes(scene: &Scene<'_>, size: Size) {
         ("24x20", render::<24, 20>(scene, size)),
         ("64x64", render::<64, 64>(scene, size)),
         ("13x7", render::<13, 7>(scene, size)),
+        // One tile the size of the frame (larger than the 317x233 one):
+        // a frame buffer, for boards whose RAM holds one.
+        ("320x240", render::<320, 240>(scene, size)),
     ];
     for (name, (img, s)) in others {
         let diff = img.iter().zip(&reference).filter(|(a, b)| a != b).count();
