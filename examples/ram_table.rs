@@ -38,6 +38,7 @@ pub fn rows() -> Vec<(String, usize, usize)> {
         row!(Rgb565,      32, 32, 2048, 4096,  80, "320x240, 4,000-triangle mesh (the budget)"),
         row!(Rgb565,      16, 16, 2048, 4096, 300, "320x240, 4,000-triangle mesh"),
         row!(Rgb565,      64, 32, 2048, 3584,  40, "320x240, 4,000-triangle mesh"),
+        row!(Rgb565,     320, 240, 2048, 4096,   1, "320x240, 4,000-triangle mesh, one tile (a frame buffer)"),
         row!(Rgb888,      32, 32, 2048, 4096,  80, "320x240, 4,000-triangle mesh"),
         row!(Gray8,       32, 32, 2048, 4096,  80, "320x240, 4,000-triangle mesh"),
         row!(Rgb565,      32, 32,  512, 1024,  80, "320x240, 1,000-triangle mesh"),
