@@ -15,7 +15,16 @@ fn render<const TW: usize, const TH: usize>(
     scene: &Scene<'_>,
     size: Size,
 ) -> (Vec<Rgb565>, FrameStats) {
-    let mut r: Renderer<Rgb565, TW, TH> = Renderer::new(Config::new(size, Rgb565::new(1, 2, 3)));
+    render_with::<TW, TH>(scene, size, Rasterizer::Scanline)
+}
+
+fn render_with<const TW: usize, const TH: usize>(
+    scene: &Scene<'_>,
+    size: Size,
+    raster: Rasterizer,
+) -> (Vec<Rgb565>, FrameStats) {
+    let mut r: Renderer<Rgb565, TW, TH> =
+        Renderer::new(Config::new(size, Rgb565::new(1, 2, 3)).rasterizer(raster));
     let mut ws: Box<Workspace<2048, 8192, 256>> = Box::new(Workspace::new());
     let mut cap = Capture::new(size, Rgb565::new(31, 0, 31));
     let stats = r.render(&mut ws, scene, &mut cap).unwrap();
@@ -46,6 +55,16 @@ fn check_all_tile_sizes(scene: &Scene<'_>, size: Size) {
         // One tile the size of the frame (larger than the 317x233 one):
         // a frame buffer, for boards whose RAM holds one.
         ("320x240", render::<320, 240>(scene, size)),
+        // The frame-sized tile through the other rasterizers, whose
+        // coverage is the scanline rasterizer's at any tile.
+        (
+            "320x240 Hilbert",
+            render_with::<320, 240>(scene, size, Rasterizer::Hilbert),
+        ),
+        (
+            "320x240 Auto",
+            render_with::<320, 240>(scene, size, Rasterizer::Auto),
+        ),
     ];
     for (name, (img, s)) in others {
         let diff = img.iter().zip(&reference).filter(|(a, b)| a != b).count();
